@@ -1,0 +1,70 @@
+"""Argument checks shared by the package: each raises ``ValueError`` naming the
+parameter, the value received and what is allowed."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def finite_float(name: str, value: Any) -> float:
+    """Return ``value`` as a float; raise ``ValueError`` unless it is a finite real number."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a finite real number, got {_short(value)}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be a finite real number, got {_short(value)}")
+    return number
+
+
+def positive_float(name: str, value: Any) -> float:
+    """Return ``value`` as a float; raise ``ValueError`` unless it is finite and > 0."""
+    number = finite_float(name, value)
+    if number <= 0.0:
+        raise ValueError(f"{name} must be > 0, got {_short(value)}")
+    return number
+
+
+def positive_int(name: str, value: Any) -> int:
+    """Return ``value`` as an int; raise ``ValueError`` unless it is an integer >= 1."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer >= 1, got {_short(value)}")
+    if value < 1:
+        raise ValueError(f"{name} must be an integer >= 1, got {_short(value)}")
+    return int(value)
+
+
+def finite_array(name: str, value: Any, *, min_length: int = 1) -> np.ndarray:
+    """Return ``value`` as a 1-D float array of finite numbers with at least ``min_length`` entries."""
+    try:
+        raw = np.asarray(value)
+        if raw.dtype.kind not in "biuf" and raw.size:
+            raise TypeError
+        array = raw.astype(float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a 1-D sequence of finite numbers, got {_short(value)}") from None
+    if array.ndim != 1:
+        raise ValueError(f"{name} must be 1-D, got an array of shape {array.shape}")
+    if array.size < min_length:
+        raise ValueError(f"{name} must hold at least {min_length} value(s), got {array.size}")
+    bad = ~np.isfinite(array)
+    if bad.any():
+        index = int(np.argmax(bad))
+        raise ValueError(f"{name} must hold finite numbers only, got {float(array[index])!r} at index {index}")
+    return array
+
+
+def same_length(names: tuple[str, ...], arrays: tuple[np.ndarray, ...]) -> None:
+    """Raise ``ValueError`` unless all arrays have the same length."""
+    lengths = [len(a) for a in arrays]
+    if len(set(lengths)) > 1:
+        described = ", ".join(f"{n} has {k}" for n, k in zip(names, lengths))
+        raise ValueError(f"{', '.join(names)} must have the same length: {described}")

@@ -1,0 +1,119 @@
+"""Prandtl-Ishlinskii operator: a weighted sum of play operators, with its analytic inverse."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .._checks import finite_array, finite_float, same_length
+from .base import HysteresisOperator, check_input
+
+
+class PrandtlIshlinskii(HysteresisOperator):
+    r"""Prandtl-Ishlinskii operator ``y = p0·u + Σ_j p_j·z_j``.
+
+    Each play operator of radius ``r_j`` follows
+    :math:`z_j(t) = \max(u - r_j, \min(u + r_j, z_j(t^-)))`.
+
+    Parameters
+    ----------
+    radii : array_like
+        Play radii ``r_j >= 0``, strictly increasing (input units).
+    weights : array_like
+        Play weights ``p_j`` (output units per input unit), same length as ``radii``.
+    p0 : float
+        Weight of the input itself (the play of radius 0).
+
+    Notes
+    -----
+    Initial state (after :meth:`reset`): every play at ``z_j = 0``, the usual initial
+    condition of the PI literature (the plays are at rest for a history that starts at
+    ``u = 0``); not a negative saturation, which a PI operator does not have.
+    """
+
+    def __init__(self, radii: Any, weights: Any, p0: float) -> None:
+        r = finite_array("radii", radii, min_length=0)
+        p = finite_array("weights", weights, min_length=0)
+        same_length(("radii", "weights"), (r, p))
+        if r.size and r[0] < 0.0:
+            raise ValueError(f"radii must be >= 0, got {float(r[0])!r}")
+        steps = np.diff(r)
+        if (steps <= 0).any():
+            i = int(np.argmax(steps <= 0)) + 1
+            raise ValueError(f"radii must be strictly increasing, got radii[{i}] = {float(r[i])!r} after {float(r[i - 1])!r}")
+        self.radii = r.copy()
+        self.weights = p.copy()
+        self.p0 = finite_float("p0", p0)
+        self.reset()
+
+    def reset(self) -> None:
+        """All plays at zero."""
+        self._z = np.zeros(self.radii.size)
+        self._y = 0.0
+
+    def checkpoint(self) -> tuple:
+        """Snapshot of the play states and the last output."""
+        return (self._z.copy(), self._y)
+
+    def restore(self, snapshot: Any) -> None:
+        """Put back a memory returned by :meth:`checkpoint`."""
+        z, y = snapshot
+        z = np.asarray(z, dtype=float)
+        if z.shape != self._z.shape:
+            raise ValueError(f"snapshot holds {z.size} play states, this operator has {self._z.size}")
+        self._z, self._y = z.copy(), float(y)
+
+    @property
+    def output(self) -> float:
+        """Output for the last committed input."""
+        return self._y
+
+    def _plays(self, u: float) -> np.ndarray:
+        return np.maximum(u - self.radii, np.minimum(u + self.radii, self._z))
+
+    def evaluate(self, u: float) -> float:
+        """Output for input ``u`` from the committed play states; nothing is changed."""
+        u = check_input(u)
+        return self.p0 * u + float(self.weights @ self._plays(u))
+
+    def commit(self, u: float) -> float:
+        """Accept input ``u``: update the play states and return the output."""
+        u = check_input(u)
+        self._z = self._plays(u)
+        self._y = self.p0 * u + float(self.weights @ self._z)
+        return self._y
+
+    def inverse(self) -> "PrandtlIshlinskii":
+        r"""The analytic inverse, again a Prandtl-Ishlinskii operator.
+
+        With ``P_j = p0 + Σ_{i<=j} p_i`` (plays of radius 0 are merged into ``p0``):
+        :math:`\hat p_0 = 1/p_0`,
+        :math:`\hat p_j = -p_j / (P_j P_{j-1})`,
+        :math:`\hat r_j = p_0 r_j + \sum_{i \le j} p_i (r_j - r_i)`.
+        Starting both from the reset state, ``inverse().apply(apply(u)) == u``.
+
+        Raises
+        ------
+        ValueError
+            If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible).
+        """
+        radii, weights = self.radii, self.weights
+        p0 = self.p0 + float(weights[radii == 0.0].sum())
+        keep = radii > 0.0
+        radii, weights = radii[keep], weights[keep]
+        cumulative = p0 + np.cumsum(weights)
+        previous = np.concatenate(([p0], cumulative[:-1]))
+        if p0 <= 0.0 or (cumulative <= 0.0).any():
+            raise ValueError(
+                f"p0 and every p0 + sum(weights[:j+1]) must be > 0 for an inverse, got p0 = {p0!r} "
+                f"and partial sums {cumulative.tolist()!r}"
+            )
+        inv_weights = -weights / (cumulative * previous)
+        inv_radii = p0 * radii + np.array(
+            [float(np.sum(weights[: j + 1] * (radii[j] - radii[: j + 1]))) for j in range(radii.size)]
+        )
+        return PrandtlIshlinskii(inv_radii, inv_weights, 1.0 / p0)
+
+    def __repr__(self) -> str:
+        return f"PrandtlIshlinskii(radii={self.radii.tolist()!r}, weights={self.weights.tolist()!r}, p0={self.p0!r})"

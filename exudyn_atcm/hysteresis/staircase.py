@@ -1,0 +1,162 @@
+"""Preisach operators evaluated from the memory staircase of dominant input extrema.
+
+Notation (Mayergoyz, *Mathematical Models of Hysteresis*, 2003): a relay with switch-on
+threshold ``alpha`` and switch-off threshold ``beta <= alpha`` has output 1 once the input
+reaches ``u >= alpha``, 0 once ``u <= beta`` (and ``u < alpha``), and keeps its state in
+between.  A Preisach operator is a weighted, possibly continuous, sum of relays.  Starting
+from negative saturation (all relays off), its state is fixed by the alternating sequence of
+dominant input extrema (the staircase in the Preisach plane); a new extremum wipes out all
+earlier extrema it exceeds.  With
+
+``K(a, b) = measure of the relays with alpha <= a and beta >= b``
+
+the output is updated from the last reversal point only:
+
+* rising from a minimum ``m`` whose output was ``Y_m``: ``y = Y_m + K(u, m) - K(m, m)``,
+* falling from a maximum ``M`` whose output was ``Y_M``: ``y = Y_M - K(M, u) + K(u, u)``.
+
+(``K(u, u)`` is the weight of relays with ``alpha == beta == u``; zero for a density.)
+The staircase stores each surviving reversal point with its output, so a step costs a few
+comparisons plus one evaluation of ``K``, independent of the history's length on average.
+"""
+
+from __future__ import annotations
+
+import abc
+import math
+from typing import Any
+
+from .base import HysteresisOperator, check_input
+
+_INF = math.inf
+
+
+class StaircasePreisach(HysteresisOperator):
+    """Base class: staircase memory plus a model-specific function ``K``.
+
+    Subclasses implement :meth:`_k_rising` (``K(a, b)`` with ``b`` a stored minimum),
+    :meth:`_k_falling` (``K(a, b)`` with ``a`` a stored maximum) and :meth:`_tie`
+    (``K(u, u)``), and set ``_y_reset`` (output with all relays off).
+    """
+
+    _y_reset: float
+
+    def __init__(self) -> None:
+        self.reset()
+
+    # -- the function K, supplied by the model --------------------------------------
+    @abc.abstractmethod
+    def _k_rising(self, a: float, b: float) -> float:
+        """``K(a, b)`` where ``b`` is a reversal minimum (may be cached per ``b``)."""
+
+    @abc.abstractmethod
+    def _k_falling(self, a: float, b: float) -> float:
+        """``K(a, b)`` where ``a`` is a reversal maximum (may be cached per ``a``)."""
+
+    def _tie(self, u: float) -> float:
+        """``K(u, u)``: weight of relays with ``alpha == beta == u``."""
+        return 0.0
+
+    # -- memory ----------------------------------------------------------------------
+    def reset(self) -> None:
+        """Negative saturation: all relays off, output at its lower bound."""
+        # Reversal values alternate max, min, max, ...: index 0 is a +inf sentinel maximum
+        # and index 1 the -inf minimum of the reset state, so loops need no index checks.
+        self._values: list[float] = [_INF, -_INF]
+        self._outputs: list[float] = [self._y_reset, self._y_reset]
+        self._u = -_INF
+        self._y = self._y_reset
+        self._rising = True
+
+    def checkpoint(self) -> tuple:
+        """Snapshot of the staircase (reversal points, last input and output, direction)."""
+        return (tuple(self._values), tuple(self._outputs), self._u, self._y, self._rising)
+
+    def restore(self, snapshot: Any) -> None:
+        """Put back a memory returned by :meth:`checkpoint`."""
+        try:
+            values, outputs, u, y, rising = snapshot
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"snapshot must come from checkpoint() of a Preisach operator, got {snapshot!r}"
+            ) from None
+        self._values = list(values)
+        self._outputs = list(outputs)
+        self._u, self._y, self._rising = u, y, rising
+
+    @property
+    def output(self) -> float:
+        """Output for the last committed input."""
+        return self._y
+
+    @property
+    def last_input(self) -> float:
+        """Last committed input (``-inf`` after :meth:`reset`)."""
+        return self._u
+
+    @property
+    def reversal_points(self) -> list[tuple[float, float]]:
+        """The surviving dominant extrema ``(input, output)``, oldest first (no sentinels)."""
+        return list(zip(self._values[2:], self._outputs[2:]))
+
+    # -- stepping ----------------------------------------------------------------------
+    def evaluate(self, u: float) -> float:
+        """Output for input ``u`` from the committed memory; the memory is not changed."""
+        return self._advance(u, False)
+
+    def commit(self, u: float) -> float:
+        """Accept input ``u``, update the staircase and return the output."""
+        return self._advance(u, True)
+
+    def _advance(self, u: float, store: bool) -> float:
+        if type(u) is not float:
+            u = check_input(u)
+        elif not -_INF < u < _INF:  # nan compares false, too
+            raise ValueError(f"u must be a finite real number, got {u!r}")
+        u_now = self._u
+        if u == u_now:
+            return self._y
+        values = self._values
+        if u > u_now:
+            if self._rising:
+                i = len(values) - 1
+            elif u < values[-1]:
+                # A new minimum at u_now, no extremum wiped out.
+                y = self._y + self._k_rising(u, u_now) - self._tie(u_now)
+                if store:
+                    values.append(u_now)
+                    self._outputs.append(self._y)
+                    self._rising, self._u, self._y = True, u, y
+                return y
+            else:
+                i = len(values) - 2  # the new minimum and the last maximum are wiped out
+            while u >= values[i - 1]:
+                i -= 2
+            m = values[i]
+            y = self._outputs[i] + self._k_rising(u, m) - self._tie(m)
+            if store:
+                del values[i + 1 :]
+                del self._outputs[i + 1 :]
+                self._rising, self._u, self._y = True, u, y
+            return y
+        if not self._rising:
+            i = len(values) - 1
+        elif u > values[-1]:
+            # A new maximum at u_now, no extremum wiped out.
+            y = self._y - self._k_falling(u_now, u) + self._tie(u)
+            if store:
+                values.append(u_now)
+                self._outputs.append(self._y)
+                self._rising, self._u, self._y = False, u, y
+            return y
+        else:
+            i = len(values) - 2
+        while u <= values[i - 1]:
+            i -= 2
+        big_m = values[i]
+        y = self._outputs[i] - self._k_falling(big_m, u) + self._tie(u)
+        if store:
+            del values[i + 1 :]
+            del self._outputs[i + 1 :]
+            self._rising, self._u, self._y = False, u, y
+        return y

@@ -1,0 +1,277 @@
+"""Voltage programs: objects that carry their parameters and are callable on times.
+
+Every signal is called as ``signal(t)`` with ``t`` in seconds, a float or a numpy array, and
+returns volts of the same shape (a float for a scalar ``t``).  ``signal.parameters`` gives
+the parameters as a dict (written into CSV metadata).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+from typing import Any, Literal, Union
+
+import numpy as np
+
+from ._checks import finite_array, finite_float, positive_float
+
+__all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal"]
+
+TimeLike = Union[float, np.ndarray]
+
+
+class Signal:
+    """Base class: subclasses implement :meth:`_values` on a float array of times."""
+
+    def __call__(self, t: Any) -> TimeLike:
+        times = np.asarray(t, dtype=float)
+        if not np.all(np.isfinite(times)):
+            raise ValueError(f"t must be finite, got {t!r}")
+        values = self._values(np.atleast_1d(times))
+        if times.ndim == 0:
+            return float(values[0])
+        return values.reshape(times.shape)
+
+    def _values(self, t: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @property
+    def parameters(self) -> dict[str, Any]:
+        """The signal's kind and parameters, in SI units."""
+        return {"signal": type(self).__name__, **self._parameters()}
+
+    def _parameters(self) -> dict[str, Any]:
+        return {}
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self._parameters().items())
+        return f"{type(self).__name__}({args})"
+
+
+class Constant(Signal):
+    """A constant voltage ``value`` [V]."""
+
+    def __init__(self, value: float) -> None:
+        self.value = finite_float("value", value)
+
+    def _values(self, t: np.ndarray) -> np.ndarray:
+        return np.full(t.shape, self.value)
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"value": self.value}
+
+
+class Triangle(Signal):
+    r"""Symmetric triangle wave of the paper's Eq. 11.
+
+    :math:`U(t) = U_{med} + U_{amp}(4t/T - 1 - 2k)(-1)^k`, :math:`k = \lfloor 2t/T \rfloor`:
+    ``u_med - u_amp`` at ``t = 0`` (and every multiple of ``period``), ``u_med + u_amp`` at
+    ``period/2``.  (The paper calls it a saw tooth; it is a triangle.)  For ``t < 0`` the wave is
+    continued periodically (floor instead of the paper's truncation).
+
+    Parameters
+    ----------
+    u_med : float
+        Mean voltage [V].
+    u_amp : float
+        Amplitude [V], ``>= 0``.
+    period : float
+        Period ``T`` [s], ``> 0``.
+    """
+
+    def __init__(self, u_med: float, u_amp: float, period: float) -> None:
+        self.u_med = finite_float("u_med", u_med)
+        self.u_amp = finite_float("u_amp", u_amp)
+        if self.u_amp < 0.0:
+            raise ValueError(f"u_amp must be >= 0, got {u_amp!r}")
+        self.period = positive_float("period", period)
+
+    def _values(self, t: np.ndarray) -> np.ndarray:
+        phase = 2.0 * t / self.period
+        k = np.floor(phase)
+        sign = np.where(np.mod(k, 2.0) == 0.0, 1.0, -1.0)
+        return self.u_med + self.u_amp * (2.0 * phase - 1.0 - 2.0 * k) * sign
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period}
+
+
+class Sine(Signal):
+    """``u_med + u_amp·sin(2π t/period + phase)`` [V].
+
+    Parameters
+    ----------
+    u_med : float
+        Mean voltage [V].
+    u_amp : float
+        Amplitude [V].
+    period : float
+        Period [s], ``> 0``.
+    phase : float, optional
+        Phase [rad]; ``-pi/2`` starts at the minimum.
+    """
+
+    def __init__(self, u_med: float, u_amp: float, period: float, phase: float = 0.0) -> None:
+        self.u_med = finite_float("u_med", u_med)
+        self.u_amp = finite_float("u_amp", u_amp)
+        self.period = positive_float("period", period)
+        self.phase = finite_float("phase", phase)
+
+    def _values(self, t: np.ndarray) -> np.ndarray:
+        return self.u_med + self.u_amp * np.sin(2.0 * math.pi * t / self.period + self.phase)
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period, "phase": self.phase}
+
+
+def _breakpoints(times: Any, values: Any) -> tuple[np.ndarray, np.ndarray]:
+    t = finite_array("times", times)
+    v = finite_array("values", values)
+    if t.size != v.size:
+        raise ValueError(f"times and values must have the same length, got {t.size} and {v.size}")
+    steps = np.diff(t)
+    if (steps <= 0).any():
+        i = int(np.argmax(steps <= 0)) + 1
+        raise ValueError(f"times must be strictly increasing, got times[{i}] = {float(t[i])!r} after {float(t[i - 1])!r}")
+    return t, v
+
+
+class Steps(Signal):
+    """Piecewise-constant program: ``values[k]`` from ``times[k]`` until ``times[k+1]``.
+
+    Before ``times[0]`` the signal is ``values[0]``; after the last time it holds the last value.
+
+    Parameters
+    ----------
+    times : array_like
+        Switching times [s], strictly increasing.
+    values : array_like
+        Voltages [V], one per switching time.
+    """
+
+    def __init__(self, times: Any, values: Any) -> None:
+        self.times, self.values = _breakpoints(times, values)
+
+    def _values(self, t: np.ndarray) -> np.ndarray:
+        index = np.searchsorted(self.times, t, side="right") - 1
+        return self.values[np.clip(index, 0, None)]
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"times": self.times.tolist(), "values": self.values.tolist()}
+
+
+class PiecewiseLinear(Signal):
+    """Linear interpolation between points ``(times[k], values[k])``: ramps and holds.
+
+    Parameters
+    ----------
+    times : array_like
+        Times [s], strictly increasing.
+    values : array_like
+        Voltages [V] at those times.
+    outside : {"hold", "error"}, optional
+        Outside ``[times[0], times[-1]]``: hold the end value (default) or raise ``ValueError``.
+    """
+
+    def __init__(self, times: Any, values: Any, outside: Literal["hold", "error"] = "hold") -> None:
+        self.times, self.values = _breakpoints(times, values)
+        if outside not in ("hold", "error"):
+            raise ValueError(f"outside must be 'hold' or 'error', got {outside!r}")
+        self.outside = outside
+
+    def _values(self, t: np.ndarray) -> np.ndarray:
+        if self.outside == "error":
+            bad = (t < self.times[0]) | (t > self.times[-1])
+            if bad.any():
+                raise ValueError(
+                    f"t = {float(t[bad][0])!r} s lies outside the signal's time range "
+                    f"[{float(self.times[0])!r}, {float(self.times[-1])!r}] s (outside='error')"
+                )
+        return np.interp(t, self.times, self.values)
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"times": self.times.tolist(), "values": self.values.tolist(), "outside": self.outside}
+
+
+class CsvSignal(PiecewiseLinear):
+    """A voltage time series read from a CSV file, linearly interpolated.
+
+    Lines starting with ``#`` are comments.  The first other line may be a header of column
+    names (such as ``time [s],voltage [V]``); columns are chosen by name or by index.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    time_column, value_column : str or int, optional
+        Column names (with a header) or zero-based indices; by default the columns
+        ``time [s]`` and ``voltage [V]`` if the header has them, else columns 0 and 1.
+    outside : {"hold", "error"}, optional
+        Behaviour outside the file's time range, as in :class:`PiecewiseLinear`.
+    """
+
+    def __init__(
+        self,
+        path: Union[str, Path],
+        time_column: Union[str, int, None] = None,
+        value_column: Union[str, int, None] = None,
+        outside: Literal["hold", "error"] = "hold",
+    ) -> None:
+        self.path = Path(path)
+        header, rows = _read_table(self.path)
+        t_index = _column_index(header, time_column, "time [s]", 0, "time_column", self.path)
+        v_index = _column_index(header, value_column, "voltage [V]", 1, "value_column", self.path)
+        times, values = [], []
+        for line_number, row in rows:
+            try:
+                times.append(float(row[t_index]))
+                values.append(float(row[v_index]))
+            except (IndexError, ValueError):
+                raise ValueError(
+                    f"{self.path}: line {line_number} must hold numbers in columns {t_index} and "
+                    f"{v_index}, got {row!r}"
+                ) from None
+        if not times:
+            raise ValueError(f"{self.path}: no data rows")
+        super().__init__(times, values, outside=outside)
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"path": str(self.path), "outside": self.outside}
+
+
+def _read_table(path: Path) -> tuple[list[str] | None, list[tuple[int, list[str]]]]:
+    if not path.is_file():
+        raise ValueError(f"path must be an existing CSV file, got {str(path)!r}")
+    header: list[str] | None = None
+    rows: list[tuple[int, list[str]]] = []
+    with path.open(newline="") as handle:
+        for line_number, row in enumerate(csv.reader(handle), start=1):
+            if not row or row[0].lstrip().startswith("#"):
+                continue
+            cells = [cell.strip() for cell in row]
+            if header is None and not rows:
+                try:
+                    [float(cell) for cell in cells]
+                except ValueError:
+                    header = cells
+                    continue
+            rows.append((line_number, cells))
+    return header, rows
+
+
+def _column_index(
+    header: list[str] | None, choice: Union[str, int, None], default_name: str, default_index: int,
+    parameter: str, path: Path,
+) -> int:
+    if choice is None:
+        if header is not None and default_name in header:
+            return header.index(default_name)
+        return default_index
+    if isinstance(choice, str):
+        if header is None or choice not in header:
+            raise ValueError(f"{parameter} = {choice!r} is not a column of {path}; columns: {header!r}")
+        return header.index(choice)
+    if isinstance(choice, int) and choice >= 0:
+        return choice
+    raise ValueError(f"{parameter} must be a column name or an index >= 0, got {choice!r}")
