@@ -1,0 +1,84 @@
+"""Voltage programs of exudyn_atcm.signals."""
+
+import math
+
+import numpy as np
+import pytest
+
+from exudyn_atcm.signals import Constant, CsvSignal, PiecewiseLinear, Sine, Steps, Triangle
+
+
+def eq_11(t, u_med, u_amp, period):
+    """The paper's Eq. 11 as printed (int() truncation, valid for t >= 0)."""
+    k = int(2 * t / period)
+    return u_med + u_amp * (4 * t / period - 1 - 2 * k) * (-1) ** k
+
+
+def test_triangle_is_eq_11():
+    tri = Triangle(500, 1000, 0.4)
+    for t in np.linspace(0, 1.3, 211):
+        assert tri(t) == pytest.approx(eq_11(t, 500, 1000, 0.4), abs=1e-9)
+    assert tri(0.0) == -500 and tri(0.2) == pytest.approx(1500) and tri(0.4) == pytest.approx(-500)
+
+
+def test_scalar_in_float_out_array_in_array_out():
+    tri = Triangle(0, 1, 1.0)
+    assert isinstance(tri(0.1), float)
+    out = tri(np.zeros((2, 3)))
+    assert out.shape == (2, 3)
+
+
+def test_sine_steps_piecewise_constant():
+    assert Sine(1.0, 2.0, 4.0)(1.0) == pytest.approx(3.0)
+    assert Sine(1.0, 2.0, 4.0, phase=-math.pi / 2)(0.0) == pytest.approx(-1.0)
+    steps = Steps([0.0, 1.0, 2.0], [0.0, 100.0, -50.0])
+    np.testing.assert_array_equal(steps([-1, 0, 0.5, 1.0, 1.9, 2.0, 5.0]), [0, 0, 0, 100, 100, -50, -50])
+    ramp = PiecewiseLinear([0.0, 1.0, 3.0], [0.0, 1000.0, 0.0])
+    np.testing.assert_allclose(ramp([-1, 0.5, 2.0, 4.0]), [0, 500, 500, 0])
+    assert Constant(7.5)(np.arange(3)).tolist() == [7.5, 7.5, 7.5]
+
+
+def test_piecewise_linear_outside_error():
+    ramp = PiecewiseLinear([0.0, 1.0], [0.0, 1.0], outside="error")
+    with pytest.raises(ValueError, match=r"t = 1.5 s lies outside"):
+        ramp(1.5)
+
+
+def test_csv_signal_by_header_and_index(tmp_path):
+    path = tmp_path / "u.csv"
+    path.write_text("# measured\ntime [s],voltage [V],other [-]\n0,0,9\n1,100,9\n2,-100,9\n")
+    sig = CsvSignal(path)
+    assert sig(0.5) == pytest.approx(50.0)
+    assert sig(1.5) == pytest.approx(0.0)
+    headerless = tmp_path / "v.csv"
+    headerless.write_text("0,1,10\n2,3,30\n")
+    assert CsvSignal(headerless, value_column=2)(1.0) == pytest.approx(20.0)
+    assert sig.parameters["signal"] == "CsvSignal"
+
+
+@pytest.mark.parametrize(
+    "make, pattern",
+    [
+        (lambda: Triangle(0, 1, 0), r"period must be > 0, got 0"),
+        (lambda: Triangle(0, -1, 1), r"u_amp must be >= 0, got -1"),
+        (lambda: Sine(math.nan, 1, 1), r"u_med must be a finite real number, got nan"),
+        (lambda: Steps([0, 0], [1, 2]), r"times must be strictly increasing, got times\[1\] = 0.0"),
+        (lambda: PiecewiseLinear([0, 1], [1]), r"times and values must have the same length"),
+        (lambda: PiecewiseLinear([0, 1], [1, 2], outside="clip"), r"outside must be 'hold' or 'error', got 'clip'"),
+        (lambda: Triangle(0, 1, 1)(math.inf), r"t must be finite"),
+    ],
+)
+def test_bad_input(make, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        make()
+
+
+def test_csv_signal_errors(tmp_path):
+    with pytest.raises(ValueError, match=r"path must be an existing CSV file"):
+        CsvSignal(tmp_path / "missing.csv")
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time [s],voltage [V]\n0,1\n1,abc\n")
+    with pytest.raises(ValueError, match=r"line 3 must hold numbers"):
+        CsvSignal(bad)
+    with pytest.raises(ValueError, match=r"value_column = 'volts' is not a column"):
+        CsvSignal(bad, value_column="volts")
