@@ -34,21 +34,35 @@ inputs = st.lists(
 )
 
 
-@given(relay_sets(), inputs)
-def test_identical_to_relay_by_relay_simulation(relays, u):
+@given(relay_sets(), inputs, st.sampled_from([1 << 22, 0]))
+def test_identical_to_relay_by_relay_simulation(relays, u, max_table_entries):
+    """Every kernel (prefix sums, Everett table, per-reversal rows) gives the relays' output."""
     alpha, beta, weights, offset = relays
-    model = DiscretePreisach(alpha, beta, weights, offset)
+    model = DiscretePreisach(alpha, beta, weights, offset, max_table_entries=max_table_entries)
     np.testing.assert_array_equal(model.apply(u), relay_outputs(alpha, beta, weights, offset, u))
+
+
+def test_preisach_grid_uses_the_everett_table_and_matches_relays():
+    levels = np.linspace(-1, 1, 9)
+    alpha, beta = np.meshgrid(levels, levels, indexing="ij")
+    keep = alpha >= beta
+    alpha, beta = alpha[keep], beta[keep]
+    weights = np.exp(-(alpha - 0.2) ** 2 - (beta + 0.1) ** 2)
+    model = DiscretePreisach(alpha, beta, weights)
+    assert model.kernel == "table"
+    rng = np.random.default_rng(5)
+    u = np.r_[np.cumsum(rng.normal(scale=0.25, size=300)), levels]
+    np.testing.assert_allclose(model.apply(u), relay_outputs(alpha, beta, weights, 0.0, u), rtol=0, atol=1e-12)
 
 
 def test_random_relays_with_random_float_gains():
     rng = np.random.default_rng(3)
-    for n in (1, 10, 200):
+    for n, limit, kernel in ((1, 1 << 22, "prefix"), (10, 1 << 22, "table"), (200, 1 << 22, "table"), (200, 100, "rows")):
         alpha = rng.uniform(-1, 1, n)
         beta = alpha - rng.exponential(0.4, n)
         weights = rng.normal(size=n)
-        model = DiscretePreisach(alpha, beta, weights, 0.25)
-        assert not model.monotone or n == 1
+        model = DiscretePreisach(alpha, beta, weights, 0.25, max_table_entries=limit)
+        assert model.kernel == kernel
         u = np.cumsum(rng.normal(scale=0.3, size=400))
         expected = relay_outputs(alpha, beta, weights, 0.25, u)
         # float sums in another order: equal to round-off of sum(|w|)
@@ -59,7 +73,7 @@ def test_monotone_family_is_detected_and_matches_relays():
     alpha = np.array([0.0, 1.0, 2.0, 3.0])
     beta = np.array([-1.0, -0.5, 1.0, 3.0])
     model = DiscretePreisach(alpha[::-1], beta[::-1], [1, 2, 3, 4])
-    assert model.monotone
+    assert model.monotone and model.kernel == "prefix"
     u = [3, -1, 2, 0.5, 1, -0.7, 2.5, 0.99, 4, -3]
     np.testing.assert_array_equal(model.apply(u), relay_outputs(alpha[::-1], beta[::-1], [1, 2, 3, 4], 0.0, u))
 

@@ -26,17 +26,22 @@ def discrete_from_loop():
     return DiscretePreisach.from_loop(np.r_[u, u[::-1]], y, 37)
 
 
-def discrete_random():
+def discrete_random(max_table_entries=1 << 22):
     rng = np.random.default_rng(7)
     n = 60
     a = rng.uniform(-500, 1500, n)
     b = a - rng.uniform(0, 900, n)
     b[:5] = a[:5]  # a few relays with alpha == beta
     w = rng.integers(1, 9, n) / 8.0
-    return DiscretePreisach(a, b, w, offset=-1.0)
+    return DiscretePreisach(a, b, w, offset=-1.0, max_table_entries=max_table_entries)
 
 
-MODELS = {"continuous": continuous, "from_loop": discrete_from_loop, "random": discrete_random}
+MODELS = {
+    "continuous": continuous,
+    "from_loop": discrete_from_loop,  # prefix-sum kernel
+    "random": discrete_random,  # Everett-table kernel
+    "random_rows": lambda: discrete_random(0),  # per-reversal row kernel
+}
 model_names = st.sampled_from(sorted(MODELS))
 inputs = st.floats(U_LO, U_HI, allow_nan=False, allow_infinity=False)
 grid_inputs = st.sampled_from([-500.0, 0.0, 250.0, 500.0, 1000.0, 1500.0])
@@ -152,7 +157,7 @@ def test_continuous_model_is_lipschitz_continuous(history, step, u):
     assert abs(model.evaluate(u + step) - model.evaluate(u)) <= lip * abs(step) * (1 + 1e-9) + 1e-20
 
 
-@given(st.sampled_from(["from_loop", "random"]), histories, values)
+@given(st.sampled_from(["from_loop", "random", "random_rows"]), histories, values)
 def test_discrete_output_jumps_only_by_relays_crossed(name, history, u):
     """A discrete model's output changes only by the weights of relays whose thresholds lie
     between the last input and the new one (its form of continuity)."""

@@ -25,11 +25,15 @@ class DiscretePreisach(StaircasePreisach):
     :mod:`exudyn_atcm.hysteresis.staircase`), not the array of relay states, so a step costs
     ``O(log n)`` binary searches in the sorted thresholds plus prefix sums of the weights:
 
-    * when the relays form a monotone family (sorted by ``alpha``, their ``beta`` is
-      non-decreasing, as for every model identified by :meth:`from_loop`), every step is
-      ``O(log n)``;
-    * otherwise a step is ``O(log n)`` too, except that the first step after a new reversal
-      point builds that point's prefix-sum row once (``O(n)``, vectorised; rows are cached).
+    * ``kernel == "prefix"``: the relays form a monotone family (sorted by ``alpha``, their
+      ``beta`` is non-decreasing, as for every model identified by :meth:`from_loop`); prefix
+      sums of the weights, ``O(n)`` memory, every step ``O(log n)``;
+    * ``kernel == "table"``: any other relay set whose grid of distinct thresholds has at most
+      ``max_table_entries`` cells (a Preisach grid of ``n`` relays has about ``n``): the Everett
+      function tabulated on that grid, every step ``O(log n)``;
+    * ``kernel == "rows"``: otherwise (many scattered thresholds), a step is ``O(log n)``
+      except the first one after a new reversal point, which builds that point's prefix-sum
+      row once (``O(n)``, vectorised; rows are cached).
 
     Parameters
     ----------
@@ -41,13 +45,17 @@ class DiscretePreisach(StaircasePreisach):
         Gains (output units), shape ``(n,)``.
     offset : float, optional
         Output with all relays off.
+    max_table_entries : int, optional
+        Largest Everett table (number of float cells) built for a non-monotone relay set.
 
     Notes
     -----
     Initial state (after :meth:`reset`): all relays off, output ``offset``.
     """
 
-    def __init__(self, alpha: Any, beta: Any, weights: Any, offset: float = 0.0) -> None:
+    def __init__(
+        self, alpha: Any, beta: Any, weights: Any, offset: float = 0.0, *, max_table_entries: int = 1 << 22
+    ) -> None:
         alpha_a = finite_array("alpha", alpha)
         beta_a = finite_array("beta", beta)
         weights_a = finite_array("weights", weights)
@@ -64,15 +72,37 @@ class DiscretePreisach(StaircasePreisach):
         self.weights = weights_a.copy()
         self.offset = finite_float("offset", offset)
         self._y_reset = self.offset
+        if isinstance(max_table_entries, bool) or not isinstance(max_table_entries, (int, np.integer)) or max_table_entries < 0:
+            raise ValueError(f"max_table_entries must be an integer >= 0, got {max_table_entries!r}")
 
         order = np.lexsort((beta_a, alpha_a))  # by alpha, ties by beta
         self._alpha_sorted: list[float] = alpha_a[order].tolist()
         beta_by_alpha = beta_a[order]
         self.monotone = bool(np.all(np.diff(beta_by_alpha) >= 0.0))
+        alpha_levels = np.unique(alpha_a)
+        beta_levels = np.unique(beta_a)
         if self.monotone:
+            self.kernel = "prefix"
             self._beta_sorted: list[float] = beta_by_alpha.tolist()
             self._prefix: list[float] = [0.0, *accumulate(weights_a[order].tolist())]
+        elif (alpha_levels.size + 1) * (beta_levels.size + 1) <= max_table_entries:
+            self.kernel = "table"
+            self._alpha_levels: list[float] = alpha_levels.tolist()
+            self._beta_levels: list[float] = beta_levels.tolist()
+            counts = np.zeros((alpha_levels.size, beta_levels.size))
+            np.add.at(
+                counts,
+                (np.searchsorted(alpha_levels, alpha_a), np.searchsorted(beta_levels, beta_a)),
+                weights_a,
+            )
+            # table[i, j] = sum of weights with alpha among the i lowest levels and beta
+            # among the levels from j upwards: the Everett function on the threshold grid.
+            table = np.zeros((alpha_levels.size + 1, beta_levels.size + 1))
+            table[1:, :-1] = np.cumsum(np.cumsum(counts[:, ::-1], axis=1)[:, ::-1], axis=0)
+            self._table_item = table.item
+            self._k_rising = self._k_falling = self._k_table  # type: ignore[method-assign]
         else:
+            self.kernel = "rows"
             self._w_by_alpha = weights_a[order]
             self._beta_by_alpha = beta_by_alpha
             border = np.argsort(beta_a, kind="stable")
@@ -81,6 +111,8 @@ class DiscretePreisach(StaircasePreisach):
             self._alpha_by_beta = alpha_a[border]
             self._rows: dict[float, list[float]] = {}
             self._columns: dict[float, list[float]] = {}
+            self._k_rising = self._k_row  # type: ignore[method-assign]
+            self._k_falling = self._k_column  # type: ignore[method-assign]
         ties: dict[float, float] = {}
         for a, b, w in zip(alpha_a.tolist(), beta_a.tolist(), weights_a.tolist()):
             if a == b:
@@ -154,20 +186,24 @@ class DiscretePreisach(StaircasePreisach):
 
     # -- the function K -----------------------------------------------------------------
     def _k_rising(self, a: float, b: float) -> float:
-        if self.monotone:
-            on = bisect_right(self._alpha_sorted, a)
-            off = bisect_left(self._beta_sorted, b)
-            return self._prefix[on] - self._prefix[off] if on > off else 0.0
+        # "prefix" kernel: relays sorted by alpha have non-decreasing beta, so the relays with
+        # alpha <= a are a prefix and those with beta >= b a suffix of one order.
+        on = bisect_right(self._alpha_sorted, a)
+        off = bisect_left(self._beta_sorted, b)
+        return self._prefix[on] - self._prefix[off] if on > off else 0.0
+
+    _k_falling = _k_rising
+
+    def _k_table(self, a: float, b: float) -> float:
+        return self._table_item(bisect_right(self._alpha_levels, a), bisect_left(self._beta_levels, b))
+
+    def _k_row(self, a: float, b: float) -> float:
         row = self._rows.get(b)
         if row is None:
             row = self._cache(self._rows, b, np.cumsum(self._w_by_alpha * (self._beta_by_alpha >= b)))
         return row[bisect_right(self._alpha_sorted, a)]
 
-    def _k_falling(self, a: float, b: float) -> float:
-        if self.monotone:
-            on = bisect_right(self._alpha_sorted, a)
-            off = bisect_left(self._beta_sorted, b)
-            return self._prefix[on] - self._prefix[off] if on > off else 0.0
+    def _k_column(self, a: float, b: float) -> float:
         column = self._columns.get(a)
         if column is None:
             selected = self._w_by_beta * (self._alpha_by_beta <= a)
@@ -187,7 +223,7 @@ class DiscretePreisach(StaircasePreisach):
         return self._ties.get(u, 0.0)
 
     def __repr__(self) -> str:
-        return f"DiscretePreisach(n_relays={self.n_relays}, offset={self.offset!r}, monotone={self.monotone})"
+        return f"DiscretePreisach(n_relays={self.n_relays}, offset={self.offset!r}, kernel={self.kernel!r})"
 
 
 def _no_tie(u: float) -> float:
