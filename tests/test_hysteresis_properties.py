@@ -179,3 +179,13 @@ def test_inputs_beyond_the_bounds_saturate(history, above, below):
     assert abs(model.commit(below) - model.y_min) <= tol
     # and the state is negative saturation again: the next rise follows Eq. 8
     assert abs(model.commit(500.0) - model.ascending(500.0)) <= tol
+
+
+@given(model_names, histories, histories)
+def test_checkpoint_and_restore_replay_exactly(name, history, continuation):
+    model = MODELS[name]()
+    run(model, history)
+    saved = model.checkpoint()
+    first = [model.commit(u) for u in continuation]
+    model.restore(saved)
+    assert [model.commit(u) for u in continuation] == first
