@@ -2,5 +2,6 @@
 
 from . import hysteresis, signals
 from ._version import __version__
+from .csv_io import read_csv
 
-__all__ = ["__version__", "hysteresis", "signals"]
+__all__ = ["__version__", "hysteresis", "signals", "read_csv"]

@@ -1,0 +1,132 @@
+"""Figs. 13-15: a discrete Preisach model of 6 equal-gain relays, identified by Eq. 12.
+
+The major loop of the paper's continuous model (exact exponents by default) stands in for the
+measured loop of Fig. 14.  ``n_relays`` relays with equal gains ``Δy = (x_max - x_min)/n``
+are identified from it as in the paper: relay i sits at level ``y_i = x_min + i·Δy``; its
+switch-on point is where the ascending branch crosses that level, its switch-off point where
+the descending branch does.  Both models are then driven by a piecewise-linear input with
+reversals inside the range (the case the paper proposes the discrete model for), and the
+X-Y plot (Fig. 15) shows the discrete staircase against the continuous model.
+
+Key scalars: the gain, the largest and RMS difference between the two models along the
+input (the equal-gain construction bounds it by one gain step), and both major-loop areas.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.hysteresis import DiscretePreisach
+from exudyn_atcm.hysteresis_plots import Curve, plot_loops, plot_relays, plot_time_series
+from exudyn_atcm.parameter_sets import paper_stroke_preisach
+from exudyn_atcm.result import Result
+from exudyn_atcm.signals import PiecewiseLinear
+
+PARAMETERS = [
+    Parameter("n_relays", 6, "-", "number of equal-gain relays (the paper: 6)"),
+    Parameter("exponents", "exact", "-", "exponents of the continuous model", choices=("exact", "rounded")),
+    Parameter("loop_samples", 2000, "-", "samples of the major loop used for identification"),
+    Parameter(
+        "voltage_points",
+        (-500.0, 1500.0, 0.0, 1200.0, 300.0, 900.0, -200.0, 1500.0, -500.0),
+        "V",
+        "input corner voltages, reached in equal time segments",
+    ),
+    Parameter("segment_time", 0.5, "s", "duration of each input segment"),
+    Parameter("samples_per_segment", 200, "-", "time samples per segment"),
+]
+
+
+def loop_area_from_series(u: np.ndarray, y: np.ndarray) -> float:
+    """Area enclosed by a closed input-output path, ``|∮ y du|`` (trapezoidal rule)."""
+    return float(abs(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(u))))
+
+
+def run(p: Parameters, ctx: RunContext) -> CaseOutput:
+    if len(p.voltage_points) < 2:
+        raise ValueError(f"voltage_points must hold at least 2 voltages, got {p.voltage_points}")
+    if p.samples_per_segment < 1 or p.loop_samples < 4 or p.segment_time <= 0.0:
+        raise ValueError("samples_per_segment >= 1, loop_samples >= 4 and segment_time > 0 are required")
+    continuous = paper_stroke_preisach(rounded=(p.exponents == "rounded"))
+
+    # the "measured" major loop: one full cycle from the reset state
+    half = p.loop_samples // 2
+    u_up = np.linspace(continuous.u_min, continuous.u_max, half + 1)
+    u_loop = np.concatenate([u_up, u_up[-2::-1]])
+    y_loop = continuous.apply(u_loop)
+    discrete = DiscretePreisach.from_loop(u_loop, y_loop, p.n_relays)
+
+    corners = np.asarray(p.voltage_points, dtype=float)
+    corner_times = p.segment_time * np.arange(corners.size)
+    signal = PiecewiseLinear(corner_times, corners)
+    t = np.linspace(0.0, corner_times[-1], (corners.size - 1) * p.samples_per_segment + 1)
+    u = signal(t)
+    y_c = continuous.apply(u)
+    y_d = discrete.apply(u)
+    error = y_d - y_c
+
+    result = Result(
+        {"time": t, "voltage": u, "stroke_continuous": y_c, "stroke_discrete": y_d, "difference": error},
+        {"time": "s", "voltage": "V", "stroke_continuous": "m", "stroke_discrete": "m", "difference": "m"},
+        parameters={"continuous_model": repr(continuous)},
+    )
+    order = np.argsort(discrete.alpha)
+    relays = Result(
+        {
+            "relay": np.arange(1, p.n_relays + 1, dtype=float),
+            "switch_on": discrete.alpha[order],
+            "switch_off": discrete.beta[order],
+            "gain": discrete.weights[order],
+        },
+        {"relay": "-", "switch_on": "V", "switch_off": "V", "gain": "m"},
+        parameters={"offset [m]": discrete.offset},
+    )
+    gain = float(discrete.weights[0])
+    y_loop_d = discrete.apply(u_loop)
+    scalars = {
+        "gain": (gain, "m"),
+        "max_difference": (float(np.max(np.abs(error))), "m"),
+        "rms_difference": (float(np.sqrt(np.mean(error**2))), "m"),
+        "max_difference_per_gain": (float(np.max(np.abs(error))) / gain, "-"),
+        "loop_area_continuous": (continuous.loop_area(), "m V"),
+        "loop_area_discrete": (loop_area_from_series(u_loop, y_loop_d), "m V"),
+    }
+    return CaseOutput(result, scalars, tables={"relays": relays}, notes={"u_loop_samples": int(u_loop.size)})
+
+
+def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
+    r = output.result
+    relays = output.tables["relays"]
+    xy = plot_loops(
+        out_dir / f"{output.case}_xy.png",
+        [
+            Curve(r["voltage"], r["stroke_continuous"], "continuous Preisach"),
+            Curve(r["voltage"], r["stroke_discrete"], f"discrete Preisach, {p.n_relays} relays (Eq. 12)", {"drawstyle": "steps-post"}),
+        ],
+        title="Input/output with reversals inside the range (Fig. 15)",
+    )
+    series = plot_time_series(
+        out_dir / f"{output.case}_time.png",
+        r,
+        [["voltage"], ["stroke_continuous", "stroke_discrete"], ["difference"]],
+        labels={"stroke_continuous": "continuous", "stroke_discrete": "discrete"},
+        title="Discrete against continuous Preisach model",
+    )
+    plane = plot_relays(
+        out_dir / f"{output.case}_relays.png",
+        relays["switch_on"],
+        relays["switch_off"],
+        u_min=-500.0,
+        u_max=1500.0,
+        title=f"{p.n_relays} relays on the Preisach plane (Fig. 13)",
+    )
+    return [xy, series, plane]
+
+
+CASE = Case("paper_discrete_preisach", __doc__, PARAMETERS, run, plot)
+
+if __name__ == "__main__":
+    raise SystemExit(CASE.main())

@@ -1,0 +1,154 @@
+"""The paper's stiffness calibration against the composite-consistent one, and beam theory.
+
+The same actuator (REF-A of MODEL.md §4 by default: 3 cells of 29 mm, 28 mm wide, CFC 0.2 mm
+/ 70 GPa under MFC 0.3 mm / 30.336 GPa) is built twice: with ``stiffness="composite"``
+(reproduces lamination theory's bending stiffness EI and free curvature exactly) and with
+``stiffness="paper"`` (Eqs. 4-5 as printed, with the text's doubling).  For both it computes
+
+* the static tip position over a voltage ramp 0 ... U (linear piezo law, Eq. 3) against the
+  circular arc of beam theory (free curvature, Timoshenko's bimetal formula);
+* the tip compliance under a small tip force against ``L³/(3 EI)`` times the chain factor of
+  MODEL.md §4;
+* the first bending eigenfrequency against the Euler-Bernoulli ``f1``;
+* the large deflection under a tip force ``F = alpha EI/L²`` perpendicular to the undeformed
+  axis (composite calibration, no voltage), against the elastica (Bisshopp & Drucker 1945).
+
+The CSV holds the voltage ramp (one row per voltage, tip positions of both calibrations and
+of the arc).  The key scalars compare model and theory; MODEL.md predicts the paper's
+calibration about 1.49x too stiff with a 1.11x too large free curvature for REF-A.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from exudyn_atcm import beam_theory as bt
+from exudyn_atcm.actuator import BendingActuator
+from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.drive import PiezoDrive
+from exudyn_atcm.hysteresis_plots import Curve, plot_loops
+from exudyn_atcm.materials import Layer
+from exudyn_atcm.result import Result
+from exudyn_atcm.simulation import eigenfrequencies, solve_static
+
+PARAMETERS = [
+    Parameter("n_cells", 3, "-", "number of cells"),
+    Parameter("cell", "rigid", "-", "cell model", choices=("rigid", "six-bar")),
+    Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
+    Parameter("width", 28e-3, "m", "width b of both layers"),
+    Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness"),
+    Parameter("E1", 70e9, "Pa", "passive layer Young's modulus"),
+    Parameter("rho1", 1550.0, "kg/m^3", "passive layer density"),
+    Parameter("h2", 0.3e-3, "m", "active (MFC) layer thickness"),
+    Parameter("E2", 30.336e9, "Pa", "active layer Young's modulus"),
+    Parameter("rho2", 5440.0, "kg/m^3", "active layer density"),
+    Parameter("voltage", 1500.0, "V", "highest voltage of the ramp"),
+    Parameter("n_voltages", 6, "-", "voltages in the ramp 0 ... voltage"),
+    Parameter("tip_force", 0.01, "N", "small tip force (perpendicular to the axis) for the compliance"),
+    Parameter("elastica_alpha", 2.0, "-", "load parameter F L^2/EI of the large-deflection run (composite)"),
+]
+
+MODELS = ("composite", "paper")
+
+
+def run(p: Parameters, ctx: RunContext) -> CaseOutput:
+    if p.n_voltages < 2:
+        raise ValueError(f"n_voltages must be >= 2, got {p.n_voltages}")
+    passive = Layer(p.h1, p.E1, p.rho1)
+    active = Layer(p.h2, p.E2, p.rho2)
+    length = p.n_cells * p.cell_length
+    voltages = np.linspace(0.0, p.voltage, p.n_voltages)
+
+    ei = {
+        "composite": bt.composite_bending_stiffness(p.E1, p.h1, p.E2, p.h2, p.width),
+        "paper": bt.paper_bending_stiffness(p.E1, p.h1, p.E2, p.h2, p.width),
+    }
+    curvature_fn = {"composite": bt.free_curvature, "paper": bt.paper_free_curvature}
+    mu = bt.mass_per_length(p.rho1, p.h1, p.rho2, p.h2, p.width)
+
+    series: dict[str, np.ndarray] = {"voltage": voltages}
+    units = {"voltage": "V"}
+    scalars: dict[str, tuple[float, str]] = {}
+    steps = 0
+    for model in MODELS:
+        tip_x, tip_y, angle, arc_x, arc_y = [], [], [], [], []
+        for k, u in enumerate(voltages):
+            act = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(float(u)), cell=p.cell, stiffness=model)
+            r = solve_static(act)
+            steps += 1
+            tip_x.append(r["tip_x"][0])
+            tip_y.append(r["tip_y"][0])
+            angle.append(r["tip_angle"][0])
+            kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, bt.piezo_strain(float(u)))
+            ax, ay = bt.arc_point(kappa, length)
+            arc_x.append(float(ax))
+            arc_y.append(float(ay))
+            ctx.progress(k + 1 + (p.n_voltages if model == "paper" else 0), 2 * p.n_voltages)
+        for name, values in (("tip_x", tip_x), ("tip_y", tip_y), ("tip_angle", angle), ("arc_tip_x", arc_x), ("arc_tip_y", arc_y)):
+            series[f"{name}_{model}"] = np.asarray(values)
+            units[f"{name}_{model}"] = "rad" if name == "tip_angle" else "m"
+
+        kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, bt.piezo_strain(p.voltage))
+        unloaded = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(0.0), cell=p.cell, stiffness=model)
+        loaded = solve_static(unloaded, voltage=0.0, tip_force=(0.0, p.tip_force))
+        compliance = float(loaded["tip_y"][0]) / p.tip_force
+        factor = (
+            bt.rigid_chain_compliance_factor(p.n_cells)
+            if p.cell == "rigid"
+            else bt.six_bar_chain_compliance_factor(p.n_cells, unloaded.spring_share)
+        )
+        f1 = float(eigenfrequencies(unloaded, 1)[0])
+        steps += 2
+        scalars.update(
+            {
+                f"EI_theory_{model}": (ei[model], "N m^2"),
+                f"curvature_theory_{model}": (kappa, "1/m"),
+                f"tip_angle_{model}": (angle[-1], "rad"),
+                f"tip_angle_theory_{model}": (kappa * length, "rad"),
+                f"tip_y_{model}": (tip_y[-1], "m"),
+                f"arc_tip_y_{model}": (arc_y[-1], "m"),
+                f"compliance_{model}": (compliance, "m/N"),
+                f"compliance_theory_{model}": (bt.tip_compliance(ei[model], length), "m/N"),
+                f"compliance_chain_theory_{model}": (bt.tip_compliance(ei[model], length) * factor, "m/N"),
+                f"f1_{model}": (f1, "Hz"),
+                f"f1_theory_{model}": (bt.first_bending_frequency(ei[model], mu, length), "Hz"),
+            }
+        )
+    elastica_force = p.elastica_alpha * ei["composite"] / length**2
+    unloaded = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(0.0), cell=p.cell)
+    bent = solve_static(unloaded, voltage=0.0, tip_force=(0.0, elastica_force))
+    steps += 1
+    scalars["elastica_force"] = (elastica_force, "N")
+    scalars["elastica_y_over_L"] = (float(bent["tip_y"][0]) / length, "-")
+    scalars["elastica_1_minus_x_over_L"] = (1.0 - float(bent["tip_x"][0]) / length, "-")
+    scalars["EI_ratio_paper_to_composite"] = (ei["paper"] / ei["composite"], "-")
+    scalars["curvature_ratio_paper_to_composite"] = (
+        scalars["curvature_theory_paper"][0] / scalars["curvature_theory_composite"][0],
+        "-",
+    )
+    scalars["tip_y_ratio_paper_to_composite"] = (scalars["tip_y_paper"][0] / scalars["tip_y_composite"][0], "-")
+    result = Result(series, units, parameters={"length [m]": length})
+    return CaseOutput(result, scalars, steps=steps, notes={"steps": "static solves plus eigenvalue analyses"})
+
+
+def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
+    r = output.result
+    curves = []
+    for model, style in (("composite", {}), ("paper", {"linestyle": "--"})):
+        curves.append(Curve(r["voltage"], r[f"tip_y_{model}"], f"{model} stiffness, {p.cell} cells", {"marker": "o", **style}))
+        curves.append(Curve(r["voltage"], r[f"arc_tip_y_{model}"], f"{model}: circular arc (beam theory)", {"color": "0.4", **style}))
+    path = plot_loops(
+        out_dir / f"{output.case}_tip.png",
+        curves,
+        y_name="tip deflection y",
+        title="Static tip deflection: paper vs composite stiffness",
+    )
+    return [path]
+
+
+CASE = Case("stiffness_comparison", __doc__, PARAMETERS, run, plot)
+
+if __name__ == "__main__":
+    raise SystemExit(CASE.main())

@@ -1,0 +1,189 @@
+"""Closed-form reference formulas for the two-layer piezo bending actuator (MODEL.md §4).
+
+These functions are the independent references the validation tests compare the multibody
+model against.  They are plain formulas of classical beam theory (Euler-Bernoulli,
+perfectly bonded layers, small strains) and deliberately share no code with the model
+(:mod:`exudyn_atcm.actuator`, :mod:`exudyn_atcm._mbs_builder`).
+
+Layer 1 is the passive layer (CFC), layer 2 the active layer (MFC).  All quantities in SI
+units: m, N, Pa, kg/m³; strains are unit-free.
+
+References
+----------
+S. Timoshenko, "Analysis of bi-metal thermostats", J. Opt. Soc. Am. 11:233-255, 1925.
+K. E. Bisshopp, D. C. Drucker, "Large deflection of cantilever beams",
+Q. Appl. Math. 3:272-275, 1945.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: First root of ``1 + cos(x) cosh(x) = 0`` (clamped-free Euler-Bernoulli beam).
+BETA1_L = 1.8751040687119611
+
+#: Elastica of a cantilever under a tip force perpendicular to the undeformed axis
+#: (Bisshopp & Drucker 1945, as quoted in MODEL.md §4): alpha = F L²/EI -> (y/L, 1 - x/L).
+ELASTICA_TIP_FORCE = {
+    1.0: (0.30172, 0.05643),
+    2.0: (0.49346, 0.16064),
+    5.0: (0.71379, 0.38763),
+}
+
+
+def second_moment(width: float, thickness: float) -> float:
+    """Second moment of area ``b h³ / 12`` of a rectangular layer [m⁴] (Eq. 6)."""
+    return width * thickness**3 / 12.0
+
+
+def axial_rigidity(youngs_modulus: float, width: float, thickness: float) -> float:
+    """Axial rigidity ``a = E b h`` of a layer [N]."""
+    return youngs_modulus * width * thickness
+
+
+def layer_offset(h1: float, h2: float) -> float:
+    """Distance ``e = (h1 + h2) / 2`` between the mid-planes of the two layers [m]."""
+    return 0.5 * (h1 + h2)
+
+
+def series_axial_rigidity(E1: float, h1: float, E2: float, h2: float, width: float) -> float:
+    """``a1 a2 / (a1 + a2)`` [N]: the two layers' axial rigidities in series."""
+    a1 = axial_rigidity(E1, width, h1)
+    a2 = axial_rigidity(E2, width, h2)
+    return a1 * a2 / (a1 + a2)
+
+
+def composite_bending_stiffness(E1: float, h1: float, E2: float, h2: float, width: float) -> float:
+    """Bending stiffness of the bonded two-layer laminate (lamination theory) [N m²].
+
+    ``EI = E1 I1 + E2 I2 + [a1 a2 / (a1 + a2)] e²``.
+    """
+    e = layer_offset(h1, h2)
+    return (
+        E1 * second_moment(width, h1)
+        + E2 * second_moment(width, h2)
+        + series_axial_rigidity(E1, h1, E2, h2, width) * e**2
+    )
+
+
+def paper_bending_stiffness(E1: float, h1: float, E2: float, h2: float, width: float) -> float:
+    """Bending stiffness of the paper's cell as printed (rigid passive bar, ``k1 = E2 b h2/L``) [N m²].
+
+    ``EI = E1 I1 + E2 I2 + E2 A2 e²`` (MODEL.md §3), with the torsion springs doubled as the
+    paper's text says.
+    """
+    e = layer_offset(h1, h2)
+    return (
+        E1 * second_moment(width, h1)
+        + E2 * second_moment(width, h2)
+        + axial_rigidity(E2, width, h2) * e**2
+    )
+
+
+def free_curvature(E1: float, h1: float, E2: float, h2: float, width: float, strain: float) -> float:
+    """Free curvature of the laminate under an active-layer strain mismatch ``strain`` [1/m].
+
+    ``kappa = [a1 a2/(a1 + a2)] e strain / EI`` (Timoshenko's bimetal formula).
+    """
+    e = layer_offset(h1, h2)
+    return (
+        series_axial_rigidity(E1, h1, E2, h2, width)
+        * e
+        * strain
+        / composite_bending_stiffness(E1, h1, E2, h2, width)
+    )
+
+
+def paper_free_curvature(E1: float, h1: float, E2: float, h2: float, width: float, strain: float) -> float:
+    """Free curvature of the paper's printed cell: ``a2 e strain / (E1I1 + E2I2 + a2 e²)`` [1/m]."""
+    e = layer_offset(h1, h2)
+    return (
+        axial_rigidity(E2, width, h2)
+        * e
+        * strain
+        / paper_bending_stiffness(E1, h1, E2, h2, width)
+    )
+
+
+def piezo_strain(voltage: float, d33: float = 460e-12, electrode_spacing: float = 0.5e-3) -> float:
+    """Linear free strain ``d33 U / t_IDE`` (Eq. 3) [-]."""
+    return d33 * voltage / electrode_spacing
+
+
+def linear_tip_deflection(curvature: float, length: float) -> float:
+    """Small-deflection tip deflection ``kappa L² / 2`` of a uniformly curved cantilever [m]."""
+    return 0.5 * curvature * length**2
+
+
+def arc_point(curvature: float, s: float | np.ndarray) -> tuple:
+    """Point at arc length ``s`` of a circular arc from the origin, tangent to x [m].
+
+    ``x = sin(kappa s)/kappa``, ``y = (1 - cos(kappa s))/kappa`` (straight line for kappa = 0).
+    """
+    s = np.asarray(s, dtype=float)
+    if curvature == 0.0:
+        return s * 1.0, s * 0.0
+    return np.sin(curvature * s) / curvature, (1.0 - np.cos(curvature * s)) / curvature
+
+
+def chain_polygon(curvature: float, length: float, n_segments: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices of a chain of ``n`` rigid segments of length ``L/n`` bent uniformly [m].
+
+    Segment ``j`` (0-based) makes the angle ``(j + 1/2) kappa L / n`` with x: the polygon of
+    a chain of rigid links whose joints sit on a circle and turn by ``kappa L/n`` each, the
+    first link starting tangent-symmetric at the clamp (half a cell's turn at the clamp).
+    Its vertices lie on a circle of radius ``(L/n) / (2 sin(kappa L / 2n))``, which tends
+    to ``1/kappa`` as ``n`` grows.
+
+    Returns
+    -------
+    x, y : numpy.ndarray
+        ``n + 1`` vertex coordinates, the first at the origin.
+    """
+    lc = length / n_segments
+    angles = (np.arange(n_segments) + 0.5) * curvature * lc
+    x = np.concatenate([[0.0], np.cumsum(lc * np.cos(angles))])
+    y = np.concatenate([[0.0], np.cumsum(lc * np.sin(angles))])
+    return x, y
+
+
+def blocked_force(bending_stiffness: float, curvature: float, length: float) -> float:
+    """Force that holds the tip of a freely curving cantilever at y = 0 (slope free) [N]."""
+    return 1.5 * bending_stiffness * curvature / length
+
+
+def tip_compliance(bending_stiffness: float, length: float) -> float:
+    """Tip compliance ``L³ / (3 EI)`` of a cantilever under a small tip force [m/N]."""
+    return length**3 / (3.0 * bending_stiffness)
+
+
+def rigid_chain_compliance_factor(n_cells: int) -> float:
+    """Compliance factor ``1 + 1/(2 N²)`` of a chain of N rigid cells (MODEL.md §4).
+
+    Springs ``EI/L_c`` inside and ``2 EI/L_c`` at the clamp.
+    """
+    return 1.0 + 1.0 / (2.0 * n_cells**2)
+
+
+def six_bar_chain_compliance_factor(n_cells: int, spring_share: float) -> float:
+    """Compliance factor ``1 + (3/(4 rho_s) - 1/4)/N²`` of a chain of six-bar cells (MODEL.md §4).
+
+    ``spring_share`` is the share ``rho_s`` of the bending stiffness held by the torsion
+    springs, ``(E1 I1 + E2 I2) / EI``.
+    """
+    return 1.0 + (0.75 / spring_share - 0.25) / n_cells**2
+
+
+def first_bending_frequency(bending_stiffness: float, mass_per_length: float, length: float) -> float:
+    """First bending eigenfrequency of a clamped-free beam [Hz].
+
+    ``f1 = 1.875104² / (2 pi L²) sqrt(EI / mu)``.
+    """
+    return BETA1_L**2 / (2.0 * math.pi * length**2) * math.sqrt(bending_stiffness / mass_per_length)
+
+
+def mass_per_length(rho1: float, h1: float, rho2: float, h2: float, width: float) -> float:
+    """Mass per unit length ``b (rho1 h1 + rho2 h2)`` of the laminate [kg/m]."""
+    return width * (rho1 * h1 + rho2 * h2)

@@ -1,0 +1,151 @@
+"""The command line ``exudyn-atcm`` (also ``python -m exudyn_atcm``).
+
+::
+
+    exudyn-atcm list                                   the cases, their description and parameters
+    exudyn-atcm run CASE [--set NAME=VALUE ...] [--out DIR] [--no-plot]
+    exudyn-atcm bench [--quick] [--out DIR] [--update-references --reason TEXT]
+
+Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
+up by name first) and ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
+fails or a benchmark metric fails; 2 for a usage error (unknown case or parameter, value of
+the wrong type, missing ``--reason``).  Errors are one line on stderr.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import traceback
+from collections.abc import Sequence
+
+from . import cases as _cases
+
+__all__ = ["main", "build_parser"]
+
+
+class _Parser(argparse.ArgumentParser):
+    """Argument parser whose errors are one line (and exit status 2)."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(2, f"error: {message} (see {self.prog} --help)\n")
+
+
+def _common(debug_default) -> argparse.ArgumentParser:
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument("--debug", action="store_true", default=debug_default, help="show tracebacks of errors")
+    parent.add_argument("--cases-dir", default=debug_default if debug_default is argparse.SUPPRESS else None, metavar="DIR", help="directory searched first for cases by name")
+    return parent
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The parser of ``exudyn-atcm``."""
+    parser = _Parser(
+        prog="exudyn-atcm",
+        description="Multibody simulation of piezo-actuated textile-reinforced compliant mechanisms: cases and benchmarks.",
+        parents=[_common(False)],
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub_common = _common(argparse.SUPPRESS)
+    sub.add_parser("list", help="list the cases with description and parameters", parents=[sub_common])
+    run = sub.add_parser("run", help="run a case (a name or a path to a case file)", parents=[sub_common])
+    run.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
+    run.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a parameter (repeatable)")
+    run.add_argument("--out", default="out", metavar="DIR", help="output directory (default: ./out)")
+    run.add_argument("--no-plot", action="store_true", help="do not write the PNG plots")
+    bench = sub.add_parser("bench", help="run the regression benchmark suite", parents=[sub_common])
+    bench.add_argument("--quick", action="store_true", help="only the quick benchmarks (< 2 min)")
+    bench.add_argument("--out", default="out/bench", metavar="DIR", help="report directory (default: ./out/bench)")
+    bench.add_argument("--suite", default=None, metavar="DIR", help="suite directory (default: benchmarks/regression of the checkout, or $EXUDYN_ATCM_BENCH)")
+    bench.add_argument("--update-references", action="store_true", help="rewrite the stored references (needs --reason)")
+    bench.add_argument("--reason", default=None, metavar="TEXT", help="why the references change (recorded)")
+    bench.add_argument("--no-plots", action="store_true", help="skip the channel-against-reference plots")
+    return parser
+
+
+def _error(exc: BaseException | str, debug: bool, status: int) -> int:
+    if debug and isinstance(exc, BaseException):
+        traceback.print_exception(type(exc), exc, exc.__traceback__)
+    text = exc if isinstance(exc, str) else (" ".join(str(exc).split()) or type(exc).__name__)
+    print(f"error: {text}", file=sys.stderr)
+    return status
+
+
+def _list(cases_dir: str | None) -> int:
+    files = _cases.list_cases(cases_dir)
+    if not files:
+        dirs = ", ".join(str(d) for d in _cases.case_dirs(cases_dir)) or "none"
+        print(f"no cases found (searched: {dirs}; set --cases-dir or ${_cases.ENV_CASES})")
+        return 0
+    for path in files:
+        try:
+            case = _cases.load_case(path)
+        except _cases.CaseError as exc:
+            print(f"{path.stem}\n    cannot be loaded: {exc}\n")
+            continue
+        print(f"{case.name}  ({path})")
+        print(f"    {case.description}")
+        for parameter in case.parameters:
+            print(f"    --set {parameter.describe()}")
+        print()
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from .regression import run_suite
+
+    if args.update_references and not (args.reason and args.reason.strip()):
+        return _error("--update-references needs --reason TEXT (why the references change; it is recorded)", args.debug, 2)
+    if args.reason and not args.update_references:
+        return _error("--reason is only used with --update-references", args.debug, 2)
+    try:
+        report = run_suite(
+            args.suite,
+            args.out,
+            quick=args.quick,
+            update=args.update_references,
+            reason=args.reason,
+            plots=not args.no_plots,
+            echo=print,
+        )
+    except Exception as exc:  # noqa: BLE001 - one-line error
+        return _error(exc, args.debug, 2 if isinstance(exc, ValueError) else 1)
+    print()
+    print(report.table())
+    print(f"\nreport: {args.out}/report.md, {args.out}/report.json")
+    if report.updated:
+        print(f"references updated ({', '.join(report.updated)}): {args.reason}")
+    return 0 if report.passed else 1
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``exudyn-atcm``; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    debug = bool(getattr(args, "debug", False))
+    if args.command is None:
+        parser.print_help()
+        return 2
+    try:
+        if args.command == "list":
+            return _list(args.cases_dir)
+        if args.command == "run":
+            try:
+                case = _cases.load_case(args.case, args.cases_dir)
+            except _cases.CaseError as exc:
+                return _error(exc, debug, 2)
+            return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
+        return _bench(args)
+    except KeyboardInterrupt:
+        return _error("interrupted", debug, 130)
+    except BrokenPipeError:  # output piped into e.g. `head`: stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
+    except Exception as exc:  # noqa: BLE001 - last resort: still one line
+        return _error(exc, debug, 1)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

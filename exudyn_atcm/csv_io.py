@@ -1,0 +1,225 @@
+"""Reading the package's time-series CSV files back into a :class:`~exudyn_atcm.result.Result`.
+
+The format is the one :meth:`Result.to_csv` writes::
+
+    # exudyn_atcm 0.1.0
+    # exudyn 1.13.6
+    # period [s]: 1.0              <- parameters, "# key: value"
+    # info.steps: 801              <- run information, "# info.key: value"
+    time [s],voltage [V],stroke [m]
+    0,-500,-4.0000000000000001e-06
+    ...
+
+:func:`read_csv` round-trips it: series names, units and values exactly (17 significant
+digits), parameters and info where their text parses as a Python literal (numbers, booleans,
+``None``, lists, dicts), otherwise as strings.  A malformed file is refused with a
+``ValueError`` that names the file, the line and what is wrong.
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+import os
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .result import Result
+
+__all__ = ["read_csv", "read_csv_header", "CsvHeader"]
+
+_COLUMN = re.compile(r"^\s*([^\[\],#]+?)\s*\[([^\[\],]*)\]\s*$")
+
+
+@dataclass
+class CsvHeader:
+    """The metadata of a result CSV file.
+
+    Attributes
+    ----------
+    names, units : list of str
+        Series names and units from the header row.
+    package_version, exudyn_version : str or None
+        Versions from the first two comment lines (``None`` if absent or ``unknown``).
+    parameters, info : dict
+        ``# key: value`` and ``# info.key: value`` lines, values parsed where possible.
+    header_line : int
+        1-based line number of the header row.
+    """
+
+    names: list[str] = field(default_factory=list)
+    units: list[str] = field(default_factory=list)
+    package_version: str | None = None
+    exudyn_version: str | None = None
+    parameters: dict[str, Any] = field(default_factory=dict)
+    info: dict[str, Any] = field(default_factory=dict)
+    header_line: int = 0
+
+
+def _parse_value(text: str) -> Any:
+    text = text.strip()
+    if text in ("nan", "inf", "-inf"):
+        return float(text)
+    try:
+        return ast.literal_eval(text)
+    except (ValueError, SyntaxError, MemoryError, RecursionError, TypeError):
+        return text
+
+
+def _read_lines(path: str | os.PathLike) -> tuple[str, list[str]]:
+    name = os.fspath(path)
+    try:
+        with open(name, encoding="utf-8", newline=None) as handle:
+            return name, handle.read().split("\n")
+    except FileNotFoundError:
+        raise ValueError(f"{name}: no such file") from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{name}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
+
+
+def _parse_header(name: str, lines: list[str]) -> tuple[CsvHeader, int]:
+    header = CsvHeader()
+    comment_index = 0
+    for index, line in enumerate(lines):
+        stripped = line.strip()
+        if not stripped:
+            continue
+        if stripped.startswith("#"):
+            body = stripped[1:].strip()
+            comment_index += 1
+            if comment_index == 1 and body.startswith("exudyn_atcm "):
+                header.package_version = body.split(None, 1)[1].strip()
+                continue
+            if comment_index <= 2 and body.startswith("exudyn "):
+                version = body.split(None, 1)[1].strip()
+                header.exudyn_version = None if version == "unknown" else version
+                continue
+            key, sep, value = body.partition(": ")
+            if not sep:
+                key, sep, value = body.partition(":")
+            if not sep or not key.strip():
+                continue  # free comment
+            key = key.strip()
+            if key.startswith("info."):
+                header.info[key[5:]] = _parse_value(value)
+            else:
+                header.parameters[key] = _parse_value(value)
+            continue
+        # the header row
+        cells = line.split(",")
+        for column, cell in enumerate(cells, start=1):
+            match = _COLUMN.match(cell)
+            if match is None:
+                if _looks_numeric(cell):
+                    raise ValueError(
+                        f"{name}, line {index + 1}: expected the header row 'name [unit],...' "
+                        f"before the data, got a data row {line.strip()[:60]!r}"
+                    )
+                raise ValueError(
+                    f"{name}, line {index + 1}: column {column} of the header is {cell.strip()!r}; "
+                    "each column must be written 'name [unit]' (unit '-' if unit-free)"
+                )
+            header.names.append(match.group(1).strip())
+            header.units.append(match.group(2).strip())
+        duplicates = sorted({n for n in header.names if header.names.count(n) > 1})
+        if duplicates:
+            raise ValueError(f"{name}, line {index + 1}: duplicate column names {duplicates}")
+        header.header_line = index + 1
+        return header, index
+    raise ValueError(f"{name}: no header row 'name [unit],...' found (the file is empty or only comments)")
+
+
+def _looks_numeric(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def read_csv_header(path: str | os.PathLike) -> CsvHeader:
+    """Metadata of a result CSV file (versions, parameters, info, names and units).
+
+    Raises
+    ------
+    ValueError
+        If the file is missing or its header row is malformed.
+    """
+    name, lines = _read_lines(path)
+    header, _ = _parse_header(name, lines)
+    return header
+
+
+def read_csv(path: str | os.PathLike) -> Result:
+    """Read a CSV file written by :meth:`Result.to_csv` (or by hand in the same format).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+
+    Returns
+    -------
+    Result
+        Series with their units; ``parameters`` from the ``# key: value`` lines, ``info``
+        from the ``# info.key: value`` lines plus ``exudyn_version`` when the file names one.
+        Version and parameter lines are parsed as Python literals where possible.
+
+    Raises
+    ------
+    ValueError
+        Naming the file, the line and the fault: missing file, no header row, a header
+        column without ``[unit]``, duplicate names, a row with the wrong number of cells,
+        or a cell that is not a number.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> from exudyn_atcm.result import Result
+    >>> r = Result({"time": [0.0, 0.5], "stroke": [0.0, 4e-5]}, {"time": "s", "stroke": "m"})
+    >>> path = os.path.join(tempfile.mkdtemp(), "r.csv")
+    >>> r.to_csv(path)
+    >>> read_csv(path).unit("stroke")
+    'm'
+    """
+    name, lines = _read_lines(path)
+    header, header_index = _parse_header(name, lines)
+    n_columns = len(header.names)
+    rows: list[list[float]] = []
+    for index in range(header_index + 1, len(lines)):
+        line = lines[index]
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        cells = stripped.split(",")
+        if len(cells) != n_columns:
+            raise ValueError(
+                f"{name}, line {index + 1}: {len(cells)} cells, but the header has {n_columns} columns"
+            )
+        row = []
+        for column, cell in enumerate(cells):
+            try:
+                value = float(cell)
+            except ValueError:
+                raise ValueError(
+                    f"{name}, line {index + 1}: column {column + 1} ({header.names[column]}) is "
+                    f"{cell.strip()!r}, not a number"
+                ) from None
+            if math.isnan(value) and cell.strip().lower() not in ("nan", "+nan", "-nan"):
+                raise ValueError(f"{name}, line {index + 1}: column {column + 1} is {cell.strip()!r}, not a number")
+            row.append(value)
+        rows.append(row)
+    matrix = np.array(rows, dtype=float).reshape(len(rows), n_columns)
+    info = dict(header.info)
+    if header.exudyn_version is not None:
+        info = {"exudyn_version": header.exudyn_version, **info}
+    return Result(
+        {n: matrix[:, i] for i, n in enumerate(header.names)},
+        dict(zip(header.names, header.units)),
+        parameters=header.parameters,
+        info=info,
+    )
+

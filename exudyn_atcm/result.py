@@ -1,0 +1,197 @@
+"""Simulation results: named, unit-tagged series, CSV export.
+
+:class:`Result` knows nothing about Exudyn; it holds numpy arrays, their units and the
+parameters of the run.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import numpy as np
+
+from ._version import __version__
+
+
+class Result(Mapping):
+    """Named time series of one simulation, each with its unit.
+
+    Parameters
+    ----------
+    series : mapping of str to array_like
+        Series in output order, each 1-D and of the same length (one value per recorded
+        instant).  Names must not contain commas or brackets.
+    units : mapping of str to str
+        Unit of every series (SI; ``"-"`` for unit-free quantities).
+    parameters : mapping, optional
+        Parameters of the run (names may carry units in brackets); written to CSV headers.
+    info : mapping, optional
+        Run statistics and versions (e.g. ``exudyn_version``, ``rejected_steps``).
+
+    Examples
+    --------
+    >>> r = Result({"time": [0.0, 0.1], "tip_y": [0.0, 1e-3]}, {"time": "s", "tip_y": "m"})
+    >>> r["tip_y"]
+    array([0.   , 0.001])
+    >>> r.unit("tip_y")
+    'm'
+
+    Notes
+    -----
+    The standard series of :func:`exudyn_atcm.simulation.simulate` are ``time`` [s],
+    ``voltage`` [V], ``strain`` [-] (free strain of the active layer), ``stroke`` [m] (motor
+    stroke of one cell), ``tip_x``, ``tip_y`` [m] and ``tip_angle`` [rad] of the tip (the
+    passive-layer point of the last interface), then ``cell_angle_1`` ... ``cell_angle_N``
+    [rad] (rotation of each cell's passive layer).
+    """
+
+    def __init__(
+        self,
+        series: Mapping[str, Any],
+        units: Mapping[str, str],
+        parameters: Mapping[str, Any] | None = None,
+        info: Mapping[str, Any] | None = None,
+    ) -> None:
+        data: dict[str, np.ndarray] = {}
+        length = None
+        for name, values in series.items():
+            if not isinstance(name, str) or not name or any(c in name for c in ",[]\n#"):
+                raise ValueError(f"series names must be non-empty strings without ',', '[', ']', '#', got {name!r}")
+            array = np.asarray(values, dtype=float)
+            if array.ndim != 1:
+                raise ValueError(f"series {name!r} must be 1-D, got shape {array.shape}")
+            if length is None:
+                length = array.size
+            elif array.size != length:
+                raise ValueError(f"series {name!r} has {array.size} values, the others {length}")
+            array.setflags(write=False)
+            data[name] = array
+        missing = [n for n in data if n not in units]
+        if missing:
+            raise ValueError(f"units missing for series {missing}")
+        self._series = data
+        self._units = {n: str(units[n]) for n in data}
+        self.parameters: dict[str, Any] = dict(parameters or {})
+        self.info: dict[str, Any] = dict(info or {})
+
+    # Mapping interface ---------------------------------------------------------------
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self._series[name]
+        except KeyError:
+            raise KeyError(f"no series {name!r}; available: {', '.join(self._series)}") from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._series)
+
+    def __len__(self) -> int:
+        return len(self._series)
+
+    @property
+    def names(self) -> list[str]:
+        """Series names in output order."""
+        return list(self._series)
+
+    @property
+    def n_rows(self) -> int:
+        """Number of recorded instants."""
+        first = next(iter(self._series.values()), None)
+        return 0 if first is None else int(first.size)
+
+    def unit(self, name: str) -> str:
+        """Unit of series ``name`` (SI; ``"-"`` if unit-free)."""
+        if name not in self._units:
+            raise KeyError(f"no series {name!r}; available: {', '.join(self._series)}")
+        return self._units[name]
+
+    @property
+    def units(self) -> dict[str, str]:
+        """Units of all series."""
+        return dict(self._units)
+
+    def column_header(self) -> str:
+        """The CSV header row, ``name [unit],...``."""
+        return ",".join(f"{n} [{self._units[n]}]" for n in self._series)
+
+    def header_comment_lines(self) -> list[str]:
+        """The ``#`` comment lines written before the header row."""
+        lines = [f"# exudyn_atcm {__version__}"]
+        exu_version = self.info.get("exudyn_version")
+        lines.append(f"# exudyn {exu_version if exu_version is not None else 'unknown'}")
+        for key, value in self.parameters.items():
+            text = str(value).replace("\n", " ")
+            lines.append(f"# {key}: {text}")
+        for key, value in self.info.items():
+            if key == "exudyn_version":
+                continue
+            lines.append(f"# info.{key}: {str(value).replace(chr(10), ' ')}")
+        return lines
+
+    def to_csv(self, path: str | os.PathLike) -> None:
+        """Write all series to a CSV file, atomically.
+
+        The file starts with ``#`` comment lines (package and Exudyn versions, parameters,
+        run information), then the header row ``time [s],voltage [V],...``, then one row per
+        recorded instant with 17 significant digits.  It is written to a temporary file in
+        the target directory and renamed over ``path``, so readers never see a partial file.
+
+        Read it back with ``pandas.read_csv(path, comment="#")`` or
+        ``numpy.loadtxt(path, delimiter=",", comments="#", skiprows=1)`` (``skiprows`` counts
+        non-comment lines only when ``comments`` is given: 1 skips the header row).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Target file; its directory must exist.
+        """
+        path = os.fspath(path)
+        directory = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(directory):
+            raise ValueError(f"path must be in an existing directory, got {path!r}")
+        matrix = np.column_stack([self._series[n] for n in self._series]) if self._series else np.empty((0, 0))
+        fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".csv", dir=directory)
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+                for line in self.header_comment_lines():
+                    handle.write(line + "\n")
+                handle.write(self.column_header() + "\n")
+                if matrix.size:
+                    np.savetxt(handle, matrix, delimiter=",", fmt="%.17g")
+            os.replace(tmp, path)
+        except BaseException:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+            raise
+
+    def to_pandas(self):
+        """The series as a ``pandas.DataFrame`` with ``name [unit]`` columns (needs pandas)."""
+        import pandas as pd  # optional dependency
+
+        return pd.DataFrame({f"{n} [{self._units[n]}]": self._series[n] for n in self._series})
+
+    def plot(self, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
+        """Write the standard PNG plots to ``out_dir``; see :func:`exudyn_atcm.plotting.plot_result`."""
+        from .plotting import plot_result
+
+        return plot_result(self, out_dir, prefix=prefix)
+
+    def __repr__(self) -> str:
+        return f"Result({self.n_rows} rows: {', '.join(self.names[:8])}{', ...' if len(self) > 8 else ''})"
+
+
+def _is_finite(values: np.ndarray) -> bool:
+    return bool(np.all(np.isfinite(values))) if values.size else True
+
+
+def all_finite(result: Result) -> tuple[bool, str]:
+    """Whether every series is finite; if not, the first offending series name."""
+    for name in result:
+        if not _is_finite(result[name]):
+            return False, name
+    return True, ""
+

@@ -1,0 +1,105 @@
+"""exudyn_atcm.csv_io.read_csv: round trip of Result.to_csv, header format, malformed files."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from exudyn_atcm.csv_io import read_csv, read_csv_header
+from exudyn_atcm.result import Result
+
+
+def _result() -> Result:
+    t = np.linspace(0.0, 1.0, 11)
+    return Result(
+        {"time": t, "voltage": 500.0 + 1000.0 * np.sin(t), "stroke": 4e-5 * t**1.5 - 4e-6 / 3.0},
+        {"time": "s", "voltage": "V", "stroke": "m"},
+        parameters={"period [s]": 1.0, "cycles [-]": 2, "rounded [-]": True, "case": "my case", "points [V]": [-500.0, 1500.0]},
+        info={"exudyn_version": "1.13.6", "steps": 11, "solver": "static"},
+    )
+
+
+def test_round_trip_is_exact(tmp_path):
+    original = _result()
+    path = tmp_path / "r.csv"
+    original.to_csv(path)
+    back = read_csv(path)
+    assert back.names == original.names
+    assert back.units == original.units
+    for name in original:
+        np.testing.assert_array_equal(back[name], original[name])  # 17 significant digits: exact
+    assert back.parameters == original.parameters
+    assert back.info == original.info
+    # and a second round is identical text
+    path2 = tmp_path / "r2.csv"
+    back.to_csv(path2)
+    assert path2.read_text() == path.read_text()
+
+
+def test_header_row_and_comment_lines(tmp_path):
+    path = tmp_path / "r.csv"
+    _result().to_csv(path)
+    lines = path.read_text().splitlines()
+    first_data = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    assert lines[first_data] == "time [s],voltage [V],stroke [m]"
+    assert lines[0].startswith("# exudyn_atcm ")
+    assert lines[1] == "# exudyn 1.13.6"
+    header = read_csv_header(path)
+    assert header.names == ["time", "voltage", "stroke"]
+    assert header.units == ["s", "V", "m"]
+    assert header.exudyn_version == "1.13.6"
+    assert header.header_line == first_data + 1
+    # readable by numpy (skiprows counts the comment lines too)
+    data = np.loadtxt(path, delimiter=",", skiprows=first_data + 1)
+    assert data.shape == (11, 3)
+
+
+def test_empty_series_round_trip(tmp_path):
+    r = Result({"time": [], "x": []}, {"time": "s", "x": "m"})
+    path = tmp_path / "e.csv"
+    r.to_csv(path)
+    back = read_csv(path)
+    assert back.names == ["time", "x"] and back.n_rows == 0
+
+
+def _write(tmp_path, text: str):
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize(
+    "text, line, words",
+    [
+        ("# only a comment\n", None, "no header row"),
+        ("", None, "no header row"),
+        ("# c\n0.0,1.0\n1.0,2.0\n", 2, "header row"),
+        ("time [s],stroke\n0,1\n", 1, "column 2"),
+        ("time [s],stroke [m]\n0,1\n1,2,3\n", 3, "3 cells"),
+        ("time [s],stroke [m]\n0,1\n1\n", 3, "1 cells"),
+        ("time [s],stroke [m]\n0,1\n1,abc\n", 3, "not a number"),
+        ("time [s],time [s]\n0,1\n", 1, "duplicate"),
+    ],
+)
+def test_malformed_files_are_refused_with_file_and_line(tmp_path, text, line, words):
+    path = _write(tmp_path, text)
+    with pytest.raises(ValueError) as info:
+        read_csv(path)
+    message = str(info.value)
+    assert str(path) in message
+    assert words in message
+    if line is not None:
+        assert f"line {line}:" in message
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(ValueError, match="no such file"):
+        read_csv(tmp_path / "nope.csv")
+
+
+def test_hand_written_file_without_metadata(tmp_path):
+    path = _write(tmp_path, "time [s], tip_y [m]\n0, 0\n0.5, 1e-3\n")
+    r = read_csv(path)
+    assert r.unit("tip_y") == "m"
+    np.testing.assert_array_equal(r["tip_y"], [0.0, 1e-3])
+    assert r.parameters == {} and r.info == {}
