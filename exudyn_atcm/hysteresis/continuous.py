@@ -43,16 +43,9 @@ class ContinuousPreisach(StaircasePreisach):
     def __init__(
         self, u_min: float, u_max: float, y_min: float, y_max: float, r1: float, r2: float
     ) -> None:
-        u_min = finite_float("u_min", u_min)
-        u_max = finite_float("u_max", u_max)
-        y_min = finite_float("y_min", y_min)
-        y_max = finite_float("y_max", y_max)
+        u_min, u_max, y_min, y_max = _ranges(u_min, u_max, y_min, y_max)
         r1 = finite_float("r1", r1)
         r2 = finite_float("r2", r2)
-        if u_max <= u_min:
-            raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
-        if y_max <= y_min:
-            raise ValueError(f"y_max must be > y_min = {y_min!r}, got {y_max!r}")
         for name, r in (("r1", r1), ("r2", r2)):
             if r < 1.0:
                 raise ValueError(
@@ -92,17 +85,10 @@ class ContinuousPreisach(StaircasePreisach):
             inside ``(y_min, y_max)``, or the resulting exponents are below 1 (a precision point
             that puts the ascending branch above the descending one).
         """
-        u_min = finite_float("u_min", u_min)
-        u_max = finite_float("u_max", u_max)
-        y_min = finite_float("y_min", y_min)
-        y_max = finite_float("y_max", y_max)
+        u_min, u_max, y_min, y_max = _ranges(u_min, u_max, y_min, y_max)
         u_m = finite_float("u_m", u_m)
         y_m1 = finite_float("y_m1", y_m1)
         y_m2 = finite_float("y_m2", y_m2)
-        if u_max <= u_min:
-            raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
-        if y_max <= y_min:
-            raise ValueError(f"y_max must be > y_min = {y_min!r}, got {y_max!r}")
         if not u_min < u_m < u_max:
             raise ValueError(f"u_m must lie strictly between u_min = {u_min!r} and u_max = {u_max!r}, got {u_m!r}")
         for name, y in (("y_m1", y_m1), ("y_m2", y_m2)):
@@ -146,3 +132,16 @@ class ContinuousPreisach(StaircasePreisach):
             f"ContinuousPreisach(u_min={self.u_min!r}, u_max={self.u_max!r}, y_min={self.y_min!r}, "
             f"y_max={self.y_max!r}, r1={self.r1!r}, r2={self.r2!r})"
         )
+
+
+def _ranges(u_min: float, u_max: float, y_min: float, y_max: float) -> tuple[float, float, float, float]:
+    """Check the loop's input and output ranges; return them as floats."""
+    u_min = finite_float("u_min", u_min)
+    u_max = finite_float("u_max", u_max)
+    y_min = finite_float("y_min", y_min)
+    y_max = finite_float("y_max", y_max)
+    if u_max <= u_min:
+        raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
+    if y_max <= y_min:
+        raise ValueError(f"y_max must be > y_min = {y_min!r}, got {y_max!r}")
+    return u_min, u_max, y_min, y_max
