@@ -1,7 +1,29 @@
-"""exudyn_atcm: multibody simulation of active textile-reinforced compliant mechanisms on Exudyn."""
+"""exudyn_atcm: multibody simulation of active textile-reinforced compliant mechanisms on Exudyn.
+
+>>> import exudyn_atcm as atcm
+>>> layer = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550)
+"""
 
 from . import hysteresis, signals
 from ._version import __version__
+from .actuator import BendingActuator
 from .csv_io import read_csv
+from .drive import PiezoDrive
+from .materials import Layer
+from .result import Result
+from .simulation import SolverError, eigenfrequencies, simulate, solve_static
 
-__all__ = ["__version__", "hysteresis", "signals", "read_csv"]
+__all__ = [
+    "__version__",
+    "hysteresis",
+    "signals",
+    "Layer",
+    "PiezoDrive",
+    "BendingActuator",
+    "simulate",
+    "solve_static",
+    "eigenfrequencies",
+    "Result",
+    "SolverError",
+    "read_csv",
+]

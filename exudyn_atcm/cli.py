@@ -4,7 +4,7 @@
 
     exudyn-atcm list                                   the cases, their description and parameters
     exudyn-atcm run CASE [--set NAME=VALUE ...] [--out DIR] [--no-plot]
-    exudyn-atcm bench [--quick] [--out DIR] [--update-references --reason TEXT]
+    exudyn-atcm bench [--quick] [--only ID ...] [--out DIR] [--update-references --reason TEXT]
 
 Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
 up by name first) and ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
@@ -61,6 +61,7 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--update-references", action="store_true", help="rewrite the stored references (needs --reason)")
     bench.add_argument("--reason", default=None, metavar="TEXT", help="why the references change (recorded)")
     bench.add_argument("--no-plots", action="store_true", help="skip the channel-against-reference plots")
+    bench.add_argument("--only", nargs="+", default=None, metavar="ID", help="run only these benchmark ids (e.g. to update one reference)")
     return parser
 
 
@@ -107,6 +108,7 @@ def _bench(args: argparse.Namespace) -> int:
             update=args.update_references,
             reason=args.reason,
             plots=not args.no_plots,
+            only=args.only,
             echo=print,
         )
     except Exception as exc:  # noqa: BLE001 - one-line error

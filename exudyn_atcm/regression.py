@@ -34,7 +34,7 @@ import platform
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Sequence
 
 import numpy as np
 
@@ -201,6 +201,7 @@ def run_suite(
     update: bool = False,
     reason: str | None = None,
     plots: bool = True,
+    only: Sequence[str] | None = None,
     echo: Any = None,
 ) -> SuiteReport:
     """Run the suite, compare, write ``report.md``, ``report.json`` and the channel plots.
@@ -219,6 +220,8 @@ def run_suite(
         Why the references change; recorded in each reference's history and HISTORY.md.
     plots : bool
         Write a plot of each channel against its reference.
+    only : sequence of str, optional
+        Run only the benchmarks with these ids (for example to update one reference).
     echo : callable, optional
         ``echo(text)`` for progress lines (e.g. ``print``).
 
@@ -236,6 +239,11 @@ def run_suite(
         raise ValueError("reason must be a non-empty text when updating references, got " + repr(reason))
     suite_path = Path(suite_dir) if suite_dir is not None else default_suite_dir()
     suite = load_suite(suite_path)
+    if only is not None:
+        known = [b["id"] for b in suite.get("benchmarks", [])]
+        unknown = [b for b in only if b not in known]
+        if unknown:
+            raise ValueError(f"only: unknown benchmark id(s) {', '.join(unknown)}; the suite has {', '.join(known)}")
     ref_dir = suite_path / "references"
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -245,6 +253,8 @@ def run_suite(
     start_all = time.perf_counter()
     for bench in suite.get("benchmarks", []):
         bid = bench["id"]
+        if only is not None and bid not in only:
+            continue
         if not bench.get("enabled", True):
             report.skipped.append({"case": bid, "reason": bench.get("note", "disabled")})
             continue

@@ -138,9 +138,9 @@ class Result(Mapping):
         recorded instant with 17 significant digits.  It is written to a temporary file in
         the target directory and renamed over ``path``, so readers never see a partial file.
 
-        Read it back with ``pandas.read_csv(path, comment="#")`` or
-        ``numpy.loadtxt(path, delimiter=",", comments="#", skiprows=1)`` (``skiprows`` counts
-        non-comment lines only when ``comments`` is given: 1 skips the header row).
+        Read it back with :meth:`from_csv`, ``pandas.read_csv(path, comment="#")``, or
+        ``numpy.loadtxt(path, delimiter=",", skiprows=k)`` with ``k`` the number of ``#`` lines
+        plus one (numpy's ``skiprows`` counts comment lines too; ``len(header_comment_lines()) + 1``).
 
         Parameters
         ----------
@@ -168,6 +168,44 @@ class Result(Mapping):
                 pass
             raise
 
+    @classmethod
+    def from_csv(cls, path: str | os.PathLike) -> "Result":
+        """Read a file written by :meth:`to_csv` (series and units; parameters as strings)."""
+        path = os.fspath(path)
+        parameters: dict[str, Any] = {}
+        info: dict[str, Any] = {}
+        with open(path, encoding="utf-8") as handle:
+            n_comments = 0
+            header = None
+            for line in handle:
+                if line.startswith("#"):
+                    n_comments += 1
+                    body = line[1:].strip()
+                    if body.startswith("exudyn ") and "exudyn_version" not in info:
+                        info["exudyn_version"] = body.split(" ", 1)[1]
+                    elif ": " in body:
+                        key, value = body.split(": ", 1)
+                        if key.startswith("info."):
+                            info[key[5:]] = value
+                        else:
+                            parameters[key] = value
+                    continue
+                header = line.strip()
+                break
+        if header is None:
+            raise ValueError(f"{path!r} has no header row")
+        names, units = [], {}
+        for column in header.split(","):
+            if not column.endswith("]") or " [" not in column:
+                raise ValueError(f"column {column!r} in {path!r} is not of the form 'name [unit]'")
+            name, unit = column[:-1].split(" [", 1)
+            names.append(name)
+            units[name] = unit
+        data = np.loadtxt(path, delimiter=",", skiprows=n_comments + 1, ndmin=2)
+        if data.size == 0:
+            data = np.empty((0, len(names)))
+        return cls({n: data[:, j] for j, n in enumerate(names)}, units, parameters, info)
+
     def to_pandas(self):
         """The series as a ``pandas.DataFrame`` with ``name [unit]`` columns (needs pandas)."""
         import pandas as pd  # optional dependency
@@ -182,16 +220,3 @@ class Result(Mapping):
 
     def __repr__(self) -> str:
         return f"Result({self.n_rows} rows: {', '.join(self.names[:8])}{', ...' if len(self) > 8 else ''})"
-
-
-def _is_finite(values: np.ndarray) -> bool:
-    return bool(np.all(np.isfinite(values))) if values.size else True
-
-
-def all_finite(result: Result) -> tuple[bool, str]:
-    """Whether every series is finite; if not, the first offending series name."""
-    for name in result:
-        if not _is_finite(result[name]):
-            return False, name
-    return True, ""
-

@@ -25,6 +25,10 @@ class Signal:
     """Base class: subclasses implement :meth:`_values` on a float array of times."""
 
     def __call__(self, t: Any) -> TimeLike:
+        if type(t) is float:  # fast path: a solver asks for one time per step
+            if not math.isfinite(t):
+                raise ValueError(f"t must be finite, got {t!r}")
+            return self._scalar(t)
         times = np.asarray(t, dtype=float)
         if not np.all(np.isfinite(times)):
             raise ValueError(f"t must be finite, got {t!r}")
@@ -35,6 +39,10 @@ class Signal:
 
     def _values(self, t: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def _scalar(self, t: float) -> float:
+        """Value at one time; subclasses may override with a faster scalar formula."""
+        return float(self._values(np.array([t]))[0])
 
     @property
     def parameters(self) -> dict[str, Any]:
@@ -57,6 +65,9 @@ class Constant(Signal):
 
     def _values(self, t: np.ndarray) -> np.ndarray:
         return np.full(t.shape, self.value)
+
+    def _scalar(self, t: float) -> float:
+        return self.value
 
     def _parameters(self) -> dict[str, Any]:
         return {"value": self.value}
@@ -93,6 +104,12 @@ class Triangle(Signal):
         sign = np.where(np.mod(k, 2.0) == 0.0, 1.0, -1.0)
         return self.u_med + self.u_amp * (2.0 * phase - 1.0 - 2.0 * k) * sign
 
+    def _scalar(self, t: float) -> float:
+        phase = 2.0 * t / self.period
+        k = math.floor(phase)
+        sign = 1.0 if k % 2 == 0 else -1.0
+        return self.u_med + self.u_amp * (2.0 * phase - 1.0 - 2.0 * k) * sign
+
     def _parameters(self) -> dict[str, Any]:
         return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period}
 
@@ -120,6 +137,9 @@ class Sine(Signal):
 
     def _values(self, t: np.ndarray) -> np.ndarray:
         return self.u_med + self.u_amp * np.sin(2.0 * math.pi * t / self.period + self.phase)
+
+    def _scalar(self, t: float) -> float:
+        return self.u_med + self.u_amp * math.sin(2.0 * math.pi * t / self.period + self.phase)
 
     def _parameters(self) -> dict[str, Any]:
         return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period, "phase": self.phase}

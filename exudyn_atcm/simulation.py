@@ -15,6 +15,7 @@ is the same as an offset user function.
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any, Callable
 
 import numpy as np
@@ -73,7 +74,8 @@ class InStepStrain:
         return self._strain
 
     def commit(self, t: float) -> tuple[float, float]:
-        u = self.drive.voltage_at(t)
+        # the voltage of the accepted step was computed for its trial (same t)
+        u = self._u if t == self._t else self.drive.voltage_at(t)
         if self.hysteresis is None:
             strain = self.drive.linear_strain(u)
         else:
@@ -144,22 +146,38 @@ def _strain_scale(actuator: BendingActuator, strain: float, force: tuple[float, 
 # ------------------------------------------------------------------------------ recording
 
 class _Recorder:
-    def __init__(self, model, source) -> None:
+    """Post-step hook: commits the strain source and stores the accepted step's state."""
+
+    def __init__(self, model, source, progress=None, t_end: float = 1.0) -> None:
         self.model = model
         self.source = source
-        self.rows: list[tuple] = []
-        self.angles: list[np.ndarray] = []
+        self.index = model.record_indices
+        self.scalars: list[tuple] = []
+        self.states: list[np.ndarray] = []
+        self.progress = progress
+        self.t_end = t_end
+        self._next_report = 0.0
 
     def post_step(self, t: float) -> None:
         u, strain = self.source.commit(t)
-        q = self.model.coordinates()
-        x, y, a, ca = self.model.read_state(q, strain)
-        self.rows.append((t, u, strain, x, y, a))
-        self.angles.append(ca)
+        self.scalars.append((t, u, strain))
+        self.states.append(self.model.coordinates()[self.index])
+        if self.progress is not None and t >= self._next_report:
+            self.progress(t, self.t_end)
+            self._next_report = t + 0.01 * self.t_end
+
+    @property
+    def n_rows(self) -> int:
+        return len(self.scalars)
+
+    def last_time(self) -> float:
+        return self.scalars[-1][0] if self.scalars else 0.0
 
     def result(self, actuator: BendingActuator, info: dict) -> Result:
-        rows = np.array(self.rows, dtype=float).reshape(-1, 6)
-        angles = np.array(self.angles, dtype=float).reshape(len(self.angles), actuator.n_cells)
+        scalars = np.array(self.scalars, dtype=float).reshape(-1, 3)
+        states = np.array(self.states, dtype=float).reshape(len(self.states), self.index.size)
+        x, y, a, angles = self.model.states_from_records(states, scalars[:, 2])
+        rows = np.column_stack([scalars, x, y, a])
         return _make_result(actuator, rows, angles, info)
 
 
@@ -179,6 +197,7 @@ def _make_result(actuator: BendingActuator, rows: np.ndarray, angles: np.ndarray
         units[f"cell_angle_{j + 1}"] = "rad"
     info = dict(info)
     info.setdefault("exudyn_version", builder.exudyn_version())
+    _warn_coarse_cells(actuator, angles)
     result = Result(series, units, parameters=actuator.parameters(), info=info)
     for name in result:
         values = result[name]
@@ -191,33 +210,80 @@ def _make_result(actuator: BendingActuator, rows: np.ndarray, angles: np.ndarray
     return result
 
 
+#: Largest rotation of one cell relative to its neighbour [rad] before a warning is issued.
+MAX_CELL_ROTATION = 0.5
+
+
+def _warn_coarse_cells(actuator: BendingActuator, angles: np.ndarray) -> None:
+    """Warn when a cell turns by more than :data:`MAX_CELL_ROTATION` (coarse discretisation)."""
+    if angles.size == 0:
+        return
+    # passive bar j sits at the mean of its interfaces: the first bar turns half a cell
+    padded = np.concatenate([-angles[:, :1], angles], axis=1)
+    per_cell = float(np.max(np.abs(np.diff(padded, axis=1))))
+    if per_cell > MAX_CELL_ROTATION:
+        warnings.warn(
+            f"a cell of the {actuator.cell} actuator turns by {per_cell:.3g} rad relative to its "
+            f"neighbour (more than {MAX_CELL_ROTATION} rad): with {actuator.n_cells} cells the chain is a "
+            "coarse discretisation of the bent actuator; use more cells",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+
+
 # ------------------------------------------------------------------------------ static solve
 
 def _static_equilibrium(actuator, model, strain: float, force: tuple[float, float], load_steps: int | None,
-                        what: str) -> None:
-    """Solve the static equilibrium at ``strain`` with the tip load, stepping strain and load together."""
+                        what: str) -> str:
+    """Solve the static equilibrium at ``strain`` with the tip load; returns the method that succeeded.
+
+    First Exudyn's static solver with strain and load raised together in equal load steps.
+    Exudyn's static Jacobian leaves out the derivative of the constraint forces, so under
+    large tip forces its Newton iteration converges only linearly, ever slower, and can stall
+    (measured on the elastica cases).  Then the equilibrium is found by dynamic relaxation
+    (strongly damped implicit dynamics with a smooth load ramp) and polished with one static
+    step from there.
+    """
     if load_steps is None:
         # ~0.05 rad of tip rotation per load step, at least 4
         load_steps = int(min(400, max(4, math.ceil(_strain_scale(actuator, strain, force) / 0.05))))
-    tried = []
-    for steps in (load_steps, 4 * load_steps):
-        settings = builder.static_settings(steps)
-        try:
-            builder.run_static(model, settings, lambda f: f * strain)
-            return
-        except builder.ExudynFailure as exc:
-            tried.append((steps, exc))
-            model.mbs.systemData.SetSystemState(
-                systemStateList=model.mbs.systemData.GetSystemState(builder.exu.ConfigurationType.Initial),
-                configuration=builder.exu.ConfigurationType.Current)
-    steps, exc = tried[-1]
+    try:
+        builder.run_static(model, builder.static_settings(load_steps), lambda f: f * strain)
+        return "static"
+    except builder.ExudynFailure as exc:
+        first = exc
+    builder.reset_to_reference(model)
+    omega1 = 2.0 * math.pi * actuator.first_frequency_estimate
+    try:
+        # periods counted at half the beam frequency: coarse chains of six-bar cells are softer
+        change = builder.run_relaxation(model, strain, 0.5 * omega1, 2.0 / omega1)
+    except builder.ExudynFailure as exc:
+        raise SolverError(
+            f"static equilibrium ({what}) of the {actuator.cell} actuator with {actuator.n_cells} cells did not "
+            f"converge. Tried: Exudyn's static solver with {load_steps} load steps (stopped at load factor "
+            f"{first.time:.4g}: {first}), then dynamic relaxation (stopped at {exc.time:.3g} of its ramp: {exc}). "
+            f"The expected tip rotation is {_strain_scale(actuator, strain, force):.3g} rad, "
+            f"{_strain_scale(actuator, strain, force) / actuator.n_cells:.3g} rad per cell. Use more cells "
+            "(the six-bar cell is a discretisation for small rotations per cell), reduce the load, or pass "
+            "load_steps."
+        ) from exc
+    relaxed = np.array(model.coordinates())
+    builder.set_current_as_initial(model, zero_velocity=True)
+    try:
+        builder.run_static(model, builder.static_settings(1), lambda f: strain)
+        return "relaxation+static"
+    except builder.ExudynFailure:
+        pass
+    tol = 1e-9 * actuator.length
+    if change <= tol:
+        model.mbs.systemData.SetODE2Coordinates(relaxed, configuration=builder.exu.ConfigurationType.Current)
+        return "relaxation"
     raise SolverError(
         f"static equilibrium ({what}) of the {actuator.cell} actuator with {actuator.n_cells} cells did not "
-        f"converge: failed at load factor {exc.time:.4g} of 1 after trying {tried[0][0]} and {steps} equal "
-        f"load steps (each halved adaptively down to 1e-6) with full Newton and an absolute tolerance of "
-        f"{builder.NEWTON_ABSOLUTE_TOLERANCE:g}. Exudyn said: {exc}. Reduce the load (tip rotation "
-        f"estimate {_strain_scale(actuator, strain, force):.3g} rad), pass more load_steps, or use more cells."
-    ) from exc
+        f"converge: Exudyn's static solver stopped at load factor {first.time:.4g} ({first}); dynamic "
+        f"relaxation still moved by {change:.3g} m over its last period (accepted: {tol:.3g} m) and the "
+        "static polish step failed. Use more cells, reduce the load, or pass more load_steps."
+    )
 
 
 def solve_static(
@@ -240,7 +306,9 @@ def solve_static(
     load_steps : int, optional
         Number of equal load steps in which strain and load are raised from zero together
         (each step is halved adaptively if Newton fails).  Default: about one step per
-        0.05 rad of expected tip rotation, at least 4; if that fails, four times as many.
+        0.05 rad of expected tip rotation, at least 4.  If Exudyn's static iteration stalls
+        (large tip forces, see Notes), the equilibrium is found by dynamic relaxation and
+        polished with one static step; ``result.info["solver"]`` says which path was taken.
 
     Returns
     -------
@@ -253,6 +321,12 @@ def solve_static(
         For a non-finite voltage or force, or a wrong argument type.
     SolverError
         If the equilibrium iteration does not converge.
+
+    Notes
+    -----
+    Exudyn's static Newton Jacobian leaves out the derivative of the constraint forces; under
+    large tip forces the iteration then converges ever more slowly and can stall.  A warning
+    is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
     """
     actuator = _check_actuator(actuator)
     force = _check_force(tip_force)
@@ -264,10 +338,12 @@ def solve_static(
         load_steps = positive_int("load_steps", load_steps)
     strain = actuator.drive.static_strain(volts)
     model = builder.build(actuator, force)
-    _static_equilibrium(actuator, model, strain, force, load_steps, f"voltage {volts:g} V, tip force {force} N")
+    method = _static_equilibrium(actuator, model, strain, force, load_steps,
+                                 f"voltage {volts:g} V, tip force {force} N")
     x, y, a, ca = model.read_state(model.coordinates(), strain)
     rows = np.array([[0.0, volts, strain, x, y, a]])
-    return _make_result(actuator, rows, np.asarray(ca, dtype=float).reshape(1, -1), {"solver": "static"})
+    return _make_result(actuator, rows, np.asarray(ca, dtype=float).reshape(1, -1),
+                        {"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
 
 
 # ------------------------------------------------------------------------------ dynamic solve
@@ -278,6 +354,7 @@ def simulate(
     step: float = DEFAULT_STEP,
     tip_force: tuple[float, float] = (0.0, 0.0),
     settings: Callable[[Any], None] | dict | None = None,
+    progress: Callable[[float, float], None] | None = None,
 ) -> Result:
     """Dynamic response of the actuator to its voltage program (generalized-alpha).
 
@@ -300,6 +377,9 @@ def simulate(
         Adjusts the underlying ``exudyn.SimulationSettings`` after the package defaults are
         set: a callable receiving the settings object, or a dict of dotted names, e.g.
         ``{"timeIntegration.newton.maxIterations": 12}``.
+    progress : callable, optional
+        ``progress(t, t_end)`` is called with the simulated time [s] about every 1 % of
+        ``t_end`` (for progress bars).
 
     Returns
     -------
@@ -321,10 +401,14 @@ def simulate(
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     """
     actuator = _check_actuator(actuator)
-    return _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep")
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+    return _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
+                     progress=progress)
 
 
-def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep") -> Result:
+def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
+              progress=None) -> Result:
     t_end = positive_float("t_end", t_end)
     step = positive_float("step", step)
     if step > t_end:
@@ -341,13 +425,13 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     strain0 = source.trial(0.0)
     if strain0 != 0.0 or force != (0.0, 0.0):
         _static_equilibrium(actuator, model, strain0, force, None, "initial state at t = 0")
-        builder.set_current_as_initial(model)
+        builder.set_current_as_initial(model, zero_velocity=True)
 
     sim_settings = builder.dynamic_settings(t_end, step)
     builder.apply_user_settings(sim_settings, settings)
-    recorder = _Recorder(model, source)
+    recorder = _Recorder(model, source, progress, t_end)
 
-    if stroke_path == "prestep":
+    if stroke_path != "user_function":
         def pre_step(t: float) -> None:
             model.set_strain(source.trial(t))
     else:
@@ -356,7 +440,7 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         stats = builder.run_dynamic(model, sim_settings, pre_step, recorder.post_step)
     except builder.ExudynFailure as exc:
         t_fail = exc.time
-        last = recorder.rows[-1][0] if recorder.rows else 0.0
+        last = recorder.last_time()
         raise SolverError(
             f"time integration of the {actuator.cell} actuator with {actuator.n_cells} cells failed at "
             f"t = {t_fail:.6g} s (last accepted step at t = {last:.6g} s, requested step {step:g} s): "
@@ -366,7 +450,7 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
             f"{exc}. Try a smaller step, a slower voltage program, more cells for large deflections, or a "
             f"looser tolerance via settings={{'timeIntegration.newton.absoluteTolerance': 1e-7}}."
         ) from exc
-    accepted = max(len(recorder.rows) - 1, 0)
+    accepted = max(recorder.n_rows - 1, 0)
     info = {
         "solver": "generalized-alpha",
         "step [s]": step,

@@ -82,3 +82,13 @@ def test_csv_signal_errors(tmp_path):
         CsvSignal(bad)
     with pytest.raises(ValueError, match=r"value_column = 'volts' is not a column"):
         CsvSignal(bad, value_column="volts")
+
+
+@pytest.mark.parametrize(
+    "signal",
+    [Triangle(500, 1000, 0.3), Sine(1, 2, 0.7, 0.3), Constant(3.0), Steps([0, 1], [1, 2]), PiecewiseLinear([0, 1], [0, 5])],
+    ids=lambda s: type(s).__name__,
+)
+def test_scalar_fast_path_equals_array_path(signal):
+    times = np.linspace(-1.0, 2.0, 97)
+    np.testing.assert_allclose([signal(float(t)) for t in times], signal(times), rtol=1e-14, atol=1e-12)
