@@ -8,8 +8,8 @@ default), evaluated inside each solver step and committed on accepted steps.  Ev
 is the package default: six-bar cell, composite stiffness, 2 % damping, step 1e-4 s.
 
 Outputs: the time series (time, voltage, strain, stroke, tip position and angle, cell angles)
-and plots of voltage, stroke and tip displacement over time, tip deflection over voltage and
-the deformed shape at a few instants.  Key scalars: the tip deflection range over the last
+and plots of voltage, stroke and tip displacement over time, tip deflection over voltage,
+the deformed shape at a few instants, and a GIF animation of the actuator.  Key scalars: the tip deflection range over the last
 cycle, its values at 500 V on the rising and falling branch (the loop's opening), and how far
 the last cycle is from the one before (the loop closes after the first cycle).
 """
@@ -25,7 +25,7 @@ from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContex
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.materials import Layer
 from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plotting import plot_result
+from exudyn_atcm.plotting import animate_actuator, plot_result
 from exudyn_atcm.signals import Triangle
 from exudyn_atcm.simulation import simulate
 
@@ -38,6 +38,7 @@ PARAMETERS = [
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
     Parameter("damping", 0.02, "-", "modal damping ratio of the first bending mode"),
     Parameter("step", 1e-4, "s", "time step"),
+    Parameter("animation", True, "-", "also write a GIF animation of the actuator"),
 ]
 
 
@@ -79,7 +80,10 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
 
 def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
-    return [Path(f) for f in plot_result(output.result, out_dir, prefix=f"{output.case}_")]
+    files = [Path(f) for f in plot_result(output.result, out_dir, prefix=f"{output.case}_")]
+    if p.animation:
+        files.append(Path(animate_actuator(output.result, out_dir / f"{output.case}_animation.gif")))
+    return files
 
 
 CASE = Case("paper_bending_actuator", __doc__, PARAMETERS, run, plot)

@@ -10,6 +10,15 @@ from pathlib import Path
 from typing import IO, Any
 
 
+def _file_mode() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+_FILE_MODE = _file_mode()
+
+
 def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, binary: bool = False) -> Path:
     """Write ``path`` through ``writer(handle)`` so that readers never see a partial file.
 
@@ -22,6 +31,7 @@ def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, 
         raise ValueError(f"path must be in an existing directory, got {os.fspath(path)!r}")
     fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=target.suffix, dir=directory)
     try:
+        os.chmod(tmp, _FILE_MODE)  # mkstemp makes 0600 files; give the usual permissions
         mode = "wb" if binary else "w"
         kwargs: dict[str, Any] = {} if binary else {"encoding": "utf-8", "newline": "\n"}
         with os.fdopen(fd, mode, **kwargs) as handle:

@@ -7,16 +7,18 @@ calling this module never selects or opens a GUI backend.
 from __future__ import annotations
 
 import os
+import tempfile
 from typing import Sequence
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+from ._atomic import _FILE_MODE
+from .plot_style import new_figure, save_figure
 
 
 def _save(fig: Figure, path: str) -> str:
-    FigureCanvasAgg(fig)
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)
     return path
 
 
@@ -42,8 +44,7 @@ def chain_shape(result, row: int) -> tuple[np.ndarray, np.ndarray]:
 def plot_time_series(result, path: str) -> str:
     """Voltage, stroke and tip displacement over time."""
     t = result["time"]
-    fig = Figure(figsize=(7, 7), constrained_layout=True)
-    axes = fig.subplots(3, 1, sharex=True)
+    fig, axes = new_figure(3, 1, width=7, height=7, sharex=True)
     axes[0].plot(t, result["voltage"], color="tab:blue")
     axes[0].set_ylabel("voltage U [V]")
     axes[1].plot(t, result["stroke"] * 1e6, color="tab:orange")
@@ -61,8 +62,7 @@ def plot_time_series(result, path: str) -> str:
 
 def plot_tip_vs_voltage(result, path: str) -> str:
     """Tip deflection over voltage (the actuator's hysteresis loop)."""
-    fig = Figure(figsize=(6, 4.5), constrained_layout=True)
-    ax = fig.subplots()
+    fig, (ax,) = new_figure(1, 1, width=6, height=4.5)
     ax.plot(result["voltage"], result["tip_y"] * 1e3, color="tab:green")
     ax.set_xlabel("voltage U [V]")
     ax.set_ylabel("tip deflection y [mm]")
@@ -75,8 +75,7 @@ def plot_shapes(result, path: str, rows: Sequence[int] | None = None) -> str:
     n = result.n_rows
     if rows is None:
         rows = sorted(set(np.linspace(0, n - 1, min(6, n)).round().astype(int).tolist()))
-    fig = Figure(figsize=(7, 4), constrained_layout=True)
-    ax = fig.subplots()
+    fig, (ax,) = new_figure(1, 1, width=7, height=4)
     for row in rows:
         x, y = chain_shape(result, row)
         ax.plot(x * 1e3, y * 1e3, marker="o", markersize=3,
@@ -87,6 +86,67 @@ def plot_shapes(result, path: str, rows: Sequence[int] | None = None) -> str:
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small", loc="best")
     return _save(fig, path)
+
+
+def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int = 15) -> str:
+    """GIF animation of the deformed actuator with its tip trace and the voltage.
+
+    Parameters
+    ----------
+    result : Result
+        A result with ``cell_angle_*`` series and ``cell_length [m]`` in its parameters.
+    path : str or os.PathLike
+        Target ``.gif`` file (written atomically).
+    frames : int, optional
+        Number of frames, evenly spaced over the recorded time, ``>= 2``.
+    fps : int, optional
+        Frames per second of the GIF, ``>= 1``.
+    """
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
+        raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
+    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
+        raise ValueError(f"fps must be an integer >= 1, got {fps!r}")
+    rows = np.unique(np.linspace(0, result.n_rows - 1, frames).round().astype(int))
+    shapes = [chain_shape(result, int(row)) for row in rows]
+    xs = np.concatenate([x for x, _ in shapes]) * 1e3
+    ys = np.concatenate([y for _, y in shapes]) * 1e3
+    fig, (ax,) = new_figure(1, 1, width=6, height=4)
+    ax.set_xlim(xs.min() - 5, xs.max() + 5)
+    margin = 0.1 * max(ys.max() - ys.min(), 1.0)
+    ax.set_ylim(ys.min() - margin, ys.max() + margin)
+    ax.set_xlabel("x along the undeformed actuator [mm]")
+    ax.set_ylabel("y [mm]")
+    (trace,) = ax.plot([], [], color="0.6", lw=1, label="tip path")
+    (chain,) = ax.plot([], [], "o-", color="tab:blue", lw=2, ms=4, label="passive layer")
+    label = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
+    ax.legend(loc="lower right", fontsize="small")
+    tip_x, tip_y = result["tip_x"] * 1e3, result["tip_y"] * 1e3
+
+    def draw(k: int):
+        x, y = shapes[k]
+        chain.set_data(x * 1e3, y * 1e3)
+        trace.set_data(tip_x[: rows[k] + 1], tip_y[: rows[k] + 1])
+        label.set_text(f"t = {result['time'][rows[k]]:.3f} s   U = {result['voltage'][rows[k]]:.0f} V")
+        return chain, trace, label
+
+    animation = FuncAnimation(fig, draw, frames=len(shapes), blit=False)
+    target = os.fspath(path)
+    directory = os.path.dirname(os.path.abspath(target))
+    if not os.path.isdir(directory):
+        raise ValueError(f"path must be in an existing directory, got {target!r}")
+    fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
+    os.close(fd)
+    try:
+        os.chmod(tmp, _FILE_MODE)
+        animation.save(tmp, writer=PillowWriter(fps=fps))
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return target
 
 
 def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:

@@ -7,12 +7,12 @@ parameters of the run.
 from __future__ import annotations
 
 import os
-import tempfile
 from collections.abc import Iterator, Mapping
 from typing import Any
 
 import numpy as np
 
+from ._atomic import write_atomic
 from ._version import __version__
 
 
@@ -147,64 +147,16 @@ class Result(Mapping):
         path : str or os.PathLike
             Target file; its directory must exist.
         """
-        path = os.fspath(path)
-        directory = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(directory):
-            raise ValueError(f"path must be in an existing directory, got {path!r}")
         matrix = np.column_stack([self._series[n] for n in self._series]) if self._series else np.empty((0, 0))
-        fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".csv", dir=directory)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-                for line in self.header_comment_lines():
-                    handle.write(line + "\n")
-                handle.write(self.column_header() + "\n")
-                if matrix.size:
-                    np.savetxt(handle, matrix, delimiter=",", fmt="%.17g")
-            os.replace(tmp, path)
-        except BaseException:
-            try:
-                os.unlink(tmp)
-            except OSError:
-                pass
-            raise
 
-    @classmethod
-    def from_csv(cls, path: str | os.PathLike) -> "Result":
-        """Read a file written by :meth:`to_csv` (series and units; parameters as strings)."""
-        path = os.fspath(path)
-        parameters: dict[str, Any] = {}
-        info: dict[str, Any] = {}
-        with open(path, encoding="utf-8") as handle:
-            n_comments = 0
-            header = None
-            for line in handle:
-                if line.startswith("#"):
-                    n_comments += 1
-                    body = line[1:].strip()
-                    if body.startswith("exudyn ") and "exudyn_version" not in info:
-                        info["exudyn_version"] = body.split(" ", 1)[1]
-                    elif ": " in body:
-                        key, value = body.split(": ", 1)
-                        if key.startswith("info."):
-                            info[key[5:]] = value
-                        else:
-                            parameters[key] = value
-                    continue
-                header = line.strip()
-                break
-        if header is None:
-            raise ValueError(f"{path!r} has no header row")
-        names, units = [], {}
-        for column in header.split(","):
-            if not column.endswith("]") or " [" not in column:
-                raise ValueError(f"column {column!r} in {path!r} is not of the form 'name [unit]'")
-            name, unit = column[:-1].split(" [", 1)
-            names.append(name)
-            units[name] = unit
-        data = np.loadtxt(path, delimiter=",", skiprows=n_comments + 1, ndmin=2)
-        if data.size == 0:
-            data = np.empty((0, len(names)))
-        return cls({n: data[:, j] for j, n in enumerate(names)}, units, parameters, info)
+        def write(handle) -> None:
+            for line in self.header_comment_lines():
+                handle.write(line + "\n")
+            handle.write(self.column_header() + "\n")
+            if matrix.size:
+                np.savetxt(handle, matrix, delimiter=",", fmt="%.17g")
+
+        write_atomic(path, write)
 
     def to_pandas(self):
         """The series as a ``pandas.DataFrame`` with ``name [unit]`` columns (needs pandas)."""

@@ -1,0 +1,46 @@
+"""The actuator animation (GIF) and the shape reconstruction it draws."""
+
+import os
+
+import numpy as np
+import pytest
+
+from exudyn_atcm.plotting import animate_actuator, chain_shape
+from exudyn_atcm.result import Result
+
+
+def bent_result():
+    t = np.linspace(0, 1, 21)
+    kappa = 4.0 * t  # uniform curvature growing in time [1/m]
+    length, n = 29e-3, 3
+    series = {"time": t, "voltage": 1500 * t, "tip_x": np.zeros_like(t), "tip_y": np.zeros_like(t)}
+    for j in range(n):  # cell j of a circular arc turns by kappa * L * (j + 1/2)
+        series[f"cell_angle_{j + 1}"] = kappa * length * (j + 0.5)
+    units = {name: ("s" if name == "time" else "V" if name == "voltage" else "m" if name.startswith("tip") else "rad") for name in series}
+    return Result(series, units, parameters={"cell_length [m]": length})
+
+
+def test_chain_shape_is_the_regular_polygon_of_the_bent_chain():
+    r = bent_result()
+    x, y = chain_shape(r, 20)
+    kappa, length = 4.0, 29e-3
+    s = np.arange(4) * length
+    # sides of length L turning by κL each: a regular polygon inscribed in the circle of
+    # radius L / (2 sin(κL/2)) tangent to the x axis at the clamp
+    radius = length / (2 * np.sin(kappa * length / 2))
+    np.testing.assert_allclose(x, radius * np.sin(kappa * s), atol=1e-12)
+    np.testing.assert_allclose(y, radius * (1 - np.cos(kappa * s)), atol=1e-12)
+
+
+def test_gif_is_written_atomically(tmp_path):
+    path = tmp_path / "anim.gif"
+    animate_actuator(bent_result(), path, frames=5, fps=5)
+    assert path.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+    assert [p.name for p in tmp_path.iterdir()] == ["anim.gif"]
+    assert os.stat(path).st_mode & 0o044  # readable by others, unlike mkstemp's 0600
+
+
+@pytest.mark.parametrize("kwargs, pattern", [({"frames": 1}, "frames must be an integer >= 2, got 1"), ({"fps": 0}, "fps must be an integer >= 1, got 0")])
+def test_bad_arguments(tmp_path, kwargs, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        animate_actuator(bent_result(), tmp_path / "a.gif", **kwargs)
