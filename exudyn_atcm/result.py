@@ -158,6 +158,13 @@ class Result(Mapping):
 
         write_atomic(path, write)
 
+    @classmethod
+    def from_csv(cls, path: str | os.PathLike) -> "Result":
+        """Read a file written by :meth:`to_csv`; the same as :func:`exudyn_atcm.read_csv`."""
+        from .csv_io import read_csv
+
+        return read_csv(path)
+
     def to_pandas(self):
         """The series as a ``pandas.DataFrame`` with ``name [unit]`` columns (needs pandas)."""
         import pandas as pd  # optional dependency
