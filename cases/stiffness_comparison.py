@@ -11,7 +11,8 @@ The same actuator (REF-A of MODEL.md §4 by default: 3 cells of 29 mm, 28 mm wid
   MODEL.md §4;
 * the first bending eigenfrequency against the Euler-Bernoulli ``f1``;
 * the large deflection under a tip force ``F = alpha EI/L²`` perpendicular to the undeformed
-  axis (composite calibration, no voltage), against the elastica (Bisshopp & Drucker 1945).
+  axis (composite calibration, no voltage, a chain of ``elastica_cells`` rigid cells of the
+  same total length), against the elastica (Bisshopp & Drucker 1945).
 
 The CSV holds the voltage ramp (one row per voltage, tip positions of both calibrations and
 of the arc).  The key scalars compare model and theory; MODEL.md predicts the paper's
@@ -48,6 +49,7 @@ PARAMETERS = [
     Parameter("n_voltages", 6, "-", "voltages in the ramp 0 ... voltage"),
     Parameter("tip_force", 0.01, "N", "small tip force (perpendicular to the axis) for the compliance"),
     Parameter("elastica_alpha", 2.0, "-", "load parameter F L^2/EI of the large-deflection run (composite)"),
+    Parameter("elastica_cells", 24, "-", "rigid cells of the large-deflection run (a coarse chain is far from the elastica)"),
 ]
 
 MODELS = ("composite", "paper")
@@ -117,7 +119,11 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             }
         )
     elastica_force = p.elastica_alpha * ei["composite"] / length**2
-    unloaded = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(0.0), cell=p.cell)
+    if p.elastica_cells < 1:
+        raise ValueError(f"elastica_cells must be >= 1, got {p.elastica_cells}")
+    unloaded = BendingActuator(
+        p.elastica_cells, length / p.elastica_cells, p.width, passive, active, PiezoDrive(0.0), cell="rigid"
+    )
     bent = solve_static(unloaded, voltage=0.0, tip_force=(0.0, elastica_force))
     steps += 1
     scalars["elastica_force"] = (elastica_force, "N")
