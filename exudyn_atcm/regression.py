@@ -50,11 +50,26 @@ ENV_SUITE = "EXUDYN_ATCM_BENCH"
 
 
 def default_suite_dir() -> Path:
-    """``$EXUDYN_ATCM_BENCH``, else ``benchmarks/regression`` of the source checkout."""
+    """``$EXUDYN_ATCM_BENCH``, else ``./benchmarks/regression`` of the current directory, else
+    ``benchmarks/regression`` of the source checkout beside the package.
+
+    Raises
+    ------
+    ValueError
+        If none of these exists.
+    """
     env = os.environ.get(ENV_SUITE)
     if env:
         return Path(env)
-    return Path(__file__).resolve().parents[1] / "benchmarks" / "regression"
+    candidates = [Path.cwd() / "benchmarks" / "regression", Path(__file__).resolve().parents[1] / "benchmarks" / "regression"]
+    for candidate in candidates:
+        if (candidate / "suite.json").is_file():
+            return candidate
+    raise ValueError(
+        "suite: no regression suite found; looked for suite.json in "
+        + ", ".join(str(c) for c in candidates)
+        + f"; run from the source checkout, pass --suite DIR or set {ENV_SUITE}"
+    )
 
 
 @dataclass
