@@ -151,6 +151,14 @@ def _rot_marker(mbs, node):
     return mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=node, coordinate=2))
 
 
+def _add_ground(mbs):
+    """The clamp: a ground object and a fixed coordinate marker for the first joint's spring."""
+    ground = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
+                                                          'graphicsData': []}))
+    gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
+    return ground, mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+
+
 def _zero(t: float) -> float:
     return 0.0
 
@@ -200,10 +208,7 @@ def _build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
     m_if = act.mass_per_length * s
     j_if = m_if * (s**2 + (e + 0.5 * (h1 + h2)) ** 2) / 12.0
 
-    ground = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
-                                                          'graphicsData': []}))
-    gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
-    gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+    ground, gcoord = _add_ground(mbs)
     model = BuiltModel(SC=SC, mbs=mbs, cell="six-bar", n_cells=n, cell_length=lc)
 
     def motor_uf_factory(factor):
@@ -306,10 +311,7 @@ def _build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
     k_in, k_end = act.joint_stiffness_inside, act.joint_stiffness_end
     rot_per_strain = act.curvature_per_strain * lc  # free rotation of one cell per unit strain
 
-    ground = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
-                                                          'graphicsData': []}))
-    gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
-    gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+    ground, gcoord = _add_ground(mbs)
     model = BuiltModel(SC=SC, mbs=mbs, cell="rigid", n_cells=n, cell_length=lc)
 
     def spring_uf_factory(factor):
