@@ -118,8 +118,7 @@ class DiscretePreisach(StaircasePreisach):
             if a == b:
                 ties[a] = ties.get(a, 0.0) + w
         self._ties = ties
-        if not ties:
-            self._tie = _no_tie  # type: ignore[method-assign]
+        self._has_ties = bool(ties)
         super().__init__()
 
     @property
@@ -224,10 +223,6 @@ class DiscretePreisach(StaircasePreisach):
 
     def __repr__(self) -> str:
         return f"DiscretePreisach(n_relays={self.n_relays}, offset={self.offset!r}, kernel={self.kernel!r})"
-
-
-def _no_tie(u: float) -> float:
-    return 0.0
 
 
 def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: bool) -> np.ndarray:

@@ -40,6 +40,8 @@ class StaircasePreisach(HysteresisOperator):
     """
 
     _y_reset: float
+    #: whether some relays have alpha == beta (then K(u, u) can be non-zero)
+    _has_ties: bool = False
 
     def __init__(self) -> None:
         self.reset()
@@ -54,7 +56,7 @@ class StaircasePreisach(HysteresisOperator):
         """``K(a, b)`` where ``a`` is a reversal maximum (may be cached per ``a``)."""
 
     def _tie(self, u: float) -> float:
-        """``K(u, u)``: weight of relays with ``alpha == beta == u``."""
+        """``K(u, u)``: weight of relays with ``alpha == beta == u`` (used if ``_has_ties``)."""
         return 0.0
 
     # -- memory ----------------------------------------------------------------------
@@ -102,13 +104,14 @@ class StaircasePreisach(HysteresisOperator):
     # -- stepping ----------------------------------------------------------------------
     def evaluate(self, u: float) -> float:
         """Output for input ``u`` from the committed memory; the memory is not changed."""
-        return self._advance(u, False)
+        return self.commit(u, _store=False)
 
-    def commit(self, u: float) -> float:
-        """Accept input ``u``, update the staircase and return the output."""
-        return self._advance(u, True)
+    def commit(self, u: float, _store: bool = True) -> float:
+        """Accept input ``u``, update the staircase and return the output.
 
-    def _advance(self, u: float, store: bool) -> float:
+        (``_store=False`` is :meth:`evaluate`: one body for both keeps them identical.)
+        """
+        store = _store
         if type(u) is not float:
             u = check_input(u)
         elif not -_INF < u < _INF:  # nan compares false, too
@@ -122,7 +125,7 @@ class StaircasePreisach(HysteresisOperator):
                 i = len(values) - 1
             elif u < values[-1]:
                 # A new minimum at u_now, no extremum wiped out.
-                y = self._y + self._k_rising(u, u_now) - self._tie(u_now)
+                y = self._y + self._k_rising(u, u_now) - (self._tie(u_now) if self._has_ties else 0.0)
                 if store:
                     values.append(u_now)
                     self._outputs.append(self._y)
@@ -133,17 +136,18 @@ class StaircasePreisach(HysteresisOperator):
             while u >= values[i - 1]:
                 i -= 2
             m = values[i]
-            y = self._outputs[i] + self._k_rising(u, m) - self._tie(m)
+            y = self._outputs[i] + self._k_rising(u, m) - (self._tie(m) if self._has_ties else 0.0)
             if store:
-                del values[i + 1 :]
-                del self._outputs[i + 1 :]
+                if i + 1 < len(values):
+                    del values[i + 1 :]
+                    del self._outputs[i + 1 :]
                 self._rising, self._u, self._y = True, u, y
             return y
         if not self._rising:
             i = len(values) - 1
         elif u > values[-1]:
             # A new maximum at u_now, no extremum wiped out.
-            y = self._y - self._k_falling(u_now, u) + self._tie(u)
+            y = self._y - self._k_falling(u_now, u) + (self._tie(u) if self._has_ties else 0.0)
             if store:
                 values.append(u_now)
                 self._outputs.append(self._y)
@@ -154,9 +158,10 @@ class StaircasePreisach(HysteresisOperator):
         while u <= values[i - 1]:
             i -= 2
         big_m = values[i]
-        y = self._outputs[i] - self._k_falling(big_m, u) + self._tie(u)
+        y = self._outputs[i] - self._k_falling(big_m, u) + (self._tie(u) if self._has_ties else 0.0)
         if store:
-            del values[i + 1 :]
-            del self._outputs[i + 1 :]
+            if i + 1 < len(values):
+                del values[i + 1 :]
+                del self._outputs[i + 1 :]
             self._rising, self._u, self._y = False, u, y
         return y
