@@ -159,6 +159,14 @@ def _add_ground(mbs):
     return ground, mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
 
 
+def _hinge_with_spring(mbs, positions, rotations, stiffness: float, beta: float) -> None:
+    """A revolute joint between two position markers and a torsion spring-damper between the
+    rotation coordinates of the joined bodies (damping ``beta * stiffness``)."""
+    mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=list(positions), visualization=_NOVIS))
+    mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(markerNumbers=list(rotations), stiffness=stiffness,
+                                                          damping=beta * stiffness, visualization=_NOVIS))
+
+
 def _zero(t: float) -> float:
     return 0.0
 
@@ -250,21 +258,13 @@ def _build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
         # lower revolute joints + torsion springs (passive layer)
         mpl = _pos_marker(mbs, bp, (-0.5 * lc, 0.0))
         mpr = _pos_marker(mbs, bp, (0.5 * lc, 0.0))
-        mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[prev_lower, mpl], visualization=_NOVIS))
-        mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[mpr, if_lower], visualization=_NOVIS))
-        mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(markerNumbers=[prev_rot, p_rot], stiffness=k_p,
-                                                              damping=beta * k_p, visualization=_NOVIS))
-        mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(markerNumbers=[p_rot, if_rot], stiffness=k_p,
-                                                              damping=beta * k_p, visualization=_NOVIS))
+        _hinge_with_spring(mbs, (prev_lower, mpl), (prev_rot, p_rot), k_p, beta)
+        _hinge_with_spring(mbs, (mpr, if_lower), (p_rot, if_rot), k_p, beta)
         # upper revolute joints + torsion springs (active layer)
         ma1 = _pos_marker(mbs, bodies_a[0], (-0.5 * la, 0.0))
         ma3 = _pos_marker(mbs, bodies_a[2], (0.5 * la, 0.0))
-        mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[prev_upper, ma1], visualization=_NOVIS))
-        mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[ma3, if_upper], visualization=_NOVIS))
-        mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(markerNumbers=[prev_rot, a1_rot], stiffness=k_a,
-                                                              damping=beta * k_a, visualization=_NOVIS))
-        mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(markerNumbers=[a3_rot, if_rot], stiffness=k_a,
-                                                              damping=beta * k_a, visualization=_NOVIS))
+        _hinge_with_spring(mbs, (prev_upper, ma1), (prev_rot, a1_rot), k_a, beta)
+        _hinge_with_spring(mbs, (ma3, if_upper), (a3_rot, if_rot), k_a, beta)
         # prismatic joints A1-A2 (motor) and A2-A3 (spring k1)
         for left, right in ((0, 1), (1, 2)):
             mr0 = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=bodies_a[left], localPosition=[0.5 * la, 0.0, 0.0]))
