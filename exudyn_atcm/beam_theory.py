@@ -187,3 +187,45 @@ def first_bending_frequency(bending_stiffness: float, mass_per_length: float, le
 def mass_per_length(rho1: float, h1: float, rho2: float, h2: float, width: float) -> float:
     """Mass per unit length ``b (rho1 h1 + rho2 h2)`` of the laminate [kg/m]."""
     return width * (rho1 * h1 + rho2 * h2)
+
+
+def actuator_work(E1: float, h1: float, E2: float, h2: float, width: float, strain: float, length: float) -> float:
+    """Product of free tip deflection and blocked tip force, ``delta_free F_b`` [J].
+
+    With ``delta_free = kappa L²/2`` (:func:`linear_tip_deflection`) and
+    ``F_b = 1.5 EI kappa / L`` (:func:`blocked_force`), ``W = 0.75 L EI kappa²``, and with
+    Timoshenko's curvature ``kappa = a_s e strain / EI`` (:func:`free_curvature`,
+    ``a_s = a1 a2/(a1 + a2)``)::
+
+        W = 0.75 L (a_s e strain)² / EI = 2.25 L strain² E2 b h2 g(n, t),
+        g(n, t) = n² t² (1 + t)² / [(1 + n t)(1 + 4nt + 6nt² + 4nt³ + n²t⁴)]
+
+    with ``n = E1/E2`` and ``t = h1/h2``.
+    """
+    kappa = free_curvature(E1, h1, E2, h2, width, strain)
+    return linear_tip_deflection(kappa, length) * blocked_force(composite_bending_stiffness(E1, h1, E2, h2, width), kappa, length)
+
+
+def optimal_thickness_ratio(modulus_ratio: float) -> float:
+    """Passive-to-active thickness ratio ``t = h1/h2`` that maximises :func:`actuator_work` [-].
+
+    For a given active layer (``E2``, ``h2``, strain) and modulus ratio ``n = E1/E2``,
+    ``d ln g / dt = 0`` factors into ``(n t² + 2t + 1)(n² t⁴ + (3n² - 2n) t³ - 3n t² - 5n t - 2) = 0``;
+    the first factor is positive, and the quartic has exactly one positive root
+    (one sign change, Descartes), the optimum.  For ``n = 1`` the quartic is
+    ``(t - 2)(t + 1)³``: the passive layer twice as thick as the active one.
+
+    Raises
+    ------
+    ValueError
+        If ``modulus_ratio`` is not a finite positive number.
+    """
+    n = float(modulus_ratio)
+    if not (math.isfinite(n) and n > 0.0):
+        raise ValueError(f"modulus_ratio must be a finite number > 0, got {modulus_ratio!r}")
+    roots = np.roots([n * n, 3.0 * n * n - 2.0 * n, -3.0 * n, -5.0 * n, -2.0])
+    positive = [r.real for r in roots if abs(r.imag) <= 1e-9 * max(1.0, abs(r)) and r.real > 0.0]
+    t = max(positive)
+    # one Newton step on the quartic polishes the root to machine precision
+    p = np.polynomial.Polynomial([-2.0, -5.0 * n, -3.0 * n, 3.0 * n * n - 2.0 * n, n * n])
+    return float(t - p(t) / p.deriv()(t))

@@ -12,11 +12,15 @@ See :doc:`/studies`.
 from .design import GridError, explicit_points, full_grid, parse_grid_spec, sample_points
 from .engines import DaskEngine, ProcessEngine, SerialEngine, make_engine
 from .store import RunStore, run_key
+from .optimize import METHODS, OptimizationResult, optimize
 from .sweep import StudyResult, run_study, study_points, sweep
 from .table import column, unit_of
 
 __all__ = [
     "sweep",
+    "optimize",
+    "OptimizationResult",
+    "METHODS",
     "run_study",
     "StudyResult",
     "study_points",

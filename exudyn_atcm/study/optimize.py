@@ -1,0 +1,478 @@
+"""Design optimisation of a case with scipy.optimize, its runs executed by the study engines.
+
+Every evaluation is one run of the case, executed by the same engines as a study (this
+process, a process pool, Dask) and stored in the same run store, so an interrupted
+optimisation started again replays the stored runs instantly and goes on; a sweep and an
+optimisation of the same case share runs.  Differential evolution evaluates each
+generation's population in parallel (scipy's ``workers=`` map with deferred updating); the
+local methods (Nelder-Mead, L-BFGS-B with finite differences) run one point at a time.
+
+The design variables are optimised in normalised coordinates ``u = (x - low)/(high - low)``
+in ``[0, 1]``, so that thicknesses of 1e-4 m and moduli of 1e10 Pa are equally easy for
+every method.  Integer parameters are handled by differential evolution's
+``integrality``; the local methods keep them fixed.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._atomic import write_json
+from ..cases import Case, CaseOutput, load_case
+from .design import GridError, _parameter, check_point
+from .engines import make_engine
+from .store import RunStore
+from .sweep import run_study
+from .table import Column, to_table, write_table_csv
+
+__all__ = ["optimize", "OptimizationResult", "METHODS"]
+
+#: Methods of :func:`optimize`.
+METHODS = ("differential_evolution", "nelder-mead", "l-bfgs-b")
+
+Objective = str | Callable[[Mapping[str, float], Mapping[str, Any]], float]
+
+
+@dataclass
+class OptimizationResult:
+    """The outcome of :func:`optimize`.
+
+    Attributes
+    ----------
+    design : dict
+        The best values of the design variables.
+    values : dict
+        All parameter values of the best run.
+    objective : float
+        The objective at the best design (as defined, i.e. not negated for ``maximize``).
+    scalars : dict
+        The key scalars of the best run.
+    feasible : bool
+        Whether the best design satisfies every constraint.
+    output : CaseOutput or None
+        The full run of the best design (files in ``out/best`` with ``out``).
+    history : DataFrame or structured array
+        Every evaluation in order: the design variables, objective, constraint violation,
+        status.
+    evaluations : int
+        Number of evaluations requested by the optimiser (stored ones included).
+    executed : int
+        Runs actually executed (the rest came from the store or were repeats).
+    message : str
+        The optimiser's message.
+    scipy_result : scipy.optimize.OptimizeResult
+        The raw result (in normalised coordinates), of the last stage.
+    """
+
+    design: dict[str, Any]
+    values: dict[str, Any]
+    objective: float
+    scalars: dict[str, float]
+    feasible: bool
+    output: CaseOutput | None
+    history: Any
+    evaluations: int
+    executed: int
+    message: str
+    scipy_result: Any = None
+    files: list[Path] = field(default_factory=list)
+
+
+class _Problem:
+    """Maps normalised design vectors to runs, objective values and constraint violations."""
+
+    def __init__(self, case, names, lows, highs, kinds, fixed, objective, maximize, constraints, penalty,
+                 engine, store):
+        self.case, self.names, self.kinds = case, names, kinds
+        self.lows, self.highs = np.asarray(lows, float), np.asarray(highs, float)
+        self.fixed, self.objective, self.maximize = fixed, objective, maximize
+        self.constraints, self.penalty = constraints, penalty
+        self.engine, self.store = engine, store
+        self.records: dict[tuple, dict[str, Any]] = {}
+        self.history: list[tuple[dict[str, Any], dict[str, Any]]] = []
+        self.executed = 0
+
+    # -- coordinates ----------------------------------------------------------------------
+    def point(self, u: np.ndarray) -> dict[str, Any]:
+        x = self.lows + np.clip(np.asarray(u, float), 0.0, 1.0) * (self.highs - self.lows)
+        return {n: int(round(v)) if k == "int" else float(v) for n, v, k in zip(self.names, x, self.kinds)}
+
+    def _key(self, point: Mapping[str, Any]) -> tuple:
+        return tuple(point[n] for n in self.names)
+
+    # -- runs ------------------------------------------------------------------------------
+    def prefetch(self, us: Sequence[np.ndarray]) -> None:
+        """Run (in parallel) every point of ``us`` not yet known."""
+        points = []
+        for u in us:
+            p = self.point(u)
+            if self._key(p) not in self.records and p not in points:
+                points.append(p)
+        if not points:
+            return
+        result = run_study(self.case, points=points, fixed=self.fixed, store=self.store, engine=self.engine)
+        self.executed += result.executed
+        for p, record in zip(points, result.records):
+            self.records[self._key(p)] = record
+
+    def record(self, u: np.ndarray) -> dict[str, Any]:
+        p = self.point(u)
+        if self._key(p) not in self.records:
+            self.prefetch([u])
+        return self.records[self._key(p)]
+
+    # -- objective and constraints -----------------------------------------------------------
+    def raw_objective(self, record: Mapping[str, Any]) -> float:
+        if record["status"] != "ok":
+            return math.nan
+        scalars = record["scalars"]
+        if callable(self.objective):
+            return float(self.objective(scalars, record["values"]))
+        return float(scalars[self.objective])
+
+    def violation(self, record: Mapping[str, Any]) -> float:
+        """Sum of relative constraint violations (0 if feasible; inf if the run failed)."""
+        if record["status"] != "ok":
+            return math.inf
+        total = 0.0
+        for name, (low, high) in self.constraints.items():
+            value = record["scalars"].get(name, math.nan)
+            if not math.isfinite(value):
+                return math.inf
+            if low is not None and value < low:
+                total += (low - value) / max(abs(low), 1e-300)
+            if high is not None and value > high:
+                total += (value - high) / max(abs(high), 1e-300)
+        return total
+
+    def __call__(self, u: np.ndarray) -> float:
+        """The penalised objective to minimise (inf for a failed run)."""
+        record = self.record(u)
+        f = self.raw_objective(record)
+        v = self.violation(record)
+        sign = -1.0 if self.maximize else 1.0
+        if not (math.isfinite(f) and math.isfinite(v)):
+            value = math.inf
+        else:
+            value = sign * f + self.penalty * v * max(abs(f), 1e-300)
+        self.history.append((self.point(u), {"objective": f, "violation": v, "penalised": value, "record": record}))
+        return value
+
+    def mapper(self, func: Callable, iterable) -> list[float]:
+        """scipy's ``workers=`` map: run the whole population at once, then evaluate."""
+        us = list(iterable)
+        self.prefetch(us)
+        return [func(u) for u in us]
+
+
+def _check_objective(case: Case, objective: Objective) -> Objective:
+    if callable(objective):
+        return objective
+    if not isinstance(objective, str) or not objective:
+        raise ValueError(f"objective must be the name of a key scalar of {case.name} or a callable(scalars, values), got {objective!r}")
+    return objective
+
+
+def _check_constraints(constraints: Mapping[str, tuple[float | None, float | None]] | None) -> dict[str, tuple[float | None, float | None]]:
+    checked = {}
+    for name, pair in (constraints or {}).items():
+        try:
+            low, high = pair
+        except (TypeError, ValueError):
+            raise ValueError(f"constraints[{name!r}] must be (low, high) with None for an open side, got {pair!r}") from None
+        for side in (low, high):
+            if side is not None and not (isinstance(side, (int, float)) and math.isfinite(side)):
+                raise ValueError(f"constraints[{name!r}] must be finite numbers or None, got {pair!r}")
+        if low is None and high is None:
+            raise ValueError(f"constraints[{name!r}]: give a lower or an upper limit, got {pair!r}")
+        checked[name] = (None if low is None else float(low), None if high is None else float(high))
+    return checked
+
+
+def optimize(
+    case: Case | str | os.PathLike,
+    objective: Objective,
+    bounds: Mapping[str, tuple[float, float]],
+    *,
+    method: str = "differential_evolution",
+    maximize: bool = False,
+    constraints: Mapping[str, tuple[float | None, float | None]] | None = None,
+    penalty: float = 10.0,
+    fixed: Mapping[str, Any] | None = None,
+    x0: Mapping[str, float] | None = None,
+    seed: int | None = 0,
+    maxiter: int = 100,
+    popsize: int = 15,
+    tol: float = 1e-3,
+    xatol: float = 1e-4,
+    polish: bool = True,
+    workers: int | None = None,
+    client: Any = None,
+    scheduler: str | None = None,
+    out: str | os.PathLike | None = None,
+    store: str | os.PathLike | RunStore | None = None,
+    rerun_best: bool = True,
+    plot: bool = False,
+) -> OptimizationResult:
+    """Find the parameters of a case that minimise (or maximise) one of its key scalars.
+
+    Parameters
+    ----------
+    case : Case or str or os.PathLike
+        The case (loaded, or its name or file).
+    objective : str or callable
+        Name of a key scalar, or ``objective(scalars, values) -> float`` computed from a
+        run's key scalars and parameter values (in the calling process).
+    bounds : mapping of str to (low, high)
+        The design variables and their ranges (float or int parameters; ints only with
+        differential evolution).
+    method : {"differential_evolution", "nelder-mead", "l-bfgs-b"}
+        Global search (:func:`scipy.optimize.differential_evolution`, population evaluated
+        in parallel) or a local method (:func:`scipy.optimize.minimize`; L-BFGS-B with
+        finite-difference gradients).
+    maximize : bool
+        Maximise the objective instead of minimising it.
+    constraints : mapping of str to (low, high), optional
+        Limits on key scalars, ``None`` for an open side, e.g. ``{"f1": (50.0, None)}``.
+        Applied as a penalty: ``f + penalty * v * |f|`` with ``v`` the sum of relative
+        violations (``(low - value)/|low|``); a failed run counts as ``inf``.
+    penalty : float
+        Weight of the relative violation (default 10: a 10 % violation costs as much as
+        the whole objective).
+    fixed : mapping, optional
+        Values of other parameters for every run.
+    x0 : mapping, optional
+        Start of a local method (default: the middle of the bounds).
+    seed : int or None
+        Seed of differential evolution (default 0: reproducible, and resumable from the store).
+    maxiter, popsize, tol : int, int, float
+        Differential evolution: generations, population size factor, relative tolerance.
+        Local methods: ``maxiter`` is multiplied by the number of variables.
+    xatol : float
+        Nelder-Mead tolerance in normalised coordinates (default 1e-4 of each range).
+    polish : bool
+        After differential evolution, refine the best design with Nelder-Mead on the float
+        variables (integers fixed).
+    workers, client, scheduler :
+        The engine, as for :func:`~exudyn_atcm.study.sweep`.
+    out : str or os.PathLike, optional
+        Directory for ``<case>_optimize_history.csv``, ``<case>_optimize.json``, the run store
+        ``runs/`` (unless ``store``) and the best design's full run in ``best/``.
+    store : str or os.PathLike or RunStore, optional
+        Run store (see :func:`~exudyn_atcm.study.sweep`).
+    rerun_best : bool
+        Run the best design again in this process to return its full :class:`CaseOutput`.
+    plot : bool
+        Write the best run's plots (with ``out``).
+
+    Returns
+    -------
+    OptimizationResult
+
+    Raises
+    ------
+    GridError
+        For an unknown parameter, a non-numeric design variable or empty bounds.
+    ValueError
+        For an unknown method, integers with a local method, bad constraints or objective.
+    """
+    from scipy import optimize as so
+
+    case = case if isinstance(case, Case) else load_case(case)
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    objective = _check_objective(case, objective)
+    checked_constraints = _check_constraints(constraints)
+    if not isinstance(bounds, Mapping) or not bounds:
+        raise GridError("bounds must map at least one design variable to (low, high)")
+    names, lows, highs, kinds = [], [], [], []
+    for name, pair in bounds.items():
+        parameter = _parameter(case, name, "bounds")
+        if parameter.kind not in ("float", "int"):
+            raise GridError(f"bounds: {name!r} is a {parameter.kind} parameter; design variables must be float or int")
+        try:
+            low, high = (float(v) for v in pair)
+        except (TypeError, ValueError):
+            raise GridError(f"bounds: {name!r} must be (low, high), got {pair!r}") from None
+        if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            raise GridError(f"bounds: {name!r} must be finite with low < high, got ({low!r}, {high!r})")
+        names.append(name)
+        lows.append(low)
+        highs.append(high)
+        kinds.append(parameter.kind)
+    if method != "differential_evolution" and "int" in kinds:
+        raise ValueError(f"method {method!r} is continuous: integer design variables {[n for n, k in zip(names, kinds) if k == 'int']} need method='differential_evolution' (or fix them)")
+    fixed_values = check_point(case, fixed or {})
+    overlap = sorted(set(fixed_values) & set(names))
+    if overlap:
+        raise GridError(f"parameters {overlap} are both fixed and design variables")
+    out_dir = Path(out) if out is not None else None
+    if out_dir is not None:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    run_store = store if isinstance(store, RunStore) else RunStore(store) if store is not None else (
+        RunStore(out_dir / "runs") if out_dir is not None else None)
+
+    engine = make_engine(workers, client, scheduler)
+    problem = _Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
+                       float(penalty), engine, run_store)
+    n = len(names)
+    try:
+        if method == "differential_evolution":
+            integrality = [k == "int" for k in kinds]
+            # integers: u spans [low - 0.5, high + 0.5] would bias the ends; scipy rounds x, so map ints on
+            # their own index range instead
+            result = so.differential_evolution(
+                problem, [(0.0, 1.0)] * n, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol,
+                polish=False, updating="deferred", workers=problem.mapper, init="latinhypercube",
+            ) if not any(integrality) else _de_with_integers(so, problem, kinds, seed, maxiter, popsize, tol)
+            best_u = np.asarray(result.x, float)
+            if polish and any(k == "float" for k in kinds):
+                result = _polish(so, problem, best_u, kinds, xatol, maxiter)
+                best_u = np.asarray(result.x, float)
+        else:
+            start = np.array([
+                (float(x0[nm]) - lo) / (hi - lo) if x0 and nm in x0 else 0.5
+                for nm, lo, hi in zip(names, lows, highs)
+            ])
+            if method == "nelder-mead":
+                result = so.minimize(problem, start, method="Nelder-Mead", bounds=[(0.0, 1.0)] * n,
+                                     options={"xatol": xatol, "fatol": 0.0, "maxiter": maxiter * n * 20, "initial_simplex": _simplex(start)})
+            else:
+                result = so.minimize(problem, start, method="L-BFGS-B", bounds=[(0.0, 1.0)] * n,
+                                     options={"maxiter": maxiter * n, "eps": 1e-6})
+            best_u = np.asarray(result.x, float)
+    finally:
+        engine.close()
+
+    # the best evaluated design (the optimiser's final x is one of them, or no better)
+    finite = [(h[1]["penalised"], i) for i, h in enumerate(problem.history) if math.isfinite(h[1]["penalised"])]
+    if finite:
+        best_index = min(finite)[1]
+        best_point, info = problem.history[best_index]
+    else:
+        best_point, info = problem.point(best_u), {"record": problem.record(best_u), "objective": math.nan, "violation": math.inf}
+    record = info["record"]
+    history = _history_table(case, problem, names)
+    files: list[Path] = []
+    output = None
+    if rerun_best and record["status"] == "ok":
+        output = case.run(record["values"], out_dir=(out_dir / "best") if out_dir is not None else None, plot=plot)
+        files.extend(output.files)
+    opt = OptimizationResult(
+        design=dict(best_point),
+        values=dict(record["values"]),
+        objective=float(info["objective"]),
+        scalars=dict(record.get("scalars", {})),
+        feasible=bool(info["violation"] == 0.0),
+        output=output,
+        history=to_table(history),
+        evaluations=len(problem.history),
+        executed=problem.executed,
+        message=str(getattr(result, "message", "")),
+        scipy_result=result,
+    )
+    if out_dir is not None:
+        files.append(write_table_csv(out_dir / f"{case.name}_optimize_history.csv", history,
+                                     {"case": case.name, "method": method, "maximize": maximize}))
+        files.append(write_json(out_dir / f"{case.name}_optimize.json", {
+            "case": case.name, "method": method, "maximize": maximize,
+            "objective": objective if isinstance(objective, str) else getattr(objective, "__name__", repr(objective)),
+            "bounds": {n: [lo, hi] for n, lo, hi in zip(names, lows, highs)},
+            "constraints": {k: list(v) for k, v in checked_constraints.items()},
+            "fixed": {k: list(v) if isinstance(v, tuple) else v for k, v in fixed_values.items()},
+            "design": opt.design, "objective value": opt.objective, "feasible": opt.feasible,
+            "scalars": opt.scalars, "evaluations": opt.evaluations, "executed": opt.executed, "message": opt.message,
+        }))
+    opt.files = files
+    return opt
+
+
+def _simplex(start: np.ndarray) -> np.ndarray:
+    """Initial Nelder-Mead simplex: 10 % of each range from the start, pointing inwards."""
+    n = start.size
+    simplex = np.tile(start, (n + 1, 1))
+    for i in range(n):
+        step = 0.1 if start[i] <= 0.9 else -0.1
+        simplex[i + 1, i] += step
+    return simplex
+
+
+def _de_with_integers(so, problem: _Problem, kinds, seed, maxiter, popsize, tol):
+    """Differential evolution with integer variables: those run on their index range."""
+    lows, highs = problem.lows.copy(), problem.highs.copy()
+    de_bounds = [(0.0, 1.0) if k == "float" else (lo, hi) for k, lo, hi in zip(kinds, lows, highs)]
+    integrality = [k == "int" for k in kinds]
+
+    def to_u(x: np.ndarray) -> np.ndarray:
+        x = np.asarray(x, float)
+        return np.array([xi if k == "float" else (xi - lo) / (hi - lo) for xi, k, lo, hi in zip(x, kinds, lows, highs)])
+
+    def func(x):
+        return problem(to_u(x))
+
+    def mapper(f, iterable):
+        xs = list(iterable)
+        problem.prefetch([to_u(x) for x in xs])
+        return [f(x) for x in xs]
+
+    result = so.differential_evolution(
+        func, de_bounds, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol, polish=False,
+        updating="deferred", workers=mapper, integrality=integrality, init="latinhypercube",
+    )
+    result.x = to_u(result.x)
+    return result
+
+
+def _polish(so, problem: _Problem, best_u: np.ndarray, kinds, xatol, maxiter):
+    """Nelder-Mead on the float variables from ``best_u`` (integers fixed)."""
+    free = np.array([k == "float" for k in kinds])
+
+    def func(v):
+        u = best_u.copy()
+        u[free] = v
+        return problem(u)
+
+    start = best_u[free]
+    result = so.minimize(func, start, method="Nelder-Mead", bounds=[(0.0, 1.0)] * int(free.sum()),
+                         options={"xatol": xatol, "fatol": 0.0, "maxiter": maxiter * int(free.sum()) * 20,
+                                  "initial_simplex": _small_simplex(start)})
+    u = best_u.copy()
+    u[free] = result.x
+    result.x = u
+    return result
+
+
+def _small_simplex(start: np.ndarray) -> np.ndarray:
+    """A simplex of 2 % of each range around the start (a polish, not a new search)."""
+    n = start.size
+    simplex = np.tile(start, (n + 1, 1))
+    for i in range(n):
+        simplex[i + 1, i] += 0.02 if start[i] <= 0.98 else -0.02
+    return simplex
+
+
+def _history_table(case: Case, problem: _Problem, names: Sequence[str]) -> list[Column]:
+    units = {p.name: p.unit for p in case.parameters}
+    rows = problem.history
+    columns = [Column("evaluation", "-", "int", list(range(len(rows))))]
+    for name, kind in zip(names, problem.kinds):
+        columns.append(Column(name, units[name], kind, [p[name] for p, _ in rows]))
+    obj_name = problem.objective if isinstance(problem.objective, str) else "objective"
+    obj_unit = "-"
+    for _, info in rows:
+        if isinstance(problem.objective, str) and info["record"].get("scalar_units"):
+            obj_unit = info["record"]["scalar_units"].get(problem.objective, "-")
+            break
+    columns.append(Column(obj_name, obj_unit, "float", [h["objective"] for _, h in rows]))
+    columns.append(Column("violation", "-", "float", [h["violation"] for _, h in rows]))
+    columns.append(Column("penalised", "-", "float", [h["penalised"] for _, h in rows]))
+    columns.append(Column("status", "-", "str", [h["record"]["status"] for _, h in rows]))
+    columns.append(Column("key", "-", "str", [h["record"]["key"] for _, h in rows]))
+    return columns
