@@ -73,8 +73,10 @@ def test_same_table_with_one_two_workers_and_dask(synthetic, tmp_path):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
             dask = sweep(synthetic, grid, fixed=fixed, client=client)
+        by_address = sweep(synthetic, grid, fixed=fixed, scheduler=cluster.scheduler_address)  # as --scheduler
     assert _without_wall_time(one).equals(_without_wall_time(two))
     assert _without_wall_time(one).equals(_without_wall_time(dask))
+    assert _without_wall_time(one).equals(_without_wall_time(by_address))
     assert column(one, "status").tolist().count("failed") == 2
 
 
@@ -236,3 +238,36 @@ def test_cli_sweep_with_a_failing_run_exits_1(tmp_path, capsys):
     out = capsys.readouterr().out
     assert status == 1
     assert "run 0 failed: ValueError: x = -1.0 is below fail_below = 0.0" in out
+
+
+def test_cli_latin_hypercube_study(tmp_path, capsys):
+    status = main(["sweep", str(SYNTHETIC), "--grid", "x=0:2", "--grid", "n=1:3", "--samples", "6",
+                   "--workers", "1", "--out", str(tmp_path)])
+    assert status == 0
+    assert "6 runs (6 executed" in capsys.readouterr().out
+    lines = [l for l in (tmp_path / "synthetic_study_sweep.csv").read_text().splitlines() if not l.startswith("#")]
+    rows = list(csv.reader(lines))
+    x = np.array([float(r[rows[0].index("x [m]")]) for r in rows[1:]])
+    n = np.array([int(r[rows[0].index("n [-]")]) for r in rows[1:]])
+    assert sorted(np.floor(x / 2.0 * 6).astype(int).tolist()) == list(range(6))  # one point per stratum
+    np.testing.assert_array_equal([float(r[rows[0].index("y [m]")]) for r in rows[1:]], x**2 + n)
+    assert (tmp_path / "synthetic_study_sweep_y_map.png").is_file()  # scattered points, coloured
+
+
+def test_run_progress_bar_counts_runs():
+    import io
+
+    from exudyn_atcm.study.command import RunProgressBar
+
+    stream = io.StringIO()
+    bar = RunProgressBar(stream, force=True, width=10)
+    bar(0, 4, 0)
+    bar(2, 4, 1)
+    bar(4, 4, 1)
+    bar.close()
+    text = stream.getvalue()
+    assert "[#####.....] 2/4 runs, 1 failed" in text and "[##########] 4/4 runs, 1 failed" in text
+    assert text.endswith("\n")
+    silent = io.StringIO()
+    RunProgressBar(silent)(1, 2, 0)  # not a terminal: nothing drawn
+    assert silent.getvalue() == ""
