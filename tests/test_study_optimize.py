@@ -94,9 +94,16 @@ def test_lbfgsb_with_finite_differences_and_a_callable_objective():
         ({"bounds": {"n": (1, 3)}, "method": "nelder-mead"}, ValueError, "need method='differential_evolution'"),
         ({"bounds": {"x": (0, 1)}, "method": "newton"}, ValueError, "method must be one of"),
         ({"bounds": {"x": (0, 1)}, "constraints": {"y": (None, None)}}, ValueError, "give a lower or an upper limit"),
+        ({"bounds": {"x": (0, 1)}, "constraints": {"f1": (1.0, None)}}, ValueError,
+         "constraints: 'f1' is not a key scalar of case synthetic_study; its key scalars: y, z"),
     ],
 )
 def test_bad_optimisation_input(kwargs, error, message):
     with pytest.raises(error, match=None) as info:
-        optimize(SYNTHETIC, "y", **kwargs)
+        optimize(SYNTHETIC, "y", workers=1, **kwargs)
     assert message in str(info.value)
+
+
+def test_unknown_objective_scalar():
+    with pytest.raises(ValueError, match="objective 'w' is not a key scalar of case synthetic_study; its key scalars: y, z"):
+        optimize(SYNTHETIC, "w", {"x": (0.0, 1.0)}, method="nelder-mead", workers=1)

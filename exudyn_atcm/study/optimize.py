@@ -98,6 +98,7 @@ class _Problem:
         self.records: dict[tuple, dict[str, Any]] = {}
         self.history: list[tuple[dict[str, Any], dict[str, Any]]] = []
         self.executed = 0
+        self.error: Exception | None = None
 
     # -- coordinates ----------------------------------------------------------------------
     def point(self, u: np.ndarray) -> dict[str, Any]:
@@ -135,6 +136,9 @@ class _Problem:
         scalars = record["scalars"]
         if callable(self.objective):
             return float(self.objective(scalars, record["values"]))
+        if self.objective not in scalars:
+            raise ValueError(f"objective {self.objective!r} is not a key scalar of case {self.case.name}; "
+                             f"its key scalars: {', '.join(scalars) or '(none)'}")
         return float(scalars[self.objective])
 
     def violation(self, record: Mapping[str, Any]) -> float:
@@ -143,7 +147,10 @@ class _Problem:
             return math.inf
         total = 0.0
         for name, (low, high) in self.constraints.items():
-            value = record["scalars"].get(name, math.nan)
+            if name not in record["scalars"]:
+                raise ValueError(f"constraints: {name!r} is not a key scalar of case {self.case.name}; "
+                                 f"its key scalars: {', '.join(record['scalars']) or '(none)'}")
+            value = record["scalars"][name]
             if not math.isfinite(value):
                 return math.inf
             if low is not None and value < low:
@@ -168,8 +175,12 @@ class _Problem:
     def mapper(self, func: Callable, iterable) -> list[float]:
         """scipy's ``workers=`` map: run the whole population at once, then evaluate."""
         us = list(iterable)
-        self.prefetch(us)
-        return [func(u) for u in us]
+        try:
+            self.prefetch(us)
+            return [func(u) for u in us]
+        except Exception as exc:
+            self.error = exc  # scipy replaces errors inside the map by a RuntimeError of its own
+            raise
 
 
 def _check_objective(case: Case, objective: Objective) -> Objective:
@@ -325,13 +336,13 @@ def optimize(
     n = len(names)
     try:
         if method == "differential_evolution":
-            integrality = [k == "int" for k in kinds]
-            # integers: u spans [low - 0.5, high + 0.5] would bias the ends; scipy rounds x, so map ints on
-            # their own index range instead
-            result = so.differential_evolution(
-                problem, [(0.0, 1.0)] * n, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol,
-                polish=False, updating="deferred", workers=problem.mapper, init="latinhypercube",
-            ) if not any(integrality) else _de_with_integers(so, problem, kinds, seed, maxiter, popsize, tol)
+            if "int" in kinds:
+                result = _de_with_integers(so, problem, kinds, seed, maxiter, popsize, tol)
+            else:
+                result = so.differential_evolution(
+                    problem, [(0.0, 1.0)] * n, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol,
+                    polish=False, updating="deferred", workers=problem.mapper, init="latinhypercube",
+                )
             best_u = np.asarray(result.x, float)
             if polish and any(k == "float" for k in kinds):
                 result = _polish(so, problem, best_u, kinds, xatol, maxiter)
@@ -348,6 +359,10 @@ def optimize(
                 result = so.minimize(problem, start, method="L-BFGS-B", bounds=[(0.0, 1.0)] * n,
                                      options={"maxiter": maxiter * n, "eps": 1e-6})
             best_u = np.asarray(result.x, float)
+    except RuntimeError:
+        if problem.error is not None:
+            raise problem.error from None
+        raise
     finally:
         engine.close()
 
@@ -419,8 +434,12 @@ def _de_with_integers(so, problem: _Problem, kinds, seed, maxiter, popsize, tol)
 
     def mapper(f, iterable):
         xs = list(iterable)
-        problem.prefetch([to_u(x) for x in xs])
-        return [f(x) for x in xs]
+        try:
+            problem.prefetch([to_u(x) for x in xs])
+            return [f(x) for x in xs]
+        except Exception as exc:
+            problem.error = exc
+            raise
 
     result = so.differential_evolution(
         func, de_bounds, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol, polish=False,
