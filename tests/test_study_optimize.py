@@ -107,3 +107,11 @@ def test_bad_optimisation_input(kwargs, error, message):
 def test_unknown_objective_scalar():
     with pytest.raises(ValueError, match="objective 'w' is not a key scalar of case synthetic_study; its key scalars: y, z"):
         optimize(SYNTHETIC, "w", {"x": (0.0, 1.0)}, method="nelder-mead", workers=1)
+
+
+def test_scipy_constraints_in_differential_evolution():
+    """The same problem with scipy's NonlinearConstraint (feasibility rules), population vectorised."""
+    best = optimize(SYNTHETIC, "z", {"x": (0.0, 3.0), "n": (1, 3)}, maximize=True, constraints={"y": (None, 3.0)},
+                    constraint_handling="scipy", maxiter=40, workers=2)
+    assert best.design["n"] == 2 and best.design["x"] == pytest.approx(1.0, abs=1e-3)
+    assert best.feasible and best.scalars["y"] <= 3.0

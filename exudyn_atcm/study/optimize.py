@@ -216,6 +216,7 @@ def optimize(
     maximize: bool = False,
     constraints: Mapping[str, tuple[float | None, float | None]] | None = None,
     penalty: float = 10.0,
+    constraint_handling: str = "penalty",
     fixed: Mapping[str, Any] | None = None,
     x0: Mapping[str, float] | None = None,
     seed: int | None = 0,
@@ -257,6 +258,11 @@ def optimize(
     penalty : float
         Weight of the relative violation (default 10: a 10 % violation costs as much as
         the whole objective).
+    constraint_handling : {"penalty", "scipy"}
+        ``"scipy"`` (differential evolution only): the constraints become
+        :class:`scipy.optimize.NonlinearConstraint` objects, handled by scipy's feasibility
+        rules (Lampinen 2002: feasible beats infeasible, lower violation beats higher),
+        with the population still evaluated at once (``vectorized=True``).
     fixed : mapping, optional
         Values of other parameters for every run.
     x0 : mapping, optional
@@ -318,6 +324,10 @@ def optimize(
         lows.append(low)
         highs.append(high)
         kinds.append(parameter.kind)
+    if constraint_handling not in ("penalty", "scipy"):
+        raise ValueError(f"constraint_handling must be 'penalty' or 'scipy', got {constraint_handling!r}")
+    if constraint_handling == "scipy" and method != "differential_evolution":
+        raise ValueError(f"constraint_handling='scipy' needs method='differential_evolution', got {method!r} (use penalties)")
     if method != "differential_evolution" and "int" in kinds:
         raise ValueError(f"method {method!r} is continuous: integer design variables {[n for n, k in zip(names, kinds) if k == 'int']} need method='differential_evolution' (or fix them)")
     fixed_values = check_point(case, fixed or {})
@@ -332,19 +342,14 @@ def optimize(
 
     engine = make_engine(workers, client, scheduler)
     problem = _Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
-                       float(penalty), engine, run_store)
+                       float(penalty) if constraint_handling == "penalty" else 0.0, engine, run_store)
     n = len(names)
     try:
         if method == "differential_evolution":
-            if "int" in kinds:
-                result = _de_with_integers(so, problem, kinds, seed, maxiter, popsize, tol)
-            else:
-                result = so.differential_evolution(
-                    problem, [(0.0, 1.0)] * n, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol,
-                    polish=False, updating="deferred", workers=problem.mapper, init="latinhypercube",
-                )
+            result = _differential_evolution(so, problem, kinds, seed, maxiter, popsize, tol, constraint_handling == "scipy")
             best_u = np.asarray(result.x, float)
             if polish and any(k == "float" for k in kinds):
+                problem.penalty = float(penalty)  # Nelder-Mead knows constraints only as penalties
                 result = _polish(so, problem, best_u, kinds, xatol, maxiter)
                 best_u = np.asarray(result.x, float)
         else:
@@ -366,10 +371,11 @@ def optimize(
     finally:
         engine.close()
 
-    # the best evaluated design (the optimiser's final x is one of them, or no better)
-    finite = [(h[1]["penalised"], i) for i, h in enumerate(problem.history) if math.isfinite(h[1]["penalised"])]
-    if finite:
-        best_index = min(finite)[1]
+    # the best evaluated design: feasible ones first, then the least infeasible
+    candidates = [(h["violation"] > 0.0, h["violation"] if h["violation"] > 0.0 else 0.0, h["penalised"], i)
+                  for i, (_, h) in enumerate(problem.history) if math.isfinite(h["penalised"]) and math.isfinite(h["violation"])]
+    if candidates:
+        best_index = min(candidates)[3]
         best_point, info = problem.history[best_index]
     else:
         best_point, info = problem.point(best_u), {"record": problem.record(best_u), "objective": math.nan, "violation": math.inf}
@@ -419,32 +425,67 @@ def _simplex(start: np.ndarray) -> np.ndarray:
     return simplex
 
 
-def _de_with_integers(so, problem: _Problem, kinds, seed, maxiter, popsize, tol):
-    """Differential evolution with integer variables: those run on their index range."""
+def _differential_evolution(so, problem: _Problem, kinds, seed, maxiter, popsize, tol, scipy_constraints: bool):
+    """scipy's differential evolution over the design, each population run at once by the engine.
+
+    Float variables run on ``[0, 1]``, integers on their own range (``integrality``).
+    Penalty constraints: scipy's ``workers=`` map with deferred updating.  scipy
+    constraints: ``vectorized=True``, so that the objective and every
+    :class:`~scipy.optimize.NonlinearConstraint` receive the whole population at once.
+    """
     lows, highs = problem.lows.copy(), problem.highs.copy()
     de_bounds = [(0.0, 1.0) if k == "float" else (lo, hi) for k, lo, hi in zip(kinds, lows, highs)]
-    integrality = [k == "int" for k in kinds]
+    integrality = [k == "int" for k in kinds] if "int" in kinds else None
 
     def to_u(x: np.ndarray) -> np.ndarray:
         x = np.asarray(x, float)
         return np.array([xi if k == "float" else (xi - lo) / (hi - lo) for xi, k, lo, hi in zip(x, kinds, lows, highs)])
+
+    def guarded(evaluate):
+        try:
+            return evaluate()
+        except Exception as exc:
+            problem.error = exc  # scipy replaces errors inside its map by a RuntimeError of its own
+            raise
 
     def func(x):
         return problem(to_u(x))
 
     def mapper(f, iterable):
         xs = list(iterable)
-        try:
+
+        def evaluate():
             problem.prefetch([to_u(x) for x in xs])
             return [f(x) for x in xs]
-        except Exception as exc:
-            problem.error = exc
-            raise
+        return guarded(evaluate)
 
-    result = so.differential_evolution(
-        func, de_bounds, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol, polish=False,
-        updating="deferred", workers=mapper, integrality=integrality, init="latinhypercube",
-    )
+    options = dict(seed=seed, maxiter=maxiter, popsize=popsize, tol=tol, polish=False, updating="deferred",
+                   integrality=integrality, init="latinhypercube")
+    if not scipy_constraints:
+        result = so.differential_evolution(func, de_bounds, workers=mapper, **options)
+    else:
+        def members(X):
+            us = [to_u(x) for x in np.atleast_2d(np.asarray(X, float).T)]
+            guarded(lambda: problem.prefetch(us))
+            return us
+
+        def vector_func(X):
+            return np.array([problem(u) for u in members(X)])
+
+        def constraint(name, low):
+            def values(X):
+                out = []
+                for u in members(X):
+                    record = problem.record(u)
+                    value = record["scalars"].get(name, math.nan) if record["status"] == "ok" else math.nan
+                    out.append(value if math.isfinite(value) else (-math.inf if low is not None else math.inf))
+                return np.array(out)[None, :]  # (M = 1, S)
+            return values
+
+        nonlinear = [so.NonlinearConstraint(constraint(name, low), -np.inf if low is None else low,
+                                            np.inf if high is None else high)
+                     for name, (low, high) in problem.constraints.items()]
+        result = so.differential_evolution(vector_func, de_bounds, vectorized=True, constraints=nonlinear, **options)
     result.x = to_u(result.x)
     return result
 
