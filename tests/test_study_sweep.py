@@ -271,3 +271,34 @@ def test_run_progress_bar_counts_runs():
     silent = io.StringIO()
     RunProgressBar(silent)(1, 2, 0)  # not a terminal: nothing drawn
     assert silent.getvalue() == ""
+
+
+def test_ctrl_c_stops_a_parallel_study_at_once_and_it_resumes(tmp_path):
+    """SIGINT to the whole process group (Ctrl-C in a terminal) with 2 workers: exit 130 within
+    seconds, no worker left behind, finished runs kept; the same command then runs only the rest."""
+    log = tmp_path / "log"
+    log.mkdir()
+    args = [sys.executable, "-m", "exudyn_atcm", "sweep", str(SYNTHETIC), "--grid", "x=0:1:10", "--set", "delay=0.4",
+            "--set", f"log_dir={log}", "--workers", "2", "--out", str(tmp_path / "out"), "--no-plot"]
+    proc = subprocess.Popen(args, env=env(), start_new_session=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 60.0
+        while _runs_logged(log) < 2 and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.02)
+        assert proc.poll() is None, "the study finished before it could be interrupted"
+        os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=15)  # runs in flight are abandoned, not waited for
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130 and err.strip().endswith("error: interrupted")
+    left = subprocess.run(["ps", "-o", "pid=", "-g", str(proc.pid)], capture_output=True, text=True).stdout.split()
+    assert left == []  # the workers were stopped too
+    stored = len(list((tmp_path / "out" / "runs").glob("*/*.json")))
+    assert 2 <= stored < 10
+    before = _runs_logged(log)
+    done = subprocess.run(args, env=env(), capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert f"10 runs ({10 - stored} executed, {stored} from the store, 0 failed)" in done.stdout
+    assert _runs_logged(log) - before == 10 - stored

@@ -22,6 +22,7 @@ import concurrent.futures as cf
 import hashlib
 import multiprocessing
 import os
+import signal
 import socket
 import sys
 import threading
@@ -153,6 +154,9 @@ _WORKER_SPEC: CaseSpec | None = None
 def _init_worker(spec: CaseSpec) -> None:
     global _WORKER_SPEC
     _WORKER_SPEC = spec
+    # Ctrl-C in a terminal reaches the whole process group: only the study's process reacts
+    # (it stops the workers itself), so no worker dies half-way through a pool operation
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         load_spec(spec)  # once per worker; a failure is reported by each run
     except Exception:  # noqa: BLE001
@@ -178,6 +182,10 @@ class SerialEngine:
 
     def close(self) -> None:
         """Nothing to release."""
+
+    def abort(self) -> None:
+        """Stop at once (after an interruption): runs in flight are abandoned."""
+        self.close()
 
     def __enter__(self):
         return self
@@ -264,11 +272,19 @@ class ProcessEngine(SerialEngine):
                 future.cancel()
 
     def close(self) -> None:
-        """Shut the pool down (pending runs are cancelled)."""
+        """Shut the pool down (pending runs are cancelled, running ones finish)."""
         if self._pool is not None:
             self._pool.shutdown(wait=True, cancel_futures=True)
             self._pool = None
             self._spec = None
+
+    def abort(self) -> None:
+        """Terminate the worker processes (runs in flight are lost, not stored) and the pool."""
+        if self._pool is not None:
+            for process in list((getattr(self._pool, "_processes", None) or {}).values()):
+                if process.is_alive():
+                    process.terminate()
+        self.close()
 
 
 def _crash_record(spec: CaseSpec, task: Task, exc: BaseException | None) -> dict[str, Any]:
@@ -349,6 +365,7 @@ class DaskEngine(SerialEngine):
             futures[future] = task
             return future
 
+        self._futures = futures
         queue = as_completed([submit(pending.pop()) for _ in range(min(window, len(pending)))])
         try:
             for future in queue:
@@ -369,6 +386,12 @@ class DaskEngine(SerialEngine):
         """Close the client if this engine connected it."""
         if self._own:
             self.client.close()
+
+    def abort(self) -> None:
+        """Cancel the runs submitted and not finished, then close."""
+        for future in list(getattr(self, "_futures", {})):
+            future.cancel()
+        self.close()
 
 
 def make_engine(workers: int | None = None, client: Any = None, scheduler: str | None = None):

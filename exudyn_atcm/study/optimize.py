@@ -365,8 +365,12 @@ def optimize(
                                      options={"maxiter": maxiter * n, "eps": 1e-6})
             best_u = np.asarray(result.x, float)
     except RuntimeError:
+        engine.abort()
         if problem.error is not None:
             raise problem.error from None
+        raise
+    except BaseException:
+        engine.abort()
         raise
     finally:
         engine.close()

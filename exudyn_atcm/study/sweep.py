@@ -202,6 +202,11 @@ def run_study(
                 failed += n_rows if record["status"] != "ok" else 0
                 if progress is not None:
                     progress(done, total, failed)
+    except BaseException:
+        # interrupted (Ctrl-C, a failing progress callback ...): finished runs are stored;
+        # stop the workers at once instead of waiting for the runs in flight
+        runner.abort()
+        raise
     finally:
         if own_engine:
             runner.close()
