@@ -128,13 +128,13 @@ def test_killed_study_resumes_without_recomputing(tmp_path):
     proc = subprocess.Popen([sys.executable, "-c", script], env=env(), start_new_session=True)
     try:
         deadline = time.monotonic() + 60.0
-        while _runs_logged(log) < 3 and time.monotonic() < deadline and proc.poll() is None:
+        while len(list((out / "runs").glob("*/[0-9a-f]*.json"))) < 3 and time.monotonic() < deadline and proc.poll() is None:
             time.sleep(0.02)
         assert proc.poll() is None, "the study finished before it could be killed"
         os.killpg(proc.pid, signal.SIGKILL)
     finally:
         proc.wait(timeout=30)
-    stored = len(list((out / "runs").glob("*/*.json")))
+    stored = len(list((out / "runs").glob("*/[0-9a-f]*.json")))  # not a .tmp_ file a kill may leave behind
     assert 3 <= stored < n_points
     assert not list(out.glob("*.csv"))  # the table is written only at the end
     before = _runs_logged(log)
@@ -283,7 +283,8 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_it_resumes(tmp_path):
     proc = subprocess.Popen(args, env=env(), start_new_session=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 60.0
-        while _runs_logged(log) < 2 and time.monotonic() < deadline and proc.poll() is None:
+        runs = tmp_path / "out" / "runs"
+        while len(list(runs.glob("*/[0-9a-f]*.json"))) < 2 and time.monotonic() < deadline and proc.poll() is None:
             time.sleep(0.02)
         assert proc.poll() is None, "the study finished before it could be interrupted"
         os.killpg(proc.pid, signal.SIGINT)
@@ -295,7 +296,7 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_it_resumes(tmp_path):
     assert proc.returncode == 130 and err.strip().endswith("error: interrupted")
     left = subprocess.run(["ps", "-o", "pid=", "-g", str(proc.pid)], capture_output=True, text=True).stdout.split()
     assert left == []  # the workers were stopped too
-    stored = len(list((tmp_path / "out" / "runs").glob("*/*.json")))
+    stored = len(list((tmp_path / "out" / "runs").glob("*/[0-9a-f]*.json")))
     assert 2 <= stored < 10
     before = _runs_logged(log)
     done = subprocess.run(args, env=env(), capture_output=True, text=True, timeout=120)
