@@ -118,9 +118,12 @@ def execute_run(spec: CaseSpec, index: int, key: str, values: dict[str, Any]) ->
 
     The record holds ``key``, ``index``, ``case``, ``values``, ``status`` (``"ok"`` or
     ``"failed"``), ``error`` (one line; empty if ok), ``traceback``, ``scalars`` and
-    ``scalar_units`` (the case's key scalars), ``steps``, ``wall_time`` [s] and ``worker``.
+    ``scalar_units`` (the case's key scalars), ``steps``, ``wall_time`` [s], ``cpu_time`` [s]
+    (of the worker process; much below ``wall_time`` means the run waited for a core) and
+    ``worker``.
     """
     start = time.perf_counter()
+    cpu_start = time.process_time()
     record: dict[str, Any] = {
         "key": key,
         "index": int(index),
@@ -145,6 +148,7 @@ def execute_run(spec: CaseSpec, index: int, key: str, values: dict[str, Any]) ->
         record["error"] = _one_line(exc)
         record["traceback"] = traceback.format_exc()
     record["wall_time"] = time.perf_counter() - start
+    record["cpu_time"] = time.process_time() - cpu_start
     return record
 
 
