@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -28,16 +28,14 @@ from .._atomic import write_json
 from ..cases import Case, CaseOutput, load_case
 from .design import GridError, _parameter, check_point
 from .engines import make_engine
+from .problem import Objective, Problem, check_constraints, check_objective, history_columns
 from .store import RunStore
-from .sweep import run_study
-from .table import Column, to_table, write_table_csv
+from .table import to_table, write_table_csv
 
 __all__ = ["optimize", "OptimizationResult", "METHODS"]
 
 #: Methods of :func:`optimize`.
 METHODS = ("differential_evolution", "nelder-mead", "l-bfgs-b")
-
-Objective = str | Callable[[Mapping[str, float], Mapping[str, Any]], float]
 
 
 @dataclass
@@ -83,128 +81,6 @@ class OptimizationResult:
     message: str
     scipy_result: Any = None
     files: list[Path] = field(default_factory=list)
-
-
-class _Problem:
-    """Maps normalised design vectors to runs, objective values and constraint violations."""
-
-    def __init__(self, case, names, lows, highs, kinds, fixed, objective, maximize, constraints, penalty,
-                 engine, store):
-        self.case, self.names, self.kinds = case, names, kinds
-        self.lows, self.highs = np.asarray(lows, float), np.asarray(highs, float)
-        self.fixed, self.objective, self.maximize = fixed, objective, maximize
-        self.constraints, self.penalty = constraints, penalty
-        self.engine, self.store = engine, store
-        self.records: dict[tuple, dict[str, Any]] = {}
-        self.history: list[tuple[dict[str, Any], dict[str, Any]]] = []
-        self.executed = 0
-        self.error: Exception | None = None
-
-    # -- coordinates ----------------------------------------------------------------------
-    def point(self, u: np.ndarray) -> dict[str, Any]:
-        x = self.lows + np.clip(np.asarray(u, float), 0.0, 1.0) * (self.highs - self.lows)
-        return {n: int(round(v)) if k == "int" else float(v) for n, v, k in zip(self.names, x, self.kinds)}
-
-    def _key(self, point: Mapping[str, Any]) -> tuple:
-        return tuple(point[n] for n in self.names)
-
-    # -- runs ------------------------------------------------------------------------------
-    def prefetch(self, us: Sequence[np.ndarray]) -> None:
-        """Run (in parallel) every point of ``us`` not yet known."""
-        points = []
-        for u in us:
-            p = self.point(u)
-            if self._key(p) not in self.records and p not in points:
-                points.append(p)
-        if not points:
-            return
-        result = run_study(self.case, points=points, fixed=self.fixed, store=self.store, engine=self.engine)
-        self.executed += result.executed
-        for p, record in zip(points, result.records):
-            self.records[self._key(p)] = record
-
-    def record(self, u: np.ndarray) -> dict[str, Any]:
-        p = self.point(u)
-        if self._key(p) not in self.records:
-            self.prefetch([u])
-        return self.records[self._key(p)]
-
-    # -- objective and constraints -----------------------------------------------------------
-    def raw_objective(self, record: Mapping[str, Any]) -> float:
-        if record["status"] != "ok":
-            return math.nan
-        scalars = record["scalars"]
-        if callable(self.objective):
-            return float(self.objective(scalars, record["values"]))
-        if self.objective not in scalars:
-            raise ValueError(f"objective {self.objective!r} is not a key scalar of case {self.case.name}; "
-                             f"its key scalars: {', '.join(scalars) or '(none)'}")
-        return float(scalars[self.objective])
-
-    def violation(self, record: Mapping[str, Any]) -> float:
-        """Sum of relative constraint violations (0 if feasible; inf if the run failed)."""
-        if record["status"] != "ok":
-            return math.inf
-        total = 0.0
-        for name, (low, high) in self.constraints.items():
-            if name not in record["scalars"]:
-                raise ValueError(f"constraints: {name!r} is not a key scalar of case {self.case.name}; "
-                                 f"its key scalars: {', '.join(record['scalars']) or '(none)'}")
-            value = record["scalars"][name]
-            if not math.isfinite(value):
-                return math.inf
-            if low is not None and value < low:
-                total += (low - value) / max(abs(low), 1e-300)
-            if high is not None and value > high:
-                total += (value - high) / max(abs(high), 1e-300)
-        return total
-
-    def __call__(self, u: np.ndarray) -> float:
-        """The penalised objective to minimise (inf for a failed run)."""
-        record = self.record(u)
-        f = self.raw_objective(record)
-        v = self.violation(record)
-        sign = -1.0 if self.maximize else 1.0
-        if not (math.isfinite(f) and math.isfinite(v)):
-            value = math.inf
-        else:
-            value = sign * f + self.penalty * v * max(abs(f), 1e-300)
-        self.history.append((self.point(u), {"objective": f, "violation": v, "penalised": value, "record": record}))
-        return value
-
-    def mapper(self, func: Callable, iterable) -> list[float]:
-        """scipy's ``workers=`` map: run the whole population at once, then evaluate."""
-        us = list(iterable)
-        try:
-            self.prefetch(us)
-            return [func(u) for u in us]
-        except Exception as exc:
-            self.error = exc  # scipy replaces errors inside the map by a RuntimeError of its own
-            raise
-
-
-def _check_objective(case: Case, objective: Objective) -> Objective:
-    if callable(objective):
-        return objective
-    if not isinstance(objective, str) or not objective:
-        raise ValueError(f"objective must be the name of a key scalar of {case.name} or a callable(scalars, values), got {objective!r}")
-    return objective
-
-
-def _check_constraints(constraints: Mapping[str, tuple[float | None, float | None]] | None) -> dict[str, tuple[float | None, float | None]]:
-    checked = {}
-    for name, pair in (constraints or {}).items():
-        try:
-            low, high = pair
-        except (TypeError, ValueError):
-            raise ValueError(f"constraints[{name!r}] must be (low, high) with None for an open side, got {pair!r}") from None
-        for side in (low, high):
-            if side is not None and not (isinstance(side, (int, float)) and math.isfinite(side)):
-                raise ValueError(f"constraints[{name!r}] must be finite numbers or None, got {pair!r}")
-        if low is None and high is None:
-            raise ValueError(f"constraints[{name!r}]: give a lower or an upper limit, got {pair!r}")
-        checked[name] = (None if low is None else float(low), None if high is None else float(high))
-    return checked
 
 
 def optimize(
@@ -305,8 +181,8 @@ def optimize(
     case = case if isinstance(case, Case) else load_case(case)
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
-    objective = _check_objective(case, objective)
-    checked_constraints = _check_constraints(constraints)
+    objective = check_objective(case, objective)
+    checked_constraints = check_constraints(constraints)
     if not isinstance(bounds, Mapping) or not bounds:
         raise GridError("bounds must map at least one design variable to (low, high)")
     names, lows, highs, kinds = [], [], [], []
@@ -341,7 +217,7 @@ def optimize(
         RunStore(out_dir / "runs") if out_dir is not None else None)
 
     engine = make_engine(workers, client, scheduler)
-    problem = _Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
+    problem = Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
                        float(penalty) if constraint_handling == "penalty" else 0.0, engine, run_store)
     n = len(names)
     try:
@@ -384,7 +260,7 @@ def optimize(
     else:
         best_point, info = problem.point(best_u), {"record": problem.record(best_u), "objective": math.nan, "violation": math.inf}
     record = info["record"]
-    history = _history_table(case, problem, names)
+    history = history_columns(case, problem, names)
     files: list[Path] = []
     output = None
     if rerun_best and record["status"] == "ok":
@@ -429,7 +305,7 @@ def _simplex(start: np.ndarray) -> np.ndarray:
     return simplex
 
 
-def _differential_evolution(so, problem: _Problem, kinds, seed, maxiter, popsize, tol, scipy_constraints: bool):
+def _differential_evolution(so, problem: Problem, kinds, seed, maxiter, popsize, tol, scipy_constraints: bool):
     """scipy's differential evolution over the design, each population run at once by the engine.
 
     Float variables run on ``[0, 1]``, integers on their own range (``integrality``).
@@ -494,7 +370,7 @@ def _differential_evolution(so, problem: _Problem, kinds, seed, maxiter, popsize
     return result
 
 
-def _polish(so, problem: _Problem, best_u: np.ndarray, kinds, xatol, maxiter):
+def _polish(so, problem: Problem, best_u: np.ndarray, kinds, xatol, maxiter):
     """Nelder-Mead on the float variables from ``best_u`` (integers fixed)."""
     free = np.array([k == "float" for k in kinds])
 
@@ -520,23 +396,3 @@ def _small_simplex(start: np.ndarray) -> np.ndarray:
     for i in range(n):
         simplex[i + 1, i] += 0.02 if start[i] <= 0.98 else -0.02
     return simplex
-
-
-def _history_table(case: Case, problem: _Problem, names: Sequence[str]) -> list[Column]:
-    units = {p.name: p.unit for p in case.parameters}
-    rows = problem.history
-    columns = [Column("evaluation", "-", "int", list(range(len(rows))))]
-    for name, kind in zip(names, problem.kinds):
-        columns.append(Column(name, units[name], kind, [p[name] for p, _ in rows]))
-    obj_name = problem.objective if isinstance(problem.objective, str) else "objective"
-    obj_unit = "-"
-    for _, info in rows:
-        if isinstance(problem.objective, str) and info["record"].get("scalar_units"):
-            obj_unit = info["record"]["scalar_units"].get(problem.objective, "-")
-            break
-    columns.append(Column(obj_name, obj_unit, "float", [h["objective"] for _, h in rows]))
-    columns.append(Column("violation", "-", "float", [h["violation"] for _, h in rows]))
-    columns.append(Column("penalised", "-", "float", [h["penalised"] for _, h in rows]))
-    columns.append(Column("status", "-", "str", [h["record"]["status"] for _, h in rows]))
-    columns.append(Column("key", "-", "str", [h["record"]["key"] for _, h in rows]))
-    return columns
