@@ -199,7 +199,7 @@ def test_bad_study_specifications_are_one_line_errors(synthetic, kwargs, message
     ("spec", "message"),
     [
         ("xx=1:2:3", "error: --grid: unknown parameter 'xx' for case synthetic_study; did you mean 'x'? "
-                     "(parameters: x, n, a, mode, fail_below, delay, log_dir)"),
+                     "(parameters: x, n, a, mode, fail_below, delay, crash_at, log_dir)"),
         ("x=1:2:0", "error: --grid x: N must be an integer >= 1, got 0"),
         ("n=5:2", "error: --grid n: empty range '5:2' (START > STOP)"),
         ("x=", "error: --grid x: no values given (empty range) in 'x='"),
@@ -303,3 +303,20 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_it_resumes(tmp_path):
     assert done.returncode == 0, done.stderr
     assert f"10 runs ({10 - stored} executed, {stored} from the store, 0 failed)" in done.stdout
     assert _runs_logged(log) - before == 10 - stored
+
+
+def test_a_crashing_worker_does_not_stop_the_study(synthetic, tmp_path):
+    """A run that kills its worker process: found by running the lost runs alone, recorded failed
+    and stored; every other run finishes, and nothing is repeated on a second start."""
+    grid = {"x": [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]}
+    log = tmp_path / "log"
+    log.mkdir()
+    fixed = {"crash_at": 2.0, "log_dir": str(log)}
+    result = run_study(synthetic, grid, fixed=fixed, workers=2, out=tmp_path / "out")
+    assert column(result.table, "status").tolist() == ["ok", "ok", "failed", "ok", "ok", "ok"]
+    assert column(result.table, "error")[2].startswith("the worker process died during this run (run alone")
+    x = np.array(grid["x"])
+    np.testing.assert_array_equal(column(result.table, "y")[x != 2.0], x[x != 2.0] ** 2 + 2)
+    assert _runs_logged(log) >= 5  # runs lost with the crashed pool ran again
+    again = run_study(synthetic, grid, fixed=fixed, workers=2, out=tmp_path / "out")
+    assert again.executed == 0 and again.reused == 6

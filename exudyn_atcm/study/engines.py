@@ -244,32 +244,49 @@ class ProcessEngine(SerialEngine):
     def run(self, spec: CaseSpec, tasks: Sequence[Task]) -> Iterator[dict[str, Any]]:
         """Execute ``tasks`` on the pool (at most ``2 x workers`` queued); yields records as runs finish.
 
-        If a worker process dies (a crash inside a run), the runs in flight at that moment
-        are reported failed (and not stored, so a later resume retries them), the pool is
-        restarted and the study goes on.
+        If a worker process dies (a crash inside a run: a segmentation fault, the memory
+        limit), every run in flight is lost with the pool.  The pool is restarted and those
+        runs are executed again one at a time: the one that kills its worker again, alone,
+        is recorded as failed with that error; the others finish normally.
         """
-        pending = list(tasks)[::-1]
+        pending = list(tasks)[::-1]  # a stack: pop() gives the next run in study order
+        suspects: list[Task] = []  # runs lost with a broken pool, to run again one at a time
+        alone: Task | None = None  # the suspect running alone now
         window = 2 * self.workers
         in_flight: dict[cf.Future, Task] = {}
         try:
-            while pending or in_flight:
+            while pending or suspects or in_flight:
                 pool = self._start(spec)
-                while pending and len(in_flight) < window:
-                    task = pending.pop()
-                    in_flight[pool.submit(_pool_run, *task)] = task
-                done, _ = cf.wait(list(in_flight), return_when=cf.FIRST_COMPLETED)
                 broken = False
+                try:
+                    if suspects or alone is not None:
+                        if not in_flight:
+                            in_flight[pool.submit(_pool_run, *suspects[0])] = suspects[0]
+                            alone = suspects.pop(0)
+                    else:
+                        while pending and len(in_flight) < window:
+                            in_flight[pool.submit(_pool_run, *pending[-1])] = pending[-1]
+                            pending.pop()
+                except cf.process.BrokenProcessPool:
+                    broken = True  # it broke since the last results; what is in flight tells more
+                done = cf.wait(list(in_flight), return_when=cf.FIRST_COMPLETED)[0] if in_flight else set()
                 for future in done:
                     task = in_flight.pop(future)
                     try:
                         yield future.result()
                     except cf.process.BrokenProcessPool as exc:
                         broken = True
-                        yield _crash_record(spec, task, exc)
+                        if task is alone:
+                            yield _crash_record(spec, task, exc)
+                        else:
+                            suspects.append(task)
+                    if task is alone:
+                        alone = None
                 if broken:
-                    for future, task in list(in_flight.items()):
-                        yield _crash_record(spec, task, None)
+                    suspects.extend(in_flight.values())
+                    suspects.sort(key=lambda t: t[0])
                     in_flight.clear()
+                    alone = None
                     self.close()
         finally:
             for future in in_flight:
@@ -292,6 +309,7 @@ class ProcessEngine(SerialEngine):
 
 
 def _crash_record(spec: CaseSpec, task: Task, exc: BaseException | None) -> dict[str, Any]:
+    """The record of a run whose worker process died while it ran alone (stored like a failure)."""
     index, key, values = task
     return {
         "key": key,
@@ -299,14 +317,15 @@ def _crash_record(spec: CaseSpec, task: Task, exc: BaseException | None) -> dict
         "case": spec.name,
         "values": dict(values),
         "status": "failed",
-        "error": "worker process died while this run (or another one in flight) was running; not stored, retried on resume",
+        "error": "the worker process died during this run (run alone: a crash inside the run, "
+                 "e.g. a segmentation fault or the memory limit)",
         "traceback": "" if exc is None else _one_line(exc),
         "scalars": {},
         "scalar_units": {},
         "steps": None,
         "wall_time": float("nan"),
+        "cpu_time": float("nan"),
         "worker": "",
-        "transient": True,
     }
 
 
@@ -379,6 +398,7 @@ class DaskEngine(SerialEngine):
                 except Exception as exc:  # noqa: BLE001 - e.g. KilledWorker
                     record = _crash_record(spec, task, exc)
                     record["error"] = f"Dask could not run it: {_one_line(exc)}; not stored, retried on resume"
+                    record["transient"] = True  # e.g. workers lost to the cluster, not to this run
                     yield record
                 if pending:
                     queue.add(submit(pending.pop()))

@@ -2,8 +2,9 @@
 
 Scalars: ``y = a x^2 + n`` [m] and ``z = sin(x) n`` [-], so every value of a study table has
 an independent expected value.  ``fail_below`` makes runs with ``x < fail_below`` raise (a
-failing run); ``delay`` sleeps that long (a run of known duration); ``log_dir`` gets one
-file per executed run (to count the runs a study really executes).
+failing run); ``delay`` sleeps that long (a run of known duration); ``crash_at`` ends the worker process
+(a crash); ``log_dir`` gets one file per executed run (to count the runs a study really
+executes).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ PARAMETERS = [
     Parameter("mode", "plain", "-", "a string parameter", choices=("plain", "other")),
     Parameter("fail_below", -1e30, "m", "runs with x below this raise ValueError"),
     Parameter("delay", 0.0, "s", "sleep this long in each run"),
+    Parameter("crash_at", -1e30, "m", "a run with x equal to this ends its process at once (a crashing solver)"),
     Parameter("log_dir", "", "-", "directory receiving one file per executed run ('' = none)"),
 ]
 
@@ -31,6 +33,8 @@ PARAMETERS = [
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.delay > 0.0:
         time.sleep(p.delay)
+    if p.x == p.crash_at:
+        os._exit(3)  # no exception, no cleanup: like a segmentation fault inside a solver
     if p.x < p.fail_below:
         raise ValueError(f"x = {p.x} is below fail_below = {p.fail_below}")
     if p.log_dir:
