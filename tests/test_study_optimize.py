@@ -115,3 +115,19 @@ def test_scipy_constraints_in_differential_evolution():
                     constraint_handling="scipy", maxiter=40, workers=2)
     assert best.design["n"] == 2 and best.design["x"] == pytest.approx(1.0, abs=1e-3)
     assert best.feasible and best.scalars["y"] <= 3.0
+
+
+def test_cli_optimize(tmp_path, capsys):
+    from exudyn_atcm.cli import main
+
+    args = ["optimize", str(SYNTHETIC), "--objective", "z", "--maximize", "--bound", "x=0:3", "--bound", "n=1:3",
+            "--constraint", "y<=3", "--maxiter", "40", "--workers", "1", "--out", str(tmp_path)]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "synthetic_study: maximum of z = 1.68" in out and "  n = 2 [-]" in out  # 2 sin(1) = 1.683
+    assert (tmp_path / "synthetic_study_optimize_history.csv").is_file()
+    # no design can meet y = x^2 + n <= 0.5 (n >= 1): exit status 1, said on the first line
+    assert main(args[:-8] + ["--constraint", "y<=0.5", "--maxiter", "3", "--workers", "1", "--out", str(tmp_path / "b")]) == 1
+    assert "NO DESIGN MEETS THE CONSTRAINTS" in capsys.readouterr().out
+    assert main(["optimize", str(SYNTHETIC), "--objective", "y", "--bound", "x=0:1:3"]) == 2
+    assert capsys.readouterr().err.strip() == "error: --bound x: expects NAME=LOW:HIGH, got 'x=0:1:3'"

@@ -1,13 +1,18 @@
-"""The ``exudyn-atcm sweep`` command: options, the progress bar over runs, the summary.
+"""The ``exudyn-atcm sweep`` and ``optimize`` commands: options, the progress bar over runs, summaries.
 
 ::
 
     exudyn-atcm sweep CASE --grid NAME=START:STOP:N --grid NAME=A,B,C [--samples N]
                       [--set NAME=VALUE] [--workers N | --scheduler tcp://HOST:8786]
                       [--out DIR] [--store DIR] [--retry-failed] [--no-plot]
+    exudyn-atcm optimize CASE --objective NAME [--maximize] --bound NAME=LOW:HIGH
+                      [--constraint "NAME>=VALUE"] [--method differential_evolution]
+                      [--set NAME=VALUE] [--workers N | --scheduler ADDRESS] [--out DIR]
 
-Exit status: 0 if every run succeeded, 1 if any run failed (the study still completes and
-the table holds each error), 2 for a usage error (unknown case or parameter, bad grid).
+Exit status of ``sweep``: 0 if every run succeeded, 1 if any run failed (the study still
+completes and the table holds each error), 2 for a usage error (unknown case or
+parameter, bad grid).  Of ``optimize``: 0 if the best design satisfies the constraints,
+1 if no evaluated design does, 2 for a usage error.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ from typing import IO
 
 from ..cases import CaseError, load_case
 
-__all__ = ["add_sweep_parser", "sweep_command", "RunProgressBar"]
+__all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
 
 
 class RunProgressBar:
@@ -161,3 +166,105 @@ def sweep_command(args: argparse.Namespace) -> int:
     print(f"  table: {result.csv_path}")
     print(f"  wrote {len(files)} files to {args.out}")
     return 1 if result.failed else 0
+
+
+def add_optimize_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
+    """Add the ``optimize`` subcommand to ``sub``; returns its parser."""
+    from .optimize import METHODS
+
+    opt = sub.add_parser(
+        "optimize",
+        help="find the parameters of a case that minimise or maximise a key scalar (scipy.optimize)",
+        parents=parents,
+        description="Optimise CASE over the parameters given with --bound; every evaluation is a stored run "
+        "(DIR/runs), so running the same command again replays them and continues.  Writes the history "
+        "(DIR/<case>_optimize_history.csv), a JSON summary and the best design's full run (DIR/best).",
+    )
+    opt.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
+    opt.add_argument("--objective", required=True, metavar="NAME", help="key scalar to minimise (or maximise)")
+    opt.add_argument("--maximize", action="store_true", help="maximise the objective")
+    opt.add_argument("--bound", action="append", default=[], metavar="NAME=LOW:HIGH", help="a design variable and its range (repeatable)")
+    opt.add_argument("--constraint", action="append", default=[], metavar="NAME>=VALUE",
+                     help="limit on a key scalar, NAME>=VALUE or NAME<=VALUE (repeatable; quote it in the shell)")
+    opt.add_argument("--method", choices=METHODS, default="differential_evolution", help="optimiser (default: differential_evolution)")
+    opt.add_argument("--maxiter", type=int, default=100, metavar="N", help="generations (differential evolution; default 100)")
+    opt.add_argument("--popsize", type=int, default=15, metavar="N", help="population size per variable (default 15)")
+    opt.add_argument("--seed", type=int, default=0, help="seed of differential evolution (default 0)")
+    opt.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
+    opt.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
+    opt.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://HOST:8786")
+    opt.add_argument("--out", default="out/optimize", metavar="DIR", help="output directory (default: ./out/optimize)")
+    opt.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
+    opt.add_argument("--no-plot", action="store_true", help="do not write the best run's plots")
+    return opt
+
+
+def _parse_constraint(text: str) -> tuple[str, tuple[float | None, float | None]]:
+    import re
+
+    match = re.fullmatch(r"\s*([A-Za-z_]\w*)\s*(>=|<=)\s*(\S+)\s*", text)
+    if match is None:
+        raise ValueError(f"--constraint expects NAME>=VALUE or NAME<=VALUE, got {text!r}")
+    name, op, value = match.groups()
+    try:
+        number = float(value)
+    except ValueError:
+        raise ValueError(f"--constraint {name}: VALUE must be a number, got {value!r}") from None
+    return name, ((number, None) if op == ">=" else (None, number))
+
+
+def optimize_command(args: argparse.Namespace) -> int:
+    """Run ``exudyn-atcm optimize``; returns the exit status."""
+    from .design import GridError, parse_grid_spec
+    from .optimize import optimize
+
+    debug = bool(getattr(args, "debug", False))
+    if args.workers is not None and args.workers < 1:
+        return _error(f"--workers must be an integer >= 1, got {args.workers}", debug, 2)
+    if args.workers is not None and args.scheduler is not None:
+        return _error("give either --workers (this machine) or --scheduler (a Dask cluster), not both", debug, 2)
+    for name in ("maxiter", "popsize"):
+        if getattr(args, name) < 1:
+            return _error(f"--{name} must be an integer >= 1, got {getattr(args, name)}", debug, 2)
+    try:
+        case = load_case(args.case, getattr(args, "cases_dir", None))
+        if not args.bound:
+            raise GridError("give at least one design variable: --bound NAME=LOW:HIGH")
+        bounds = {}
+        for text in args.bound:
+            name, values = parse_grid_spec(case, text, ranges=True)
+            if not isinstance(values, tuple):
+                raise GridError(f"--bound {name}: expects NAME=LOW:HIGH, got {text!r}")
+            if name in bounds:
+                raise GridError(f"--bound {name}: given twice")
+            bounds[name] = values
+        constraints = {}
+        for text in args.constraint:
+            name, (low, high) = _parse_constraint(text)
+            old_low, old_high = constraints.get(name, (None, None))
+            constraints[name] = (low if low is not None else old_low, high if high is not None else old_high)
+        fixed = case.parse_assignments(args.set)
+    except (CaseError, ValueError) as exc:
+        return _error(exc, debug, 2)
+    try:
+        best = optimize(
+            case, args.objective, bounds, method=args.method, maximize=args.maximize, constraints=constraints,
+            fixed=fixed, seed=args.seed, maxiter=args.maxiter, popsize=args.popsize, workers=args.workers,
+            scheduler=args.scheduler, out=args.out, store=args.store, plot=not args.no_plot,
+        )
+    except (CaseError, ValueError, ImportError) as exc:
+        return _error(exc, debug, 2)
+    units = {p.name: p.unit for p in case.parameters}
+    sense = "maximum" if args.maximize else "minimum"
+    print(f"{case.name}: {sense} of {args.objective} = {best.objective:.7g} after {best.evaluations} evaluations "
+          f"({best.executed} runs executed){'' if best.feasible else ' - NO DESIGN MEETS THE CONSTRAINTS'}")
+    for name, value in best.design.items():
+        print(f"  {name} = {value:.7g} [{units[name]}]")
+    for name, (low, high) in constraints.items():
+        value = best.scalars.get(name, float("nan"))
+        limit = f">= {low:g}" if low is not None else ""
+        limit += (" and " if low is not None and high is not None else "") + (f"<= {high:g}" if high is not None else "")
+        print(f"  constraint {name} = {value:.7g} ({limit})")
+    print(f"  {best.message}")
+    print(f"  wrote {len(best.files)} files to {args.out}")
+    return 0 if best.feasible else 1
