@@ -131,7 +131,7 @@ def _clamp(ax, x, y_low, y_high, width):
 
 
 def _true_mm_ticks(ax, scale: float) -> None:
-    ax.yaxis.set_major_locator(MultipleLocator(0.1 * scale))  # every 0.1 mm of true height
+    ax.yaxis.set_major_locator(MultipleLocator(0.2 * scale))  # every 0.2 mm of true height
     ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{v / scale:.1f}"))
 
 
