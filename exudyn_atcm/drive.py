@@ -95,7 +95,7 @@ class PiezoDrive:
                     "exudyn_atcm.parameter_sets.paper_strain_preisach() instead of paper_stroke_preisach(), "
                     "or scale your operator's output to strain"
                 )
-            _check_strain_magnitude(_output_bound(hysteresis), "the hysteresis operator's output range")
+            _check_strain_magnitude(_output_bound(hysteresis), "the hysteresis operator's output range", stacklevel=4)
         self.hysteresis = hysteresis
         if rated_range is None:
             self.rated_range = None
@@ -160,12 +160,12 @@ class PiezoDrive:
             warnings.warn(
                 f"the voltage program spans {u_low:g} ... {u_high:g} V: " + "; ".join(problems),
                 RuntimeWarning,
-                stacklevel=3,
+                stacklevel=4,
             )
 
     def check_strain(self, strain_low: float, strain_high: float) -> None:
         """Warn if free strains in ``[strain_low, strain_high]`` exceed :data:`PLAUSIBLE_STRAIN` in magnitude."""
-        _check_strain_magnitude(max(abs(strain_low), abs(strain_high)), "the free strain of the run")
+        _check_strain_magnitude(max(abs(strain_low), abs(strain_high)), "the free strain of the run", stacklevel=5)
 
     def __repr__(self) -> str:
         hyst = "None" if self.hysteresis is None else type(self.hysteresis).__name__
@@ -199,12 +199,12 @@ def _output_bound(operator: Any) -> float:
         return 0.0
 
 
-def _check_strain_magnitude(value: float, what: str) -> None:
+def _check_strain_magnitude(value: float, what: str, stacklevel: int) -> None:
     if value > PLAUSIBLE_STRAIN:
         warnings.warn(
             f"{what} reaches a free strain of {value:.3g}, more than {PLAUSIBLE_STRAIN:g} (1 %); piezo "
             "layers reach about 1e-3 (the paper's MFC: 1.38e-3 at 1500 V). Check the units: the drive "
             "expects strain [-], not a stroke in micrometres or a strain in percent",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )

@@ -9,8 +9,8 @@ bending actuator's :func:`~exudyn_atcm.simulation.simulate`, a mechanism) can ca
   program, warns when it resolves it only coarsely;
 * :func:`check_step_against_frequency` -- warns when the step resolves the first
   eigenfrequency too coarsely;
-* :func:`estimate_run_time` / :func:`warn_if_long` -- a predicted wall time from cells x steps
-  x a measured cost per cell and step;
+* :func:`estimate_run_time` / :func:`warn_if_long` -- a predicted wall time from steps x a
+  measured cost per step for the cell type and number of cells;
 * :class:`InterruptGuard` -- turns Ctrl-C inside a solver hook into a clean stop.
 
 Thresholds and why
@@ -49,7 +49,7 @@ __all__ = [
     "COMFORTABLE_STEPS_PER_FEATURE",
     "MIN_STEPS_PER_MODE_PERIOD",
     "LONG_RUN_SECONDS",
-    "COST_PER_CELL_STEP",
+    "COST_PER_STEP",
     "TimeGrid",
     "time_grid",
     "snap_time",
@@ -71,17 +71,19 @@ MIN_STEPS_PER_MODE_PERIOD = 10
 #: A run predicted to take longer than this [s] of wall time is announced with a warning.
 LONG_RUN_SECONDS = 60.0
 
-#: Measured wall time per cell and accepted step [s] of the time integration, by cell type
-#: (``benchmarks/bench_run_cost.py``: REF-A bender, triangle 0.5 s, step 1e-4 s, 3 and 10
-#: cells, one core of the development machine; the largest of the measured values).  The
-#: six-bar chain's cost grows faster than linearly with the cells, so the estimate is
-#: rough: it is meant to flag runs of minutes or hours, not to time them.
-COST_PER_CELL_STEP = {
-    "rigid": 12e-6,
-    "six-bar": 60e-6,
+#: Measured wall time of the time integration per accepted step [s], by cell type, as
+#: ``(a, b, c)``: a run of ``n`` cells and ``k`` steps takes about ``k * (a + b n + c n^2)``.
+#: Measured with ``benchmarks/bench_run_cost.py`` (REF-A bender, the paper's Preisach loop in
+#: the step, triangle 0.5 s, step 1e-4 s, 3, 10 and 40 cells; 2-core machine shared with other
+#: jobs): 20, 28 and 192 µs per step for the rigid chain, 148, 655 and 4268 µs for the six-bar
+#: chain; the constants are the fit through these points, rounded up.  The quadratic term is
+#: the cost per cell growing with the chain (the sparse solve of the longer chain).  The
+#: estimate is rough (measured 0.5-2x): it is meant to flag runs of minutes or hours, not to
+#: time them.
+COST_PER_STEP = {
+    "rigid": (20e-6, 1e-6, 0.12e-6),
+    "six-bar": (20e-6, 55e-6, 1.3e-6),
 }
-
-
 # ------------------------------------------------------------------------------ time grid
 
 @dataclass(frozen=True)
@@ -126,7 +128,7 @@ def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
             f"{n} steps of {used:.6g} s, and that step is recorded (info 'step [s]'). Choose a step "
             f"that divides t_end (e.g. {t_end / n:.6g} or {t_end / max(n - 1, 1):.6g} s) to silence this",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,
         )
     return TimeGrid(t_end, used, n, step)
 
@@ -180,8 +182,8 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
     per_feature = duration / step
     if per_feature < MIN_STEPS_PER_FEATURE:
         raise ValueError(
-            f"step = {step:.6g} s is too coarse for {what}: its shortest feature ({description}) lasts "
-            f"{duration:.6g} s, {per_feature:.3g} steps; the solver would sample the program only "
+            f"step = {step:.6g} s is too coarse for {what}: its shortest feature, {description}, lasts "
+            f"{duration:.6g} s, only {per_feature:.3g} steps; the solver would sample the program "
             f"{per_feature:.3g} times across it and miss its peaks and reversals (a flat or distorted "
             f"response). Use step <= {duration / MIN_STEPS_PER_FEATURE:.6g} s (at least "
             f"{MIN_STEPS_PER_FEATURE} steps per feature; {COMFORTABLE_STEPS_PER_FEATURE} recommended: "
@@ -189,12 +191,12 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
         )
     if per_feature < COMFORTABLE_STEPS_PER_FEATURE:
         warnings.warn(
-            f"step = {step:.6g} s resolves the shortest feature of {what} ({description}, "
-            f"{duration:.6g} s) with only {per_feature:.3g} steps: peaks can be missed by up to "
+            f"step = {step:.6g} s resolves the shortest feature of {what}, {description} lasting "
+            f"{duration:.6g} s, with only {per_feature:.3g} steps: peaks can be missed by up to "
             f"{50.0 / per_feature:.2g} % of a ramp's swing. For {COMFORTABLE_STEPS_PER_FEATURE} steps per "
             f"feature use step <= {duration / COMFORTABLE_STEPS_PER_FEATURE:.6g} s",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,
         )
 
 
@@ -222,21 +224,23 @@ def check_step_against_frequency(step: float, frequency: float, *, what: str = "
             f"period, so its vibrations are lost (acceptable for a quasi-static answer only). For the "
             f"dynamics use step <= {period / (2 * MIN_STEPS_PER_MODE_PERIOD):.4g} s",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,
         )
 
 
 # ------------------------------------------------------------------------------ run time
 
 def estimate_run_time(cell: str, n_cells: int, n_steps: int) -> float | None:
-    """Predicted wall time [s] of a time integration: cells x steps x :data:`COST_PER_CELL_STEP`.
+    """Predicted wall time [s] of a time integration from :data:`COST_PER_STEP`.
 
-    Returns ``None`` for a cell type without a measured cost.
+    ``n_steps * (a + b n_cells + c n_cells^2)`` with the cell type's measured ``(a, b, c)``;
+    ``None`` for a cell type without measured costs.
     """
-    cost = COST_PER_CELL_STEP.get(cell)
+    cost = COST_PER_STEP.get(cell)
     if cost is None:
         return None
-    return cost * n_cells * n_steps
+    a, b, c = cost
+    return n_steps * (a + n_cells * (b + c * n_cells))
 
 
 def _duration_text(seconds: float) -> str:
@@ -247,17 +251,22 @@ def _duration_text(seconds: float) -> str:
     return f"{seconds / 3600.0:.1f} h"
 
 
-def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float = LONG_RUN_SECONDS) -> float | None:
-    """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate."""
+def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None = None) -> float | None:
+    """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
+
+    ``limit`` defaults to :data:`LONG_RUN_SECONDS`.
+    """
+    limit = LONG_RUN_SECONDS if limit is None else limit
     estimate = estimate_run_time(cell, n_cells, n_steps)
     if estimate is not None and estimate > limit:
+        per_step = estimate / max(n_steps, 1)
         warnings.warn(
-            f"this run is predicted to take about {_duration_text(estimate)} ({n_cells} {cell} cells x "
-            f"{n_steps} steps x ~{COST_PER_CELL_STEP[cell] * 1e6:.0g} µs per cell and step, measured). "
-            "For a quicker answer use a larger step (within the voltage program's limits), fewer cells "
-            "or a shorter t_end; Ctrl-C stops the run and keeps what was computed",
+            f"this run is predicted to take about {_duration_text(estimate)} ({n_steps} steps of "
+            f"{n_cells} {cell} cells at ~{per_step * 1e6:.3g} µs per step, measured). For a quicker answer "
+            "use a larger step (within the voltage program's limits), fewer cells or a shorter t_end; "
+            "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,
         )
     return estimate
 

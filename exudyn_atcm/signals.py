@@ -129,7 +129,7 @@ class Triangle(Signal):
     def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
         if self.u_amp == 0.0:
             return None
-        return 0.5 * self.period, f"a ramp of the triangle, half its period {self.period:g} s"
+        return 0.5 * self.period, f"a ramp of the triangle wave (half its period of {self.period:g} s)"
 
     def _parameters(self) -> dict[str, Any]:
         return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period}
