@@ -36,15 +36,15 @@ PAPER_ELECTRODE_SPACING = 0.5e-3
 def paper_stroke_preisach(rounded: bool = False) -> ContinuousPreisach:
     """The paper's continuous Preisach model as the stroke [m] of a 29 mm cell.
 
+    Its ``output_quantity`` is ``"stroke"``: a :class:`~exudyn_atcm.drive.PiezoDrive` refuses
+    it (the drive needs strain; use :func:`paper_strain_preisach`).
+
     Parameters
     ----------
     rounded : bool, optional
         ``True`` for the paper's rounded exponents ``r1 = 1.5``, ``r2 = 2``; ``False`` (default)
         for the exact exponents through the precision points (corrected Eq. 10:
         ``r1 = 1.459432``, ``r2 = 1.874469``).
-
-    Its ``output_quantity`` is ``"stroke"``: a :class:`~exudyn_atcm.drive.PiezoDrive` refuses
-    it (the drive needs strain; use :func:`paper_strain_preisach`).
     """
     d = PAPER_LOOP
     if rounded:
