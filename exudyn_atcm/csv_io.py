@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from ._atomic import describe_os_error
 from .result import Result
 
 __all__ = ["read_csv", "read_csv_header", "CsvHeader"]
@@ -83,6 +84,10 @@ def _read_lines(path: str | os.PathLike) -> tuple[str, list[str]]:
             return name, handle.read().split("\n")
     except FileNotFoundError:
         raise ValueError(f"{name}: no such file") from None
+    except IsADirectoryError:
+        raise ValueError(f"{name}: is a directory, not a CSV file") from None
+    except OSError as exc:
+        raise ValueError(f"{name}: cannot be read: {describe_os_error(exc)}") from None
     except UnicodeDecodeError as exc:
         raise ValueError(f"{name}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
 

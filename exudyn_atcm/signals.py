@@ -325,7 +325,13 @@ def _read_table(path: Path) -> tuple[list[str] | None, list[tuple[int, list[str]
         raise ValueError(f"path must be an existing CSV file, got {str(path)!r}")
     header: list[str] | None = None
     rows: list[tuple[int, list[str]]] = []
-    with path.open(newline="") as handle:
+    try:
+        handle = path.open(newline="")
+    except OSError as exc:
+        from ._atomic import describe_os_error
+
+        raise ValueError(f"path {str(path)!r} cannot be read: {describe_os_error(exc)}") from None
+    with handle:
         for line_number, row in enumerate(csv.reader(handle), start=1):
             if not row or row[0].lstrip().startswith("#"):
                 continue

@@ -564,8 +564,9 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         info["newton_steps"] = stats["newton_steps"]
     if isinstance(source, InStepStrain):
         info["hysteresis_evaluations"] = source.evaluations
-    if source.u_low <= source.u_high:
-        actuator.drive.check_voltage_range(source.u_low, source.u_high)
+    u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
+    if u_low <= u_high:
+        actuator.drive.check_voltage_range(u_low, u_high)
     if guard.interrupted:
         t_stop = recorder.last_time()
         info["partial"] = True

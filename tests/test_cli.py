@@ -139,6 +139,7 @@ def test_cases_are_shipped_with_the_package(tmp_path):
 
     from _cli_helpers import REPO, env
 
+    pytest.importorskip("setuptools")
     lib = tmp_path / "lib"
     build = subprocess.run([sys.executable, "setup.py", "-q", "build_py", "--build-lib", str(lib)],
                            cwd=REPO, capture_output=True, text=True, timeout=300)

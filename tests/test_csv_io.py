@@ -136,3 +136,9 @@ def test_non_finite_numbers_are_refused_unless_asked(tmp_path, cell, extra):
     value = read_csv(path, allow_nonfinite=True)["stroke"][1]
     assert not np.isfinite(value)
     assert (np.isnan(value) if cell == "nan" else value == float(cell))
+
+
+def test_unreadable_path_is_named_without_errno(tmp_path):
+    with pytest.raises(ValueError) as info:
+        read_csv(tmp_path)
+    assert str(info.value) == f"{tmp_path}: is a directory, not a CSV file"
