@@ -357,3 +357,26 @@ def test_fig12_case_output_is_thinned_and_matches_every_step_run(tmp_path):
     every = _fig12_case().run({"cycles": 1, "record_every": 0.0})
     assert every.result.n_rows == 10001
     np.testing.assert_array_equal(out.result["tip_y"], every.result["tip_y"][::10])
+
+
+def test_asynchronous_ctrl_c_during_the_solver_stops_cleanly():
+    """A real Ctrl-C arrives while Exudyn's C++ solver runs: ``_thread.interrupt_main`` raises
+    ``KeyboardInterrupt`` in the main thread at its next Python code, i.e. inside a solver hook
+    (before the fix: a solver failure "at t = -92507 s" with advice about step sizes)."""
+    import _thread
+    import threading
+
+    act = REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.1), hysteresis=paper_strain_preisach()), cell="rigid")
+    timer = threading.Timer(1.0, _thread.interrupt_main)  # the run takes several seconds
+    timer.start()
+    try:
+        with pytest.raises(SimulationInterrupted) as info:
+            simulate(act, 20.0, step=1e-4, record_every=100)
+    finally:
+        timer.cancel()
+    exc = info.value
+    assert 0.0 < exc.time < 20.0
+    assert str(exc) == f"interrupted at t = {exc.time:.6g} s"
+    partial = exc.result
+    assert partial.info["partial"] is True and partial["time"][-1] == exc.time
+    assert np.all(np.diff(partial["time"]) > 0)
