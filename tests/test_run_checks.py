@@ -8,7 +8,6 @@ the MFC P1 rating (-500 ... +1500 V), and the uninterrupted run for the interrup
 from __future__ import annotations
 
 import io
-import math
 import warnings
 
 import numpy as np
