@@ -41,7 +41,7 @@ class HysteresisOperator(abc.ABC):
         """``(u_low, u_high)``: beyond it the output saturates; ``None`` if the operator has no such range."""
         return None
 
-    def with_output_quantity(self, quantity: str | None):
+    def with_output_quantity(self, quantity: str | None) -> "HysteresisOperator":
         """Set :attr:`output_quantity` (e.g. ``"strain"`` or ``"stroke"``) and return the operator."""
         if quantity is not None and (not isinstance(quantity, str) or not quantity.strip()):
             raise ValueError(f"quantity must be None or a non-empty string such as 'strain', got {quantity!r}")

@@ -72,7 +72,7 @@ class DiscretePreisach(StaircasePreisach):
         self.weights = weights_a.copy()
         self.offset = finite_float("offset", offset)
         self._y_reset = self.offset
-        self._beta_min_max = (float(beta_a.min()), float(beta_a.max())) if beta_a.size else (0.0, 0.0)
+        self._beta_low = float(beta_a.min())
         if isinstance(max_table_entries, bool) or not isinstance(max_table_entries, (int, np.integer)) or max_table_entries < 0:
             raise ValueError(f"max_table_entries must be an integer >= 0, got {max_table_entries!r}")
 
@@ -125,7 +125,7 @@ class DiscretePreisach(StaircasePreisach):
     @property
     def input_range(self) -> tuple[float, float]:
         """``(min beta, max alpha)``: below it every relay is off, above it every relay is on."""
-        return (min(self._beta_min_max), max(self._alpha_sorted)) if self._alpha_sorted else (0.0, 0.0)
+        return (self._beta_low, self._alpha_sorted[-1])
 
     @property
     def n_relays(self) -> int:
