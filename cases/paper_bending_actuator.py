@@ -5,7 +5,9 @@ REF-A of MODEL.md §4 (Margineanu, Lovasz, Modler; Figs. 11, 12): three cells of
 is driven by the paper's triangle wave (Eq. 11, U_med = 500 V, U_amp = 1000 V, -500 ... 1500 V)
 through the paper's continuous Preisach loop as free strain (Eqs. 8-10; exact exponents by
 default), evaluated inside each solver step and committed on accepted steps.  Everything else
-is the package default: six-bar cell, composite stiffness, 2 % damping, step 1e-4 s.
+is the package default: six-bar cell, composite stiffness, 2 % damping, step 1e-4 s.  Every
+step is computed; one per millisecond is recorded (``record_every``; 0 records every step),
+which keeps the CSV at about 0.4 MB instead of 4 MB.
 
 Outputs: the time series (time, voltage, strain, stroke, tip position and angle, cell angles)
 and plots of voltage, stroke and tip displacement over time, tip deflection over voltage,
@@ -51,6 +53,7 @@ PARAMETERS = [
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
     Parameter("damping", 0.02, "-", "modal damping ratio of the first bending mode"),
     Parameter("step", 1e-4, "s", "time step"),
+    Parameter("record_every", 1e-3, "s", "recording interval (0: every step); the solution is the same, the files smaller"),
     Parameter("animation", True, "-", "also write a GIF animation of the actuator"),
 ]
 
@@ -73,7 +76,10 @@ def build(p: Parameters) -> BendingActuator:
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.cycles < 1:
         raise ValueError(f"cycles must be >= 1, got {p.cycles}")
-    result = simulate(build(p), p.cycles * p.period, step=p.step, progress=ctx.progress)
+    if p.record_every < 0.0:
+        raise ValueError(f"record_every must be >= 0 s (0: every step), got {p.record_every}")
+    result = simulate(build(p), p.cycles * p.period, step=p.step, progress=ctx.progress,
+                      record_every=p.record_every if p.record_every > 0.0 else None)
     t, y = result["time"], result["tip_y"]
     start = (p.cycles - 1) * p.period
     last = t >= start - 1e-12

@@ -11,6 +11,7 @@ from .csv_io import read_csv
 from .drive import PiezoDrive
 from .materials import Layer
 from .result import Result
+from .run_checks import SimulationInterrupted
 from .simulation import SolverError, eigenfrequencies, simulate, solve_static
 
 __all__ = [
@@ -25,5 +26,6 @@ __all__ = [
     "eigenfrequencies",
     "Result",
     "SolverError",
+    "SimulationInterrupted",
     "read_csv",
 ]

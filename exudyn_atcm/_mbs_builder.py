@@ -601,6 +601,8 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
                 post_step: Callable[[float], None]) -> dict:
     """Integrate in time; ``pre_step(t)`` before each attempted step, ``post_step(t)`` after each accepted one.
 
+    A hook returning ``False`` stops the integration cleanly (Exudyn ends the run).
+
     Returns solver statistics.
     """
     mbs = model.mbs
@@ -609,16 +611,14 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
     if pre_step is not None:
         def pre(mbs_, t):
             counts["attempts"] += 1
-            pre_step(t)
-            return True
+            return pre_step(t) is not False  # False: stop the run (e.g. Ctrl-C caught in the hook)
     else:
         def pre(mbs_, t):
             counts["attempts"] += 1
             return True
 
     def post(mbs_, t):
-        post_step(t)
-        return True
+        return post_step(t) is not False
 
     mbs.SetPreStepUserFunction(pre)
     mbs.SetPostStepUserFunction(post)

@@ -101,6 +101,11 @@ class ContinuousPreisach(StaircasePreisach):
         r2 = math.log((y_max - y_m2) / dy) / math.log((u_max - u_m) / du)
         return cls(u_min, u_max, y_min, y_max, r1, r2)
 
+    @property
+    def input_range(self) -> tuple[float, float]:
+        """``(u_min, u_max)``: beyond it the output saturates at ``y_min``/``y_max``."""
+        return (self.u_min, self.u_max)
+
     def ascending(self, u: float) -> float:
         """Ascending major-loop branch (Eq. 8), held constant outside ``[u_min, u_max]``."""
         if u <= self.u_min:

@@ -72,6 +72,7 @@ class DiscretePreisach(StaircasePreisach):
         self.weights = weights_a.copy()
         self.offset = finite_float("offset", offset)
         self._y_reset = self.offset
+        self._beta_low = float(beta_a.min())
         if isinstance(max_table_entries, bool) or not isinstance(max_table_entries, (int, np.integer)) or max_table_entries < 0:
             raise ValueError(f"max_table_entries must be an integer >= 0, got {max_table_entries!r}")
 
@@ -120,6 +121,11 @@ class DiscretePreisach(StaircasePreisach):
         self._ties = ties
         self._has_ties = bool(ties)
         super().__init__()
+
+    @property
+    def input_range(self) -> tuple[float, float]:
+        """``(min beta, max alpha)``: below it every relay is off, above it every relay is on."""
+        return (self._beta_low, self._alpha_sorted[-1])
 
     @property
     def n_relays(self) -> int:
