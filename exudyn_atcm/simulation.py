@@ -151,6 +151,8 @@ class _Recorder:
     def __init__(self, model, source, progress=None, t_end: float = 1.0) -> None:
         self.model = model
         self.source = source
+        # closed loop: the drive's controller observes every accepted step's tip deflection
+        self.controller = getattr(getattr(source, "drive", None), "controller", None)
         self.index = model.record_indices
         self.scalars: list[tuple] = []
         self.states: list[np.ndarray] = []
@@ -162,6 +164,8 @@ class _Recorder:
         u, strain = self.source.commit(t)
         self.scalars.append((t, u, strain))
         self.states.append(self.model.coordinates()[self.index])
+        if self.controller is not None:
+            self.controller.observe(t, self.model.read_state(self.model.coordinates(), strain)[1])
         if self.progress is not None and t >= self._next_report:
             self.progress(t, self.t_end)
             self._next_report = t + 0.01 * self.t_end
@@ -386,7 +390,12 @@ def simulate(
     Result
         Series ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
         ``tip_angle``, ``cell_angle_1..N``; ``result.info`` holds the number of attempted and
-        rejected steps.
+        rejected steps (and, in closed loop, the controller's ``summary()`` under ``"controller"``).
+
+    Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.control`), it is reset at
+    the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
+    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``.
+    A ``RuntimeWarning`` says when its output was held at a limit.
 
     Raises
     ------
@@ -416,6 +425,14 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     force = _check_force(tip_force)
     if settings is not None and not callable(settings) and not isinstance(settings, dict):
         raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {settings!r}")
+    controller = getattr(actuator.drive, "controller", None)
+    if controller is not None:
+        if source is not None and not isinstance(source, InStepStrain):
+            raise ValueError(
+                f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
+                "the voltage depends on the simulated response and cannot be tabulated beforehand"
+            )
+        controller.reset()
     if source is None:
         source = InStepStrain(actuator.drive)
     model = builder.build(actuator, force, stroke_path=stroke_path)
@@ -462,6 +479,18 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     }
     if isinstance(source, InStepStrain):
         info["hysteresis_evaluations"] = source.evaluations
+    if controller is not None:
+        info["controller"] = controller.summary() if callable(getattr(controller, "summary", None)) else {}
+        limited = info["controller"].get("limited_samples", 0)
+        if limited:
+            warnings.warn(
+                f"the controller's output was at its limits {info['controller'].get('output_limits [V]')} V in "
+                f"{limited} of {info['controller'].get('samples')} samples (largest excess "
+                f"{info['controller'].get('largest_excess [V]', float('nan')):.4g} V): the wanted deflection is "
+                "partly out of reach",
+                RuntimeWarning,
+                stacklevel=3,
+            )
     return recorder.result(actuator, info)
 
 
