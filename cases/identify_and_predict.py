@@ -6,8 +6,10 @@ read with :func:`exudyn_atcm.measurements.read_record` and split by time: the pa
 ``split_fraction`` of the duration is fitted, the rest is held out and predicted (the model
 runs over the whole record, so the held-out part starts from the memory the fitted part left).
 
-Fitted: a Preisach density on an ``n_levels`` grid (:meth:`DiscretePreisach.fit`, variable
-gains by non-negative least squares), and for comparison a Prandtl-Ishlinskii operator, the
+Fitted: a Preisach density on an ``n_levels`` grid (variable gains by non-negative least
+squares, :meth:`DiscretePreisach.fit`), evaluated with each weight spread over its cell
+(:meth:`EverettPreisach.fit`: continuous output) and as the bare relay grid (staircase
+output); for comparison a Prandtl-Ishlinskii operator, the
 paper's continuous power-law model fitted by least squares, and the equal-gain relays of
 Eq. 12 (:meth:`DiscretePreisach.from_loop`, on the record's major-loop branches).
 
@@ -26,7 +28,7 @@ import numpy as np
 
 from exudyn_atcm._atomic import write_json
 from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, PrandtlIshlinskii
+from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
 from exudyn_atcm.identification_plots import plot_fit
 from exudyn_atcm.measurements import preprocess, read_record
 from exudyn_atcm.reference_record import REFERENCE
@@ -60,7 +62,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     unit = record.units["output"]
     n_fit = t.size if p.split_fraction == 1.0 else record.split_index(t[0] + p.split_fraction * (t[-1] - t[0]))
 
-    preisach, report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
+    _, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
+    _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
     _, pi_report = PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit)
     _, cont_report = ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit)
     eq12_model, eq12_fit = DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12,
@@ -69,7 +72,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     eq12_report = make_report(eq12_model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
                               notes=eq12_fit.notes, output_unit=unit)
-    reports = {"preisach_fit": report, "prandtl_ishlinskii_fit": pi_report,
+    reports = {"preisach_fit": report, "relay_grid_fit": grid_report, "prandtl_ishlinskii_fit": pi_report,
                "continuous_fit": cont_report, "equal_gain_eq12": eq12_report}
 
     result = Result(
@@ -81,6 +84,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     )
     scalars = {
         "held_out_rms_preisach": (report.model_errors["held_out"]["rms"], unit),
+        "held_out_rms_relay_grid": (grid_report.model_errors["held_out"]["rms"], unit),
         "held_out_rms_linear": (report.linear_errors["held_out"]["rms"], unit),
         "held_out_rms_prandtl_ishlinskii": (pi_report.model_errors["held_out"]["rms"], unit),
         "held_out_rms_continuous": (cont_report.model_errors["held_out"]["rms"], unit),

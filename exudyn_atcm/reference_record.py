@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ._atomic import write_text
-from .hysteresis import DiscretePreisach
+from .hysteresis.everett import EverettPreisach
 from .hysteresis.identification import relay_grid
 from .signals import PiecewiseLinear
 
@@ -37,7 +37,7 @@ REFERENCE = {
 }
 
 
-def reference_preisach(scale: float = 1.0) -> DiscretePreisach:
+def reference_preisach(scale: float = 1.0) -> EverettPreisach:
     """The known model: a smooth, non-uniform Preisach density on a fine grid.
 
     Density over the Preisach triangle (``alpha >= beta``, volts)::
@@ -47,8 +47,10 @@ def reference_preisach(scale: float = 1.0) -> DiscretePreisach:
                           + a reversible part on the diagonal alpha = beta,
                             1.5 · exp(-((alpha + beta)/2 - 900)^2 / (2·500^2)) per grid cell,
 
-    discretised with 120 levels over -500 ... 1500 V (7260 relays), scaled to an output of
-    -4 µm (all relays off) ... 40 µm (all on), the range of the paper's 29 mm cell.
+    discretised with 120 cells over -500 ... 1500 V (7260 cell weights), each spread evenly
+    over its cell (:class:`~exudyn_atcm.hysteresis.everett.EverettPreisach`: a continuous
+    output, as of a real piezo layer), scaled to an output of -4 µm (all relays off) ... 40 µm
+    (all on), the range of the paper's 29 mm cell.
 
     Parameters
     ----------
@@ -63,7 +65,8 @@ def reference_preisach(scale: float = 1.0) -> DiscretePreisach:
     )
     weights = weights + 0.05 * (n / 4) * np.exp(-(((alpha + beta) / 2) - 900.0) ** 2 / (2 * 500.0**2)) * (alpha == beta)
     weights *= r["y_range [m]"] / weights.sum()
-    return DiscretePreisach(alpha, beta, weights * scale, offset=r["y_min [m]"] * scale)
+    edges = np.linspace(r["u_min [V]"], r["u_max [V]"], n + 1)
+    return EverettPreisach(edges, alpha, beta, weights * scale, offset=r["y_min [m]"] * scale)
 
 
 def reference_program() -> PiecewiseLinear:
@@ -93,7 +96,7 @@ def write_reference_record(path: str | Path) -> Path:
         "# Synthetic hysteresis record (NOT a measurement), made by cases/data/make_preisach_record.py",
         "# with exudyn_atcm.reference_record.write_reference_record:",
         "# output = known non-uniform Preisach model exudyn_atcm.reference_record.reference_preisach()",
-        f"#   ({r['grid_levels']}-level relay grid over {r['u_min [V]']:g}...{r['u_max [V]']:g} V, density",
+        f"#   ({r['grid_levels']}-cell grid over {r['u_min [V]']:g}...{r['u_max [V]']:g} V, weights spread over the cells, density",
         "#   exp(-((a-b)-350)^2/(2*300^2))*exp(-((a+b)/2-300)^2/(2*600^2)) plus a reversible diagonal part,",
         "#   output -4e-6 m with all relays off, 40e-6 m with all on)",
         f"# input  = ramps at {r['ramp_rate [V/s]']:g} V/s through the corners {list(r['corners [V]'])} V",

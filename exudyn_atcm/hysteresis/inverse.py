@@ -7,7 +7,7 @@ the wanted output ``y`` of the forward model, its output the input ``u`` that pr
 inverse's own copy of the forward model, so the two memories stay together.
 
 * :class:`BisectionInverse`, for Preisach models (:class:`DiscretePreisach`,
-  :class:`ContinuousPreisach`, and any operator whose output, from a fixed memory, does not
+  :class:`ContinuousPreisach`, :class:`EverettPreisach`, and any operator whose output, from a fixed memory, does not
   decrease with the input; true for non-negative Preisach densities): bisection on the input
   range.  For a discrete model the output is a staircase, so only its step values are reached
   exactly; the input returned is the one whose output lies nearest to ``y``.
@@ -37,6 +37,9 @@ __all__ = ["BisectionInverse", "ShiftedPIInverse", "inverse_operator"]
 
 def default_input_range(model: Any) -> tuple[float, float]:
     """Input range over which a Preisach model's output changes (beyond it, it saturates)."""
+    edges = getattr(model, "edges", None)
+    if edges is not None:  # EverettPreisach
+        return float(edges[0]), float(edges[-1])
     if isinstance(model, DiscretePreisach):
         # just below the lowest switch-off threshold every relay is off (also one with alpha == beta)
         lo, hi = float(model.beta.min()), float(model.alpha.max())
