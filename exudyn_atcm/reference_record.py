@@ -19,7 +19,7 @@ from .hysteresis.everett import EverettPreisach
 from .hysteresis.identification import relay_grid
 from .signals import PiecewiseLinear
 
-__all__ = ["REFERENCE", "reference_preisach", "reference_program", "write_reference_record"]
+__all__ = ["REFERENCE", "reference_preisach", "reference_program", "reference_samples", "write_reference_record"]
 
 #: Settings of the shipped record (SI units).
 REFERENCE = {
@@ -76,10 +76,14 @@ def reference_program() -> PiecewiseLinear:
     return PiecewiseLinear(times, corners)
 
 
-def reference_samples(noise: float | None = None, seed: int | None = None) -> tuple[np.ndarray, ...]:
-    """Time [s], voltage [V], noise-free and noisy displacement [m] of the reference record."""
+def reference_samples(noise: float | None = None, seed: int | None = None,
+                      sample_rate: float | None = None) -> tuple[np.ndarray, ...]:
+    """Time [s], voltage [V], noise-free and noisy displacement [m] of the reference record.
+
+    ``noise`` [m], ``seed`` and ``sample_rate`` [Hz] default to the shipped record's.
+    """
     program = reference_program()
-    rate = REFERENCE["sample_rate [Hz]"]
+    rate = REFERENCE["sample_rate [Hz]"] if sample_rate is None else float(sample_rate)
     t = np.arange(0.0, program.times[-1] + 0.5 / rate, 1.0 / rate)
     u = program(t)
     clean = reference_preisach().apply(u)
