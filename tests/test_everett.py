@@ -84,5 +84,9 @@ def test_everett_fit_beats_the_staircase_on_a_smooth_truth():
 def test_everett_rejects_bad_relays():
     with pytest.raises(ValueError, match="strictly inside the edges"):
         EverettPreisach(EDGES, [1.5], [0.0], [1.0])
-    with pytest.raises(ValueError, match="weights >= 0"):
+    with pytest.raises(ValueError, match=r"weights must be >= 0 \(a non-negative density\), got weights\[0\] = -1.0"):
         EverettPreisach(EDGES, [0.5], [0.0], [-1.0])
+    with pytest.raises(ValueError, match=r"alpha must be >= beta for every relay, got alpha\[0\] = 0.0 < beta\[0\] = 0.5"):
+        EverettPreisach(EDGES, [0.0], [0.5], [1.0])
+    with pytest.raises(ValueError, match=r"edges must be strictly increasing, got edges\[1\] = 0.0 after 0.0"):
+        EverettPreisach([0.0, 0.0, 1.0], [0.5], [0.5], [1.0])

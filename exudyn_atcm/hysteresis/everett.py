@@ -53,17 +53,27 @@ class EverettPreisach(StaircasePreisach):
     def __init__(self, edges: Any, alpha: Any, beta: Any, weights: Any, offset: float = 0.0) -> None:
         e = finite_array("edges", edges, min_length=2)
         if np.any(np.diff(e) <= 0.0):
-            raise ValueError("edges must be strictly increasing")
+            k = int(np.argmax(np.diff(e) <= 0.0)) + 1
+            raise ValueError(f"edges must be strictly increasing, got edges[{k}] = {float(e[k])!r} after {float(e[k - 1])!r}")
         a = finite_array("alpha", alpha)
         b = finite_array("beta", beta)
         w = finite_array("weights", weights)
         same_length(("alpha", "beta", "weights"), (a, b, w))
-        if (a < b).any() or (w < 0).any():
-            raise ValueError("relays need alpha >= beta and weights >= 0")
+        if (a < b).any():
+            k = int(np.argmax(a < b))
+            raise ValueError(f"alpha must be >= beta for every relay, got alpha[{k}] = {float(a[k])!r} < beta[{k}] = {float(b[k])!r}")
+        if (w < 0).any():
+            k = int(np.argmax(w < 0))
+            raise ValueError(f"weights must be >= 0 (a non-negative density), got weights[{k}] = {float(w[k])!r}")
         ia = np.searchsorted(e, a) - 1
         ib = np.searchsorted(e, b) - 1
-        if ia.min() < 0 or ia.max() >= e.size - 1 or ib.min() < 0 or ib.max() >= e.size - 1:
-            raise ValueError("every relay threshold must lie strictly inside the edges")
+        outside = (ia < 0) | (ia >= e.size - 1) | (ib < 0) | (ib >= e.size - 1)
+        if outside.any():
+            k = int(np.argmax(outside))
+            raise ValueError(
+                f"every relay threshold must lie strictly inside the edges ({float(e[0])!r} ... {float(e[-1])!r}), "
+                f"got alpha[{k}] = {float(a[k])!r}, beta[{k}] = {float(b[k])!r}"
+            )
         n = e.size - 1
         diagonal = ia == ib
         cells = np.zeros((n, n))
