@@ -234,3 +234,14 @@ def test_fit_rejects_bad_options():
         DiscretePreisach.fit(GOOD_U, GOOD_Y, 4, n_fit=5)
     with pytest.raises(ValueError, match=r"input_range must be finite with u_hi > u_lo"):
         DiscretePreisach.fit(GOOD_U, GOOD_Y, 4, input_range=(1, 0))
+
+
+def test_report_without_held_out_part_is_strict_json():
+    alpha, beta, weights, offset = known_grid_model()
+    u = corners_path(FIT_CORNERS, 0.05)
+    y = relay_outputs(alpha, beta, weights, offset, u)
+    _, report = DiscretePreisach.fit(u, y, 10, input_range=(-1.0, 1.0))
+    data = report.to_dict()
+    assert data["model_errors"]["held_out"]["rms"] is None
+    json.dumps(data, allow_nan=False)  # raises on NaN
+    assert math.isnan(report.improvement_over_linear("held_out"))

@@ -27,6 +27,17 @@ from .._atomic import write_json
 __all__ = ["FitReport", "error_measures", "make_report"]
 
 
+def _no_nan(value: Any) -> Any:
+    """``value`` with every NaN float replaced by ``None`` (strict JSON has no NaN)."""
+    if isinstance(value, dict):
+        return {k: _no_nan(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_no_nan(v) for v in value]
+    if isinstance(value, float) and math.isnan(value):
+        return None
+    return value
+
+
 def error_measures(measured: np.ndarray, predicted: np.ndarray, output_range: float) -> dict[str, float]:
     """RMS and largest absolute error, absolute and in % of ``output_range``; NaN for no samples."""
     if measured.size == 0:
@@ -99,8 +110,8 @@ class FitReport:
         return linear / model
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-serialisable contents (without the predicted series)."""
-        return {
+        """JSON-serialisable contents (without the predicted series); NaN (no held-out part) as ``None``."""
+        return _no_nan({
             "method": self.method,
             "model": self.model,
             "n_samples": self.n_samples,
@@ -118,7 +129,7 @@ class FitReport:
             "settings": self.settings,
             "notes": list(self.notes),
             "fit_time [s]": self.fit_time,
-        }
+        })
 
     def write_json(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as JSON (atomically) and return the path."""
