@@ -83,3 +83,22 @@ def test_controller_needs_the_in_step_source():
 def test_pid_rejects_bad_settings(kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):
         PIDController(**kwargs)
+
+
+def test_pid_arithmetic_by_hand():
+    # kp = 2 V/m, ki = 10 V/(m s), kd = 0.5 V s/m, T_s = 0.1 s, setpoint 1 m, feedforward 0.25 V
+    pid = PIDController(2.0, 10.0, 0.5, sample_time=0.1, setpoint=1.0, feedforward=0.25, output_limits=(-1.0, 2.0))
+    assert pid.voltage_at(0.0) == 0.25  # no sample yet: feedforward only
+    pid.observe(0.0, 0.0)  # e = 1: 2*1 + 10*(1*0.1) = 3 -> 3.25 V, limited to 2 V
+    assert pid.voltage_at(0.05) == 2.0
+    assert pid.limited_samples == 1 and pid.largest_excess == pytest.approx(1.25)
+    pid.observe(0.05, 0.9)  # between samples: ignored (zero-order hold)
+    assert pid.voltage_at(0.07) == 2.0
+    # e = 0.5; the last sample was limited upwards and e > 0: no integration (integral stays 0.1)
+    # v = 2*0.5 + 10*0.1 - 0.5*(0.5 - 0)/0.1 = 1 + 1 - 2.5 = -0.5 -> -0.25 V
+    pid.observe(0.1, 0.5)
+    assert pid.voltage_at(0.15) == pytest.approx(-0.25)
+    # e = -0.2: integral 0.1 - 0.02 = 0.08; v = -0.4 + 0.8 - 0.5*(1.2 - 0.5)/0.1 = -3.1 -> -2.85, limited to -1
+    pid.observe(0.2, 1.2)
+    assert pid.voltage_at(0.25) == -1.0
+    assert pid.samples == 3 and pid.limited_samples == 2
