@@ -10,7 +10,6 @@ import pytest
 
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, PrandtlIshlinskii
 from exudyn_atcm.hysteresis.identification import relay_grid
-from exudyn_atcm.signals import PiecewiseLinear
 
 from relays import equal_gain_relays, relay_outputs
 
