@@ -6,10 +6,10 @@ read with :func:`exudyn_atcm.measurements.read_record` and split by time: the pa
 ``split_fraction`` of the duration is fitted, the rest is held out and predicted (the model
 runs over the whole record, so the held-out part starts from the memory the fitted part left).
 
-Fitted: a Preisach density on an ``n_levels`` grid (variable gains by non-negative least
-squares, :meth:`DiscretePreisach.fit`), evaluated with each weight spread over its cell
-(:meth:`EverettPreisach.fit`: continuous output) and as the bare relay grid (staircase
-output); for comparison a Prandtl-Ishlinskii operator, the
+Fitted: a Preisach density on an ``n_levels`` grid by non-negative least squares (variable
+gains), once with each weight spread over its grid cell (:meth:`EverettPreisach.fit`:
+continuous output; the main result) and once as the bare relay grid
+(:meth:`DiscretePreisach.fit`: staircase output); for comparison a Prandtl-Ishlinskii operator, the
 paper's continuous power-law model fitted by least squares, and the equal-gain relays of
 Eq. 12 (:meth:`DiscretePreisach.from_loop`, on the record's major-loop branches).
 

@@ -4,7 +4,7 @@ The paper's actuator (three 29 mm cells, CFC on MFC) is driven through a hystere
 that plays the real MFC: the known non-uniform Preisach model behind the shipped record
 (``exudyn_atcm.reference_record.reference_preisach``, as free strain of a 29 mm cell).  The
 compensation does not know it: it uses the Preisach model *identified* from the noisy record
-``cases/data/preisach_record.csv`` (:meth:`DiscretePreisach.fit`, ``n_levels`` grid), as a
+``cases/data/preisach_record.csv`` (:meth:`EverettPreisach.fit`, ``n_levels`` grid), as a
 designer would.  The wanted tip deflection is a slow two-tone wave (a major swing with minor
 loops inside), turned into a wanted free strain by the constant-curvature arc of a beam bent
 by a pure moment, ``tip_y = (1 - cos(κL))/κ`` (Timoshenko 1925), ``κ`` the free curvature.
@@ -14,8 +14,7 @@ step:
 
 (a) linear inversion: the voltage of the best linear voltage-to-stroke model of the record;
 (b) inverse-Preisach feedforward: the inverse (bisection on its memory) of the identified
-    model with each relay weight spread over its grid cell (:class:`EverettPreisach`: a
-    continuous output, so the voltage program has no staircase);
+    model (continuous output, so the voltage program has no staircase);
 (c) PID on the simulated tip deflection (own sample rate, zero-order hold), no model;
 (d) PID plus the feedforward of (b).
 
@@ -35,7 +34,7 @@ from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContex
 from exudyn_atcm.control import PIDController
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.feedforward import feedforward_program, linear_program
-from exudyn_atcm.hysteresis import DiscretePreisach, EverettPreisach
+from exudyn_atcm.hysteresis import EverettPreisach
 from exudyn_atcm.materials import Layer
 from exudyn_atcm.measurements import read_record
 from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
@@ -106,10 +105,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     # the designer's model: identified from the noisy record, then expressed as strain
     record = read_record(RECORD, time="time", input="voltage", output="displacement")
-    grid, report = DiscretePreisach.fit(record.input, record.output, p.n_levels)
-    lo, hi = report.settings["input_range"]
-    strain_grid = DiscretePreisach(grid.alpha, grid.beta, grid.weights / CELL_LENGTH, offset=grid.offset / CELL_LENGTH)
-    model = EverettPreisach.from_grid(strain_grid, lo, hi, p.n_levels)
+    stroke_model, report = EverettPreisach.fit(record.input, record.output, p.n_levels)
+    model = EverettPreisach(stroke_model.edges, stroke_model.alpha, stroke_model.beta,
+                            stroke_model.weights / CELL_LENGTH, offset=stroke_model.offset / CELL_LENGTH)
 
     probe = build(p, 0.0)
     times = np.arange(0.0, p.duration + 0.5 * p.sample_time, p.sample_time)

@@ -69,16 +69,18 @@ def test_everett_equals_the_grid_at_cell_edges_and_is_continuous():
     assert np.abs(np.diff(grid.apply(fine))).max() > 10 * steps.max()  # the grid's staircase
 
 
-def test_everett_fit_beats_the_staircase_on_a_smooth_truth():
+def test_everett_fit_recovers_a_spread_density_exactly():
     truth = EverettPreisach(EDGES, ALPHA, BETA, WEIGHTS)
     u = np.concatenate([np.linspace(x0, x1, 80, endpoint=False) for x0, x1 in zip(HISTORY[:-1], HISTORY[1:])])
     y = truth.apply(u)
-    everett, rep_e = EverettPreisach.fit(u, y, N, input_range=(-1.0, 1.0))
-    _, rep_d = DiscretePreisach.fit(u, y, N, input_range=(-1.0, 1.0))
-    # the weights are fitted with the relay (staircase) basis and then spread, so the spread
-    # model is not exact either, but it removes most of the staircase error
-    assert rep_e.model_errors["fit"]["rms"] < 0.6 * rep_d.model_errors["fit"]["rms"]
+    everett, rep_e = EverettPreisach.fit(u, y, N, input_range=(-1.0, 1.0), smoothing=0.0)
+    _, rep_d = DiscretePreisach.fit(u, y, N, input_range=(-1.0, 1.0), smoothing=0.0)
+    # the cell basis is the truth's own: the output is reproduced to round-off (NNLS tolerance)
+    assert rep_e.model_errors["fit"]["max"] < 1e-8 * np.ptp(y)
+    # the relay grid cannot: its staircase error stays
+    assert rep_d.model_errors["fit"]["rms"] > 1e-3 * np.ptp(y)
     assert rep_e.method == "EverettPreisach.fit"
+    assert rep_e.settings["basis"] == "cells"
 
 
 def test_everett_rejects_bad_relays():

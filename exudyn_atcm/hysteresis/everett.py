@@ -85,6 +85,7 @@ class EverettPreisach(StaircasePreisach):
         diag = np.zeros(n)
         np.add.at(diag, ia[diagonal], w[diagonal])
         self.edges = e.copy()
+        self.alpha, self.beta, self.weights = a.copy(), b.copy(), w.copy()
         self.offset = finite_float("offset", offset)
         self.total_weight = float(w.sum())
         self._edges: list[float] = e.tolist()
@@ -105,29 +106,22 @@ class EverettPreisach(StaircasePreisach):
 
     @classmethod
     def fit(cls, u: Any, y: Any, n_levels: int, **options: Any) -> tuple["EverettPreisach", Any]:
-        """:meth:`DiscretePreisach.fit` on the relay grid, each weight then spread over its cell.
+        """Fit the cell weights of the spread grid to a record (non-negative least squares).
 
-        The weights are identified exactly as by :meth:`DiscretePreisach.fit
-        <exudyn_atcm.hysteresis.DiscretePreisach.fit>` (same arguments); the returned operator
-        has the continuous output of the spread density, which removes the grid's staircase
-        error (its report's errors are of this operator).
+        The same procedure as :meth:`DiscretePreisach.fit
+        <exudyn_atcm.hysteresis.DiscretePreisach.fit>` (same arguments: ``smoothing``,
+        ``n_fit``, ``input_range``, ``output_unit``), with each relay's state replaced by the
+        share of its cell that is switched on, so the identified operator is the one fitted
+        (continuous output, no staircase error).  The samples before the input first comes
+        down to the grid's lowest edge are left out (the memory is unknown until then).
 
         Returns
         -------
         (EverettPreisach, FitReport)
         """
-        from .discrete import DiscretePreisach
-        from .fit_report import make_report
+        from .identification import fit_discrete
 
-        grid_model, report = DiscretePreisach.fit(u, y, n_levels, **options)
-        lo, hi = report.settings["input_range"]
-        model = cls.from_grid(grid_model, lo, hi, n_levels)
-        u_a = np.asarray(u, dtype=float)
-        y_a = np.asarray(y, dtype=float)
-        spread = make_report(model, u_a, y_a, report.n_fit, report.fit_start, f"{cls.__name__}.fit",
-                             settings=report.settings, notes=report.notes, output_unit=report.output_unit,
-                             fit_time=report.fit_time)
-        return model, spread
+        return fit_discrete(cls, u, y, n_levels, basis="cells", **options)
 
     def _k(self, a: float, b: float) -> float:
         edges = self._edges

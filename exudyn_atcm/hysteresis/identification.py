@@ -30,6 +30,7 @@ import numpy as np
 
 from .._checks import finite_array, positive_int, same_length
 from .fit_report import FitReport, make_report
+from .staircase import StaircasePreisach
 
 #: Fewest samples accepted by the least-squares fits.
 MIN_SAMPLES = 10
@@ -131,14 +132,62 @@ def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray
     unchanged).  Returns ``S^T S``, ``S^T y``, the column sums of ``S``, ``sum(y)`` and the
     number of samples, accumulated in chunks so ``S`` is never stored whole.
     """
-    n_r = alpha.size
-    state = np.zeros(n_r)
+
+    def rows():
+        state = np.zeros(alpha.size)
+        for k in range(stop):
+            v = u[k]
+            state = np.where(v >= alpha, 1.0, np.where(v <= beta, 0.0, state))
+            yield state
+
+    return _gram(rows(), alpha.size, y, start, stop, chunk)
+
+
+class _CellFractions(StaircasePreisach):
+    """Vector-valued Preisach operator: the share of each grid cell's spread relays that is on.
+
+    The output after each input is the vector ``F`` with ``EverettPreisach output = offset +
+    weights · F`` (the Everett function is linear in the cell weights, so the staircase memory
+    works on vectors as on numbers).
+    """
+
+    def __init__(self, edges: np.ndarray, index: np.ndarray) -> None:
+        self._low = edges[:-1]
+        self._width = np.diff(edges)
+        self._i, self._j = index[:, 0], index[:, 1]
+        self._diagonal = self._i == self._j
+        self._y_reset = np.zeros(index.shape[0])
+        super().__init__()
+
+    def _k_rising(self, a: float, b: float) -> np.ndarray:
+        s = np.clip((a - self._low) / self._width, 0.0, 1.0)
+        r = np.clip((b - self._low) / self._width, 0.0, 1.0)
+        off = s[self._i] * (1.0 - r[self._j])
+        on_diagonal = np.maximum(s[self._i] - r[self._i], 0.0) ** 2
+        return np.where(self._diagonal, on_diagonal, off)
+
+    _k_falling = _k_rising
+
+
+def cell_gram(edges: np.ndarray, index: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
+              chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+    """As :func:`relay_gram` for relays spread over their grid cells (see :class:`EverettPreisach`)."""
+    fractions = _CellFractions(edges, index)
+
+    def rows():
+        for k in range(stop):
+            yield fractions.commit(float(u[k]))
+
+    return _gram(rows(), index.shape[0], y, start, stop, chunk)
+
+
+def _gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chunk: int) -> tuple:
     gram = np.zeros((n_r, n_r))
     rhs = np.zeros(n_r)
     colsum = np.zeros(n_r)
     block = np.empty((chunk, n_r))
-    filled = 0
     block_y = np.empty(chunk)
+    filled = 0
 
     def flush(count: int) -> None:
         s = block[:count]
@@ -146,9 +195,7 @@ def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray
         rhs[:] += s.T @ block_y[:count]
         colsum[:] += s.sum(axis=0)
 
-    for k in range(stop):
-        v = u[k]
-        state = np.where(v >= alpha, 1.0, np.where(v <= beta, 0.0, state))
+    for k, state in enumerate(rows):
         if k >= start:
             block[filled] = state
             block_y[filled] = y[k]
@@ -178,8 +225,12 @@ def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: np.ndarray) -> 
 # ------------------------------------------------------------------------------ Preisach fit
 
 def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float = 1e-3, n_fit: int | None = None,
-                 input_range: tuple[float, float] | None = None, output_unit: str = "") -> tuple[Any, FitReport]:
-    """Body of :meth:`DiscretePreisach.fit` (see there)."""
+                 input_range: tuple[float, float] | None = None, output_unit: str = "",
+                 basis: str = "relays") -> tuple[Any, FitReport]:
+    """Body of :meth:`DiscretePreisach.fit` (``basis="relays"``) and :meth:`EverettPreisach.fit`
+    (``basis="cells"``: each weight spread over its grid cell)."""
+    if basis not in ("relays", "cells"):
+        raise ValueError(f"basis must be 'relays' or 'cells', got {basis!r}")
     started = time.perf_counter()
     u_a, y_a, n_fit = check_record(u, y, n_fit)
     n_levels = _levels_int("n_levels", n_levels)
@@ -194,8 +245,11 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
         if not (math.isfinite(u_lo) and math.isfinite(u_hi) and u_hi > u_lo):
             raise ValueError(f"input_range must be finite with u_hi > u_lo, got {input_range!r}")
     alpha, beta, index = relay_grid(u_lo, u_hi, n_levels)
-    # all grid relays are off once the input is at or below the lowest threshold
-    low = np.flatnonzero(u_a[:n_fit] <= float(alpha.min()))
+    edges = np.linspace(u_lo, u_hi, n_levels + 1)
+    # all grid relays are off once the input is at or below the lowest threshold (for relays
+    # spread over their cells: at or below the lowest cell edge)
+    lowest = float(alpha.min()) if basis == "relays" else u_lo + 1e-12 * (u_hi - u_lo)
+    low = np.flatnonzero(u_a[:n_fit] <= lowest)
     start = int(low[0]) if low.size else n_fit
     notes = []
     if start > 0:
@@ -208,7 +262,10 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             f"(sample {start}); at least {MIN_SAMPLES} are needed. Start the record at the input minimum."
         )
     scale = float(np.ptp(y_a[start:n_fit])) or 1.0
-    gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
+    if basis == "relays":
+        gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
+    else:
+        gram, rhs, colsum, ysum, m = cell_gram(edges, index, u_a, y_a / scale, start, n_fit)
     mean_s = colsum / m
     gram_c = gram - m * np.outer(mean_s, mean_s)
     rhs_c = rhs - mean_s * ysum
@@ -222,12 +279,12 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     if never.any():
         notes.append(f"{int(never.sum())} of {alpha.size} grid relays never switch on in the fitted samples "
                      "(their weights come from the smoothing only)")
-    model = cls(alpha, beta, weights, offset=offset)
+    model = cls(alpha, beta, weights, offset=offset) if basis == "relays" else cls(edges, alpha, beta, weights, offset=offset)
     elapsed = time.perf_counter() - started
     report = make_report(
         model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
         settings={"n_levels": n_levels, "n_relays": int(alpha.size), "smoothing": smoothing,
-                  "smoothing_weight": lam, "input_range": [u_lo, u_hi]},
+                  "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis},
         notes=notes, output_unit=output_unit, fit_time=elapsed,
     )
     return model, report
