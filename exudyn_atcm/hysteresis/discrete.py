@@ -192,7 +192,7 @@ class DiscretePreisach(StaircasePreisach):
             each direction spanning ``coverage`` of the range, a constant output, or branches
             that cross by more than the tolerance (not a hysteresis loop).
         """
-        from .identification import identify_from_loop
+        from .loop_identification import identify_from_loop
 
         return identify_from_loop(cls, u, y, n, reversal_tolerance=reversal_tolerance, coverage=coverage,
                                   report=report, output_unit=output_unit)
