@@ -29,6 +29,7 @@ import numpy as np
 from exudyn_atcm._atomic import write_json
 from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
+from exudyn_atcm.hysteresis.fit_report import make_report
 from exudyn_atcm.identification_plots import plot_fit
 from exudyn_atcm.measurements import preprocess, read_record
 from exudyn_atcm.reference_record import REFERENCE
@@ -68,8 +69,6 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     _, cont_report = ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit)
     eq12_model, eq12_fit = DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12,
                                                       reversal_tolerance=0.02, report=True, output_unit=unit)
-    from exudyn_atcm.hysteresis.fit_report import make_report
-
     eq12_report = make_report(eq12_model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
                               notes=eq12_fit.notes, output_unit=unit)
     reports = {"preisach_fit": report, "relay_grid_fit": grid_report, "prandtl_ishlinskii_fit": pi_report,
