@@ -22,14 +22,22 @@ MFC_P1_RATED_RANGE = (-500.0, 1500.0)
 PLAUSIBLE_STRAIN = 1e-2
 
 
+def _is_controller(value: Any) -> bool:
+    """A controller of :mod:`exudyn_atcm.control`'s protocol (duck-typed)."""
+    return all(callable(getattr(value, m, None)) for m in ("voltage_at", "observe", "reset"))
+
+
 class PiezoDrive:
     """Voltage program of the MFC layer and its map to the free actuation strain.
 
     Parameters
     ----------
-    voltage : float or callable
-        Applied voltage ``U`` [V]: a constant number, or a callable of time ``t`` [s] returning
-        volts (every object of :mod:`exudyn_atcm.signals` qualifies).
+    voltage : float, callable or controller
+        Applied voltage ``U`` [V]: a constant number, a callable of time ``t`` [s] returning
+        volts (every object of :mod:`exudyn_atcm.signals` qualifies), or a controller (an
+        object with ``voltage_at(t)``, ``observe(t, tip_deflection)`` and ``reset()``, e.g.
+        :class:`exudyn_atcm.control.PIDController`; see :mod:`exudyn_atcm.control` for the
+        protocol) that sets the voltage from the simulated tip deflection during the run.
     d33 : float, optional
         Piezoelectric constant [m/V] (= C/N), > 0.  Default 460e-12 (MFC P1, high field).
         Used only without ``hysteresis``.
@@ -65,7 +73,11 @@ class PiezoDrive:
         hysteresis: Any = None,
         rated_range: tuple[float, float] | None = MFC_P1_RATED_RANGE,
     ) -> None:
-        if callable(voltage):
+        self.controller = None
+        if _is_controller(voltage):
+            self.controller = voltage
+            self._voltage_fn = voltage.voltage_at
+        elif callable(voltage):
             self._voltage_fn = voltage
         elif isinstance(voltage, numbers.Real) and not isinstance(voltage, bool):
             value = float(voltage)

@@ -16,7 +16,7 @@ import numpy as np
 
 from ._checks import finite_array, finite_float, positive_float
 
-__all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal"]
+__all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram"]
 
 TimeLike = Union[float, np.ndarray]
 
@@ -272,6 +272,56 @@ class PiecewiseLinear(Signal):
 
     def _parameters(self) -> dict[str, Any]:
         return {"times": self.times.tolist(), "values": self.values.tolist(), "outside": self.outside}
+
+
+class ForcProgram(PiecewiseLinear):
+    """First-order reversal curves (FORC): the input program that maps the Preisach plane.
+
+    From ``u_min`` (negative saturation) the input rises to ``u_max``; then, for each reversal
+    input ``u_r`` from the top down to ``u_min``, it falls from ``u_max`` to ``u_r`` and rises
+    back to ``u_max``.  The curve rising from ``u_r`` switches on exactly the relays with
+    ``beta >= u_r`` (Mayergoyz 2003), so the set of curves determines the Preisach density
+    down to the spacing of the reversal inputs; :meth:`DiscretePreisach.fit
+    <exudyn_atcm.hysteresis.DiscretePreisach.fit>` identifies it from such a record like from
+    any other.  The program ends with a fall to ``u_min``.  Ramps run at a constant ``rate``.
+
+    Parameters
+    ----------
+    u_min, u_max : float
+        Input range [V], ``u_max > u_min``.
+    n_curves : int
+        Number of reversal curves, ``>= 1``: reversal inputs
+        ``u_max - k (u_max - u_min)/n_curves``, ``k = 1 … n_curves``.
+    rate : float
+        Ramp rate [V/s], ``> 0``.
+    """
+
+    def __init__(self, u_min: float, u_max: float, n_curves: int, rate: float) -> None:
+        u_min = finite_float("u_min", u_min)
+        u_max = finite_float("u_max", u_max)
+        if u_max <= u_min:
+            raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
+        if isinstance(n_curves, bool) or not isinstance(n_curves, (int, np.integer)) or n_curves < 1:
+            raise ValueError(f"n_curves must be an integer >= 1, got {n_curves!r}")
+        rate = positive_float("rate", rate)
+        reversals = u_max - (u_max - u_min) * np.arange(1, n_curves + 1) / n_curves
+        corners = [u_min, u_max]
+        for r in reversals.tolist():
+            corners += [r, u_max]
+        corners.append(u_min)
+        values = np.array(corners)
+        times = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(values)) / rate)])
+        self.u_min, self.u_max, self.n_curves, self.rate = u_min, u_max, int(n_curves), rate
+        self.reversal_inputs = reversals
+        super().__init__(times, values)
+
+    @property
+    def duration(self) -> float:
+        """Length of the program [s]."""
+        return float(self.times[-1])
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"u_min": self.u_min, "u_max": self.u_max, "n_curves": self.n_curves, "rate": self.rate}
 
 
 class CsvSignal(PiecewiseLinear):

@@ -177,6 +177,8 @@ class _Recorder:
                  schedule: RecordingSchedule | None = None) -> None:
         self.model = model
         self.source = source
+        # closed loop: the drive's controller observes every accepted step's tip deflection
+        self.controller = getattr(getattr(source, "drive", None), "controller", None)
         self.index = model.record_indices
         self.scalars: list[tuple] = []
         self.states: list[np.ndarray] = []
@@ -200,6 +202,9 @@ class _Recorder:
             self._pending = None
         else:
             self._pending = (t, u, strain, self.model.coordinates()[self.index])
+        if self.controller is not None:
+            # closed loop: the controller observes the accepted step's tip deflection
+            self.controller.observe(t, self.model.read_state(self.model.coordinates(), strain)[1])
         if self.progress is not None:
             self.progress(t)
 
@@ -450,7 +455,13 @@ def simulate(
     Result
         Series ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
         ``tip_angle``, ``cell_angle_1..N``; ``result.info`` holds the step used, the number of
-        accepted, attempted and rejected steps and the recording interval.
+        accepted, attempted and rejected steps, the recording interval (and, in closed loop,
+        the controller's ``summary()`` under ``"controller"``).
+
+    Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.control`), it is reset at
+    the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
+    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``.
+    A ``RuntimeWarning`` says when its output was held at a limit.
 
     Raises
     ------
@@ -505,6 +516,14 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     check_step_against_program(actuator.drive.voltage, grid.step, t_end)
     check_step_against_frequency(grid.step, actuator.first_frequency_estimate)
     warn_if_long(actuator.cell, actuator.n_cells, grid.n_steps)
+    controller = getattr(actuator.drive, "controller", None)
+    if controller is not None:
+        if source is not None and not isinstance(source, InStepStrain):
+            raise ValueError(
+                f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
+                "the voltage depends on the simulated response and cannot be tabulated beforehand"
+            )
+        controller.reset()
     if source is None:
         source = InStepStrain(actuator.drive)
     model = builder.build(actuator, force, stroke_path=stroke_path)
@@ -567,6 +586,18 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
     if u_low <= u_high:
         actuator.drive.check_voltage_range(u_low, u_high)
+    if controller is not None:
+        info["controller"] = controller.summary() if callable(getattr(controller, "summary", None)) else {}
+        limited = info["controller"].get("limited_samples", 0)
+        if limited:
+            warnings.warn(
+                f"the controller's output was at its limits {info['controller'].get('output_limits [V]')} V in "
+                f"{limited} of {info['controller'].get('samples')} samples (largest excess "
+                f"{info['controller'].get('largest_excess [V]', float('nan')):.4g} V): the wanted deflection is "
+                "partly out of reach",
+                RuntimeWarning,
+                stacklevel=3,
+            )
     if guard.interrupted:
         t_stop = recorder.last_time()
         info["partial"] = True

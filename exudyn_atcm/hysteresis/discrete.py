@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_int, same_length
+from .._checks import finite_array, finite_float, same_length
 from .staircase import StaircasePreisach
 
 _CACHE_SIZE = 256
@@ -133,7 +133,17 @@ class DiscretePreisach(StaircasePreisach):
         return len(self._alpha_sorted)
 
     @classmethod
-    def from_loop(cls, u: Any, y: Any, n: int) -> "DiscretePreisach":
+    def from_loop(
+        cls,
+        u: Any,
+        y: Any,
+        n: int,
+        *,
+        reversal_tolerance: float = 0.0,
+        coverage: float = 0.9,
+        report: bool = False,
+        output_unit: str = "",
+    ) -> Any:
         """Identify ``n`` equal-gain relays from a measured major loop (the paper's Eq. 12).
 
         The gain is ``Δy = (y_max − y_min)/n``.  Relay ``i = 1 … n`` sits at level
@@ -142,52 +152,127 @@ class DiscretePreisach(StaircasePreisach):
         does (the left-hand crossing), both by linear interpolation between samples.  On the
         loop itself the model's error is below one gain step ``Δy``.
 
+        The rule for measured records (several cycles, noise):
+
+        1. The input is cut at its reversals into monotone segments; a reversal counts once
+           the input has moved back by more than ``reversal_tolerance`` × its range (0: every
+           reversal; use about twice the input's noise for measured voltages).
+        2. Only segments spanning at least ``coverage`` × the input range are major-loop
+           branches (minor loops and a partial first rise are left out).
+        3. Per direction, the samples of all those segments are pooled and sorted by input,
+           and the branch is their least-squares non-decreasing fit (isotonic regression): an
+           average over the cycles which crosses every level exactly once, however often the
+           noise crosses it.  On clean, monotone branches it is the data itself, so a single
+           clean loop gives exactly the paper's construction.
+        4. ``y_min``, ``y_max`` are the extremes of the two averaged branches.  A level an
+           averaged branch never reaches gets the switch at that branch's end input (its
+           highest input for switch-on, its lowest for switch-off); a level where the averaged
+           branches cross (switch-on below switch-off) by no more than ``reversal_tolerance`` ×
+           the input range gets both thresholds at their mean.  Both are said in a
+           ``RuntimeWarning`` and in the report's notes; a larger crossing is an error.
+
         Parameters
         ----------
         u, y : array_like
-            Samples of the loop in time order (input, output); the ascending branch is taken
-            from the samples where ``u`` rises, the descending one from where it falls.
+            Samples of the loop(s) in time order (input, output).
         n : int
             Number of relays, ``>= 1``.
+        reversal_tolerance : float, optional
+            Fraction of the input range a reversal must exceed (default 0).
+        coverage : float, optional
+            Fraction of the input range a segment must span to count as a branch (default 0.9).
+        report : bool, optional
+            Also return a :class:`~exudyn_atcm.hysteresis.fit_report.FitReport` of the model on
+            the record.
+        output_unit : str, optional
+            Unit of ``y`` for the report.
+
+        Returns
+        -------
+        DiscretePreisach or (DiscretePreisach, FitReport)
 
         Raises
         ------
         ValueError
-            For empty, non-finite or mismatched data, ``n < 1``, a loop without both branches,
-            a branch that does not reach a level, or branches that cross (ascending above
-            descending, which gives a relay with ``alpha < beta``).
+            For empty, non-finite or mismatched data, ``n < 1``, a record without a branch in
+            each direction spanning ``coverage`` of the range, a constant output, or branches
+            that cross by more than the tolerance (not a hysteresis loop).
         """
-        u_a = finite_array("u", u, min_length=2)
-        y_a = finite_array("y", y, min_length=2)
-        same_length(("u", "y"), (u_a, y_a))
-        n = positive_int("n", n)
-        du = np.diff(u_a)
-        rising = np.zeros(u_a.size, dtype=bool)
-        falling = np.zeros(u_a.size, dtype=bool)
-        rising[:-1] |= du > 0
-        rising[1:] |= du > 0
-        falling[:-1] |= du < 0
-        falling[1:] |= du < 0
-        if not rising.any() or not falling.any():
-            missing = "ascending (rising u)" if not rising.any() else "descending (falling u)"
-            raise ValueError(f"u, y must describe a loop with both branches; the {missing} branch is missing")
-        y_min, y_max = float(y_a.min()), float(y_a.max())
-        if y_max <= y_min:
-            raise ValueError(f"y must vary over the loop, got a constant {y_min!r}")
-        gain = (y_max - y_min) / n
-        levels = y_min + gain * np.arange(1, n + 1)
-        levels[-1] = y_max  # exact top level, free of round-off
-        alpha = _crossings(u_a[rising], y_a[rising], levels, ascending=True)
-        beta = _crossings(u_a[falling], y_a[falling], levels, ascending=False)
-        bad = alpha < beta
-        if bad.any():
-            i = int(np.argmax(bad))
-            raise ValueError(
-                f"u, y: the ascending branch lies above the descending one at level {float(levels[i])!r} "
-                f"(ascending crossing u = {float(alpha[i])!r} < descending crossing u = {float(beta[i])!r}); "
-                "not a hysteresis loop"
-            )
-        return cls(alpha, beta, np.full(n, gain), offset=y_min)
+        from .loop_identification import identify_from_loop
+
+        return identify_from_loop(cls, u, y, n, reversal_tolerance=reversal_tolerance, coverage=coverage,
+                                  report=report, output_unit=output_unit)
+
+    @classmethod
+    def fit(
+        cls,
+        u: Any,
+        y: Any,
+        n_levels: int,
+        *,
+        smoothing: float = 1e-3,
+        n_fit: int | None = None,
+        input_range: tuple[float, float] | None = None,
+        output_unit: str = "",
+    ) -> tuple["DiscretePreisach", Any]:
+        """Variable gains: relay weights on a Preisach grid by non-negative least squares.
+
+        The input range of the fitted samples (or ``input_range``) is cut into ``n_levels``
+        cells; one relay sits at every pair of cell centres ``alpha >= beta``
+        (``n_levels (n_levels + 1)/2`` relays, the diagonal ones giving the reversible part).
+        The relay states along the record follow from the input alone, so the output is
+        linear in the weights: ``y ≈ c + S w``.  The weights ``w >= 0`` (a non-negative
+        Preisach density keeps the operator monotone, so its inverse exists) and the offset
+        ``c`` minimise
+
+        ``|| c + S w - y ||² + λ || D w ||²``,
+
+        with ``D`` the differences between neighbouring grid cells (smoothness of the density)
+        and ``λ = smoothing · trace(SᵀS)/trace(DᵀD)`` (centred ``S``), solved with SciPy's NNLS
+        on the Cholesky factor of the normal equations.  Any input history identifies the
+        density where the history explores the Preisach plane: major loops only the
+        neighbourhood of the boundary, minor loops and first-order reversal curves (see
+        :class:`exudyn_atcm.signals.ForcProgram`) the interior; so a model fitted on records
+        with minor loops predicts minor loops whose outputs change right after a reversal
+        (sloped), unlike the equal-gain construction of :meth:`from_loop`.
+
+        Parameters
+        ----------
+        u, y : array_like
+            Input and output samples in time order (at least 10).
+        n_levels : int
+            Grid cells along the input, ``>= 2``.
+        smoothing : float, optional
+            Dimensionless regularisation weight, ``>= 0`` (default 1e-3).
+        n_fit : int, optional
+            Fit the first ``n_fit`` samples, predict the rest (held out).  Default: all.
+        input_range : (float, float), optional
+            Input range of the grid; default the range of the fitted samples.
+        output_unit : str, optional
+            Unit of ``y`` for the report.
+
+        Returns
+        -------
+        (DiscretePreisach, FitReport)
+            The model (reset state: all relays off) and its errors on the fitted and held-out
+            parts against the best linear model.
+
+        Raises
+        ------
+        ValueError
+            For fewer than 10 samples, non-finite values, different lengths, a constant input
+            or output, ``n_levels < 2``, a negative ``smoothing``, or a record whose input never
+            comes down to the grid's lowest threshold (the memory at its start is unknown).
+
+        Notes
+        -----
+        Samples before the input first comes down to the lowest threshold are left out: until
+        then the relays' states depend on the history before the record.
+        """
+        from .identification import fit_discrete
+
+        return fit_discrete(cls, u, y, n_levels, smoothing=smoothing, n_fit=n_fit, input_range=input_range,
+                            output_unit=output_unit)
 
     # -- the function K -----------------------------------------------------------------
     def _k_rising(self, a: float, b: float) -> float:
@@ -230,24 +315,3 @@ class DiscretePreisach(StaircasePreisach):
     def __repr__(self) -> str:
         return f"DiscretePreisach(n_relays={self.n_relays}, offset={self.offset!r}, kernel={self.kernel!r})"
 
-
-def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: bool) -> np.ndarray:
-    """Input at which a branch first reaches each level, walking the branch in its direction."""
-    order = np.argsort(u, kind="stable")
-    u, y = u[order], y[order]
-    if not ascending:  # walk the descending branch from u_max downwards
-        u, y = u[::-1], y[::-1]
-    result = np.empty(levels.size)
-    for j, level in enumerate(levels.tolist()):
-        reached = y >= level if ascending else y <= level
-        if not reached.any():
-            kind = "ascending" if ascending else "descending"
-            raise ValueError(f"u, y: the {kind} branch never reaches the level y = {level!r}")
-        k = int(np.argmax(reached))
-        if k == 0:
-            result[j] = u[0]
-        else:
-            y0, y1 = y[k - 1], y[k]
-            s = (level - y0) / (y1 - y0)
-            result[j] = u[k - 1] + s * (u[k] - u[k - 1])
-    return result
