@@ -10,4 +10,6 @@ from setuptools import find_packages, setup
 setup(
     packages=find_packages(include=["exudyn_atcm", "exudyn_atcm.*"]) + ["exudyn_atcm.example_cases"],
     package_dir={"exudyn_atcm.example_cases": "cases"},
+    # the cases' data files (e.g. the synthetic hysteresis record of identify_and_predict)
+    package_data={"exudyn_atcm.example_cases": ["data/*.csv", "data/*.py"]},
 )
