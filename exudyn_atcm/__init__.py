@@ -10,6 +10,7 @@ from .actuator import BendingActuator
 from .csv_io import read_csv
 from .drive import PiezoDrive
 from .materials import Layer
+from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .result import Result
 from .simulation import SolverError, eigenfrequencies, simulate, solve_static
 
@@ -20,6 +21,12 @@ __all__ = [
     "Layer",
     "PiezoDrive",
     "BendingActuator",
+    "Bender",
+    "Segment",
+    "Link",
+    "Flexure",
+    "Mechanism",
+    "MechanismError",
     "simulate",
     "solve_static",
     "eigenfrequencies",

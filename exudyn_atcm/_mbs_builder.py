@@ -299,15 +299,10 @@ def _build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
 
 
 def _build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
-    n, lc, e = act.n_cells, act.cell_length, act.layer_offset
+    n, lc = act.n_cells, act.cell_length
     beta = act.stiffness_damping_factor
-    w = act.width
-    h1, h2 = act.passive.thickness, act.active.thickness
-    m1 = act.passive.mass_per_length(w) * lc
-    m2 = act.active.mass_per_length(w) * lc
-    m = m1 + m2
-    y_com = -m2 * e / m  # active layer at y = -e
-    j_com = m * lc**2 / 12.0 + (m1 * h1**2 + m2 * h2**2) / 12.0 + m1 * m2 / m * e**2
+    m, com_offset, j_com = act.laminate.rigid_cell(lc)
+    y_com = -com_offset  # active layer at y = -e
     k_in, k_end = act.joint_stiffness_inside, act.joint_stiffness_end
     rot_per_strain = act.curvature_per_strain * lc  # free rotation of one cell per unit strain
 
