@@ -13,6 +13,7 @@ from .materials import Layer
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .result import Result
 from .simulation import SolverError, eigenfrequencies, simulate, solve_static
+from .mechanism_solve import static_sweep
 
 __all__ = [
     "__version__",
@@ -29,6 +30,7 @@ __all__ = [
     "MechanismError",
     "simulate",
     "solve_static",
+    "static_sweep",
     "eigenfrequencies",
     "Result",
     "SolverError",

@@ -23,6 +23,7 @@ import numpy as np
 from . import _mbs_builder as builder
 from ._checks import finite_float, positive_float, positive_int
 from .actuator import BendingActuator
+from .mechanism import Mechanism
 from .result import Result
 
 #: Default time step of :func:`simulate` [s] (EXUDYN_NOTES.md: converged to 2e-7 m at 10 cells).
@@ -121,6 +122,13 @@ class TableStrain:
 
 
 # ------------------------------------------------------------------------------ argument checks
+
+def _mechanism_only(tip_force: Any) -> None:
+    """A mechanism carries its loads itself (``mechanism.force``); ``tip_force`` is for a lone actuator."""
+    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
+        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
+                         f"(Fx, Fy)), got tip_force={tip_force!r}")
+
 
 def _check_actuator(actuator: Any) -> BendingActuator:
     if not isinstance(actuator, BendingActuator):
@@ -296,10 +304,13 @@ def solve_static(
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator; its drive gives the voltage-to-strain law.
-    voltage : float, optional
-        Voltage [V].  Default: the drive's voltage at ``t = 0``.  With a hysteresis
+    actuator : BendingActuator or Mechanism
+        The actuator; its drive gives the voltage-to-strain law.  A
+        :class:`~exudyn_atcm.Mechanism` is solved with its own loads (``tip_force`` must stay
+        zero) and gives the columns listed in :mod:`exudyn_atcm.mechanism_solve`.
+    voltage : float or mapping, optional
+        Voltage [V].  Default: the drive's voltage at ``t = 0``.  For a mechanism: a number
+        for every drive, or ``{drive_name: volts}``.  With a hysteresis
         operator, the voltage is reached by a monotone ramp from the operator's reset state.
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
@@ -328,6 +339,11 @@ def solve_static(
     large tip forces the iteration then converges ever more slowly and can stall.  A warning
     is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.solve_static(actuator, voltage, load_steps)
     actuator = _check_actuator(actuator)
     force = _check_force(tip_force)
     if voltage is None:
@@ -364,8 +380,10 @@ def simulate(
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator, with its drive (voltage program, optional hysteresis operator).
+    actuator : BendingActuator or Mechanism
+        The actuator, with its drive (voltage program, optional hysteresis operator), or a
+        :class:`~exudyn_atcm.Mechanism` (its own loads; ``tip_force`` must stay zero; columns
+        as listed in :mod:`exudyn_atcm.mechanism_solve`).
     t_end : float
         End time [s], > 0.
     step : float, optional
@@ -400,6 +418,11 @@ def simulate(
     Defaults: generalized-alpha with spectral radius 0.8, modified Newton, absolute Newton
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.simulate(actuator, t_end, step, settings, progress)
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
@@ -467,17 +490,21 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
 
 # ------------------------------------------------------------------------------ eigenfrequencies
 
-def eigenfrequencies(actuator: BendingActuator, n: int = 3) -> np.ndarray:
+def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = None) -> np.ndarray:
     """Lowest eigenfrequencies [Hz] of the undamped actuator about its undeformed state.
 
     The motor strokes are held at zero (motors are constraints), no tip load.
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator.
+    actuator : BendingActuator or Mechanism
+        The actuator, or a mechanism.
     n : int, optional
         Number of frequencies, >= 1 (default 3).
+    voltage : float or mapping, optional
+        Mechanisms only: linearise about the static equilibrium at this voltage (a number
+        for every drive or ``{drive_name: volts}``) with the mechanism's loads.  ``None``
+        (default): about the undeformed reference pose without loads.
 
     Returns
     -------
@@ -485,6 +512,13 @@ def eigenfrequencies(actuator: BendingActuator, n: int = 3) -> np.ndarray:
         The ``n`` lowest eigenfrequencies [Hz], ascending.  For a slender actuator these are
         its bending modes; the six-bar cell's shear and axial modes lie far above.
     """
+    if isinstance(actuator, Mechanism):
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.eigenfrequencies(actuator, n, voltage)
+    if voltage is not None:
+        raise ValueError(f"voltage is available for a Mechanism; a BendingActuator is linearised about its "
+                         f"undeformed state (voltage must be None), got {voltage!r}")
     actuator = _check_actuator(actuator)
     n = positive_int("n", n)
     model = builder.build(actuator, (0.0, 0.0))

@@ -1,0 +1,707 @@
+"""Adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem`` (rigid cells).
+
+Model (planar, SI units):
+
+* Every rigid cell of a bender is one body (both layers' mass, the node at the cell's end
+  joint, reference angle = the bender's direction), as in :mod:`exudyn_atcm._mbs_builder`.
+  Neighbouring cells are joined by a revolute joint and a torsion spring ``2 EI/(L_j + L_{j+1})``
+  (``EI/L_c`` for equal cells).
+* Rigid groups (see :mod:`exudyn_atcm.mbs.layout`) are one body each (summed mass,
+  parallel-axis inertia, node at the centre of mass, reference angle 0); the ground group is
+  Exudyn's ground.
+* A bender end is an interface joined to its end cell by the end spring ``2 EI/L_c``
+  (half a cell).  A *hinge* joins two bodies by a revolute joint at the point and one
+  torsion spring-damper made of the compliances in series on the way: a virtual interface's
+  end spring, a pin's spring (0: free, weld: rigid), the other end spring.
+* Actuation: every spring's rest angle is the free rotation of the half cells it stands for.
+  The rest-angle moment ``k theta0(strains)`` is applied as a torque pair on the spring's two
+  bodies; the pairs are summed per body and drive, giving one ``LoadTorqueVector`` per body
+  whose net torque is not identically zero.  For a uniform cantilever that is one torque on
+  the last cell, exactly as in :mod:`exudyn_atcm._mbs_builder`.
+
+This module and :mod:`exudyn_atcm._mbs_builder` are the package's only Exudyn callers.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+from exudyn import itemInterface as ii
+
+from .._mbs_builder import _NOVIS
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
+from ..mechanism.connections import Pin, Slider, Weld
+from ..mechanism.flexure import Flexure
+from ..mechanism.link import Link
+from ..mechanism.points import GROUND, MechanismError, PointRef
+from .layout import Group, part_of, rigid_groups
+
+_CELL_COLOR = [0.2, 0.45, 0.8, 1.0]
+_LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
+_FLEX_COLOR = [0.85, 0.55, 0.15, 1.0]
+
+
+# ---------------------------------------------------------------------------- records
+
+@dataclass
+class Body:
+    """A body of the built model (``node is None`` for the ground)."""
+
+    key: str
+    node: int | None
+    item: int
+    reference: np.ndarray          # x, y, angle of the node in the reference pose
+    rot_marker: Any = None
+    ode2: int = -1                 # first ODE2 index (set after Assemble)
+
+
+@dataclass
+class Element:
+    """A compliance on a hinge: stiffness [N m/rad] (``inf``: rigid), damping, rest angle and moment per strain."""
+
+    stiffness: float
+    damping: float
+    theta: np.ndarray              # rest angle per unit strain of each source [rad]
+    moment: np.ndarray             # stiffness * theta, computed exactly where possible [N m]
+
+
+@dataclass
+class Hinge:
+    """Revolute joint between bodies ``a`` and ``b`` with the series spring of its elements."""
+
+    a: str
+    b: str
+    elements: list[Element]
+    stiffness: float = 0.0
+    moment: np.ndarray | None = None   # rest-angle moment per strain of each source (+ on b, - on a)
+    spring_item: int = -1
+
+
+@dataclass
+class EndReadout:
+    """How a bender end's interface rotation is obtained from the state."""
+
+    kind: str                      # "body" | "free" | "hinge"
+    body: str = ""                 # "body": the group body; "free": the end cell
+    sign: float = 1.0              # "free": +1 tip, -1 base
+    theta: np.ndarray | None = None
+    hinge: int = -1                # "hinge": index into model.hinges
+    node: int = 0                  # "hinge": the interface sits after this many elements
+
+
+@dataclass
+class LoadRecord:
+    """A force or torque load whose value may change per step."""
+
+    load: int
+    kind: str                      # "force" | "torque"
+    value: Any                     # tuple / float or callable of t
+    follower: bool = False
+    rotation: float = 0.0          # follower: reference angle of the carrying body
+    free_end: EndReadout | None = None  # follower on a free interface: turns with the interface
+
+
+@dataclass
+class MechanismModel:
+    """Handles of a mechanism inside an Exudyn system (internal; see :func:`exudyn_atcm.add_to`)."""
+
+    mechanism: Mechanism
+    mbs: Any
+    SC: Any = None
+    bodies: dict[str, Body] = field(default_factory=dict)
+    anchors: dict[str, tuple[str, np.ndarray]] = field(default_factory=dict)
+    hinges: list[Hinge] = field(default_factory=list)
+    sources: list[Any] = field(default_factory=list)          # unique PiezoDrive objects
+    drive_source: dict[str, int] = field(default_factory=dict)  # drive name -> source index
+    torque_loads: list[tuple[int, np.ndarray]] = field(default_factory=list)
+    loads: list[LoadRecord] = field(default_factory=list)
+    spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
+    ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
+    cells: dict[str, list[str]] = field(default_factory=dict)   # bender -> its cell body keys
+    springs: list[tuple[int, float]] = field(default_factory=list)  # (item, stiffness) for relaxation
+    group_of_component: dict[str, str] = field(default_factory=dict)  # link / prbm segment -> body key
+    # state of the actuation path (see set_path / set_strain)
+    strains: np.ndarray | None = None
+    path_from: np.ndarray | None = None
+    path_to: np.ndarray | None = None
+    ramp_loads: bool = True
+    load_factor: float = 1.0
+    time: float = 0.0
+    uf_strain: Any = None
+
+    # ------------------------------------------------------------------ actuation and loads
+    def set_strains(self, strains: np.ndarray) -> None:
+        """Write the free strains of every source [-] into the actuation torques (and follower loads)."""
+        self.strains = np.asarray(strains, dtype=float)
+        for load, coef in self.torque_loads:
+            self.mbs.SetLoadParameter(load, "loadVector", [0.0, 0.0, float(coef @ self.strains)])
+        self._write_loads()
+
+    def set_path(self, start: np.ndarray, end: np.ndarray, ramp_loads: bool) -> None:
+        """Static path: strains go from ``start`` to ``end`` with the path parameter; loads ramp if asked."""
+        self.path_from = np.asarray(start, dtype=float)
+        self.path_to = np.asarray(end, dtype=float)
+        self.ramp_loads = ramp_loads
+
+    def set_strain(self, f: float) -> None:
+        """Path parameter ``f`` in [0, 1] (the static solver's load factor): strains and, if ramped, loads."""
+        if self.ramp_loads:
+            self.load_factor = f
+        self.set_strains(self.path_from + f * (self.path_to - self.path_from))
+
+    def scale_loads(self, factor: float) -> None:
+        """Scale every external force and torque by ``factor`` (relaxation ramps; kept at 1 on a sweep's later steps)."""
+        self.load_factor = factor if self.ramp_loads else 1.0
+        self._write_loads()
+
+    def set_time(self, t: float) -> None:
+        """Time [s] at which callable loads are evaluated."""
+        self.time = t
+        self._write_loads()
+
+    def _write_loads(self) -> None:
+        f = self.load_factor
+        for rec in self.loads:
+            value = rec.value(self.time) if callable(rec.value) else rec.value
+            if rec.kind == "torque":
+                self.mbs.SetLoadParameter(rec.load, "loadVector", [0.0, 0.0, f * float(value)])
+                continue
+            fx, fy = float(value[0]) * f, float(value[1]) * f
+            if rec.follower:
+                angle = -rec.rotation
+                if rec.free_end is not None and self.strains is not None:
+                    angle += rec.free_end.sign * float(rec.free_end.theta @ self.strains)
+                c, s = math.cos(angle), math.sin(angle)
+                fx, fy = c * fx - s * fy, s * fx + c * fy
+            self.mbs.SetLoadParameter(rec.load, "loadVector", [fx, fy, 0.0])
+
+    # ------------------------------------------------------------------ state read-out
+    def coordinates(self) -> np.ndarray:
+        """Current ODE2 coordinates (a view)."""
+        return self.mbs.systemData.GetODE2Coordinates(copy=False)
+
+    def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """Pose (x, y, angle) of every body for rows of ODE2 coordinates ``q`` (shape (n, nODE2))."""
+        q = np.atleast_2d(q)
+        out = {}
+        for key, body in self.bodies.items():
+            if body.node is None:
+                out[key] = np.tile(body.reference, (q.shape[0], 1))
+            else:
+                out[key] = body.reference + q[:, body.ode2:body.ode2 + 3]
+        return out
+
+    def point_positions(self, poses: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Position (x, y) rows of every component point (``"comp.point"``)."""
+        out = {}
+        for name, (key, local) in self.anchors.items():
+            pose = poses[key]
+            c, s = np.cos(pose[:, 2]), np.sin(pose[:, 2])
+            out[name] = np.column_stack([pose[:, 0] + c * local[0] - s * local[1],
+                                         pose[:, 1] + s * local[0] + c * local[1]])
+        return out
+
+    def rotation(self, poses: dict[str, np.ndarray], key: str) -> np.ndarray:
+        """Rotation of body ``key`` from its reference pose [rad]."""
+        return poses[key][:, 2] - self.bodies[key].reference[2]
+
+    def end_rotation(self, poses: dict[str, np.ndarray], strains: np.ndarray, end: str) -> np.ndarray:
+        """Rotation [rad] of a bender end's interface from the reference pose (quasi-static for virtual ends)."""
+        r = self.ends[end]
+        strains = np.atleast_2d(strains)
+        if r.kind == "body":
+            return self.rotation(poses, r.body)
+        if r.kind == "free":
+            return self.rotation(poses, r.body) + r.sign * (strains @ r.theta)
+        hinge = self.hinges[r.hinge]
+        ra, rb = self.rotation(poses, hinge.a), self.rotation(poses, hinge.b)
+        thetas = [strains @ e.theta for e in hinge.elements]
+        if hinge.stiffness == 0.0:
+            # no moment: the interface follows its own end cell
+            zero = next(i for i, e in enumerate(hinge.elements) if e.stiffness == 0.0)
+            if r.node <= zero:
+                return ra + sum(thetas[:r.node], 0.0)
+            return rb - sum(thetas[r.node:], 0.0)
+        moment = hinge.stiffness * (rb - ra - sum(thetas, 0.0))
+        out = ra
+        for e, th in zip(hinge.elements[:r.node], thetas[:r.node]):
+            out = out + th + (moment / e.stiffness if math.isfinite(e.stiffness) else 0.0)
+        return out
+
+
+# ---------------------------------------------------------------------------- building
+
+def _marker_position(mbs, body: Body, local) -> int:
+    return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0]))
+
+
+def _rot_marker(mbs, body: Body, ground_coordinate: int) -> int:
+    if body.node is None:
+        return ground_coordinate
+    if body.rot_marker is None:
+        body.rot_marker = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=body.node, coordinate=2))
+    return body.rot_marker
+
+
+def _add_body(mbs, key, position, angle, mass, inertia_com, com_local, graphics) -> Body:
+    inertia = inertia_com + mass * (com_local[0] ** 2 + com_local[1] ** 2)
+    node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[float(position[0]), float(position[1]), float(angle)],
+                                          visualization=_NOVIS))
+    item = mbs.AddObject(ii.ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=inertia,
+                                              centerOfMass=[float(com_local[0]), float(com_local[1])],
+                                              visualization={'show': True, 'graphicsDataUserFunction': 0,
+                                                             'graphicsData': graphics}))
+    return Body(key, node, item, np.array([position[0], position[1], angle], dtype=float))
+
+
+class _Builder:
+    def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None) -> None:
+        self.mbs = mbs
+        self.mech = mech
+        self.model = MechanismModel(mechanism=mech, mbs=mbs)
+        self.ground_item = ground_item
+        sources: list = []
+        for name, drive in mech.drives.items():
+            for k, s in enumerate(sources):
+                if s is drive:
+                    self.model.drive_source[name] = k
+                    break
+            else:
+                self.model.drive_source[name] = len(sources)
+                sources.append(drive)
+        self.model.sources = sources
+        self.n_sources = len(sources)
+        self._theta: dict[str, tuple] = {}
+
+    def zeros(self) -> np.ndarray:
+        return np.zeros(self.n_sources)
+
+    # ---------------------------------------------------------------- ground and groups
+    def build(self) -> MechanismModel:
+        mbs, mech, model = self.mbs, self.mech, self.model
+        for bender in mech.benders:
+            if bender.cell != "rigid":
+                raise MechanismError(
+                    f"bender {bender.name!r}: cell={bender.cell!r} is not available inside a Mechanism yet; use "
+                    "cell='rigid' (same bending stiffness and free curvature, no shear mode), or a lone "
+                    "BendingActuator for the six-bar cell")
+        if self.ground_item is None:
+            self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
+                                                                            'graphicsData': []}))
+        gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
+        self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+        model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
+        self.groups, self.group_of = rigid_groups(mech)
+        self._group_bodies()
+        for bender in mech.benders:
+            self._bender_cells(bender)
+        self._anchor_points()
+        self._end_hinges()
+        for j in mech.joints:
+            if isinstance(j, Pin):
+                self._pin(j)
+            elif isinstance(j, Slider):
+                self._slider(j)
+        self._flexure_pivots()
+        self._realise_hinges()
+        self._loads()
+        return model
+
+    def _flexure_pivots(self) -> None:
+        """The pseudo-rigid-body flexures' characteristic pivots: a hinge with the spring ``K``."""
+        for comp in self.mech.components.values():
+            if isinstance(comp, Flexure) and comp.model == "prbm":
+                a, b = self.group_of[f"{comp.name}#base"], self.group_of[f"{comp.name}#tip"]
+                if a == b:
+                    continue  # both segments in one rigid group: the hinge cannot turn
+                k = comp.torsion_stiffness
+                el = Element(k, comp.stiffness_damping_factor * k, self.zeros(), self.zeros())
+                self._hinge_at(a, b, [el], comp.pivot)
+
+    def _group_bodies(self) -> None:
+        mech, model = self.mech, self.model
+        for key, g in self.groups.items():
+            if g.kind == "ground":
+                model.bodies[key] = model.bodies[GROUND]
+                continue
+            if g.kind == "virtual":
+                continue
+            masses, graphics = [], []
+            for part in g.parts:
+                masses += self._part_masses(part)
+                graphics += self._part_graphics(part)
+            m = sum(mm for mm, _, _ in masses)
+            com = sum(mm * c for mm, _, c in masses) / m
+            inertia = sum(j + mm * float((c - com) @ (c - com)) for mm, j, c in masses)
+            local_graphics = [self._shift(gd, -com) for gd in graphics]
+            model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
+
+    def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
+        """(mass, inertia about own centre, centre) of a rigid part."""
+        if part == GROUND:
+            return []
+        name, _, end = part.partition("#")
+        comp = self.mech.components[name]
+        if isinstance(comp, Link):
+            return [(comp.mass, comp.inertia, np.array(comp.center_of_mass))]
+        if isinstance(comp, Flexure) and comp.model == "prbm":
+            return [comp.segment_masses()[0 if end == "base" else 1]]
+        # a bender end's interface body: the laminate over s = min(h1 + h2, L_c/10)
+        bender = comp if isinstance(comp, Bender) else comp.as_bender()
+        lam = bender.laminate
+        lc = float(bender.cell_lengths[0 if end == "base" else -1])
+        h = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
+        s = min(h, 0.1 * lc)
+        m = lam.mass_per_length * s
+        return [(m, m * (s**2 + h**2) / 12.0, np.array(bender.points[end]))]
+
+    def _part_graphics(self, part: str) -> list:
+        if part == GROUND:
+            return []
+        name, _, end = part.partition("#")
+        comp = self.mech.components[name]
+        if isinstance(comp, Link):
+            pts = list(comp.points.values())
+            if len(pts) == 1:
+                pts = [pts[0], comp.center_of_mass]
+            loop = pts + ([pts[0]] if len(pts) > 2 else [])
+            return [exu.graphics.Lines([[p[0], p[1], 0.0] for p in loop], color=_LINK_COLOR)]
+        if isinstance(comp, Flexure) and comp.model == "prbm":
+            a = comp.base_position if end == "base" else comp.pivot
+            b = comp.pivot if end == "base" else comp.tip_position
+            return [exu.graphics.Lines([[a[0], a[1], 0.0], [b[0], b[1], 0.0]], color=_FLEX_COLOR)]
+        return []
+
+    @staticmethod
+    def _shift(gdata: dict, offset: np.ndarray) -> dict:
+        gd = dict(gdata)
+        if "points" in gd:
+            pts = np.array(gd["points"], dtype=float).reshape(-1, 3)
+            pts[:, 0] += offset[0]
+            pts[:, 1] += offset[1]
+            gd["points"] = pts.ravel().tolist()
+        return gd
+
+    # ---------------------------------------------------------------- benders
+    def _bender_cells(self, bender: Bender) -> None:
+        mbs, model = self.mbs, self.model
+        lam = bender.laminate
+        ei, c, side = lam.bending_stiffness, lam.curvature_per_strain, bender.curvature_sign
+        beta = bender.stiffness_damping_factor
+        lengths = bender.cell_lengths
+        seg_of = bender.cell_segments
+        d = bender.direction
+        x0 = np.array(bender.base_position)
+        thick = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
+        keys, s = [], 0.0
+        for j, lc in enumerate(lengths):
+            s += lc
+            m, com_offset, j_com = lam.rigid_cell(lc)
+            # active layer on the right of base->tip = local -y
+            com = (-0.5 * lc, -side * com_offset)
+            gfx = [exu.graphics.Brick(centerPoint=[-0.5 * lc, -side * 0.5 * (thick - lam.passive.thickness), 0.0],
+                                      size=[lc, thick, 0.2 * lc], color=_CELL_COLOR)]
+            key = f"{bender.name}/cell{j + 1}"
+            model.bodies[key] = _add_body(mbs, key, x0 + s * d, bender.angle, m, j_com, com, gfx)
+            keys.append(key)
+        model.cells[bender.name] = keys
+
+        def theta(j: int) -> np.ndarray:
+            """Free rotation of half cell j per unit strain of each source [rad]."""
+            out = self.zeros()
+            drive = bender.segments[seg_of[j]].drive
+            if drive is not None:
+                out[model.drive_source[bender.drive_name(int(seg_of[j]))]] = 0.5 * side * c * lengths[j]
+            return out
+
+        def moment_full(j: int) -> np.ndarray:
+            """EI kappa per unit strain: the rest moment of a joint standing for two halves of one drive."""
+            out = self.zeros()
+            drive = bender.segments[seg_of[j]].drive
+            if drive is not None:
+                out[model.drive_source[bender.drive_name(int(seg_of[j]))]] = side * ei * c
+            return out
+
+        self._theta[bender.name] = (theta, moment_full, ei, beta, lengths)
+        # inner joints
+        for j in range(len(lengths) - 1):
+            k = 2.0 * ei / (lengths[j] + lengths[j + 1])
+            if seg_of[j] == seg_of[j + 1]:
+                k = ei / lengths[j] if lengths[j] == lengths[j + 1] else k
+                moment = moment_full(j)
+            else:
+                moment = k * (theta(j) + theta(j + 1))
+            el = Element(k, beta * k, theta(j) + theta(j + 1), moment)
+            left = model.bodies[keys[j]]
+            right = model.bodies[keys[j + 1]]
+            self._revolute(left, (0.0, 0.0), right, (-lengths[j + 1], 0.0))
+            model.hinges.append(Hinge(keys[j], keys[j + 1], [el]))
+
+    def end_element(self, bender_name: str, end: str) -> tuple[Element, str, tuple[float, float]]:
+        """The end spring of a bender end: element, end cell key, the end point in the cell's frame."""
+        theta, moment_full, ei, beta, lengths = self._theta[bender_name]
+        j = 0 if end == "base" else len(lengths) - 1
+        k = 2.0 * ei / lengths[j]
+        el = Element(k, beta * k, theta(j), moment_full(j))
+        cell = self.model.cells[bender_name][j]
+        local = (-lengths[j], 0.0) if end == "base" else (0.0, 0.0)
+        return el, cell, local
+
+    def _revolute(self, a: Body, la, b: Body, lb) -> None:
+        self.mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[_marker_position(self.mbs, a, la),
+                                                                   _marker_position(self.mbs, b, lb)],
+                                                    visualization=_NOVIS))
+
+    # ---------------------------------------------------------------- points
+    def _anchor_points(self) -> None:
+        """Body and local position of every component point."""
+        mech, model = self.mech, self.model
+        for comp in mech.components.values():
+            for pname, pos in comp.points.items():
+                ref = PointRef(comp.name, pname)
+                part = part_of(mech, ref)
+                g = self.groups[self.group_of[part]]
+                rigid = isinstance(comp, Link) or (isinstance(comp, Flexure) and comp.model == "prbm")
+                if rigid:
+                    model.group_of_component[part] = g.key
+                if rigid or g.kind != "virtual":
+                    body = model.bodies[g.key]
+                    model.anchors[str(ref)] = (g.key, self._local(body, pos))
+                else:
+                    _, cell, local = self.end_element(comp.name, pname)
+                    model.anchors[str(ref)] = (cell, np.array(local, dtype=float))
+
+    @staticmethod
+    def _local(body: Body, pos) -> np.ndarray:
+        x, y, a = body.reference
+        dx, dy = pos[0] - x, pos[1] - y
+        c, s = math.cos(a), math.sin(a)
+        return np.array([c * dx + s * dy, -s * dx + c * dy])
+
+    # ---------------------------------------------------------------- hinges at bender ends
+    def _end_hinges(self) -> None:
+        mech, model = self.mech, self.model
+        for bender in mech.benders:
+            for end in ("base", "tip"):
+                part = f"{bender.name}#{end}"
+                g = self.groups[self.group_of[part]]
+                el, cell, _ = self.end_element(bender.name, end)
+                label = f"{bender.name}.{end}"
+                if g.kind != "virtual":
+                    a, b = (cell, g.key) if end == "tip" else (g.key, cell)
+                    self._hinge_at(a, b, [el], bender.points[end])
+                    model.ends[label] = EndReadout("body", body=g.key)
+                elif not g.joints and len(g.interfaces) == 1:
+                    sign = 1.0 if end == "tip" else -1.0
+                    model.ends[label] = EndReadout("free", body=cell, sign=sign, theta=el.theta)
+                elif not g.joints and part == g.interfaces[0]:
+                    # two ends welded together: one hinge from the first end cell to the second
+                    self._chain(g.interfaces[0], None, g.interfaces[1], bender.points[end])
+
+    def _chain(self, side_a: str, link: Element | None, side_b: str, position) -> None:
+        """A hinge from ``side_a`` to ``side_b`` (body keys, or ``"bender#end"`` for virtual interfaces)
+        through the interfaces' end springs and ``link`` (a pin's spring; ``None`` for a weld)."""
+        model = self.model
+        els: list[Element] = []
+        # A side
+        if "#" in side_a:
+            name, end = side_a.split("#")
+            el, cell_a, _ = self.end_element(name, end)
+            # tip on the A side: the interface turns +theta from the cell; base: -theta
+            els.append(el if end == "tip" else _flipped(el))
+            a_key, a_node = cell_a, (f"{name}.{end}", 1)
+        else:
+            a_key, a_node = side_a, None
+        if link is not None:
+            els.append(link)
+        if "#" in side_b:
+            name, end = side_b.split("#")
+            el, cell_b, _ = self.end_element(name, end)
+            els.append(el if end == "base" else _flipped(el))
+            b_key, b_node = cell_b, (f"{name}.{end}", len(els) - 1)
+        else:
+            b_key, b_node = side_b, None
+        index = self._hinge_at(a_key, b_key, els, position)
+        for node in (a_node, b_node):
+            if node is not None:
+                model.ends[node[0]] = EndReadout("hinge", hinge=index, node=node[1])
+
+    def _hinge_at(self, a: str, b: str, elements: list[Element], position) -> int:
+        body_a, body_b = self.model.bodies[a], self.model.bodies[b]
+        self._revolute(body_a, self._local(body_a, position), body_b, self._local(body_b, position))
+        self.model.hinges.append(Hinge(a, b, elements))
+        return len(self.model.hinges) - 1
+
+    # ---------------------------------------------------------------- joints
+    def _side(self, ref: PointRef | None) -> str:
+        """Group key, or the interface part if ``ref`` is a virtual bender end."""
+        part = part_of(self.mech, ref)
+        g = self.groups[self.group_of[part]]
+        return part if g.kind == "virtual" else g.key
+
+    def _pin(self, j: Pin) -> None:
+        side_a, side_b = self._side(j.p), self._side(j.q)
+        if side_a == side_b:
+            return  # both points on one rigid group: the pin is redundant
+        k = j.stiffness
+        pin_el = Element(k, j.damping, self.zeros(), self.zeros())
+        self._chain(side_a, pin_el, side_b, self.mech.position(j.p))
+
+    def _slider(self, j: Slider) -> None:
+        mbs, model = self.mbs, self.model
+        a, b = self._side(j.p), self._side(j.q)
+        body_a, body_b = model.bodies[a], model.bodies[b]
+        pos = self.mech.position(j.p)
+        pos_q = pos if j.q is None else self.mech.position(j.q)
+        la, lb = self._local(body_a, pos), self._local(body_b, pos_q)
+        ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
+        cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
+        ax, ay = j.axis
+        axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
+        normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
+        ma = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body_a.item, localPosition=[la[0], la[1], 0.0]))
+        mb = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body_b.item, localPosition=[lb[0], lb[1], 0.0]))
+        mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
+                                                constrainRotation=True, visualization=_NOVIS))
+        if j.stiffness > 0.0 or j.damping > 0.0:
+            # the sliding coordinate: relative translation along the axis (zero in the reference pose)
+            coord = mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
+                bodyNumbers=[body_a.item, body_b.item], localPosition0=[la[0], la[1], 0.0],
+                localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
+            item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
+                markerNumbers=[self.gcoord, coord], stiffness=j.stiffness, damping=j.damping, visualization=_NOVIS))
+            model.springs.append((item, j.stiffness))
+
+    # ---------------------------------------------------------------- springs of the hinges, actuation torques
+    def _realise_hinges(self) -> None:
+        mbs, model = self.mbs, self.model
+        per_body: dict[str, np.ndarray] = {}
+        for h in model.hinges:
+            if len(h.elements) == 1:
+                e = h.elements[0]
+                h.stiffness, damping, h.moment = e.stiffness, e.damping, e.moment
+            else:
+                finite = [e for e in h.elements if math.isfinite(e.stiffness)]
+                if any(e.stiffness == 0.0 for e in finite):
+                    h.stiffness, h.moment = 0.0, self.zeros()
+                    dampers = [e.damping for e in finite if e.stiffness == 0.0]
+                    damping = sum(dampers)
+                else:
+                    h.stiffness = 1.0 / sum(1.0 / e.stiffness for e in finite)
+                    h.moment = h.stiffness * sum((e.theta for e in h.elements), self.zeros())
+                    # series Kelvin-Voigt elements with equal beta = d/k give beta k_s; in general
+                    # k_s^2 sum(d_i / k_i^2) (exact for equal beta, an approximation otherwise)
+                    damping = h.stiffness**2 * sum(e.damping / e.stiffness**2 for e in finite)
+            if h.stiffness > 0.0 or damping > 0.0:
+                ra = _rot_marker(mbs, model.bodies[h.a], self.gcoord)
+                rb = _rot_marker(mbs, model.bodies[h.b], self.gcoord)
+                h.spring_item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
+                    markerNumbers=[ra, rb], stiffness=h.stiffness, damping=damping, visualization=_NOVIS))
+                model.springs.append((h.spring_item, h.stiffness))
+            if np.any(h.moment != 0.0):
+                per_body[h.b] = per_body.get(h.b, self.zeros()) + h.moment
+                per_body[h.a] = per_body.get(h.a, self.zeros()) - h.moment
+        scale = max((float(np.max(np.abs(v))) for v in per_body.values()), default=0.0)
+        for key, coef in per_body.items():
+            body = model.bodies[key]
+            if body.node is None or float(np.max(np.abs(coef))) <= 1e-12 * scale:
+                continue  # ground, or moments that cancel (inner cells of one drive)
+            marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
+            load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
+            model.torque_loads.append((load, coef))
+
+    # ---------------------------------------------------------------- external loads
+    def _loads(self) -> None:
+        mbs, mech, model = self.mbs, self.mech, self.model
+        for f in mech.forces:
+            key, local = model.anchors[str(f.point)]
+            body = model.bodies[key]
+            if body.node is None:
+                warnings.warn(f"force {f.name!r} acts at {f.point}, which is welded to the ground: it has no effect",
+                              RuntimeWarning, stacklevel=4)
+                continue
+            marker = _marker_position(mbs, body, local)
+            load = mbs.AddLoad(ii.LoadForceVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0], bodyFixed=f.follower))
+            end = model.ends.get(str(f.point))
+            free = end if (f.follower and end is not None and end.kind == "free") else None
+            model.loads.append(LoadRecord(load, "force", f.force, f.follower, float(body.reference[2]), free))
+        for t in mech.torques:
+            key = self.group_of[t.component]
+            body = model.bodies[key]
+            if body.node is None:
+                warnings.warn(f"torque {t.name!r} acts on {t.component!r}, which is welded to the ground: no effect",
+                              RuntimeWarning, stacklevel=4)
+                continue
+            marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
+            load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
+            model.loads.append(LoadRecord(load, "torque", t.torque))
+        for s in mech.springs:
+            ka, la = model.anchors[str(s.p)]
+            kb, lb = model.anchors[str(s.q)]
+            length = float(np.linalg.norm(mech.position(s.p) - mech.position(s.q)))
+            rest = length if s.rest_length is None else s.rest_length
+            ma = _marker_position(mbs, model.bodies[ka], la)
+            mb = _marker_position(mbs, model.bodies[kb], lb)
+            model.spring_items[s.name] = mbs.AddObject(ii.ObjectConnectorSpringDamper(
+                markerNumbers=[ma, mb], referenceLength=rest, stiffness=s.stiffness, damping=s.damping,
+                visualization={'show': True, 'drawSize': -1.0, 'color': [0.1, 0.6, 0.1, 1.0]}))
+        for s in mech.stops:
+            key, local = model.anchors[str(s.point)]
+            ground_marker = _marker_position(mbs, model.bodies[GROUND], s.position)
+            mp = _marker_position(mbs, model.bodies[key], local)
+            model.spring_items[s.name] = mbs.AddObject(ii.ObjectConnectorCartesianSpringDamper(
+                markerNumbers=[ground_marker, mp], stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0],
+                springForceUserFunction=_stop_force(s.normal, s.stiffness, s.damping), visualization=_NOVIS))
+
+
+def _flipped(el: Element) -> Element:
+    return Element(el.stiffness, el.damping, -el.theta, -el.moment)
+
+
+def _stop_force(normal, stiffness: float, damping: float):
+    nx, ny = float(normal[0]), float(normal[1])
+
+    def force(mbs, t, item, displacement, velocity, k, d, offset):
+        gap = displacement[0] * nx + displacement[1] * ny
+        if gap >= 0.0:
+            return [0.0, 0.0, 0.0]
+        rate = velocity[0] * nx + velocity[1] * ny
+        # connector force convention: f acts on marker 1 as -f; push the point out along the normal
+        magnitude = stiffness * gap + damping * rate
+        return [magnitude * nx, magnitude * ny, 0.0]
+
+    return force
+
+
+def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None) -> MechanismModel:
+    """Add the items of ``mechanism`` to ``mbs`` (not assembled); ``mechanism.check()`` must have passed."""
+    return _Builder(mbs, mechanism, ground_item).build()
+
+
+def finish(model: MechanismModel) -> None:
+    """Read the ODE2 indices after ``mbs.Assemble()``."""
+    for body in model.bodies.values():
+        if body.node is not None:
+            body.ode2 = model.mbs.GetNodeODE2Index(body.node)
+
+
+def build(mechanism: Mechanism) -> MechanismModel:
+    """A new Exudyn system holding ``mechanism``, assembled."""
+    mechanism.check()
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    model = add_mechanism(mbs, mechanism)
+    model.SC = SC
+    mbs.Assemble()
+    finish(model)
+    n = len(model.sources)
+    model.path_from = np.zeros(n)
+    model.path_to = np.zeros(n)
+    model.set_strains(np.zeros(n))
+    return model

@@ -1,0 +1,76 @@
+"""Read-outs of a built mechanism model that ask Exudyn: connector forces, eigenfrequencies, DOF."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import exudyn as exu
+import numpy as np
+
+from .. import _mbs_builder as runs
+from .builder import MechanismModel
+
+
+def connector_names(model: MechanismModel) -> list[str]:
+    """Names of the springs and stops, in the order of :func:`connector_forces`."""
+    return list(model.spring_items)
+
+
+def connector_forces(model: MechanismModel) -> list[float]:
+    """Force [N] of every spring (tension positive) and stop (compression positive) in the current state."""
+    mech = model.mechanism
+    normals = {s.name: s.normal for s in mech.stops}
+    out = []
+    for name, item in model.spring_items.items():
+        force = model.mbs.GetObjectOutput(item, exu.OutputVariableType.Force)
+        if name in normals:
+            nx, ny = normals[name]
+            out.append(-float(force[0] * nx + force[1] * ny))
+        else:
+            out.append(float(np.ravel(force)[0]))
+    return out
+
+
+def eigenfrequencies(model: MechanismModel, n: int) -> np.ndarray:
+    """Lowest ``n`` undamped eigenfrequencies [Hz] about the model's initial state.
+
+    Exudyn's ``ComputeODE2Eigenvalues`` with the constraints kept (its null-space
+    projection).  The drive torques and loads act as constant loads during the linearisation.
+    """
+    return runs.eigenfrequencies(model, n)
+
+
+@dataclass(frozen=True)
+class DofReport:
+    """Degrees of freedom of a built mechanism (Exudyn's ``ComputeSystemDegreeOfFreedom``).
+
+    Attributes
+    ----------
+    dof : int
+        Degrees of freedom (coordinates minus independent constraints).
+    coordinates : int
+        Number of ODE2 coordinates (3 per body).
+    constraints : int
+        Number of algebraic equations (joint constraints).
+    redundant : int
+        Number of redundant (dependent) constraints.
+    """
+
+    dof: int
+    coordinates: int
+    constraints: int
+    redundant: int
+
+
+def degrees_of_freedom(model: MechanismModel) -> DofReport:
+    """The model's :class:`DofReport` in its current (assembled) state."""
+    runs._quiet()
+    try:
+        info = model.mbs.ComputeSystemDegreeOfFreedom(verbose=False)
+    finally:
+        runs._loud()
+    return DofReport(int(info["degreeOfFreedom"]), int(info["nODE2"]), int(info["nAE"]),
+                     int(info["redundantConstraints"]))
+
+
+__all__ = ["connector_names", "connector_forces", "eigenfrequencies", "DofReport", "degrees_of_freedom"]

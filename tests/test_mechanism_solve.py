@@ -1,0 +1,199 @@
+"""Issue 7, parts 2 and 5: solving mechanisms, each against an independent reference.
+
+References: today's BendingActuator path (the old builder, kept), rigid-body kinematics
+(rotation invariance, a welded rigid extension, the rigid four-bar's circle intersection),
+mirror symmetry, and the hysteresis operator applied offline to the recorded voltages.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, PiezoDrive, eigenfrequencies, simulate,
+                         solve_static, static_sweep)
+from exudyn_atcm.parameter_sets import paper_strain_preisach
+from exudyn_atcm.signals import Triangle
+
+CFC = Layer(0.2e-3, 70e9, 1550.0)
+MFC = Layer(0.3e-3, 30.336e9, 5440.0)
+W = 28e-3
+
+
+def bender(name="b", drive=None, n_cells=3, length=0.087, **kw):
+    return Bender(name, width=W, passive=CFC, active=MFC, length=length, n_cells=n_cells,
+                  drive=drive if drive is not None else PiezoDrive(500.0), **kw)
+
+
+def cantilever(b, force=(0.0, 0.0)):
+    m = Mechanism("cantilever").add(b).ground(b.base)
+    if force != (0.0, 0.0):
+        m.force(b.tip, force)
+    return m
+
+
+def rot(angle, v):
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+# ----------------------------------------------------------------------------- one bender == BendingActuator
+
+@pytest.mark.parametrize("force", [(0.0, 0.0), (0.01, -0.05), (-0.02, 0.3)])
+def test_one_bender_mechanism_equals_bending_actuator_statics(force):
+    drive = PiezoDrive(800.0)
+    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, drive, cell="rigid")
+    ref = solve_static(act, tip_force=force)
+    r = solve_static(cantilever(bender(drive=drive, n_cells=4), force))
+    for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
+                     ("b.strain", "strain"), ("b.cell_angle_4", "cell_angle_4")):
+        assert r[new][0] == pytest.approx(ref[old][0], abs=1e-9 * 0.087), new
+    assert r["b.base_x"][0] == 0.0 and r["b.base_angle"][0] == 0.0
+
+
+def test_one_bender_mechanism_equals_bending_actuator_dynamics_with_hysteresis():
+    H1, H2 = paper_strain_preisach(), paper_strain_preisach()
+    program = Triangle(500.0, 1000.0, 0.05)
+    act = BendingActuator(3, 0.029, W, CFC, MFC, PiezoDrive(program, hysteresis=H1), cell="rigid")
+    ref = simulate(act, 0.03, step=1e-3, tip_force=(0.0, -0.02))
+    r = simulate(cantilever(bender(drive=PiezoDrive(program, hysteresis=H2)), (0.0, -0.02)), 0.03, step=1e-3)
+    np.testing.assert_array_equal(r["time"], ref["time"])
+    for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
+                     ("b.strain", "strain"), ("b.voltage", "voltage")):
+        np.testing.assert_allclose(r[new], ref[old], rtol=0, atol=1e-9 * 0.087, err_msg=new)
+    assert np.ptp(r["b.tip_y"]) > 1e-3  # it moved
+
+
+def test_rotated_and_shifted_bender_is_the_rigidly_moved_solution():
+    """Rigid-motion invariance: base at (x0, y0), angle a; the force turned with it."""
+    a, x0 = 0.7, np.array([0.01, -0.02])
+    f = np.array([0.01, -0.05])
+    ref = solve_static(cantilever(bender(), tuple(f)))
+    r = solve_static(cantilever(bender(base=tuple(x0), angle=a), tuple(rot(a, f))))
+    tip = x0 + rot(a, [ref["b.tip_x"][0], ref["b.tip_y"][0]])
+    assert r["b.tip_x"][0] == pytest.approx(tip[0], abs=1e-9 * 0.087)
+    assert r["b.tip_y"][0] == pytest.approx(tip[1], abs=1e-9 * 0.087)
+    assert r["b.tip_angle"][0] == pytest.approx(a + ref["b.tip_angle"][0], abs=1e-9)
+
+
+def test_left_active_side_mirrors_the_bender():
+    right = solve_static(cantilever(bender(), (0.0, 0.01)))
+    left = solve_static(cantilever(bender(active_side="left"), (0.0, -0.01)))
+    assert left["b.tip_x"][0] == pytest.approx(right["b.tip_x"][0], abs=1e-12)
+    assert left["b.tip_y"][0] == pytest.approx(-right["b.tip_y"][0], abs=1e-9 * 0.087)
+    assert left["b.tip_angle"][0] == pytest.approx(-right["b.tip_angle"][0], abs=1e-9)
+    assert abs(right["b.tip_y"][0]) > 1e-3
+
+
+# ----------------------------------------------------------------------------- two benders == one
+
+def test_two_benders_welded_end_to_end_equal_one_of_the_summed_length():
+    drive = PiezoDrive(1000.0)
+    lc = 0.01
+    one = cantilever(bender("one", drive=drive, n_cells=7, length=7 * lc), (0.0, -0.03))
+    a = bender("a", drive=drive, n_cells=3, length=3 * lc)
+    b = bender("b", drive=drive, n_cells=4, length=4 * lc, base=(3 * lc, 0.0))
+    two = Mechanism("two").add(a, b).ground(a.base).weld(a.tip, b.base).force(b.tip, (0.0, -0.03))
+    r1, r2 = solve_static(one), solve_static(two)
+    for axis in ("x", "y"):
+        assert r2[f"b.tip_{axis}"][0] == pytest.approx(r1[f"one.tip_{axis}"][0], abs=1e-9 * 0.07)
+    assert r2["b.tip_angle"][0] == pytest.approx(r1["one.tip_angle"][0], abs=1e-9)
+    # the joint between them is the inner joint of the long bender: a's tip = the long bender's 3rd joint
+    assert r2["a.tip_angle"][0] == pytest.approx(r2["b.base_angle"][0], abs=1e-12)
+    np.testing.assert_allclose([r2[f"a.cell_angle_{j}"][0] for j in (1, 2, 3)] +
+                               [r2[f"b.cell_angle_{j}"][0] for j in (1, 2, 3, 4)],
+                               [r1[f"one.cell_angle_{j}"][0] for j in range(1, 8)], rtol=0, atol=1e-9)
+    f1 = eigenfrequencies(one, 3)
+    f2 = eigenfrequencies(two, 3)
+    np.testing.assert_allclose(f2, f1, rtol=1e-9)
+
+
+# ----------------------------------------------------------------------------- link welded to a tip
+
+def test_link_welded_to_bender_tip_is_carried_rigidly():
+    a = 0.02
+    b = bender(drive=PiezoDrive(1200.0))
+    lever = Link("lever", {"A": (0.087, 0.0), "E": (0.087 + a, 0.0)}, mass=2e-4, inertia=1e-8)
+    m = Mechanism().add(b, lever).ground(b.base).weld(b.tip, lever.point("A")).force("lever.E", (0.0, -0.01))
+    r = solve_static(m)
+    theta = r["b.tip_angle"][0]
+    assert r["lever.E_x"][0] == pytest.approx(r["b.tip_x"][0] + a * math.cos(theta), abs=1e-9 * 0.1)
+    assert r["lever.E_y"][0] == pytest.approx(r["b.tip_y"][0] + a * math.sin(theta), abs=1e-9 * 0.1)
+    assert r["lever.angle"][0] == pytest.approx(theta, abs=1e-12)
+    assert abs(theta) > 0.02
+
+
+# ----------------------------------------------------------------------------- closed four-bar
+
+def four_bar(drive, n_cells=6):
+    crank = Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=n_cells, drive=drive,
+                   angle=math.pi / 2)
+    coupler = Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
+    rocker = Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
+    m = Mechanism("four_bar").add(crank, coupler, rocker)
+    m.ground(crank.base).pin(crank.tip, coupler.point("A")).pin("coupler.B", "rocker.B")
+    return m.ground("rocker.O", joint="pin")
+
+
+def rigid_coupler_point(a_pos):
+    """Rigid four-bar closure: B on circles about A (|AB| = 0.04) and O = (0.04, 0) (|OB| = 0.03), the
+    branch of the reference pose; P from the rigid coupler triangle."""
+    o = np.array([0.04, 0.0])
+    d = np.linalg.norm(o - a_pos)
+    r0, r1 = 0.04, 0.03
+    x = (d**2 + r0**2 - r1**2) / (2 * d)
+    h = math.sqrt(r0**2 - x**2)
+    u = (o - a_pos) / d
+    n = np.array([-u[1], u[0]])
+    b = a_pos + x * u + h * n  # left of A->O: the upper branch (reference B = (0.04, 0.03))
+    e = (b - a_pos) / r0
+    # P = A + 0.02 e + 0.02 e_perp (reference: A = (0, .03), B = (.04, .03), P = (.02, .05))
+    return a_pos + 0.02 * e + 0.02 * np.array([-e[1], e[0]]), b
+
+
+def test_closed_four_bar_coupler_point_follows_rigid_loop_closure():
+    m = four_bar(PiezoDrive(Triangle(0.0, 1500.0, 0.1)))
+    r = simulate(m, 0.05, step=1e-3)
+    assert r.info["accepted_steps"] == 50
+    for i in range(0, r.n_rows, 7):
+        a_pos = np.array([r["crank.tip_x"][i], r["crank.tip_y"][i]])
+        p, b = rigid_coupler_point(a_pos)
+        np.testing.assert_allclose([r["coupler.P_x"][i], r["coupler.P_y"][i]], p, rtol=0, atol=1e-6 * 0.05)
+        np.testing.assert_allclose([r["rocker.B_x"][i], r["rocker.B_y"][i]], b, rtol=0, atol=1e-6 * 0.05)
+    # the crank really turned the loop (the tip moved by millimetres)
+    assert np.ptp(r["crank.tip_x"]) > 1e-3
+
+
+def test_hysteresis_exact_under_step_rejection_in_a_closed_loop():
+    H = paper_strain_preisach()
+    m = four_bar(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=H))
+    r = simulate(m, 0.06, step=2e-3, settings={"timeIntegration.newton.maxIterations": 2,
+                                              "timeIntegration.newton.useModifiedNewton": False})
+    assert r.info["rejected_steps"] > 0
+    assert np.diff(r["time"]).min() < 2e-3 * 0.75
+    np.testing.assert_allclose(r["crank.strain"], H.apply(r["crank.voltage"]), rtol=0, atol=1e-15)
+    assert np.ptp(r["crank.strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
+
+
+def test_static_sweep_follows_the_hysteresis_and_matches_single_solves():
+    H = paper_strain_preisach()
+    b = bender(drive=PiezoDrive(0.0, hysteresis=H))
+    volts = [0.0, 500.0, 1000.0, 1500.0, 1000.0, 500.0, 0.0]
+    r = static_sweep(cantilever(b), volts)
+    np.testing.assert_allclose(r["b.strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
+    # on the first ascending branch each point equals a solve from the reset state
+    for i in (1, 3):
+        single = solve_static(cantilever(bender(drive=PiezoDrive(volts[i], hysteresis=paper_strain_preisach()))))
+        assert r["b.tip_y"][i] == pytest.approx(single["b.tip_y"][0], rel=1e-7)
+    # descending branch: more strain than ascending at the same voltage (the loop opens)
+    assert r["b.tip_y"][4] > r["b.tip_y"][2] and r["b.tip_y"][5] > r["b.tip_y"][1]
+
+
+def test_mechanism_refuses_tip_force_and_unknown_drive():
+    m = cantilever(bender())
+    with pytest.raises(ValueError, match="tip_force is for a BendingActuator"):
+        solve_static(m, tip_force=(0.0, 1.0))
+    with pytest.raises(ValueError, match="unknown drive 'c'"):
+        solve_static(m, voltage={"c": 1.0})
