@@ -365,7 +365,9 @@ def _scale_text(scale: float) -> str:
 
 def _time_text(result, row: int) -> str:
     parts = []
-    if "time" in result:
+    if "static" in str(result.info.get("solver", "")):
+        parts.append(f"static point {row + 1} of {result.n_rows}")
+    elif "time" in result:
         parts.append(f"t = {result['time'][row]:.4g} s")
     for name in result.names:
         if name.endswith(".voltage"):
@@ -442,7 +444,7 @@ def animate_mechanism(
     trace: Sequence[str] = (),
     title: str | None = None,
 ) -> Path:
-    """GIF animation of the moving mechanism (written atomically with Pillow).
+    """GIF animation of the moving mechanism (frames drawn on the Agg canvas, written atomically with Pillow).
 
     Parameters
     ----------
@@ -461,7 +463,7 @@ def animate_mechanism(
     title : str, optional
         Title prefix (default: the mechanism's name).
     """
-    from matplotlib.animation import FuncAnimation, PillowWriter
+    from PIL import Image
 
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
         raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
@@ -479,6 +481,7 @@ def animate_mechanism(
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     margin = 0.12 * float(max(hi - lo))
     fig, (ax,) = new_figure(1, 1, width=6.4, height=5.2)
+    fig.set_dpi(90)
     head = title or mechanism.name
 
     def draw(k: int):
@@ -493,12 +496,21 @@ def animate_mechanism(
         ax.set_title(f"{head} ({_scale_text(scale)})\n{_time_text(result, row)}", fontsize=8)
         return ()
 
-    animation = FuncAnimation(fig, draw, frames=len(rows), blit=False)
+    # each frame is drawn once on the Agg canvas; the layout of the first frame is kept
+    images = []
+    for k in range(len(rows)):
+        draw(k)
+        fig.canvas.draw()
+        if k == 0:
+            fig.set_layout_engine("none")
+        rgba = np.asarray(fig.canvas.buffer_rgba())
+        images.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.Palette.ADAPTIVE, colors=128))
     fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
     os.close(fd)
     try:
         os.chmod(tmp, _FILE_MODE)
-        animation.save(tmp, writer=PillowWriter(fps=fps))
+        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
+                       duration=int(round(1000.0 / fps)), loop=0)
         os.replace(tmp, target)
     except BaseException:
         if os.path.exists(tmp):
