@@ -12,7 +12,7 @@ seconds per simulated second without the set-up (building the Exudyn system, ini
 assembly).  Best of ``repeats`` runs (the machine is shared).  The set-up time is reported
 too.
 
-Usage: ``python benchmarks/bench_mechanisms.py [--t-sim 0.05] [--repeats 2] [--cells 2,4,8,16]``.
+Usage: ``python benchmarks/bench_mechanisms.py [--t-sim 0.2] [--repeats 3] [--cells 2,4,8,16]``.
 Prints a table and writes JSON to ``benchmarks/results/`` (git-ignored).
 """
 
@@ -66,8 +66,8 @@ def timed(build, n_cells: int, t_sim: float) -> tuple[float, dict]:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description="exudyn_atcm mechanism benchmark")
-    parser.add_argument("--t-sim", type=float, default=0.05, help="simulated time per run [s] (default 0.05)")
-    parser.add_argument("--repeats", type=int, default=2, help="runs per point, best taken (default 2)")
+    parser.add_argument("--t-sim", type=float, default=0.2, help="simulated time per run [s] (default 0.2)")
+    parser.add_argument("--repeats", type=int, default=3, help="runs per point, best taken (default 3)")
     parser.add_argument("--cells", default="2,4,8,16", help="cells per bender (default 2,4,8,16)")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "results"))
     args = parser.parse_args(argv)
@@ -88,7 +88,7 @@ def main(argv=None) -> int:
             table.setdefault(name, {})[str(n)] = {
                 "wall_per_simulated_second": cost, "setup_s": setup, "run_s": total,
                 "accepted_steps": info.get("accepted_steps"), "rejected_steps": info.get("rejected_steps"),
-                "newton_iterations": info.get("newton_iterations"),
+                "newton_steps": info.get("newton_steps"),
             }
             row.append(f"{cost:>16.3f} | {setup:>10.3f}")
         print(f"{n:>12} | " + " | ".join(row))
