@@ -408,7 +408,7 @@ def plot_mechanism(
     n = result.n_rows
     draw_mechanism(ax, mechanism, result, row, scale=scale)
     head = title or mechanism.name
-    ax.set_title(f"{head} ({_scale_text(scale)}; {_time_text(result, int(row) % n)})")
+    ax.set_title(f"{head} ({_scale_text(scale)})\n{_time_text(result, int(row) % n)}", fontsize=9)
     return save_figure(fig, path)
 
 
