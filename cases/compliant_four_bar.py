@@ -170,7 +170,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     }
     notes = {"reference": "rigid four-bar through the PRBM pivots B*, C*, D* (circle intersection) "
                           "for the simulated crank-tip pivot B*; error relative to the coupler point's travel",
-             "user_code_lines": user_code_lines()}
+             "user_code_lines": user_code_lines(),
+             "degrees_of_freedom": mech.degrees_of_freedom().dof}
     return CaseOutput(table, scalars, steps=len(voltages), tables={"sweep_hysteresis": res},
                       notes=notes)
 

@@ -74,6 +74,15 @@ def test_four_bar_hysteresis_path_error(four_bar):
     assert s["hysteresis_path_error_rel"] > 0.1
 
 
+def test_four_bar_degrees_of_freedom_follow_gruebler(four_bar):
+    # rigid bodies: N crank cells, the crank-side segment of hinge_B, the coupler group
+    # (hinge_B tip segment + coupler + hinge_C base segment), the rocker group (hinge_C tip
+    # segment + rocker + hinge_D base segment); revolute joints: clamp, N - 1 between cells,
+    # crank tip weld, three PRBM pivots.  Gruebler: 3 (N + 3) - 2 (N + 4) = N + 1.
+    n = four_bar.parameters["n_cells"]
+    assert four_bar.notes["degrees_of_freedom"] == n + 1
+
+
 def test_four_bar_is_built_in_under_30_lines():
     text = (CASES / "compliant_four_bar.py").read_text(encoding="utf-8")
     body = text.split("--- user code:")[1].split("--- end of user code")[0].splitlines()[1:]
