@@ -49,6 +49,7 @@ __all__ = [
     "plot_mechanism",
     "animate_mechanism",
     "plot_point_paths",
+    "actuator_as_mechanism",
 ]
 
 _MM = 1e3  # drawings in millimetres
@@ -560,3 +561,42 @@ def plot_point_paths(
     if title:
         ax.set_title(title)
     return save_figure(fig, path)
+
+
+def actuator_as_mechanism(actuator, result, name: str = "actuator"):
+    """A :class:`~exudyn_atcm.BendingActuator` run as a one-bender mechanism, for drawing.
+
+    Returns the equivalent description (a :class:`~exudyn_atcm.mechanism.Bender` clamped at
+    the origin along +x, active layer on its right, the same layers, cells and drive) and
+    the run's columns renamed to the mechanism convention (``tip_x`` -> ``{name}.tip_x``,
+    ``cell_angle_j`` -> ``{name}.cell_angle_j``, ``voltage`` -> ``{name}.voltage``), so that
+    :func:`plot_mechanism` and :func:`animate_mechanism` draw both layers, the cell joints and
+    the motors of a cantilever actuator too.
+
+    Parameters
+    ----------
+    actuator : BendingActuator
+        The actuator the result was computed for.
+    result : Result
+        A run of it (``time``, ``voltage``, ``tip_x``, ``tip_y``, ``cell_angle_1..N``).
+    name : str, optional
+        Component name used in the drawing.
+    """
+    from .actuator import BendingActuator
+    from .result import Result
+
+    if not isinstance(actuator, BendingActuator):
+        raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
+    bender = Bender(name, width=actuator.width, passive=actuator.passive, active=actuator.active,
+                    length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive,
+                    stiffness=actuator.stiffness, damping=actuator.damping)
+    mech = Mechanism(name).add(bender).ground(bender.base)
+    zeros = np.zeros(result.n_rows)
+    series = {"time": _column(result, "time"), f"{name}.voltage": _column(result, "voltage"),
+              f"{name}.base_x": zeros, f"{name}.base_y": zeros,
+              f"{name}.tip_x": _column(result, "tip_x"), f"{name}.tip_y": _column(result, "tip_y")}
+    for j in range(actuator.n_cells):
+        series[f"{name}.cell_angle_{j + 1}"] = _column(result, f"cell_angle_{j + 1}")
+    units = {k: ("s" if k == "time" else "V" if k.endswith("voltage") else "rad" if "angle" in k else "m")
+             for k in series}
+    return mech, Result(series, units, parameters=result.parameters, info=result.info)

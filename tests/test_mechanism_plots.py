@@ -9,7 +9,13 @@ import pytest
 
 from exudyn_atcm import Layer, PiezoDrive, Result
 from exudyn_atcm.mechanism import Bender, Flexure, Link, Mechanism
-from exudyn_atcm.mechanism_plots import animate_mechanism, mechanism_shape, plot_mechanism, plot_point_paths
+from exudyn_atcm.mechanism_plots import (
+    actuator_as_mechanism,
+    animate_mechanism,
+    mechanism_shape,
+    plot_mechanism,
+    plot_point_paths,
+)
 
 CFC = Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
 MFC = Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
@@ -130,3 +136,17 @@ def test_bad_input_is_refused(tmp_path):
     with pytest.raises(ValueError, match="trace point 'coupler.Q'"):
         plot_mechanism(mech, result, tmp_path / "x.png", trace=["coupler.Q"])
     assert not list(tmp_path.glob("*"))
+
+
+def test_actuator_run_drawn_as_a_one_bender_mechanism(tmp_path):
+    from exudyn_atcm import BendingActuator, simulate
+
+    act = BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(lambda t: 1500.0 * t / 0.01), cell="rigid")
+    result = simulate(act, 0.01, step=1e-3)
+    mech, drawn = actuator_as_mechanism(act, result)
+    shape = mechanism_shape(mech, drawn, -1)
+    # the drawn chain ends at the actuator's recorded tip (same cell angles and lengths)
+    np.testing.assert_allclose(shape.benders[0].passive[-1], [result["tip_x"][-1], result["tip_y"][-1]], atol=1e-12)
+    assert shape.benders[0].drives == ["actuator"] * 3
+    gif = animate_mechanism(mech, drawn, tmp_path / "a.gif", frames=3, trace=["actuator.tip"])
+    assert gif.read_bytes()[:6] == b"GIF89a"
