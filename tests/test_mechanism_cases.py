@@ -169,3 +169,14 @@ def test_parallel_guide_large_deflection_value_is_what_the_model_gives():
     assert s["translation_error"] < 1e-4
     assert s["translation_error_chain_polygon"] < 1e-9
     assert s["rotation_max"] < 1e-12
+
+
+def test_gripper_with_inward_jaws_needs_the_large_deflection_reference():
+    # jaw point 2 mm towards the axis: the moment arm a cos(theta) - c sin(theta) changes to
+    # first order in the tip rotation, which the small-deflection closed form ignores
+    out = load_case(CASES / "micro_gripper.py").run({"jaw_offset": 2e-3, "half_spacing": 7e-3, "n_steps": 8})
+    s = out.scalars
+    assert s["mirror_error"] < 1e-12
+    assert s["force_error_closed_form_object"] > 1e-3
+    assert s["force_error_large_deflection_object"] < 1e-3
+    assert s["force_error_large_deflection_stiff"] < 1e-3
