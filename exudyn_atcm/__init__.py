@@ -14,6 +14,7 @@ from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .result import Result
 from .simulation import SolverError, eigenfrequencies, simulate, solve_static
 from .mechanism_solve import static_sweep
+from .mbs import add_to
 
 __all__ = [
     "__version__",
@@ -31,6 +32,7 @@ __all__ = [
     "simulate",
     "solve_static",
     "static_sweep",
+    "add_to",
     "eigenfrequencies",
     "Result",
     "SolverError",

@@ -27,10 +27,10 @@ from . import _mbs_builder as runs
 from ._checks import finite_array, finite_float, positive_float, positive_int
 from .mbs import builder as mb
 from .mbs import linear
+from .mbs.recording import Rows
 from .mechanism.assembly import Mechanism
 from .mechanism.bender import Bender
 from .mechanism.flexure import Flexure
-from .mechanism.link import Link
 from .mechanism.points import MechanismError, closest
 from .result import Result
 from .simulation import DEFAULT_STEP, InStepStrain, SolverError
@@ -153,85 +153,6 @@ def _equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, e
         "more load_steps.")
 
 
-# ------------------------------------------------------------------------------ recording
-
-class _Rows:
-    """Accepted states: time, voltages and strains per source, ODE2 coordinates, spring forces."""
-
-    def __init__(self, model: mb.MechanismModel) -> None:
-        self.model = model
-        self.times: list[float] = []
-        self.volts: list[np.ndarray] = []
-        self.strains: list[np.ndarray] = []
-        self.q: list[np.ndarray] = []
-        self.forces: list[list[float]] = []
-
-    def add(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
-        self.times.append(t)
-        self.volts.append(np.array(volts, dtype=float))
-        self.strains.append(np.array(strains, dtype=float))
-        self.q.append(np.array(self.model.coordinates()))
-        self.forces.append(linear.connector_forces(self.model))
-
-    def last_time(self) -> float:
-        return self.times[-1] if self.times else 0.0
-
-    def result(self, info: dict) -> Result:
-        return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
-                           np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
-                           np.array(self.forces).reshape(len(self.times), -1), info)
-
-
-def make_result(model: mb.MechanismModel, times: np.ndarray, volts: np.ndarray, strains: np.ndarray, q: np.ndarray,
-                forces: np.ndarray, info: dict) -> Result:
-    """The :class:`Result` of recorded rows (columns as in the module documentation)."""
-    mech = model.mechanism
-    series: dict[str, np.ndarray] = {"time": times}
-    units: dict[str, str] = {"time": "s"}
-    for name, k in model.drive_source.items():
-        series[f"{name}.voltage"], units[f"{name}.voltage"] = volts[:, k], "V"
-        series[f"{name}.strain"], units[f"{name}.strain"] = strains[:, k], "-"
-    poses = model.poses(q)
-    points = model.point_positions(poses)
-    benders = {b.name: b for b in mech.benders}
-    for comp in mech.components.values():
-        for pname in comp.points:
-            xy = points[f"{comp.name}.{pname}"]
-            for axis, col in (("x", 0), ("y", 1)):
-                key = f"{comp.name}.{pname}_{axis}"
-                series[key], units[key] = xy[:, col], "m"
-        c = comp.name
-        if isinstance(comp, Link):
-            series[f"{c}.angle"] = model.rotation(poses, model.group_of_component[c])
-            units[f"{c}.angle"] = "rad"
-            continue
-        if c in benders:
-            angle = benders[c].angle
-            base = angle + model.end_rotation(poses, strains, f"{c}.base")
-            tip = angle + model.end_rotation(poses, strains, f"{c}.tip")
-            cells = [angle + model.rotation(poses, key) for key in model.cells[c]]
-        else:  # pseudo-rigid-body flexure
-            angle = comp.angle
-            cells = [angle + model.rotation(poses, model.group_of_component[f"{c}#{end}"]) for end in ("base", "tip")]
-            base, tip = cells
-        series[f"{c}.base_angle"], series[f"{c}.tip_angle"] = base, tip
-        units[f"{c}.base_angle"] = units[f"{c}.tip_angle"] = "rad"
-        for j, values in enumerate(cells):
-            series[f"{c}.cell_angle_{j + 1}"], units[f"{c}.cell_angle_{j + 1}"] = values, "rad"
-    for k, name in enumerate(linear.connector_names(model)):
-        series[f"{name}.force"], units[f"{name}.force"] = forces[:, k], "N"
-    info = dict(info)
-    info.setdefault("exudyn_version", runs.exudyn_version())
-    result = Result(series, units, parameters=mech.parameters(), info=info)
-    for name in result:
-        values = result[name]
-        if values.size and not np.all(np.isfinite(values)):
-            bad = int(np.argmax(~np.isfinite(values)))
-            raise SolverError(f"the solution contains a non-finite {name} at row {bad} (t = {times[bad]!r} s); "
-                              "the solver diverged. Try a smaller step or more cells.")
-    return result
-
-
 # ------------------------------------------------------------------------------ public solves
 
 def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int | None = None) -> Result:
@@ -244,7 +165,7 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     strains = _source_values(model, strains_by_drive, "solve_static")
     source_volts = _source_values(model, volts, "solve_static")
     method = _equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
-    rows = _Rows(model)
+    rows = Rows(model)
     rows.add(0.0, source_volts, strains)
     return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
 
@@ -293,7 +214,7 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     for drive in model.sources:
         if drive.hysteresis is not None:
             drive.hysteresis.reset()
-    rows = _Rows(model)
+    rows = Rows(model)
     previous = np.zeros(len(model.sources))
     methods = []
     for i, per_drive in enumerate(table):
@@ -328,7 +249,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = runs.dynamic_settings(t_end, step)
     runs.apply_user_settings(sim_settings, settings)
-    rows = _Rows(model)
+    rows = Rows(model)
     report = {"next": 0.0}
 
     def pre_step(t: float) -> None:

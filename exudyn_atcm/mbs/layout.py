@@ -13,7 +13,7 @@ is exact:
   their end springs in series (for one laminate and cell length this is exactly the inner
   joint of one longer bender).
 
-Any other interface group becomes a small interface body (the laminate over a length
+Any other interface group (and, on request, a free end) becomes a small interface body (the laminate over a length
 ``min(h1 + h2, L_c/10)`` per interface, as the six-bar cell's interface elements).
 """
 
@@ -60,8 +60,12 @@ class Group:
     interfaces: list[str] = field(default_factory=list)  # bender-end interface parts
 
 
-def rigid_groups(mech: Mechanism) -> tuple[dict[str, Group], dict[str, str]]:
-    """Groups by key and the group key of every part."""
+def rigid_groups(mech: Mechanism, free_end_bodies: bool = False) -> tuple[dict[str, Group], dict[str, str]]:
+    """Groups by key and the group key of every part.
+
+    ``free_end_bodies=True`` gives free bender ends an interface body too (so that a user's
+    joints can attach to them; see :func:`exudyn_atcm.add_to`).
+    """
     parts = [GROUND]
     for comp in mech.components.values():
         if isinstance(comp, Link):
@@ -104,7 +108,8 @@ def rigid_groups(mech: Mechanism) -> tuple[dict[str, Group], dict[str, str]]:
             g.kind = "ground"
         elif others:
             g.kind = "body"
-        elif (len(ifaces) == 1 and (not g.joints or (len(g.joints) == 1 and isinstance(g.joints[0], Pin)))) or \
+        elif (len(ifaces) == 1 and not g.joints and not free_end_bodies) or \
+                (len(ifaces) == 1 and len(g.joints) == 1 and isinstance(g.joints[0], Pin)) or \
                 (len(ifaces) == 2 and not g.joints):
             g.kind = "virtual"
         else:

@@ -1,34 +1,13 @@
-"""Read-outs of a built mechanism model that ask Exudyn: connector forces, eigenfrequencies, DOF."""
+"""Linearisation of a built mechanism model: eigenfrequencies and degrees of freedom."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-import exudyn as exu
 import numpy as np
 
 from .. import _mbs_builder as runs
-from .builder import MechanismModel
-
-
-def connector_names(model: MechanismModel) -> list[str]:
-    """Names of the springs and stops, in the order of :func:`connector_forces`."""
-    return list(model.spring_items)
-
-
-def connector_forces(model: MechanismModel) -> list[float]:
-    """Force [N] of every spring (tension positive) and stop (compression positive) in the current state."""
-    mech = model.mechanism
-    normals = {s.name: s.normal for s in mech.stops}
-    out = []
-    for name, item in model.spring_items.items():
-        force = model.mbs.GetObjectOutput(item, exu.OutputVariableType.Force)
-        if name in normals:
-            nx, ny = normals[name]
-            out.append(-float(force[0] * nx + force[1] * ny))
-        else:
-            out.append(float(np.ravel(force)[0]))
-    return out
+from .model import MechanismModel
 
 
 def eigenfrequencies(model: MechanismModel, n: int) -> np.ndarray:
@@ -73,4 +52,4 @@ def degrees_of_freedom(model: MechanismModel) -> DofReport:
                      int(info["redundantConstraints"]))
 
 
-__all__ = ["connector_names", "connector_forces", "eigenfrequencies", "DofReport", "degrees_of_freedom"]
+__all__ = ["eigenfrequencies", "DofReport", "degrees_of_freedom"]

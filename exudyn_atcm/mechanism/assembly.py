@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 import math
-import numbers
-from typing import Any, Callable, Union
+from typing import Any, Union
 
 import numpy as np
 
@@ -307,17 +306,44 @@ class Mechanism:
                                 f"N/m damping={s.damping!r} N s/m")
         return out
 
+    def degrees_of_freedom(self):
+        """Degrees of freedom of the built multibody model (Exudyn's ``ComputeSystemDegreeOfFreedom``).
+
+        Every rigid cell of a bender is a body, so a bender of ``N`` cells contributes
+        compliant degrees of freedom; a mechanism of rigid links alone gives its Gruebler count.
+
+        Returns
+        -------
+        exudyn_atcm.mbs.DofReport
+            ``dof``, ``coordinates``, ``constraints`` and ``redundant`` (dependent constraints,
+            e.g. of an over-constrained loop).
+        """
+        from ..mbs.linear import degrees_of_freedom  # noqa: PLC0415 - the Exudyn layer builds on this one
+        from ..mbs.builder import build  # noqa: PLC0415
+
+        return degrees_of_freedom(build(self))
+
     # ------------------------------------------------------------------ checks
-    def check(self) -> None:
+    def check(self, *, grounded: bool = True) -> None:
         """Check the whole mechanism; raises :class:`MechanismError` naming the parts.
 
         Checks: at least one component; a connection to the ground; every component
         connected to the ground through joints; every joint's points coincide in the
         reference pose (slider: ``q`` on the axis line through ``p``) within
         ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator.
+
+        Parameters
+        ----------
+        grounded : bool, optional
+            ``False`` leaves out the two ground checks (for :func:`exudyn_atcm.add_to`, where
+            the user's own joints may hold the mechanism).
         """
         if not self.components:
             raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")
+        if not grounded:
+            self._check_assembly()
+            self._check_drives()
+            return
         if not any(j.q is None for j in self.joints):
             raise MechanismError(
                 f"mechanism {self.name!r} has no ground connection; connect at least one point to the ground "

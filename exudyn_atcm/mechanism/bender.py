@@ -14,7 +14,7 @@ from .._checks import finite_float, positive_float, positive_int
 from ..drive import PiezoDrive
 from ..laminate import STIFFNESS_MODELS, Laminate
 from ..materials import Layer
-from .points import MechanismError, PointRef, check_name, unknown_point
+from .points import PointRef, check_name, unknown_point
 
 CELL_TYPES = ("rigid", "six-bar")
 ACTIVE_SIDES = ("right", "left")
