@@ -14,7 +14,9 @@ What is drawn, for every recorded instant (row) of a mechanism :class:`~exudyn_a
   triangle; slider: a rail along the axis).
 
 Deformation can be exaggerated: with ``scale = s`` every displacement from the reference
-pose is multiplied by ``s`` (bender cells: their rotations), and the title says so.  The
+pose is multiplied by ``s`` (bender cells: their rotations, with the chain's closure gap to
+the magnified tip displacement spread along it so welded parts stay attached), and the title
+says so.  The
 layer offset ``e`` (a fraction of a millimetre) is drawn enlarged to be visible; the legend
 gives the factor.  Result columns used (``name [unit]`` convention of mechanism runs):
 ``{comp}.{point}_x``/``_y`` [m], ``{bender}.cell_angle_{j}`` [rad] (absolute angle of cell
@@ -131,6 +133,13 @@ def _bender_shape(bender: Bender, result, row: int, scale: float, offset_scale: 
     base = np.array(bender.base_position) + scale * (
         np.array([_column(result, f"{bender.name}.base_{c}")[row] for c in "xy"]) - np.array(bender.base_position))
     passive = _chain(base, angles, lengths)
+    if scale != 1.0:
+        # magnified rotations do not add up to the magnified tip displacement: spread the
+        # closure gap along the chain so that welded neighbours stay attached in the drawing
+        ref_tip = np.array(bender.points["tip"])
+        tip = ref_tip + scale * (np.array([_column(result, f"{bender.name}.tip_{c}")[row] for c in "xy"]) - ref_tip)
+        share = np.concatenate([[0.0], np.cumsum(lengths)]) / float(np.sum(lengths))
+        passive = passive + share[:, None] * (tip - passive[-1])[None, :]
     active = None
     drives: list = [None] * bender.n_cells
     if bender.active is not None:

@@ -86,9 +86,15 @@ def test_exaggerated_shape_scales_displacements():
     ref = np.array(mech.components["coupler"].points["P"])
     np.testing.assert_allclose(big.link_points["coupler"]["P"] - ref, 3.0 * (true.link_points["coupler"]["P"] - ref),
                                rtol=1e-12)
-    # bender cells turn by 3x their rotation from the reference direction
+    # the bender's drawn tip is the magnified tip displacement (welded parts stay attached),
+    # its base stays, and its cells turn by about 3x their rotation (the chain's closure gap
+    # to the magnified tip is spread along it)
+    tip0 = np.array([0.0, L])
+    tip = np.array([result["crank.tip_x"][8], result["crank.tip_y"][8]])
+    np.testing.assert_allclose(big.benders[0].passive[-1], tip0 + 3.0 * (tip - tip0), rtol=1e-12)
+    np.testing.assert_allclose(big.benders[0].passive[0], [0.0, 0.0], atol=1e-15)
     turn = np.arctan2(*np.diff(big.benders[0].passive, axis=0)[:, ::-1].T) - np.pi / 2
-    np.testing.assert_allclose(turn, 3.0 * (np.arange(N) + 0.5) * KAPPAS[8] * LC, rtol=1e-12)
+    np.testing.assert_allclose(turn, 3.0 * (np.arange(N) + 0.5) * KAPPAS[8] * LC, rtol=0.05)
 
 
 def test_flexure_pivot_and_spring_geometry():
@@ -150,3 +156,26 @@ def test_actuator_run_drawn_as_a_one_bender_mechanism(tmp_path):
     assert shape.benders[0].drives == ["actuator"] * 3
     gif = animate_mechanism(mech, drawn, tmp_path / "a.gif", frames=3, trace=["actuator.tip"])
     assert gif.read_bytes()[:6] == b"GIF89a"
+
+
+def test_real_run_with_every_component_kind_is_drawn(tmp_path):
+    from exudyn_atcm import static_sweep
+
+    bender = Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.04, n_cells=6, drive=PiezoDrive(0.0),
+                    angle=0.3, active_side="left")
+    tip = bender.points["tip"]
+    strip = Flexure("f", base=tip, tip=(tip[0] + 0.01, tip[1]), width=5e-3, thickness=0.1e-3, youngs_modulus=70e9,
+                    density=1550.0, model="cells", n_cells=3)
+    slide = Link("slide", {"A": (tip[0] + 0.01, tip[1]), "B": (tip[0] + 0.02, tip[1])}, mass=1e-3, inertia=1e-8)
+    mech = Mechanism("kinds").add(bender, strip, slide).ground(bender.base).weld(bender.tip, strip.base)
+    mech.weld(strip.tip, slide.point("A")).ground(slide.point("B"), joint="slider", axis=(1.0, 0.0))
+    mech.stop("slide.A", position=(tip[0] + 0.012, tip[1]), normal=(-1.0, 0.0), stiffness=1e4)
+    result = static_sweep(mech, [0.0, 1500.0])
+    shape = mechanism_shape(mech, result, 1)
+    for name, line in (("b", shape.benders[0].passive), ("f", shape.flexures["f"])):
+        np.testing.assert_allclose(line[-1], [result[f"{name}.tip_x"][1], result[f"{name}.tip_y"][1]], atol=1e-12)
+    # active layer on the left of base -> tip
+    axis = shape.benders[0].passive[1] - shape.benders[0].passive[0]
+    offset = shape.benders[0].active[0, 0] - shape.benders[0].passive[0]
+    assert float(axis[0] * offset[1] - axis[1] * offset[0]) > 0.0
+    assert plot_mechanism(mech, result, tmp_path / "kinds.png", scale=5.0).is_file()
