@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import importlib.util
 import os
 import platform
 import sys
@@ -30,7 +31,7 @@ import exudyn
 
 from exudyn_atcm._atomic import write_json
 from exudyn_atcm._version import __version__
-from exudyn_atcm.cases import load_case
+from exudyn_atcm.cases import find_case
 from exudyn_atcm.parameter_sets import paper_strain_preisach
 from exudyn_atcm.signals import Triangle
 from exudyn_atcm import simulate
@@ -40,18 +41,24 @@ STEP = 1e-4  # s
 PERIOD = 0.5  # s
 
 
+def case_module(name: str):
+    """The case file as a module (its CASE and its build_mechanism)."""
+    spec = importlib.util.spec_from_file_location(name, find_case(name, CASES))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def four_bar(n_cells: int):
-    case = load_case(CASES / "compliant_four_bar.py")
-    build = case._run.__globals__["build_mechanism"]  # the case module's own builder
-    p = case.resolve({"n_cells": n_cells})
-    return build(p, paper_strain_preisach(), Triangle(500.0, 1000.0, PERIOD))
+    module = case_module("compliant_four_bar")
+    p = module.CASE.resolve({"n_cells": n_cells})
+    return module.build_mechanism(p, paper_strain_preisach(), Triangle(500.0, 1000.0, PERIOD))
 
 
 def gripper(n_cells: int):
-    case = load_case(CASES / "micro_gripper.py")
-    build = case._run.__globals__["build_mechanism"]
-    p = case.resolve({"n_cells": n_cells})
-    return build(p, p.object_stiffness, Triangle(500.0, 1000.0, PERIOD))
+    module = case_module("micro_gripper")
+    p = module.CASE.resolve({"n_cells": n_cells})
+    return module.build_mechanism(p, p.object_stiffness, Triangle(500.0, 1000.0, PERIOD))
 
 
 MECHANISMS = {"four_bar": four_bar, "gripper": gripper}
