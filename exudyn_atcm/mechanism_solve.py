@@ -6,13 +6,8 @@ is its own.  The hysteresis of every drive is evaluated in the solver step exact
 lone actuator (:class:`exudyn_atcm.simulation.InStepStrain`: trial from the committed memory
 in the pre-step hook, commit in the post-step hook of accepted steps only).
 
-Result columns (``name [unit]``): ``time [s]``; per drive ``{drive}.voltage [V]`` and
-``{drive}.strain [-]``; per named point ``{comp}.{point}_x [m]`` and ``_y``; per link
-``{link}.angle [rad]`` (rotation from the reference pose); per bender and flexure
-``{comp}.base_angle``, ``{comp}.tip_angle`` and ``{comp}.cell_angle_{j}`` [rad] (absolute
-direction of the axis; the reference value is the component's angle; a pseudo-rigid-body
-flexure has two "cells", its segments); per spring and stop ``{name}.force [N]`` (tension
-positive for springs, compression positive for stops).
+The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
+:doc:`/mechanisms` page of the documentation.
 """
 
 from __future__ import annotations

@@ -307,7 +307,7 @@ def solve_static(
     actuator : BendingActuator or Mechanism
         The actuator; its drive gives the voltage-to-strain law.  A
         :class:`~exudyn_atcm.Mechanism` is solved with its own loads (``tip_force`` must stay
-        zero) and gives the columns listed in :mod:`exudyn_atcm.mechanism_solve`.
+        zero) and gives the columns listed on the :doc:`/mechanisms` page.
     voltage : float or mapping, optional
         Voltage [V].  Default: the drive's voltage at ``t = 0``.  For a mechanism: a number
         for every drive, or ``{drive_name: volts}``.  With a hysteresis
@@ -383,7 +383,7 @@ def simulate(
     actuator : BendingActuator or Mechanism
         The actuator, with its drive (voltage program, optional hysteresis operator), or a
         :class:`~exudyn_atcm.Mechanism` (its own loads; ``tip_force`` must stay zero; columns
-        as listed in :mod:`exudyn_atcm.mechanism_solve`).
+        as listed on the :doc:`/mechanisms` page).
     t_end : float
         End time [s], > 0.
     step : float, optional

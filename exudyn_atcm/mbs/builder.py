@@ -441,7 +441,11 @@ class _Builder:
                 warnings.warn(f"force {f.name!r} acts at {f.point}, which is welded to the ground: it has no effect",
                               RuntimeWarning, stacklevel=4)
                 continue
-            marker = _marker_position(mbs, body, local)
+            if f.follower:  # a body-fixed load needs the marker's orientation
+                marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item,
+                                                          localPosition=[float(local[0]), float(local[1]), 0.0]))
+            else:
+                marker = _marker_position(mbs, body, local)
             load = mbs.AddLoad(ii.LoadForceVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0], bodyFixed=f.follower))
             end = model.ends.get(str(f.point))
             free = end if (f.follower and end is not None and end.kind == "free") else None

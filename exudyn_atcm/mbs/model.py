@@ -217,7 +217,9 @@ class MechanismModel:
                 nx, ny = normals[name]
                 out.append(-float(force[0] * nx + force[1] * ny))
             else:
-                out.append(float(np.ravel(force)[0]))
+                # Exudyn's spring force vector points from marker 0 to marker 1 under tension
+                d = np.asarray(self.mbs.GetObjectOutput(item, exu.OutputVariableType.Displacement), dtype=float)
+                out.append(float(np.dot(force, d) / np.linalg.norm(d)))
         return out
 
     def resolve_indices(self) -> None:
