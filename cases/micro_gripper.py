@@ -38,7 +38,6 @@ Timoshenko's bimetal curvature):
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
