@@ -109,6 +109,8 @@ def test_gripper_is_symmetric_and_its_free_jaw_follows_the_arc(gripper):
 def test_gripper_force_matches_the_blocked_force_closed_form(gripper):
     s = gripper.scalars
     for label in ("object", "stiff"):
+        # the recorded spring force equals the spring law on the simulated jaw distance
+        assert s[f"force_column_difference_{label}"] < 1e-9
         assert s[f"force_error_closed_form_{label}"] < 1e-3
         assert s[f"force_error_chain_closed_form_{label}"] < 1e-3
         assert s[f"force_error_large_deflection_{label}"] < 1e-3
