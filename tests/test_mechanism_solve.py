@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, PiezoDrive, eigenfrequencies, simulate,
+from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, PiezoDrive, Segment, eigenfrequencies, simulate,
                          solve_static, static_sweep)
 from exudyn_atcm.parameter_sets import paper_strain_preisach
 from exudyn_atcm.signals import Triangle
@@ -197,3 +197,67 @@ def test_mechanism_refuses_tip_force_and_unknown_drive():
         solve_static(m, tip_force=(0.0, 1.0))
     with pytest.raises(ValueError, match="unknown drive 'c'"):
         solve_static(m, voltage={"c": 1.0})
+
+
+# ----------------------------------------------------------------------------- segments, pinned ends
+
+def test_s_shaped_two_segment_bender_takes_the_stress_free_polygon():
+    """No load: every joint takes its rest angle, so the chain is the polygon of the free rotations.
+
+    Segment 1: 3 cells of 10 mm at +U, segment 2: 5 cells of 4 mm at -U (opposite curvature).  The
+    clamp turns the first cell by half its free rotation, each inner joint by the two half cells it
+    stands for, the tip interface by half the last cell's.
+    """
+    d1, d2 = PiezoDrive(800.0), PiezoDrive(-800.0)
+    s = Bender("s", width=W, passive=CFC, active=MFC, segments=[Segment(0.03, 3, d1), Segment(0.02, 5, d2)],
+               base=(0.01, 0.02), angle=0.3)
+    r = solve_static(Mechanism().add(s).ground(s.base))
+    c = s.laminate.curvature_per_strain
+    half = [0.5 * c * 0.01 * d1.linear_strain(800.0)] * 3 + [0.5 * c * 0.004 * d2.linear_strain(-800.0)] * 5
+    lengths = [0.01] * 3 + [0.004] * 5
+    phi, angles = 0.3 + half[0], []
+    for j in range(8):
+        angles.append(phi)
+        if j < 7:
+            phi += half[j] + half[j + 1]
+    tip = np.array([0.01, 0.02]) + sum(L * np.array([math.cos(a), math.sin(a)]) for L, a in zip(lengths, angles))
+    np.testing.assert_allclose([r[f"s.cell_angle_{j + 1}"][0] for j in range(8)], angles, rtol=0, atol=1e-12)
+    assert r["s.tip_x"][0] == pytest.approx(tip[0], abs=1e-13)
+    assert r["s.tip_y"][0] == pytest.approx(tip[1], abs=1e-13)
+    assert r["s.tip_angle"][0] == pytest.approx(angles[-1] + half[-1], abs=1e-12)
+    assert list(r["s.1.voltage"]) == [800.0] and list(r["s.2.voltage"]) == [-800.0]
+
+
+def test_pinned_base_with_a_torsion_spring_adds_the_rigid_rotation():
+    """Linear range: the pin spring k_p in series with the clamp turns the whole bender by F L / k_p."""
+    f, k_p = 1e-4, 0.05
+    clamped = solve_static(cantilever(bender(drive=PiezoDrive(0.0)), (0.0, f)))
+    b = bender(drive=PiezoDrive(0.0))
+    pinned = solve_static(Mechanism().add(b).ground(b.base, joint="pin", stiffness=k_p).force(b.tip, (0.0, f)))
+    extra = f * 0.087 / k_p  # rotation at the base [rad], ~1.7e-4: second-order terms ~3e-8 relative
+    assert pinned["b.base_angle"][0] == pytest.approx(extra, rel=1e-4)
+    assert pinned["b.tip_y"][0] == pytest.approx(clamped["b.tip_y"][0] + extra * 0.087, rel=1e-4)
+
+
+def test_stiff_pin_tends_to_the_weld():
+    lever = Link("lever", {"A": (0.087, 0.0), "E": (0.107, 0.0)}, mass=2e-4, inertia=1e-8)
+
+    def solve(how, **kw):
+        b = bender(drive=PiezoDrive(1200.0))
+        m = Mechanism().add(b, lever).ground(b.base).force("lever.E", (0.0, -0.01))
+        getattr(m, how)(b.tip, "lever.A", **kw)
+        return solve_static(m)
+
+    welded = solve("weld")
+    k_end = 2 * bender().laminate.bending_stiffness / 0.029
+    pinned = solve("pin", stiffness=1e4 * k_end)
+    # series springs k_end, k_p: the end joint is softer by k_end/k_p = 1e-4
+    assert pinned["lever.E_y"][0] == pytest.approx(welded["lever.E_y"][0], rel=1e-4)
+    assert pinned["b.tip_angle"][0] == pytest.approx(welded["b.tip_angle"][0], rel=1e-4)
+    assert pinned["b.tip_angle"][0] != welded["b.tip_angle"][0]
+    # a softer pin lets the lever turn against the bender's tip: rotation jump M/k_p at the joint
+    soft = solve("pin", stiffness=0.01)
+    moment = 0.01 * 0.02 * math.cos(soft["lever.angle"][0])  # force 0.01 N at 20 mm from the pin
+    jump = soft["lever.angle"][0] - soft["b.tip_angle"][0]
+    # Newton stops at 1e-8 N m of residual: 1e-6 rad on this 0.01 N m/rad pin
+    assert jump == pytest.approx(-moment / 0.01, abs=2e-6)
