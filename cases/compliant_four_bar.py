@@ -130,7 +130,19 @@ def reference_four_bar(mech: Mechanism) -> RigidFourBar:
                                     P=mech.position("coupler.P"))
 
 
+def check_geometry(p: Parameters) -> None:
+    """Refuse dimensions that leave no room for the rocker (it spans from D* up to the coupler)."""
+    for name in ("crank_length", "coupler_length", "flexure_length", "flexure_thickness"):
+        if p[name] <= 0.0:
+            raise ValueError(f"{name} must be > 0 m, got {p[name]!r}")
+    if not 0.0 <= p.rocker_pivot_height < p.crank_length - p.flexure_length:
+        raise ValueError(
+            f"rocker_pivot_height must be in [0, crank_length - flexure_length) = [0, "
+            f"{p.crank_length - p.flexure_length:.6g}) m so that the rocker has a length, got {p.rocker_pivot_height!r}")
+
+
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
+    check_geometry(p)
     voltages = voltage_cycle(p.n_steps)
     results, meches = {}, {}
     for label, law in strain_laws(p.exponents).items():

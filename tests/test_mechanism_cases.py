@@ -186,3 +186,18 @@ def test_gripper_with_inward_jaws_needs_the_large_deflection_reference():
     assert s["force_error_closed_form_object"] > 1e-3
     assert s["force_error_large_deflection_object"] < 1e-3
     assert s["force_error_large_deflection_stiff"] < 1e-3
+
+
+@pytest.mark.parametrize(
+    ("case", "values", "message"),
+    [
+        ("compliant_four_bar", {"n_steps": 7}, "n_steps must be an even integer >= 4, got 7"),
+        ("compliant_four_bar", {"rocker_pivot_height": 0.07}, r"rocker_pivot_height must be in .* = \[0, 0.056\) m .*got 0.07"),
+        ("micro_gripper", {"n_steps": 2}, "n_steps must be an even integer >= 4, got 2"),
+        ("parallel_guide", {"n_steps": 10}, "n_steps must be a multiple of 4, >= 4, got 10"),
+        ("bender_with_lever", {"cycles": 0}, "cycles must be >= 1, got 0"),
+    ],
+)
+def test_bad_case_parameters_are_refused_with_the_value(case, values, message):
+    with pytest.raises(ValueError, match=message):
+        load_case(CASES / f"{case}.py").run(values)
