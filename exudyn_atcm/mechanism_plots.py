@@ -67,6 +67,9 @@ _PASSIVE = "#404040"
 _LINK = "#9ecae1"
 _FLEXURE = "#6a3d9a"
 _SPRING = "#8c510a"
+_ACTIVE = "#E69F00"
+#: motor marks per drive: the package colours without the active layer's
+_DRIVE_COLORS = [c for c in COLORS if c.upper() != _ACTIVE]
 
 
 # ----------------------------------------------------------------------------- drawing
@@ -187,11 +190,11 @@ def draw_mechanism(
         if b.active is not None:
             seg = b.active
             path = np.vstack([seg[:, 0], seg[-1:, 1]])
-            ax.plot(*(path * _MM).T, color="#E69F00", lw=1.6, zorder=3, label=layer_label if first else None)
+            ax.plot(*(path * _MM).T, color=_ACTIVE, lw=1.6, zorder=3, label=layer_label if first else None)
             for j, drive in enumerate(b.drives):
                 if drive is None:
                     continue
-                color = drive_colors.setdefault(drive, COLORS[(len(drive_colors) + 1) % len(COLORS)])
+                color = drive_colors.setdefault(drive, _DRIVE_COLORS[len(drive_colors) % len(_DRIVE_COLORS)])
                 mid = 0.5 * (seg[j, 0] + seg[j, 1])
                 ax.plot(*(mid * _MM), marker="D", ms=4.5, color=color, zorder=5,
                         label=f"motor, drive {drive}" if j == b.drives.index(drive) else None)
