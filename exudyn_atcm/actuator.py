@@ -142,12 +142,12 @@ class BendingActuator:
     @property
     def torsion_stiffness_passive(self) -> float:
         """Torsion spring at each passive-layer (lower) revolute joint, ``2 E1 I1 / L_j`` [N m/rad]."""
-        return 2.0 * self.passive.bending_stiffness(self.width) / self.cell_length
+        return self.laminate.layer_joint_stiffness(self.cell_length)[0]
 
     @property
     def torsion_stiffness_active(self) -> float:
         """Torsion spring at each active-layer (upper) revolute joint, ``2 E2 I2 / L_j`` [N m/rad]."""
-        return 2.0 * self.active.bending_stiffness(self.width) / self.cell_length
+        return self.laminate.layer_joint_stiffness(self.cell_length)[1]
 
     @property
     def axial_rigidity_effective(self) -> float:
@@ -157,7 +157,7 @@ class BendingActuator:
     @property
     def axial_spring_stiffness(self) -> float:
         """Stiffness ``k1`` of the axial spring A2-A3 in each cell [N/m]."""
-        return self.axial_rigidity_effective / self.cell_length
+        return self.laminate.axial_spring_stiffness(self.cell_length)
 
     @property
     def bending_stiffness(self) -> float:
@@ -204,7 +204,7 @@ class BendingActuator:
     @property
     def interface_length(self) -> float:
         """Length ``s = min(h1 + h2, L_j/10)`` of laminate lumped into each six-bar interface [m]."""
-        return min(self.passive.thickness + self.active.thickness, 0.1 * self.cell_length)
+        return self.laminate.interface_length(self.cell_length)
 
     @property
     def first_frequency_estimate(self) -> float:

@@ -121,3 +121,20 @@ class Laminate:
         m = m1 + m2
         j_com = m * cell_length**2 / 12.0 + (m1 * h1**2 + m2 * h2**2) / 12.0 + m1 * m2 / m * e**2
         return m, m2 * e / m, j_com
+
+    # ------------------------------------------------------------------ six-bar cell (paper Fig. 2)
+    def layer_joint_stiffness(self, cell_length: float) -> tuple[float, float]:
+        """Six-bar cell: torsion springs ``2 E1 I1 / L_c`` (passive) and ``2 E2 I2 / L_c`` (active) [N m/rad]."""
+        if self.active is None:
+            raise ValueError("the six-bar cell needs an active layer (active=None given)")
+        return (2.0 * self.passive.bending_stiffness(self.width) / cell_length,
+                2.0 * self.active.bending_stiffness(self.width) / cell_length)
+
+    def axial_spring_stiffness(self, cell_length: float) -> float:
+        """Six-bar cell: axial spring ``k1 = a_eff / L_c`` between A2 and A3 [N/m]."""
+        return self.axial_rigidity_effective / cell_length
+
+    def interface_length(self, cell_length: float) -> float:
+        """Length ``s = min(h1 + h2, L_c/10)`` of laminate lumped into each six-bar interface [m]."""
+        h = self.passive.thickness + (self.active.thickness if self.active is not None else 0.0)
+        return min(h, 0.1 * cell_length)

@@ -41,24 +41,27 @@ def rot(angle, v):
 
 # ----------------------------------------------------------------------------- one bender == BendingActuator
 
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
 @pytest.mark.parametrize("force", [(0.0, 0.0), (0.01, -0.05), (-0.02, 0.3)])
-def test_one_bender_mechanism_equals_bending_actuator_statics(force):
+def test_one_bender_mechanism_equals_bending_actuator_statics(force, cell):
     drive = PiezoDrive(800.0)
-    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, drive, cell="rigid")
+    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, drive, cell=cell)
     ref = solve_static(act, tip_force=force)
-    r = solve_static(cantilever(bender(drive=drive, n_cells=4), force))
+    r = solve_static(cantilever(bender(drive=drive, n_cells=4, cell=cell), force))
     for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
                      ("b.strain", "strain"), ("b.cell_angle_4", "cell_angle_4")):
         assert r[new][0] == pytest.approx(ref[old][0], abs=1e-9 * 0.087), new
     assert r["b.base_x"][0] == 0.0 and r["b.base_angle"][0] == 0.0
 
 
-def test_one_bender_mechanism_equals_bending_actuator_dynamics_with_hysteresis():
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_one_bender_mechanism_equals_bending_actuator_dynamics_with_hysteresis(cell):
     H1, H2 = paper_strain_preisach(), paper_strain_preisach()
     program = Triangle(500.0, 1000.0, 0.05)
-    act = BendingActuator(3, 0.029, W, CFC, MFC, PiezoDrive(program, hysteresis=H1), cell="rigid")
+    act = BendingActuator(3, 0.029, W, CFC, MFC, PiezoDrive(program, hysteresis=H1), cell=cell)
     ref = simulate(act, 0.03, step=1e-3, tip_force=(0.0, -0.02))
-    r = simulate(cantilever(bender(drive=PiezoDrive(program, hysteresis=H2)), (0.0, -0.02)), 0.03, step=1e-3)
+    r = simulate(cantilever(bender(drive=PiezoDrive(program, hysteresis=H2), cell=cell), (0.0, -0.02)), 0.03,
+                 step=1e-3)
     np.testing.assert_array_equal(r["time"], ref["time"])
     for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
                      ("b.strain", "strain"), ("b.voltage", "voltage")):
@@ -89,12 +92,13 @@ def test_left_active_side_mirrors_the_bender():
 
 # ----------------------------------------------------------------------------- two benders == one
 
-def test_two_benders_welded_end_to_end_equal_one_of_the_summed_length():
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_two_benders_welded_end_to_end_equal_one_of_the_summed_length(cell):
     drive = PiezoDrive(1000.0)
     lc = 0.01
-    one = cantilever(bender("one", drive=drive, n_cells=7, length=7 * lc), (0.0, -0.03))
-    a = bender("a", drive=drive, n_cells=3, length=3 * lc)
-    b = bender("b", drive=drive, n_cells=4, length=4 * lc, base=(3 * lc, 0.0))
+    one = cantilever(bender("one", drive=drive, n_cells=7, length=7 * lc, cell=cell), (0.0, -0.03))
+    a = bender("a", drive=drive, n_cells=3, length=3 * lc, cell=cell)
+    b = bender("b", drive=drive, n_cells=4, length=4 * lc, base=(3 * lc, 0.0), cell=cell)
     two = Mechanism("two").add(a, b).ground(a.base).weld(a.tip, b.base).force(b.tip, (0.0, -0.03))
     r1, r2 = solve_static(one), solve_static(two)
     for axis in ("x", "y"):
@@ -107,7 +111,9 @@ def test_two_benders_welded_end_to_end_equal_one_of_the_summed_length():
                                [r1[f"one.cell_angle_{j}"][0] for j in range(1, 8)], rtol=0, atol=1e-9)
     f1 = eigenfrequencies(one, 3)
     f2 = eigenfrequencies(two, 3)
-    np.testing.assert_allclose(f2, f1, rtol=1e-9)
+    # the same model in other coordinates (six-bar: the welded interface body's node sits elsewhere);
+    # the dense eigen solution agrees to 1e-8
+    np.testing.assert_allclose(f2, f1, rtol=1e-9 if cell == "rigid" else 1e-7)
 
 
 # ----------------------------------------------------------------------------- link welded to a tip
@@ -127,9 +133,9 @@ def test_link_welded_to_bender_tip_is_carried_rigidly():
 
 # ----------------------------------------------------------------------------- closed four-bar
 
-def four_bar(drive, n_cells=6):
+def four_bar(drive, n_cells=6, cell="rigid"):
     crank = Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=n_cells, drive=drive,
-                   angle=math.pi / 2)
+                   angle=math.pi / 2, cell=cell)
     coupler = Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
     rocker = Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
     m = Mechanism("four_bar").add(crank, coupler, rocker)
@@ -153,8 +159,9 @@ def rigid_coupler_point(a_pos):
     return a_pos + 0.02 * e + 0.02 * np.array([-e[1], e[0]]), b
 
 
-def test_closed_four_bar_coupler_point_follows_rigid_loop_closure():
-    m = four_bar(PiezoDrive(Triangle(0.0, 1500.0, 0.1)))
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_closed_four_bar_coupler_point_follows_rigid_loop_closure(cell):
+    m = four_bar(PiezoDrive(Triangle(0.0, 1500.0, 0.1)), cell=cell)
     r = simulate(m, 0.05, step=1e-3)
     assert r.info["accepted_steps"] == 50
     for i in range(0, r.n_rows, 7):

@@ -1,4 +1,7 @@
-"""Adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem`` (rigid cells).
+"""Adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
+
+Six-bar benders are chains between real interface bodies (:mod:`exudyn_atcm.mbs.six_bar`);
+the rest of this description is about rigid cells.
 
 Model (planar, SI units):
 
@@ -31,7 +34,6 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .._mbs_builder import _NOVIS
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.connections import Pin, Slider
@@ -39,7 +41,13 @@ from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
 from .layout import part_of, rigid_groups
+from .items import NOVIS as _NOVIS
+from .items import add_body as _add_body
+from .items import local_point
+from .items import position_marker as _marker_position
+from .items import rotation_marker as _rot_marker
 from .model import Body, Element, EndReadout, Hinge, LoadRecord, MechanismModel
+from .six_bar import add_six_bar_chain, six_bar_end_mass
 
 _CELL_COLOR = [0.2, 0.45, 0.8, 1.0]
 _LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
@@ -47,29 +55,6 @@ _FLEX_COLOR = [0.85, 0.55, 0.15, 1.0]
 
 
 # ---------------------------------------------------------------------------- building
-
-def _marker_position(mbs, body: Body, local) -> int:
-    return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0]))
-
-
-def _rot_marker(mbs, body: Body, ground_coordinate: int) -> int:
-    if body.node is None:
-        return ground_coordinate
-    if body.rot_marker is None:
-        body.rot_marker = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=body.node, coordinate=2))
-    return body.rot_marker
-
-
-def _add_body(mbs, key, position, angle, mass, inertia_com, com_local, graphics) -> Body:
-    inertia = inertia_com + mass * (com_local[0] ** 2 + com_local[1] ** 2)
-    node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[float(position[0]), float(position[1]), float(angle)],
-                                          visualization=_NOVIS))
-    item = mbs.AddObject(ii.ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=inertia,
-                                              centerOfMass=[float(com_local[0]), float(com_local[1])],
-                                              visualization={'show': True, 'graphicsDataUserFunction': 0,
-                                                             'graphicsData': graphics}))
-    return Body(key, node, item, np.array([position[0], position[1], angle], dtype=float))
-
 
 class _Builder:
     def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False) -> None:
@@ -98,18 +83,18 @@ class _Builder:
     def build(self) -> MechanismModel:
         mbs, mech, model = self.mbs, self.mech, self.model
         for bender in mech.benders:
-            if bender.cell != "rigid":
+            if bender.cell == "six-bar" and bender.active is None:
                 raise MechanismError(
-                    f"bender {bender.name!r}: cell={bender.cell!r} is not available inside a Mechanism yet; use "
-                    "cell='rigid' (same bending stiffness and free curvature, no shear mode), or a lone "
-                    "BendingActuator for the six-bar cell")
+                    f"bender {bender.name!r}: the six-bar cell models two layers; a passive strip (active=None) "
+                    "needs cell='rigid'")
         if self.ground_item is None:
             self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
                                                                             'graphicsData': []}))
         gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
         self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
-        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies)
+        six_bar = {b.name for b in mech.benders if b.cell == "six-bar"}
+        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar)
         self._group_bodies()
         for bender in mech.benders:
             self._bender_cells(bender)
@@ -144,10 +129,13 @@ class _Builder:
                 continue
             if g.kind == "virtual":
                 continue
+            if len(g.parts) == 1 and g.interfaces:
+                model.bodies[key] = self._interface_body(key, g.parts[0])
+                continue
             masses, graphics = [], []
             for part in g.parts:
-                # an interface body's own mass only where nothing else carries the bender end
-                if g.kind == "body" and part in g.interfaces:
+                # a rigid-cell end's interface mass only where nothing else carries the bender end
+                if g.kind == "body" and part in g.interfaces and not self._is_six_bar(part):
                     continue
                 masses += self._part_masses(part)
                 graphics += self._part_graphics(part)
@@ -167,14 +155,35 @@ class _Builder:
             return [(comp.mass, comp.inertia, np.array(comp.center_of_mass))]
         if isinstance(comp, Flexure) and comp.model == "prbm":
             return [comp.segment_masses()[0 if end == "base" else 1]]
-        # a bender end's interface body: the laminate over s = min(h1 + h2, L_c/10)
         bender = comp if isinstance(comp, Bender) else comp.as_bender()
+        if bender.cell == "six-bar":
+            m, j, center, _ = six_bar_end_mass(bender, end)
+            return [(m, j, center)]
+        # a rigid-cell end's interface body: the laminate over s = min(h1 + h2, L_c/10)
         lam = bender.laminate
         lc = float(bender.cell_lengths[0 if end == "base" else -1])
         h = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
-        s = min(h, 0.1 * lc)
+        s = lam.interface_length(lc)
         m = lam.mass_per_length * s
         return [(m, m * (s**2 + h**2) / 12.0, np.array(bender.points[end]))]
+
+    def _is_six_bar(self, part: str) -> bool:
+        comp = self.mech.components[part.partition("#")[0]]
+        return isinstance(comp, Bender) and comp.cell == "six-bar"
+
+    def _interface_body(self, key: str, part: str) -> Body:
+        """A bender end's own interface body: node at the end point, the bender's reference angle."""
+        name, _, end = part.partition("#")
+        comp = self.mech.components[name]
+        bender = comp if isinstance(comp, Bender) else comp.as_bender()
+        point = bender.points[end]
+        if bender.cell == "six-bar":
+            m, j, _, offset = six_bar_end_mass(bender, end)
+            com = (0.0, -bender.curvature_sign * offset)
+        else:
+            (m, j, _), = self._part_masses(part)
+            com = (0.0, 0.0)
+        return _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
 
     def _part_graphics(self, part: str) -> list:
         if part == GROUND:
@@ -206,6 +215,10 @@ class _Builder:
     # ---------------------------------------------------------------- benders
     def _bender_cells(self, bender: Bender) -> None:
         mbs, model = self.mbs, self.model
+        if bender.cell == "six-bar":
+            ends = [model.bodies[self.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
+            model.cells[bender.name] = add_six_bar_chain(mbs, model, bender, *ends, self.gcoord)
+            return
         lam = bender.laminate
         ei, c, side = lam.bending_stiffness, lam.curvature_per_strain, bender.curvature_sign
         beta = bender.stiffness_damping_factor
@@ -287,17 +300,10 @@ class _Builder:
                     model.group_of_component[part] = g.key
                 if rigid or g.kind != "virtual":
                     body = model.bodies[g.key]
-                    model.anchors[str(ref)] = (g.key, self._local(body, pos))
+                    model.anchors[str(ref)] = (g.key, local_point(body, pos))
                 else:
                     _, cell, local = self.end_element(comp.name, pname)
                     model.anchors[str(ref)] = (cell, np.array(local, dtype=float))
-
-    @staticmethod
-    def _local(body: Body, pos) -> np.ndarray:
-        x, y, a = body.reference
-        dx, dy = pos[0] - x, pos[1] - y
-        c, s = math.cos(a), math.sin(a)
-        return np.array([c * dx + s * dy, -s * dx + c * dy])
 
     # ---------------------------------------------------------------- hinges at bender ends
     def _end_hinges(self) -> None:
@@ -306,8 +312,11 @@ class _Builder:
             for end in ("base", "tip"):
                 part = f"{bender.name}#{end}"
                 g = self.groups[self.group_of[part]]
-                el, cell, _ = self.end_element(bender.name, end)
                 label = f"{bender.name}.{end}"
+                if bender.cell == "six-bar":  # the chain ends on the group's body itself
+                    model.ends[label] = EndReadout("body", body=g.key)
+                    continue
+                el, cell, _ = self.end_element(bender.name, end)
                 if g.kind != "virtual":
                     a, b = (cell, g.key) if end == "tip" else (g.key, cell)
                     self._hinge_at(a, b, [el], bender.points[end])
@@ -325,7 +334,7 @@ class _Builder:
         model = self.model
         els: list[Element] = []
         # A side
-        if "#" in side_a:
+        if self._virtual(side_a):
             name, end = side_a.split("#")
             el, cell_a, _ = self.end_element(name, end)
             # tip on the A side: the interface turns +theta from the cell; base: -theta
@@ -335,7 +344,7 @@ class _Builder:
             a_key, a_node = side_a, None
         if link is not None:
             els.append(link)
-        if "#" in side_b:
+        if self._virtual(side_b):
             name, end = side_b.split("#")
             el, cell_b, _ = self.end_element(name, end)
             els.append(el if end == "base" else _flipped(el))
@@ -349,11 +358,15 @@ class _Builder:
 
     def _hinge_at(self, a: str, b: str, elements: list[Element], position) -> int:
         body_a, body_b = self.model.bodies[a], self.model.bodies[b]
-        self._revolute(body_a, self._local(body_a, position), body_b, self._local(body_b, position))
+        self._revolute(body_a, local_point(body_a, position), body_b, local_point(body_b, position))
         self.model.hinges.append(Hinge(a, b, elements))
         return len(self.model.hinges) - 1
 
     # ---------------------------------------------------------------- joints
+    def _virtual(self, side: str) -> bool:
+        """True if ``side`` is a bender-end part of a virtual group (not a body key)."""
+        return side in self.group_of and self.groups[self.group_of[side]].kind == "virtual"
+
     def _side(self, ref: PointRef | None) -> str:
         """Group key, or the interface part if ``ref`` is a virtual bender end."""
         part = part_of(self.mech, ref)
@@ -374,7 +387,7 @@ class _Builder:
         body_a, body_b = model.bodies[a], model.bodies[b]
         pos = self.mech.position(j.p)
         pos_q = pos if j.q is None else self.mech.position(j.q)
-        la, lb = self._local(body_a, pos), self._local(body_b, pos_q)
+        la, lb = local_point(body_a, pos), local_point(body_b, pos_q)
         ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
         cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
         ax, ay = j.axis

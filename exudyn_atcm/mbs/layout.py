@@ -60,11 +60,13 @@ class Group:
     interfaces: list[str] = field(default_factory=list)  # bender-end interface parts
 
 
-def rigid_groups(mech: Mechanism, free_end_bodies: bool = False) -> tuple[dict[str, Group], dict[str, str]]:
+def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
+                 six_bar: frozenset[str] | set[str] = frozenset()) -> tuple[dict[str, Group], dict[str, str]]:
     """Groups by key and the group key of every part.
 
     ``free_end_bodies=True`` gives free bender ends an interface body too (so that a user's
-    joints can attach to them; see :func:`exudyn_atcm.add_to`).
+    joints can attach to them; see :func:`exudyn_atcm.add_to`).  The ends of the benders named
+    in ``six_bar`` are real interface bodies of the six-bar chain, never virtual.
     """
     parts = [GROUND]
     for comp in mech.components.values():
@@ -106,7 +108,7 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False) -> tuple[dict[s
         others = [p for p in g.parts if not is_interface(mech, p)]
         if GROUND in g.parts:
             g.kind = "ground"
-        elif others:
+        elif others or any(p.partition("#")[0] in six_bar for p in ifaces):
             g.kind = "body"
         elif (len(ifaces) == 1 and not g.joints and not free_end_bodies) or \
                 (len(ifaces) == 1 and len(g.joints) == 1 and isinstance(g.joints[0], Pin)) or \

@@ -88,6 +88,7 @@ class MechanismModel:
     sources: list[Any] = field(default_factory=list)          # unique PiezoDrive objects
     drive_source: dict[str, int] = field(default_factory=dict)  # drive name -> source index
     torque_loads: list[tuple[int, np.ndarray]] = field(default_factory=list)
+    motor_offsets: list[tuple[int, float, int]] = field(default_factory=list)  # six-bar: (item, L_c, source)
     loads: list[LoadRecord] = field(default_factory=list)
     spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
     ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
@@ -109,6 +110,8 @@ class MechanismModel:
         self.strains = np.asarray(strains, dtype=float)
         for load, coef in self.torque_loads:
             self.mbs.SetLoadParameter(load, "loadVector", [0.0, 0.0, float(coef @ self.strains)])
+        for item, factor, source in self.motor_offsets:
+            self.mbs.SetObjectParameter(item, "offset", factor * float(self.strains[source]))
         self._write_loads()
 
     def set_path(self, start: np.ndarray, end: np.ndarray, ramp_loads: bool) -> None:

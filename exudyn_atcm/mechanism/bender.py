@@ -84,8 +84,8 @@ class Bender:
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
     cell : {"rigid", "six-bar"}, optional
-        Cell model (see :class:`~exudyn_atcm.BendingActuator`); mechanisms are built with
-        rigid cells (``"six-bar"`` is refused by the mechanism builder).
+        Cell model (see :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; the
+        six-bar cell needs an active layer.
     stiffness : {"composite", "paper"}, optional
         Layer coupling, as for :class:`~exudyn_atcm.BendingActuator`.
     active_side : {"right", "left"}, optional
