@@ -118,10 +118,11 @@ def test_step_hooks_keep_an_earlier_user_function_and_run_all():
         add_pre_step(mbs, 3)
 
 
-def test_lone_bender_markers_bodies_and_graphics():
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_lone_bender_markers_bodies_and_graphics(cell):
     SC, mbs = user_system()
     b = atcm.Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4,
-                    drive=atcm.PiezoDrive(0.0))
+                    drive=atcm.PiezoDrive(0.0), cell=cell)
     h = atcm.add_to(mbs, b)
     tip_body = h.body(b.tip)
     # the free tip has its own interface body at (0.03, 0)

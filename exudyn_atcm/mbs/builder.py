@@ -22,13 +22,13 @@ Model (planar, SI units):
   whose net torque is not identically zero.  For a uniform cantilever that is one torque on
   the last cell, exactly as in :mod:`exudyn_atcm._mbs_builder`.
 
-This module and :mod:`exudyn_atcm._mbs_builder` are the package's only Exudyn callers.
+With :mod:`exudyn_atcm._mbs_builder`, the :mod:`exudyn_atcm.mbs` package holds the package's
+only Exudyn calls.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 
 import exudyn as exu
 import numpy as np
@@ -46,7 +46,8 @@ from .items import add_body as _add_body
 from .items import local_point
 from .items import position_marker as _marker_position
 from .items import rotation_marker as _rot_marker
-from .model import Body, Element, EndReadout, Hinge, LoadRecord, MechanismModel
+from .model import Body, Element, EndReadout, Hinge, MechanismModel
+from .loads import add_loads
 from .six_bar import add_six_bar_chain, six_bar_end_mass
 
 _CELL_COLOR = [0.2, 0.45, 0.8, 1.0]
@@ -107,7 +108,7 @@ class _Builder:
                 self._slider(j)
         self._flexure_pivots()
         self._realise_hinges()
-        self._loads()
+        add_loads(mbs, mech, model)
         return model
 
     def _flexure_pivots(self) -> None:
@@ -444,71 +445,8 @@ class _Builder:
             load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
             model.torque_loads.append((load, coef))
 
-    # ---------------------------------------------------------------- external loads
-    def _loads(self) -> None:
-        mbs, mech, model = self.mbs, self.mech, self.model
-        for f in mech.forces:
-            key, local = model.anchors[str(f.point)]
-            body = model.bodies[key]
-            if body.node is None:
-                warnings.warn(f"force {f.name!r} acts at {f.point}, which is welded to the ground: it has no effect",
-                              RuntimeWarning, stacklevel=4)
-                continue
-            if f.follower:  # a body-fixed load needs the marker's orientation
-                marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item,
-                                                          localPosition=[float(local[0]), float(local[1]), 0.0]))
-            else:
-                marker = _marker_position(mbs, body, local)
-            load = mbs.AddLoad(ii.LoadForceVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0], bodyFixed=f.follower))
-            end = model.ends.get(str(f.point))
-            free = end if (f.follower and end is not None and end.kind == "free") else None
-            model.loads.append(LoadRecord(load, "force", f.force, f.follower, float(body.reference[2]), free))
-        for t in mech.torques:
-            key = self.group_of[t.component]
-            body = model.bodies[key]
-            if body.node is None:
-                warnings.warn(f"torque {t.name!r} acts on {t.component!r}, which is welded to the ground: no effect",
-                              RuntimeWarning, stacklevel=4)
-                continue
-            marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
-            load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
-            model.loads.append(LoadRecord(load, "torque", t.torque))
-        for s in mech.springs:
-            ka, la = model.anchors[str(s.p)]
-            kb, lb = model.anchors[str(s.q)]
-            length = float(np.linalg.norm(mech.position(s.p) - mech.position(s.q)))
-            rest = length if s.rest_length is None else s.rest_length
-            ma = _marker_position(mbs, model.bodies[ka], la)
-            mb = _marker_position(mbs, model.bodies[kb], lb)
-            model.spring_items[s.name] = mbs.AddObject(ii.ObjectConnectorSpringDamper(
-                markerNumbers=[ma, mb], referenceLength=rest, stiffness=s.stiffness, damping=s.damping,
-                visualization={'show': True, 'drawSize': -1.0, 'color': [0.1, 0.6, 0.1, 1.0]}))
-        for s in mech.stops:
-            key, local = model.anchors[str(s.point)]
-            ground_marker = _marker_position(mbs, model.bodies[GROUND], s.position)
-            mp = _marker_position(mbs, model.bodies[key], local)
-            model.spring_items[s.name] = mbs.AddObject(ii.ObjectConnectorCartesianSpringDamper(
-                markerNumbers=[ground_marker, mp], stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0],
-                springForceUserFunction=_stop_force(s.normal, s.stiffness, s.damping), visualization=_NOVIS))
-
-
 def _flipped(el: Element) -> Element:
     return Element(el.stiffness, el.damping, -el.theta, -el.moment)
-
-
-def _stop_force(normal, stiffness: float, damping: float):
-    nx, ny = float(normal[0]), float(normal[1])
-
-    def force(mbs, t, item, displacement, velocity, k, d, offset):
-        gap = displacement[0] * nx + displacement[1] * ny
-        if gap >= 0.0:
-            return [0.0, 0.0, 0.0]
-        rate = velocity[0] * nx + velocity[1] * ny
-        # connector force convention: f acts on marker 1 as -f; push the point out along the normal
-        magnitude = stiffness * gap + damping * rate
-        return [magnitude * nx, magnitude * ny, 0.0]
-
-    return force
 
 
 def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,

@@ -16,12 +16,17 @@ from __future__ import annotations
 
 import math
 
+import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
 from ..mechanism.bender import Bender
 from .items import NOVIS, add_body, local_point, position_marker, rotation_marker
 from .model import Body, MechanismModel
+
+
+PASSIVE_COLOR = [0.2, 0.45, 0.8, 1.0]
+ACTIVE_COLOR = [0.85, 0.3, 0.2, 1.0]
 
 
 def six_bar_end_mass(bender: Bender, end: str) -> tuple[float, float, np.ndarray, float]:
@@ -85,7 +90,8 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         keep = 1.0 - lam.interface_length(lc) / lc
         m1 = lam.passive.mass_per_length(w) * lc * keep
         key = f"{bender.name}/cell{j + 1}"
-        bar = add_body(mbs, key, x0 + 0.5 * lc * d, angle, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0), [])
+        bar = add_body(mbs, key, x0 + 0.5 * lc * d, angle, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0),
+                       [exu.graphics.Brick(size=[lc, h1, 0.2 * lc], color=PASSIVE_COLOR)])
         model.bodies[key] = bar
         bars.append(key)
         ma = lam.active.mass_per_length(w) * lc * keep / 3.0
@@ -93,7 +99,8 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         act = []
         for k in range(3):
             pos = x0 + (k + 0.5) * la * d - side * e * n_hat
-            body = add_body(mbs, f"{key}/A{k + 1}", pos, angle, ma, ma * (la**2 + h2**2) / 12.0, (0.0, 0.0), [])
+            body = add_body(mbs, f"{key}/A{k + 1}", pos, angle, ma, ma * (la**2 + h2**2) / 12.0, (0.0, 0.0),
+                            [exu.graphics.Brick(size=[la, h2, 0.2 * lc], color=ACTIVE_COLOR)])
             act.append(body)
         if j < len(lengths) - 1:
             # an inner interface: half the lumped laminate of each neighbouring cell
