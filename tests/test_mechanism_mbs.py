@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import pathlib
 import runpy
+import warnings
 
 import exudyn as exu
 import numpy as np
@@ -216,3 +217,19 @@ def test_first_frequency_tends_to_the_beam():
     f1 = atcm.eigenfrequencies(atcm.Mechanism().add(b).ground(b.base), 1)[0]
     # Euler-Bernoulli cantilever; the 32-cell chain is 0.05 % low (discretisation error ~ 1/N^2)
     assert f1 == pytest.approx(b.laminate.first_frequency(0.087), rel=1e-3)
+
+
+def test_eigenfrequencies_warn_about_a_prestressed_equilibrium():
+    """Exudyn's eigenvalue routine leaves out the constraint forces' geometric stiffness: a six-bar
+    chain bent by its motors carries internal forces (~50 N), so the answer is flagged."""
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4,
+                    drive=atcm.PiezoDrive(0.0), cell="six-bar")
+    m = atcm.Mechanism().add(b).ground(b.base)
+    with pytest.warns(RuntimeWarning, match="internal forces up to .* N"):
+        atcm.eigenfrequencies(m, 2, voltage=1500.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        atcm.eigenfrequencies(m, 2)  # undeformed: no internal forces
+        rigid = atcm.Bender("r", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4,
+                            drive=atcm.PiezoDrive(0.0))
+        atcm.eigenfrequencies(atcm.Mechanism().add(rigid).ground(rigid.base), 2, voltage=1500.0)

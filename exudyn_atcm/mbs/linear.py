@@ -15,8 +15,18 @@ def eigenfrequencies(model: MechanismModel, n: int) -> np.ndarray:
 
     Exudyn's ``ComputeODE2Eigenvalues`` with the constraints kept (its null-space
     projection).  The drive torques and loads act as constant loads during the linearisation.
+    It leaves out the geometric stiffness of the joints' internal forces (the Lagrange
+    multipliers times the constraints' second derivatives): exact where the joints carry no
+    force (see :func:`constraint_forces`).  Every mechanism eigenvalue computation of the
+    package goes through this function, so a solver that adds that term replaces it here.
     """
     return runs.eigenfrequencies(model, n)
+
+
+def constraint_forces(model: MechanismModel) -> float:
+    """Largest Lagrange multiplier of the current state [N or N m]: the joints' internal forces."""
+    values = np.asarray(model.mbs.systemData.GetAECoordinates(), dtype=float)
+    return float(np.max(np.abs(values))) if values.size else 0.0
 
 
 @dataclass(frozen=True)
@@ -52,4 +62,4 @@ def degrees_of_freedom(model: MechanismModel) -> DofReport:
                      int(info["redundantConstraints"]))
 
 
-__all__ = ["eigenfrequencies", "DofReport", "degrees_of_freedom"]
+__all__ = ["eigenfrequencies", "constraint_forces", "DofReport", "degrees_of_freedom"]
