@@ -24,6 +24,7 @@ from ._checks import finite_array, finite_float, positive_float, positive_int
 from .mbs import builder as mb
 from .mbs import linear
 from .mbs.recording import Rows
+from .actuator import BendingActuator
 from .mechanism.assembly import Mechanism
 from .mechanism.bender import Bender
 from .mechanism.flexure import Flexure
@@ -169,28 +170,64 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
 
 
-def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
-    """Quasi-static path of a mechanism over a voltage sequence, following the hysteresis.
+def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float] = (0.0, 0.0)) -> Mechanism:
+    """A :class:`BendingActuator` as a one-bender mechanism named ``"actuator"``: base welded to the
+    ground at the origin, along +x, the dead ``tip_force`` [N] at the tip (the same model)."""
+    bender = Bender("actuator", width=actuator.width, passive=actuator.passive, active=actuator.active,
+                    length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive, cell=actuator.cell,
+                    stiffness=actuator.stiffness, damping=actuator.damping)
+    mech = Mechanism("actuator").add(bender).ground(bender.base)
+    fx = finite_float("tip_force[0]", tip_force[0])
+    fy = finite_float("tip_force[1]", tip_force[1])
+    if (fx, fy) != (0.0, 0.0):
+        mech.force(bender.tip, (fx, fy))
+    return mech
+
+
+def _actuator_result(actuator: BendingActuator, r: Result) -> Result:
+    """The columns of :func:`exudyn_atcm.simulate` for an actuator from a one-bender mechanism's result."""
+    series = {"time": r["time"], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
+              "stroke": r["actuator.strain"] * actuator.cell_length, "tip_x": r["actuator.tip_x"],
+              "tip_y": r["actuator.tip_y"], "tip_angle": r["actuator.tip_angle"]}
+    units = {"time": "s", "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m", "tip_angle": "rad"}
+    for j in range(actuator.n_cells):
+        series[f"cell_angle_{j + 1}"] = r[f"actuator.cell_angle_{j + 1}"]
+        units[f"cell_angle_{j + 1}"] = "rad"
+    return Result(series, units, parameters=actuator.parameters(), info=r.info)
+
+
+def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
+                 tip_force: tuple[float, float] = (0.0, 0.0)) -> Result:
+    """Quasi-static path over a voltage sequence, following the hysteresis.
 
     Each point continues from the previous equilibrium and the previous hysteresis memory
     (the operators are reset before the first point; between points the voltage is taken to
-    change monotonically, so each point commits its voltage once).  No dynamics.
+    change monotonically, so each point commits its voltage once).  No dynamics: for path and
+    function generation.
 
     Parameters
     ----------
-    mech : Mechanism
-        The mechanism with its loads (held constant along the sweep).
+    mech : Mechanism or BendingActuator
+        The mechanism with its loads (held constant along the sweep), or an actuator.
     voltages : sequence of float, or mapping of drive name to sequence
         Voltages [V] of all drives at each point, or per drive (equal lengths; drives not
         named follow their program at t = 0 throughout).
+    tip_force : (float, float), optional
+        Actuator only: dead tip load [N], constant along the sweep.
 
     Returns
     -------
     Result
-        One row per point; ``time [s]`` holds the point's index (0, 1, 2, ...).
+        One row per point; ``time [s]`` holds the point's index (0, 1, 2, ...).  The columns
+        of :func:`exudyn_atcm.simulate` for the mechanism, or for the actuator.
     """
+    if isinstance(mech, BendingActuator):
+        return _actuator_result(mech, static_sweep(actuator_mechanism(mech, tip_force), voltages))
     if not isinstance(mech, Mechanism):
-        raise ValueError(f"static_sweep takes a Mechanism, got {mech!r}")
+        raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {mech!r}")
+    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
+        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
+                         f"(Fx, Fy)), got tip_force={tip_force!r}")
     model = mb.build(mech)
     drives = mech.drives
     if isinstance(voltages, Mapping):

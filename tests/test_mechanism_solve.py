@@ -270,3 +270,17 @@ def test_stiff_pin_tends_to_the_weld():
     jump = soft["lever.angle"][0] - soft["b.tip_angle"][0]
     # Newton stops at 1e-8 N m of residual: 1e-6 rad on this 0.01 N m/rad pin
     assert jump == pytest.approx(-moment / 0.01, abs=2e-6)
+
+
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_static_sweep_of_a_bending_actuator_keeps_its_columns(cell):
+    """The actuator as a one-bender mechanism; ascending points equal solve_static from the reset state."""
+    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0, hysteresis=paper_strain_preisach()), cell=cell)
+    volts = [0.0, 750.0, 1500.0, 750.0]
+    r = static_sweep(act, volts, tip_force=(0.0, -0.01))
+    assert r.names[:7] == ["time", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
+    np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
+    single = solve_static(act, voltage=1500.0, tip_force=(0.0, -0.01))
+    assert r["tip_y"][2] == pytest.approx(single["tip_y"][0], rel=1e-7)
+    np.testing.assert_allclose(r["stroke"], r["strain"] * 0.087 / 4, rtol=1e-15)
+    assert r["tip_y"][3] > r["tip_y"][1]  # descending branch above the ascending one
