@@ -288,9 +288,15 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     rows = Rows(model)
     report = {"next": 0.0}
 
+    user_errors: list[ValueError] = []
+
     def pre_step(t: float) -> None:
         model.time = t
-        model.set_strains(np.array([s.trial(t) for s in sources]))
+        try:
+            model.set_strains(np.array([s.trial(t) for s in sources]))
+        except ValueError as exc:  # a voltage program or load function gave nonsense: report it as such
+            user_errors.append(exc)
+            raise
 
     def post_step(t: float) -> None:
         committed = [s.commit(t) for s in sources]
@@ -302,6 +308,8 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     try:
         stats = runs.run_dynamic(model, sim_settings, pre_step, post_step)
     except runs.ExudynFailure as exc:
+        if user_errors:
+            raise user_errors[0] from None
         raise SolverError(
             f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
             f"t = {rows.last_time():.6g} s, requested step {step:g} s): generalized-alpha with Newton (absolute "

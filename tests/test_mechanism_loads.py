@@ -144,3 +144,14 @@ def test_a_passive_six_bar_strip_is_refused_with_the_alternative():
     with pytest.raises(MechanismError, match=r"six-bar cell models two layers.*needs cell='rigid'"):
         solve_static(Mechanism().add(b).ground(b.base))
     assert issubclass(MechanismError, ValueError) and atcm.MechanismError is MechanismError
+
+
+def test_a_load_function_returning_nonsense_is_reported_with_its_name_and_time():
+    m = Mechanism().add(block()).ground("block.C", joint="slider", axis=(1.0, 0.0), stiffness=1e4)
+    m.force("block.C", lambda t: (float("nan") if t > 0.005 else 0.0, 0.0), name="push")
+    with pytest.raises(ValueError, match=r"force 'push' gave \(nan, 0.0\) at t = 0.006"):
+        simulate(m, 0.01, step=1e-3)
+    m2 = Mechanism().add(block()).ground("block.C", joint="slider", axis=(1.0, 0.0), stiffness=1e4)
+    m2.force("block.C", lambda t: 1.0)
+    with pytest.raises(ValueError, match="must give a pair"):
+        solve_static(m2)

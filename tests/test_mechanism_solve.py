@@ -284,3 +284,9 @@ def test_static_sweep_of_a_bending_actuator_keeps_its_columns(cell):
     assert r["tip_y"][2] == pytest.approx(single["tip_y"][0], rel=1e-7)
     np.testing.assert_allclose(r["stroke"], r["strain"] * 0.087 / 4, rtol=1e-15)
     assert r["tip_y"][3] > r["tip_y"][1]  # descending branch above the ascending one
+
+
+def test_actuator_plots_refuse_a_mechanism_result_with_the_alternative(tmp_path):
+    r = solve_static(cantilever(bender()))
+    with pytest.raises(ValueError, match="for a mechanism use exudyn_atcm.mechanism_plots.plot_mechanism"):
+        r.plot(tmp_path)

@@ -35,7 +35,7 @@ def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
         load = mbs.AddLoad(ii.LoadForceVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0], bodyFixed=f.follower))
         end = model.ends.get(str(f.point))
         free = end if (f.follower and end is not None and end.kind == "free") else None
-        model.loads.append(LoadRecord(load, "force", f.force, f.follower, float(body.reference[2]), free))
+        model.loads.append(LoadRecord(load, "force", f.force, f.follower, float(body.reference[2]), free, f.name))
     for t in mech.torques:
         key = model.group_of_component[t.component]
         body = model.bodies[key]
@@ -45,7 +45,7 @@ def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
             continue
         marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
         load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
-        model.loads.append(LoadRecord(load, "torque", t.torque))
+        model.loads.append(LoadRecord(load, "torque", t.torque, name=t.name))
     for s in mech.springs:
         ka, la = model.anchors[str(s.p)]
         kb, lb = model.anchors[str(s.q)]

@@ -73,6 +73,21 @@ class LoadRecord:
     follower: bool = False
     rotation: float = 0.0          # follower: reference angle of the carrying body
     free_end: EndReadout | None = None  # follower on a free interface: turns with the interface
+    name: str = ""
+
+    def at(self, t: float) -> tuple[float, ...]:
+        """The load's value at time ``t`` [s]: ``(Fx, Fy)`` [N] or ``(T,)`` [N m], checked finite."""
+        value = self.value(t) if callable(self.value) else self.value
+        try:
+            out = (float(value),) if self.kind == "torque" else (float(value[0]), float(value[1]))
+            if len(out) == 2 and len(value) != 2:
+                raise TypeError
+        except (TypeError, ValueError, IndexError):
+            out = None
+        if out is None or not all(math.isfinite(v) for v in out):
+            what = "a finite torque [N m]" if self.kind == "torque" else "a pair (Fx, Fy) of finite forces [N]"
+            raise ValueError(f"{self.kind} {self.name!r} gave {value!r} at t = {t!r} s; it must give {what}")
+        return out
 
 
 @dataclass
@@ -139,11 +154,11 @@ class MechanismModel:
     def _write_loads(self) -> None:
         f = self.load_factor
         for rec in self.loads:
-            value = rec.value(self.time) if callable(rec.value) else rec.value
+            value = rec.at(self.time)
             if rec.kind == "torque":
-                self.mbs.SetLoadParameter(rec.load, "loadVector", [0.0, 0.0, f * float(value)])
+                self.mbs.SetLoadParameter(rec.load, "loadVector", [0.0, 0.0, f * value[0]])
                 continue
-            fx, fy = float(value[0]) * f, float(value[1]) * f
+            fx, fy = value[0] * f, value[1] * f
             if rec.follower:
                 angle = -rec.rotation
                 if rec.free_end is not None and self.strains is not None:
