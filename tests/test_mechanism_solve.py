@@ -14,6 +14,7 @@ import pytest
 
 from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, PiezoDrive, Segment, eigenfrequencies, simulate,
                          solve_static, static_sweep)
+from exudyn_atcm import read_csv as atcm_read_csv
 from exudyn_atcm.parameter_sets import paper_strain_preisach
 from exudyn_atcm.signals import Triangle
 
@@ -290,3 +291,14 @@ def test_actuator_plots_refuse_a_mechanism_result_with_the_alternative(tmp_path)
     r = solve_static(cantilever(bender()))
     with pytest.raises(ValueError, match="for a mechanism use exudyn_atcm.mechanism_plots.plot_mechanism"):
         r.plot(tmp_path)
+
+
+def test_mechanism_result_round_trips_through_csv(tmp_path):
+    r = simulate(four_bar(PiezoDrive(Triangle(750.0, 750.0, 0.1))), 0.005, step=1e-3)
+    path = tmp_path / "four_bar.csv"
+    r.to_csv(path)
+    back = atcm_read_csv(path)
+    assert back.names == r.names and back.unit("coupler.P_x") == "m" and back.unit("crank.voltage") == "V"
+    for name in r.names:
+        np.testing.assert_array_equal(back[name], r[name])
+    assert back.parameters["crank.segment_1.n_cells"] in (6, "6")
