@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment
+from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment, solve_static
 from exudyn_atcm.actuator import BendingActuator
 from exudyn_atcm.parameter_sets import paper_strain_preisach
 from exudyn_atcm.mechanism import PointRef
@@ -212,3 +212,11 @@ def test_prbm_flexure_numbers():
     small = Flexure("p", base=(0, 0), tip=(0.01, 0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9,
                     density=1550.0, gamma=0.5, k_theta=2.0)
     assert small.torsion_stiffness == pytest.approx(ei / 0.01, rel=1e-14)
+
+
+def test_joint_inside_one_rigid_group_is_refused():
+    a = Link("a", {"P": (0.0, 0.0), "Q": (0.01, 0.0)}, mass=1e-3, inertia=1e-7)
+    b = Link("b", {"P": (0.0, 0.0), "Q": (0.01, 0.0)}, mass=1e-3, inertia=1e-7)
+    m = Mechanism().add(a, b).ground("a.P").weld("a.Q", "b.Q").pin("a.P", "b.P")
+    with pytest.raises(MechanismError, match=r"pin\(a.P, b.P\) joins two points of one rigid group .*a, b, ground"):
+        solve_static(m)

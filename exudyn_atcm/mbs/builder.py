@@ -36,7 +36,7 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
-from ..mechanism.connections import Pin, Slider
+from ..mechanism.connections import Pin, Slider, joint_label
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
@@ -374,10 +374,18 @@ class _Builder:
         g = self.groups[self.group_of[part]]
         return part if g.kind == "virtual" else g.key
 
+    def _movable(self, j, side_a: str, side_b: str) -> None:
+        """Refuse a joint between two points of one rigid group (welded together): it could not move."""
+        if side_a == side_b:
+            group = self.groups[self.group_of[side_a]] if side_a in self.group_of else self.groups[side_a]
+            parts = ", ".join(sorted(p.replace("#", ".") for p in group.parts))
+            raise MechanismError(
+                f"{joint_label(j)} joins two points of one rigid group (welded together: {parts}); it cannot "
+                "move. Remove the joint or one of the welds")
+
     def _pin(self, j: Pin) -> None:
         side_a, side_b = self._side(j.p), self._side(j.q)
-        if side_a == side_b:
-            return  # both points on one rigid group: the pin is redundant
+        self._movable(j, side_a, side_b)
         k = j.stiffness
         pin_el = Element(k, j.damping, self.zeros(), self.zeros())
         self._chain(side_a, pin_el, side_b, self.mech.position(j.p))
@@ -385,6 +393,7 @@ class _Builder:
     def _slider(self, j: Slider) -> None:
         mbs, model = self.mbs, self.model
         a, b = self._side(j.p), self._side(j.q)
+        self._movable(j, a, b)
         body_a, body_b = model.bodies[a], model.bodies[b]
         pos = self.mech.position(j.p)
         pos_q = pos if j.q is None else self.mech.position(j.q)
