@@ -490,7 +490,8 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
 
 # ------------------------------------------------------------------------------ eigenfrequencies
 
-def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = None) -> np.ndarray:
+def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = None,
+                     tip_force: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
     """Lowest eigenfrequencies [Hz] of the undamped actuator about its undeformed state.
 
     The motor strokes are held at zero (motors are constraints), no tip load.
@@ -502,9 +503,11 @@ def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = No
     n : int, optional
         Number of frequencies, >= 1 (default 3).
     voltage : float or mapping, optional
-        Mechanisms only: linearise about the static equilibrium at this voltage (a number
-        for every drive or ``{drive_name: volts}``) with the mechanism's loads.  ``None``
-        (default): about the undeformed reference pose without loads.
+        Linearise about the static equilibrium at this voltage [V] (a mechanism: a number for
+        every drive or ``{drive_name: volts}``) with the loads.  ``None`` (default): about the
+        undeformed reference pose without loads (an actuator with a ``tip_force``: at 0 V).
+    tip_force : (float, float), optional
+        Actuator only: dead tip load [N] of the equilibrium.
 
     Returns
     -------
@@ -513,13 +516,17 @@ def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = No
         its bending modes; the six-bar cell's shear and axial modes lie far above.
     """
     if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
         from . import mechanism_solve  # noqa: PLC0415 - imports this module
 
         return mechanism_solve.eigenfrequencies(actuator, n, voltage)
-    if voltage is not None:
-        raise ValueError(f"voltage is available for a Mechanism; a BendingActuator is linearised about its "
-                         f"undeformed state (voltage must be None), got {voltage!r}")
     actuator = _check_actuator(actuator)
+    if voltage is not None or _check_force(tip_force) != (0.0, 0.0):
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        # the same model as a one-bender mechanism, linearised about its equilibrium
+        return mechanism_solve.eigenfrequencies(mechanism_solve.actuator_mechanism(actuator, tip_force), n,
+                                                0.0 if voltage is None else finite_float("voltage", voltage))
     n = positive_int("n", n)
     model = builder.build(actuator, (0.0, 0.0))
     freqs = builder.eigenfrequencies(model, n)
