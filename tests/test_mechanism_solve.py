@@ -302,3 +302,12 @@ def test_mechanism_result_round_trips_through_csv(tmp_path):
     for name in r.names:
         np.testing.assert_array_equal(back[name], r[name])
     assert back.parameters["crank.segment_1.n_cells"] in (6, "6")
+
+
+def test_progress_reports_simulated_time_of_a_mechanism():
+    seen = []
+    simulate(cantilever(bender(drive=PiezoDrive(Triangle(750.0, 750.0, 0.1)))), 0.01, step=1e-3,
+             progress=lambda t, t_end: seen.append((t, t_end)))
+    assert seen[0] == (0.0, 0.01) and seen[-1][0] == pytest.approx(0.01) and len(seen) == 11
+    with pytest.raises(ValueError, match="progress must be None or a callable"):
+        simulate(cantilever(bender()), 0.01, progress=3)
