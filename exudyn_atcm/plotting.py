@@ -163,6 +163,11 @@ def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[st
 
     Returns the paths written.
     """
+    if "voltage" not in result or "tip_y" not in result:
+        raise ValueError(
+            "plot_result draws the series of a BendingActuator run (voltage, tip_x, tip_y, ...); this result has "
+            f"{', '.join(list(result)[:6])}, ... - for a mechanism use exudyn_atcm.mechanism_plots.plot_mechanism"
+            "(mechanism, result, path) or plot_point_paths")
     out_dir = os.fspath(out_dir)
     make_directory(out_dir, "plot directory")
     jobs = [

@@ -24,6 +24,7 @@ from . import _mbs_builder as builder
 from ._checks import finite_float, positive_float, positive_int
 from .actuator import BendingActuator
 from .recording import RecordingSchedule, recording_schedule
+from .mechanism import Mechanism
 from .result import Result
 from .run_checks import (
     InterruptGuard,
@@ -141,6 +142,13 @@ class TableStrain:
 
 
 # ------------------------------------------------------------------------------ argument checks
+
+def _mechanism_only(tip_force: Any) -> None:
+    """A mechanism carries its loads itself (``mechanism.force``); ``tip_force`` is for a lone actuator."""
+    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
+        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
+                         f"(Fx, Fy)), got tip_force={tip_force!r}")
+
 
 def _check_actuator(actuator: Any) -> BendingActuator:
     if not isinstance(actuator, BendingActuator):
@@ -352,10 +360,13 @@ def solve_static(
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator; its drive gives the voltage-to-strain law.
-    voltage : float, optional
-        Voltage [V].  Default: the drive's voltage at ``t = 0``.  With a hysteresis
+    actuator : BendingActuator or Mechanism
+        The actuator; its drive gives the voltage-to-strain law.  A
+        :class:`~exudyn_atcm.Mechanism` is solved with its own loads (``tip_force`` must stay
+        zero) and gives the columns listed on the :doc:`/mechanisms` page.
+    voltage : float or mapping, optional
+        Voltage [V].  Default: the drive's voltage at ``t = 0``.  For a mechanism: a number
+        for every drive, or ``{drive_name: volts}``.  With a hysteresis
         operator, the voltage is reached by a monotone ramp from the operator's reset state.
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
@@ -384,6 +395,11 @@ def solve_static(
     large tip forces the iteration then converges ever more slowly and can stall.  A warning
     is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.solve_static(actuator, voltage, load_steps)
     actuator = _check_actuator(actuator)
     force = _check_force(tip_force)
     if voltage is None:
@@ -424,8 +440,10 @@ def simulate(
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator, with its drive (voltage program, optional hysteresis operator).
+    actuator : BendingActuator or Mechanism
+        The actuator, with its drive (voltage program, optional hysteresis operator), or a
+        :class:`~exudyn_atcm.Mechanism` (its own loads; ``tip_force`` must stay zero; columns
+        as listed on the :doc:`/mechanisms` page).
     t_end : float
         End time [s], > 0.
     step : float, optional
@@ -490,6 +508,11 @@ def simulate(
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     The step checks and their thresholds are described in :mod:`exudyn_atcm.run_checks`.
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.simulate(actuator, t_end, step, settings, progress)
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
@@ -614,17 +637,24 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
 
 # ------------------------------------------------------------------------------ eigenfrequencies
 
-def eigenfrequencies(actuator: BendingActuator, n: int = 3) -> np.ndarray:
+def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = None,
+                     tip_force: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
     """Lowest eigenfrequencies [Hz] of the undamped actuator about its undeformed state.
 
     The motor strokes are held at zero (motors are constraints), no tip load.
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator.
+    actuator : BendingActuator or Mechanism
+        The actuator, or a mechanism.
     n : int, optional
         Number of frequencies, >= 1 (default 3).
+    voltage : float or mapping, optional
+        Linearise about the static equilibrium at this voltage [V] (a mechanism: a number for
+        every drive or ``{drive_name: volts}``) with the loads.  ``None`` (default): about the
+        undeformed reference pose without loads (an actuator with a ``tip_force``: at 0 V).
+    tip_force : (float, float), optional
+        Actuator only: dead tip load [N] of the equilibrium.
 
     Returns
     -------
@@ -632,7 +662,18 @@ def eigenfrequencies(actuator: BendingActuator, n: int = 3) -> np.ndarray:
         The ``n`` lowest eigenfrequencies [Hz], ascending.  For a slender actuator these are
         its bending modes; the six-bar cell's shear and axial modes lie far above.
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.eigenfrequencies(actuator, n, voltage)
     actuator = _check_actuator(actuator)
+    if voltage is not None or _check_force(tip_force) != (0.0, 0.0):
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        # the same model as a one-bender mechanism, linearised about its equilibrium
+        return mechanism_solve.eigenfrequencies(mechanism_solve.actuator_mechanism(actuator, tip_force), n,
+                                                0.0 if voltage is None else finite_float("voltage", voltage))
     n = positive_int("n", n)
     model = builder.build(actuator, (0.0, 0.0))
     freqs = builder.eigenfrequencies(model, n)
