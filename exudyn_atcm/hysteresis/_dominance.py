@@ -1,13 +1,14 @@
-"""Weighted 2-D dominance sums over relay thresholds, in constant time per query.
+"""Weighted 2-D dominance sums over relay thresholds: a fixed, small work per query.
 
 For points ``(alpha[i], beta[i])`` with weights ``w[i]`` the structure answers
 
 ``K(a, b) = sum of w[i] with alpha[i] <= a and beta[i] >= b``
 
 (the Everett-type function of a discrete Preisach model, Mayergoyz 2003) for any ``a`` and
-``b`` (infinite ones included), whatever the points' layout, with one binary search per level in sorted
-thresholds and one table look-up per level: two levels below 2**22 table entries (about
-2900 points), three above.
+``b`` (infinite ones included), whatever the points' layout, with one binary search in the
+sorted ``alpha`` plus, per level, one binary search in sorted ``beta`` and one table
+look-up (``O(log n)``, no loop in Python): two levels up to 2**22 table entries (about
+16000 points), three above.
 
 Layout (a blocked table).  The points are sorted by ``alpha``, so that ``alpha <= a`` is
 the prefix of the first ``i = bisect_right(sorted alpha, a)`` points, and cut into nested
@@ -18,8 +19,8 @@ level-``t`` block's start up to that boundary with ``beta >= b``.  ``K`` is the 
 levels of one entry each, a level being skipped when ``i`` falls on its block boundary.
 
 Memory: ``(n / 2**p1 + 1)(n + 1) + n (2**p1 + 1)`` floats with two levels (``p1 ~ log2(n)/2``,
-``O(n**1.5)``: 5.8 MB at 5000 points, 46 MB at 20000), ``O(n**(4/3))`` with three
-(13 MB at 20000).  The tables are flat ``array.array('d')``: 8 bytes per entry, and
+``O(n**1.5)``: 5.9 MB at 5000 points, 46 MB at 20000), ``O(n**(4/3))`` with three
+(14 MB at 20000), plus about 32 bytes per point and level for the sorted threshold lists.  The tables are flat ``array.array('d')``: 8 bytes per entry, and
 indexing returns a Python float without numpy's per-call overhead.
 """
 

@@ -31,9 +31,9 @@ class DiscretePreisach(StaircasePreisach):
       ``max_table_entries`` cells (a Preisach grid of ``n`` relays has about ``n``): the Everett
       function tabulated on that grid, every step ``O(log n)``;
     * ``kernel == "dominance"``: otherwise (many scattered thresholds), weighted dominance
-      sums over the thresholds in a blocked table (:mod:`exudyn_atcm.hysteresis._dominance`,
-      ``O(n**1.5)`` memory, ``O(n**(4/3))`` above about 2900 relays): every step two or three
-      binary searches and table look-ups, whatever the input.
+      sums over the thresholds in a blocked table (``exudyn_atcm.hysteresis._dominance``,
+      ``O(n**1.5)`` memory, ``O(n**(4/3))`` for larger sets): every step three or four
+      binary searches and two or three table look-ups, whatever the input.
 
     Parameters
     ----------
