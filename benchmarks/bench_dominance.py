@@ -12,7 +12,9 @@ time, memory and cost per ``K`` call (the replay loop's own cost subtracted):
 * ``segment-tree``: a persistent segment tree over the ``beta`` ranks, one version per
   ``alpha`` prefix (``O(n log n)`` memory, one root look-up and an ``O(log n)`` descent);
 * ``rows``: the former fallback, a prefix-sum row per reversal point built on first use
-  (``O(n)``, vectorised) and cached.
+  (``O(n)``, vectorised) and cached;
+* ``blocked-2+rows``: ``blocked-2``, switching to a cached row for a reversal point once it
+  has served 32 calls (a cached row is one binary search and one list index).
 
 Usage: ``python benchmarks/bench_dominance.py [--steps N] [--out results/dominance.json]``
 """
@@ -131,7 +133,41 @@ def rows(alpha, beta, weights, cache_size=256):
     return k_rising, k_falling, 8 * 4 * alpha.size  # the cache grows with use: not counted
 
 
-STRUCTURES = {"blocked-2": blocked(2), "blocked-3": blocked(3), "segment-tree": segment_tree, "rows": rows}
+def blocked_with_rows(alpha, beta, weights, hits_before_row=32, cache_size=256):
+    """blocked-2, plus a cached row for a reversal point once it has served ``hits_before_row`` calls."""
+    blocked_query = DominanceSums(alpha, beta, weights, 2).query
+    row_rising, row_falling, _ = rows(alpha, beta, weights, cache_size)
+    hits_rising: dict = {}
+    hits_falling: dict = {}
+
+    def k_rising(a, b):
+        count = hits_rising.get(b, 0)
+        if count >= hits_before_row:
+            return row_rising(a, b)
+        if len(hits_rising) >= cache_size:
+            hits_rising.clear()
+        hits_rising[b] = count + 1
+        return blocked_query(a, b)
+
+    def k_falling(a, b):
+        count = hits_falling.get(a, 0)
+        if count >= hits_before_row:
+            return row_falling(a, b)
+        if len(hits_falling) >= cache_size:
+            hits_falling.clear()
+        hits_falling[a] = count + 1
+        return blocked_query(a, b)
+
+    return k_rising, k_falling, DominanceSums(alpha, beta, weights, 2).nbytes
+
+
+STRUCTURES = {
+    "blocked-2": blocked(2),
+    "blocked-3": blocked(3),
+    "segment-tree": segment_tree,
+    "rows": rows,
+    "blocked-2+rows": blocked_with_rows,
+}
 
 
 def recorded_calls(model: DiscretePreisach, u: list[float]) -> list[tuple[bool, float, float]]:
@@ -174,7 +210,7 @@ def main(argv: list[str] | None = None) -> int:
     def noop(a, b):
         return 0.0
 
-    print(f"{'relays':>7} {'structure':>13} {'build [ms]':>11} {'memory [MB]':>12} {'K smooth [µs]':>14} {'K noisy [µs]':>13}")
+    print(f"{'relays':>7} {'structure':>15} {'build [ms]':>11} {'memory [MB]':>12} {'K smooth [µs]':>14} {'K noisy [µs]':>13}")
     rows_out = []
     inputs = {kind: input_series(args.steps, noise) for kind, noise in (("smooth", 0.0), ("noisy", 5.0))}
     for n in args.sizes:
@@ -197,7 +233,7 @@ def main(argv: list[str] | None = None) -> int:
                 row[f"calls_{kind}"] = len(c)
             rows_out.append(row)
             print(
-                f"{n:>7} {name:>13} {row['build_ms']:>11.1f} {row['memory_MB']:>12.2f}"
+                f"{n:>7} {name:>15} {row['build_ms']:>11.1f} {row['memory_MB']:>12.2f}"
                 f" {row['k_smooth_us']:>14.3f} {row['k_noisy_us']:>13.3f}"
             )
     out = Path(args.out)

@@ -212,3 +212,21 @@ def test_continuous_model_is_the_limit_of_eq_12_relays(history):
     relays = relay_outputs(alpha, beta, weights, offset, history)
     dy = (PAPER.y_max - PAPER.y_min) / n
     np.testing.assert_allclose(PAPER.apply(history), relays, rtol=0, atol=(len(history) + 1) * dy)
+
+
+def test_scattered_relays_select_the_dominance_kernel_by_default():
+    """3000 random relays (a 9-million-cell Everett grid) get the dominance kernel without
+    any option, and follow the relay-by-relay simulation on an input that reverses at every
+    step (float gains: equal to the round-off of sum |w|)."""
+    rng = np.random.default_rng(21)
+    n = 3000
+    alpha = rng.uniform(-500, 1500, n)
+    beta = alpha - rng.uniform(0, 1000, n)
+    weights = rng.uniform(0, 1e-6, n)
+    model = DiscretePreisach(alpha, beta, weights, offset=-1e-4)
+    assert model.kernel == "dominance"
+    steps = np.arange(250)
+    u = 500 + 900 * np.sin(steps / 20.0) + 40 * (1 - 2 * (steps % 2))  # zigzag: always a reversal
+    assert np.all(np.diff(u)[1:] * np.diff(u)[:-1] < 0)
+    expected = relay_outputs(alpha, beta, weights, -1e-4, u)
+    np.testing.assert_allclose(model.apply(u), expected, rtol=0, atol=1e-12 * weights.sum())

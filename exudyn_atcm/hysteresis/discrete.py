@@ -46,7 +46,8 @@ class DiscretePreisach(StaircasePreisach):
     offset : float, optional
         Output with all relays off.
     max_table_entries : int, optional
-        Largest Everett table (number of float cells) built for a non-monotone relay set.
+        Largest Everett table (number of float cells) built for a non-monotone relay set;
+        beyond it the ``"dominance"`` kernel is used (``0``: always, for a non-monotone set).
 
     Notes
     -----
