@@ -13,8 +13,13 @@ time, memory and cost per ``K`` call (the replay loop's own cost subtracted):
   ``alpha`` prefix (``O(n log n)`` memory, one root look-up and an ``O(log n)`` descent);
 * ``rows``: the former fallback, a prefix-sum row per reversal point built on first use
   (``O(n)``, vectorised) and cached;
-* ``blocked-2+rows``: ``blocked-2``, switching to a cached row for a reversal point once it
-  has served 32 calls (a cached row is one binary search and one list index).
+* ``blocked-2+rows``: ``blocked-2``, switching to a cached row for the current reversal point
+  once it has served ``max(64, n // 8)`` calls in a row (a cached row is one binary search
+  and one list index; the row's O(n) cost is spread over those calls).
+
+Inputs: ``smooth`` and ``noisy`` as in ``bench_preisach.py``, and ``adversarial``: a triangle
+whose every half period (new extrema each time) has ``max(64, n // 8) + 1`` steps, the worst
+case for ``blocked-2+rows`` (each row is built, then serves a single call).
 
 Usage: ``python benchmarks/bench_dominance.py [--steps N] [--out results/dominance.json]``
 """
@@ -133,32 +138,43 @@ def rows(alpha, beta, weights, cache_size=256):
     return k_rising, k_falling, 8 * 4 * alpha.size  # the cache grows with use: not counted
 
 
-def blocked_with_rows(alpha, beta, weights, hits_before_row=32, cache_size=256):
-    """blocked-2, plus a cached row for a reversal point once it has served ``hits_before_row`` calls."""
+def blocked_with_rows(alpha, beta, weights, cache_size=8):
+    """blocked-2, plus a cached row for the current reversal point once it has served
+    ``max(64, n // 8)`` calls in a row (so that the O(n) row costs little per call)."""
     blocked_query = DominanceSums(alpha, beta, weights, 2).query
     row_rising, row_falling, _ = rows(alpha, beta, weights, cache_size)
-    hits_rising: dict = {}
-    hits_falling: dict = {}
+    hits_needed = max(64, alpha.size // 8)
+    nan = float("nan")  # equal to nothing
+    b_now, b_hits, b_row = nan, 0, False
+    a_now, a_hits, a_row = nan, 0, False
 
     def k_rising(a, b):
-        count = hits_rising.get(b, 0)
-        if count >= hits_before_row:
-            return row_rising(a, b)
-        if len(hits_rising) >= cache_size:
-            hits_rising.clear()
-        hits_rising[b] = count + 1
+        nonlocal b_now, b_hits, b_row
+        if b == b_now:
+            if b_row:
+                return row_rising(a, b)
+            b_hits += 1
+            if b_hits >= hits_needed:
+                b_row = True
+                return row_rising(a, b)
+            return blocked_query(a, b)
+        b_now, b_hits, b_row = b, 1, False
         return blocked_query(a, b)
 
     def k_falling(a, b):
-        count = hits_falling.get(a, 0)
-        if count >= hits_before_row:
-            return row_falling(a, b)
-        if len(hits_falling) >= cache_size:
-            hits_falling.clear()
-        hits_falling[a] = count + 1
+        nonlocal a_now, a_hits, a_row
+        if a == a_now:
+            if a_row:
+                return row_falling(a, b)
+            a_hits += 1
+            if a_hits >= hits_needed:
+                a_row = True
+                return row_falling(a, b)
+            return blocked_query(a, b)
+        a_now, a_hits, a_row = a, 1, False
         return blocked_query(a, b)
 
-    return k_rising, k_falling, DominanceSums(alpha, beta, weights, 2).nbytes
+    return k_rising, k_falling, DominanceSums(alpha, beta, weights, 2).nbytes + 8 * cache_size * 2 * alpha.size
 
 
 STRUCTURES = {
@@ -168,6 +184,18 @@ STRUCTURES = {
     "rows": rows,
     "blocked-2+rows": blocked_with_rows,
 }
+
+
+def triangle(steps: int, per_half: int, seed: int = 1) -> list[float]:
+    """Triangle between 0-50 V and 1000-1050 V (new extrema each half period), ``per_half``
+    steps per half period."""
+    rng = np.random.default_rng(seed)
+    u: list[float] = []
+    while len(u) < steps:
+        lo, hi = rng.uniform(0, 50), 1000 + rng.uniform(0, 50)
+        u += np.linspace(lo, hi, per_half, endpoint=False).tolist()
+        u += np.linspace(hi, lo, per_half, endpoint=False).tolist()
+    return u[:steps]
 
 
 def recorded_calls(model: DiscretePreisach, u: list[float]) -> list[tuple[bool, float, float]]:
@@ -201,8 +229,8 @@ def replay(calls, k_rising, k_falling, repeats):
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--steps", type=int, default=5000, help="commits recorded per input")
-    parser.add_argument("--repeats", type=int, default=3, help="repeats (best is kept)")
+    parser.add_argument("--steps", type=int, default=10000, help="commits recorded per input")
+    parser.add_argument("--repeats", type=int, default=5, help="repeats (best is kept)")
     parser.add_argument("--sizes", type=int, nargs="+", default=[1000, 5000, 20000])
     parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "dominance.json"))
     args = parser.parse_args(argv)
@@ -210,11 +238,15 @@ def main(argv: list[str] | None = None) -> int:
     def noop(a, b):
         return 0.0
 
-    print(f"{'relays':>7} {'structure':>15} {'build [ms]':>11} {'memory [MB]':>12} {'K smooth [µs]':>14} {'K noisy [µs]':>13}")
+    print(f"{'relays':>7} {'structure':>15} {'build [ms]':>11} {'memory [MB]':>12} {'K smooth [µs]':>14} {'K noisy [µs]':>13} {'K adversarial [µs]':>19}")
     rows_out = []
-    inputs = {kind: input_series(args.steps, noise) for kind, noise in (("smooth", 0.0), ("noisy", 5.0))}
     for n in args.sizes:
         model = random_relays(n)
+        inputs = {
+            "smooth": input_series(args.steps, 0.0),
+            "noisy": input_series(args.steps, 5.0),
+            "adversarial": triangle(args.steps, max(64, n // 8) + 1),
+        }
         calls = {kind: recorded_calls(DiscretePreisach(model.alpha, model.beta, model.weights, model.offset), u) for kind, u in inputs.items()}
         overhead = {kind: replay(c, noop, noop, args.repeats)[0] for kind, c in calls.items()}
         scale = float(np.abs(model.weights).sum())
@@ -234,7 +266,7 @@ def main(argv: list[str] | None = None) -> int:
             rows_out.append(row)
             print(
                 f"{n:>7} {name:>15} {row['build_ms']:>11.1f} {row['memory_MB']:>12.2f}"
-                f" {row['k_smooth_us']:>14.3f} {row['k_noisy_us']:>13.3f}"
+                f" {row['k_smooth_us']:>14.3f} {row['k_noisy_us']:>13.3f} {row['k_adversarial_us']:>19.3f}"
             )
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
