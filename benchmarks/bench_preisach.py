@@ -2,9 +2,10 @@
 
 For 10, 100, 1000 and 5000 relays (``--sizes``; 20000 takes minutes because of the relay
 array) identified from the paper's loop (Eq. 12), and for the same numbers of random relays
-(a general, non-monotone family with scattered thresholds), both implementations are driven by the same input; their outputs are asserted identical to
-round-off, then the time per commit is measured side by side in one run (best of repeats),
-with the time to build the model.  Three inputs:
+(a general, non-monotone family with scattered thresholds), both implementations are driven
+by the same input; their outputs are asserted identical to round-off, then the time per
+commit is measured side by side in one run (best of repeats), with the time to build the
+model.  Three inputs:
 
 * ``smooth``: a decaying sine (reversals inside the range every half period), the kind of
   voltage a solver's accepted steps produce;
