@@ -1,6 +1,8 @@
-"""Draw the README figure from the code: the paper's hysteresis loop and the actuator's tip loop.
+"""Draw the README figures from the code: the paper's hysteresis loop and the actuator's tip loop,
+and the drawing of the two simulation cells.
 
-Run: ``python docs/make_readme_figure.py`` (writes docs/_static/readme_figure.png; about 5 s).
+Run: ``python docs/make_readme_figure.py`` (writes docs/_static/readme_figure.png and
+docs/_static/cell_drawing.png; about 5 s).
 """
 
 from pathlib import Path
@@ -8,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 import exudyn_atcm as atcm
+from exudyn_atcm.cell_drawing import save_cell_drawing
 from exudyn_atcm.parameter_sets import paper_strain_preisach, paper_stroke_preisach
 from exudyn_atcm.plot_style import new_figure, save_figure
 from exudyn_atcm.signals import Triangle
@@ -35,8 +38,11 @@ def main() -> Path:
     right.set_title("Bending actuator, hysteresis in the solver step")
     out = Path(__file__).parent / "_static" / "readme_figure.png"
     save_figure(fig, out)
+    save_cell_drawing(out.with_name("cell_drawing.png"))
     return out
 
 
 if __name__ == "__main__":
-    print(main())
+    path = main()
+    print(path)
+    print(path.with_name("cell_drawing.png"))

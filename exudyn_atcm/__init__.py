@@ -10,8 +10,12 @@ from .actuator import BendingActuator
 from .csv_io import read_csv
 from .drive import PiezoDrive
 from .materials import Layer
+from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .result import Result
+from .run_checks import SimulationInterrupted
 from .simulation import SolverError, eigenfrequencies, simulate, solve_static
+from .mechanism_solve import static_sweep
+from .mbs import add_to
 
 __all__ = [
     "__version__",
@@ -20,10 +24,19 @@ __all__ = [
     "Layer",
     "PiezoDrive",
     "BendingActuator",
+    "Bender",
+    "Segment",
+    "Link",
+    "Flexure",
+    "Mechanism",
+    "MechanismError",
     "simulate",
     "solve_static",
+    "static_sweep",
+    "add_to",
     "eigenfrequencies",
     "Result",
     "SolverError",
+    "SimulationInterrupted",
     "read_csv",
 ]

@@ -97,6 +97,11 @@ class BuiltModel:
         if self.torque_load is not None:
             mbs.SetLoadParameter(self.torque_load, "loadVector", [0.0, 0.0, self.torque_per_strain * strain])
 
+    def scale_loads(self, factor: float) -> None:
+        """Set the tip load to ``factor`` times the tip force (load ramps of the relaxation)."""
+        fx, fy = self.tip_force
+        self.mbs.SetLoadParameter(self.tip_load, "loadVector", [factor * fx, factor * fy, 0.0])
+
     def read_state(self, q: np.ndarray, strain: float) -> tuple:
         """Tip x, y, angle and per-cell angles from the ODE2 coordinates ``q`` (displacements)."""
         xt, yt, pt = q[self.tip_indices]
@@ -299,15 +304,10 @@ def _build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
 
 
 def _build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
-    n, lc, e = act.n_cells, act.cell_length, act.layer_offset
+    n, lc = act.n_cells, act.cell_length
     beta = act.stiffness_damping_factor
-    w = act.width
-    h1, h2 = act.passive.thickness, act.active.thickness
-    m1 = act.passive.mass_per_length(w) * lc
-    m2 = act.active.mass_per_length(w) * lc
-    m = m1 + m2
-    y_com = -m2 * e / m  # active layer at y = -e
-    j_com = m * lc**2 / 12.0 + (m1 * h1**2 + m2 * h2**2) / 12.0 + m1 * m2 / m * e**2
+    m, com_offset, j_com = act.laminate.rigid_cell(lc)
+    y_com = -com_offset  # active layer at y = -e
     k_in, k_end = act.joint_stiffness_inside, act.joint_stiffness_end
     rot_per_strain = act.curvature_per_strain * lc  # free rotation of one cell per unit strain
 
@@ -535,7 +535,7 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
     Exudyn's static solver leaves out the constraint forces' derivative in its Jacobian
     (measured: linear convergence whose rate tends to 1 under large tip forces).  The
     implicit dynamic solver adds ``M/(beta h²)`` to the Jacobian, which keeps it contractive.
-    Strain and tip load are ramped smoothly over ``periods_ramp`` periods of the first mode,
+    Strain and loads (``model.scale_loads``) are ramped smoothly over ``periods_ramp`` periods of the first mode,
     with every spring damped at ``damping_factor * k`` (critical damping of the first mode for
     ``2/omega1``), then held until ``periods_total``.  Returns the largest coordinate change
     over the last period (a measure of the remaining motion).
@@ -545,7 +545,6 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
     t_ramp = periods_ramp * period
     t_end = periods_total * period
     h = period / steps_per_period
-    fx, fy = model.tip_force
     tail = {"q": None, "t_mark": t_end - period, "change": 0.0}
 
     def ramp(t):
@@ -555,7 +554,7 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
     def pre(mbs_, t):
         f = ramp(t)
         model.set_strain(f * strain)
-        mbs_.SetLoadParameter(model.tip_load, "loadVector", [f * fx, f * fy, 0.0])
+        model.scale_loads(f)
         return True
 
     def post(mbs_, t):
@@ -590,7 +589,7 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
         model.uf_strain = saved_uf
         for item, d in saved:
             mbs.SetObjectParameter(item, "damping", d)
-        mbs.SetLoadParameter(model.tip_load, "loadVector", [fx, fy, 0.0])
+        model.scale_loads(1.0)
     if not ok:
         raise ExudynFailure("dynamic relaxation did not converge", _solver_time(solver) / t_end)
     model.set_strain(strain)
@@ -601,6 +600,8 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
                 post_step: Callable[[float], None]) -> dict:
     """Integrate in time; ``pre_step(t)`` before each attempted step, ``post_step(t)`` after each accepted one.
 
+    A hook returning ``False`` stops the integration cleanly (Exudyn ends the run).
+
     Returns solver statistics.
     """
     mbs = model.mbs
@@ -609,16 +610,14 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
     if pre_step is not None:
         def pre(mbs_, t):
             counts["attempts"] += 1
-            pre_step(t)
-            return True
+            return pre_step(t) is not False  # False: stop the run (e.g. Ctrl-C caught in the hook)
     else:
         def pre(mbs_, t):
             counts["attempts"] += 1
             return True
 
     def post(mbs_, t):
-        post_step(t)
-        return True
+        return post_step(t) is not False
 
     mbs.SetPreStepUserFunction(pre)
     mbs.SetPostStepUserFunction(post)

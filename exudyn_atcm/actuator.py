@@ -15,21 +15,18 @@ interface element (positive counter-clockwise).
 
 from __future__ import annotations
 
-import math
 import numbers
 from typing import Any
 
 from ._checks import finite_float, positive_float, positive_int
 from .drive import PiezoDrive
+from .laminate import STIFFNESS_MODELS, Laminate
 from .materials import Layer
 
 CELL_TYPES = ("six-bar", "rigid")
-STIFFNESS_MODELS = ("composite", "paper")
 
 #: Default modal damping ratio of the first bending mode (stiffness-proportional damping).
 DEFAULT_DAMPING_RATIO = 0.02
-
-_BETA1_L = 1.8751040687119611  # first root of 1 + cos x cosh x = 0
 
 
 class BendingActuator:
@@ -132,34 +129,35 @@ class BendingActuator:
         return self.n_cells * self.cell_length
 
     @property
+    def laminate(self) -> Laminate:
+        """The cross-section (layers, width, stiffness model) whose formulas this actuator uses."""
+        return Laminate(self.width, self.passive, self.active, self.stiffness)
+
+    @property
     def layer_offset(self) -> float:
         """Distance ``e`` between the layers' mid-planes [m]; the interface element's height."""
-        return 0.5 * (self.passive.thickness + self.active.thickness)
+        return self.laminate.layer_offset
 
     # ------------------------------------------------------------------ stiffness
     @property
     def torsion_stiffness_passive(self) -> float:
         """Torsion spring at each passive-layer (lower) revolute joint, ``2 E1 I1 / L_j`` [N m/rad]."""
-        return 2.0 * self.passive.bending_stiffness(self.width) / self.cell_length
+        return self.laminate.layer_joint_stiffness(self.cell_length)[0]
 
     @property
     def torsion_stiffness_active(self) -> float:
         """Torsion spring at each active-layer (upper) revolute joint, ``2 E2 I2 / L_j`` [N m/rad]."""
-        return 2.0 * self.active.bending_stiffness(self.width) / self.cell_length
+        return self.laminate.layer_joint_stiffness(self.cell_length)[1]
 
     @property
     def axial_rigidity_effective(self) -> float:
         """Axial rigidity that couples the layers [N]: ``a1 a2/(a1+a2)`` (composite) or ``a2`` (paper)."""
-        a1 = self.passive.axial_rigidity(self.width)
-        a2 = self.active.axial_rigidity(self.width)
-        if self.stiffness == "composite":
-            return a1 * a2 / (a1 + a2)
-        return a2
+        return self.laminate.axial_rigidity_effective
 
     @property
     def axial_spring_stiffness(self) -> float:
         """Stiffness ``k1`` of the axial spring A2-A3 in each cell [N/m]."""
-        return self.axial_rigidity_effective / self.cell_length
+        return self.laminate.axial_spring_stiffness(self.cell_length)
 
     @property
     def bending_stiffness(self) -> float:
@@ -167,22 +165,18 @@ class BendingActuator:
 
         ``E1 I1 + E2 I2 + a_eff e²``; equal to lamination theory for ``stiffness="composite"``.
         """
-        return (
-            self.passive.bending_stiffness(self.width)
-            + self.active.bending_stiffness(self.width)
-            + self.axial_rigidity_effective * self.layer_offset**2
-        )
+        return self.laminate.bending_stiffness
 
     @property
     def spring_share(self) -> float:
         """Share ``rho_s = (E1 I1 + E2 I2)/EI`` of the bending stiffness held by the torsion springs [-]."""
-        own = self.passive.bending_stiffness(self.width) + self.active.bending_stiffness(self.width)
-        return own / self.bending_stiffness
+        laminate = self.laminate
+        return laminate.own_bending_stiffness / laminate.bending_stiffness
 
     @property
     def curvature_per_strain(self) -> float:
         """Free curvature per unit free strain ``a_eff e / EI`` [1/m]."""
-        return self.axial_rigidity_effective * self.layer_offset / self.bending_stiffness
+        return self.laminate.curvature_per_strain
 
     def free_curvature(self, strain: float) -> float:
         """Free curvature [1/m] of the modelled laminate at free strain ``strain`` [-]."""
@@ -205,24 +199,22 @@ class BendingActuator:
     @property
     def mass_per_length(self) -> float:
         """Mass per unit length ``b (rho1 h1 + rho2 h2)`` [kg/m]."""
-        return self.passive.mass_per_length(self.width) + self.active.mass_per_length(self.width)
+        return self.laminate.mass_per_length
 
     @property
     def interface_length(self) -> float:
         """Length ``s = min(h1 + h2, L_j/10)`` of laminate lumped into each six-bar interface [m]."""
-        return min(self.passive.thickness + self.active.thickness, 0.1 * self.cell_length)
+        return self.laminate.interface_length(self.cell_length)
 
     @property
     def first_frequency_estimate(self) -> float:
         """First bending frequency of the continuous beam with this ``EI`` and mass [Hz]."""
-        return _BETA1_L**2 / (2.0 * math.pi * self.length**2) * math.sqrt(
-            self.bending_stiffness / self.mass_per_length
-        )
+        return self.laminate.first_frequency(self.length)
 
     @property
     def stiffness_damping_factor(self) -> float:
         """``beta = 2 zeta / omega_1`` [s]: every spring with stiffness ``k`` gets damping ``beta k``."""
-        return 2.0 * self.damping / (2.0 * math.pi * self.first_frequency_estimate)
+        return self.laminate.stiffness_damping_factor(self.damping, self.length)
 
     # ------------------------------------------------------------------ description
     def parameters(self) -> dict[str, Any]:

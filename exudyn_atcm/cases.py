@@ -40,14 +40,21 @@ The convention, in full (see ``cases/paper_stroke_table.py`` for a short example
 
 Cases are found (:func:`find_case`) by path, or by name in, in this order: the directory
 given with ``--cases-dir``, the directories in the environment variable
-``EXUDYN_ATCM_CASES`` (``os.pathsep``-separated), ``./cases`` in the current directory, and
-the ``cases/`` folder of the source checkout beside the package.
+``EXUDYN_ATCM_CASES`` (``os.pathsep``-separated), ``./cases`` in the current directory, the
+``cases/`` folder of the source checkout beside the package, and the example cases installed
+with the package (``exudyn_atcm.example_cases``, built from ``cases/``), so that
+``exudyn-atcm list`` works from any directory of any installation.
+
+Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
+CSV and JSON marked ``partial``), the message says ``interrupted at t = ... s``, and the exit
+status is 130.
 """
 
 from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import difflib
 import importlib.util
 import math
 import os
@@ -55,15 +62,17 @@ import platform
 import sys
 import time
 import traceback
+import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ._atomic import write_json
+from ._atomic import make_directory, write_json
 from ._version import __version__
-from .progress import ProgressBar, ProgressCallback, no_progress
+from .progress import ProgressBar, ProgressCallback, no_progress, reporting
 from .result import Result
+from .run_checks import SimulationInterrupted
 
 __all__ = [
     "Parameter",
@@ -90,6 +99,15 @@ _FALSE = {"false", "no", "off", "0"}
 
 class CaseError(ValueError):
     """A case could not be found, loaded or configured (message is one line)."""
+
+
+def closest(name: str, candidates: Sequence[str]) -> str:
+    """`` (did you mean 'x'?)`` for the candidate closest to a misspelt ``name``, else ``""``."""
+    match = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
+    if not match:
+        lowered = {c.lower(): c for c in candidates}
+        match = [lowered[name.lower()]] if name.lower() in lowered else []
+    return f" (did you mean {match[0]!r}?)" if match else ""
 
 
 # ----------------------------------------------------------------------------- parameters
@@ -457,7 +475,8 @@ class Case:
             if not sep or not name:
                 raise CaseError(f"--set expects NAME=VALUE, got {text!r}; valid parameters of {self.name}: {self.parameter_list()}")
             if name not in declared:
-                raise CaseError(f"unknown parameter {name!r} for case {self.name}; valid parameters: {self.parameter_list()}")
+                raise CaseError(f"unknown parameter {name!r} for case {self.name}{closest(name, list(declared))}; "
+                                f"valid parameters: {self.parameter_list()}")
             try:
                 values[name] = declared[name].parse(value)
             except ValueError as exc:
@@ -484,7 +503,8 @@ class Case:
             declared = {p.name: p for p in self.parameters}
             for name, value in values.items():
                 if name not in declared:
-                    raise CaseError(f"unknown parameter {name!r} for case {self.name}; valid parameters: {self.parameter_list()}")
+                    raise CaseError(f"unknown parameter {name!r} for case {self.name}{closest(name, list(declared))}; "
+                                    f"valid parameters: {self.parameter_list()}")
                 try:
                     given[name] = declared[name].parse(value) if isinstance(value, str) and declared[name].kind != "str" else declared[name].check(value)
                 except ValueError as exc:
@@ -523,19 +543,36 @@ class Case:
         params = self.resolve(values)
         directory = Path(out_dir) if out_dir is not None else None
         if directory is not None:
-            directory.mkdir(parents=True, exist_ok=True)
+            make_directory(directory)
         ctx = RunContext(self.name, directory, bool(plot and directory is not None), progress or no_progress)
         start = time.perf_counter()
-        output = self._run(params, ctx)
-        wall = time.perf_counter() - start
-        if not isinstance(output, CaseOutput):
-            raise CaseError(f"case {self.name}: run() must return a CaseOutput, got {type(output).__name__}")
-        output.case = self.name
-        output.parameters = params
-        output.wall_time = wall
-        if directory is not None:
-            self._write(output, params, directory, ctx.plot)
+        with reporting(ctx.progress):
+            try:
+                output = self._run(params, ctx)
+            except SimulationInterrupted as exc:
+                self._write_partial(exc, params, directory, time.perf_counter() - start)
+                raise
+            wall = time.perf_counter() - start
+            if not isinstance(output, CaseOutput):
+                raise CaseError(f"case {self.name}: run() must return a CaseOutput, got {type(output).__name__}")
+            output.case = self.name
+            output.parameters = params
+            output.wall_time = wall
+            if directory is not None:
+                self._write(output, params, directory, ctx.plot)
         return output
+
+    def _write_partial(self, exc: SimulationInterrupted, params: Parameters, directory: Path | None, wall: float) -> None:
+        """Write what an interrupted run computed (CSV and JSON, marked partial); ``exc.files`` lists them."""
+        exc.files = []
+        if directory is None or exc.result is None:
+            return
+        partial = CaseOutput(exc.result, notes={"partial": True, "interrupted_at [s]": exc.time})
+        partial.case = self.name
+        partial.parameters = params
+        partial.wall_time = wall
+        self._write(partial, params, directory, plot=False)
+        exc.files = list(partial.files)
 
     def _write(self, output: CaseOutput, params: Parameters, directory: Path, plot: bool) -> None:
         vers = versions()
@@ -601,7 +638,8 @@ def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool,
     """Run ``case`` with ``NAME=VALUE`` overrides, print a summary; the exit status.
 
     Errors are printed as one line on stderr (with the traceback when ``debug``): exit
-    status 2 for a bad parameter, 1 for a failure of the run.
+    status 2 for a bad parameter, 1 for a failure of the run, 130 for Ctrl-C (what was
+    computed until then is written, marked partial).
     """
     try:
         values = case.parse_assignments(assignments)
@@ -609,7 +647,13 @@ def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool,
         return _fail(exc, debug, 2)
     bar = ProgressBar(sys.stdout) if sys.stdout.isatty() else None
     try:
-        output = case.run(values, out_dir=out, plot=plot, progress=bar)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            output = case.run(values, out_dir=out, plot=plot, progress=bar)
+    except KeyboardInterrupt as exc:
+        if bar is not None:
+            bar.close()
+        return _interrupted(case, exc, out, debug)
     except Exception as exc:  # noqa: BLE001 - reported as one line
         return _fail(exc, debug, 2 if isinstance(exc, CaseError) else 1)
     finally:
@@ -622,8 +666,27 @@ def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool,
     return 0
 
 
-def _fail(exc: BaseException, debug: bool, status: int) -> int:
-    if debug:
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings of a command-line run as one line ``warning: ...`` on stderr (no source line)."""
+    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
+
+
+def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool) -> int:
+    """Report Ctrl-C: where the simulation stopped and what was written; exit status 130."""
+    if isinstance(exc, SimulationInterrupted):
+        files = getattr(exc, "files", [])
+        rows = exc.result.n_rows if exc.result is not None else 0
+        if files:
+            written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}"
+        else:
+            written = "; nothing was written (no output directory, or nothing computed yet)"
+        return _fail(f"{case.name}: interrupted at t = {exc.time:.6g} s{written}", debug, 130)
+    return _fail(f"{case.name}: interrupted (Ctrl-C) before the simulation started or after it ended; "
+                 "files may be missing", debug, 130)
+
+
+def _fail(exc: BaseException | str, debug: bool, status: int) -> int:
+    if debug and isinstance(exc, BaseException):
         traceback.print_exception(type(exc), exc, exc.__traceback__)
     message = " ".join(str(exc).split()) or type(exc).__name__
     print(f"error: {message}", file=sys.stderr)
@@ -635,7 +698,8 @@ def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
     """Directories searched for cases by name, in order (existing ones only).
 
     ``cases_dir`` (``--cases-dir``), then ``$EXUDYN_ATCM_CASES`` (``os.pathsep``-separated),
-    then ``./cases``, then the ``cases/`` folder of the source checkout beside the package.
+    then ``./cases``, then the ``cases/`` folder of the source checkout beside the package,
+    then the example cases installed with the package (``exudyn_atcm.example_cases``).
     """
     candidates: list[Path] = []
     if cases_dir is not None:
@@ -644,12 +708,26 @@ def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
     candidates.extend(Path(p) for p in env.split(os.pathsep) if p.strip())
     candidates.append(Path.cwd() / "cases")
     candidates.append(Path(__file__).resolve().parents[1] / "cases")
+    installed = _installed_cases_dir()
+    if installed is not None:
+        candidates.append(installed)
     seen: list[Path] = []
     for path in candidates:
         resolved = path.resolve()
         if resolved.is_dir() and resolved not in seen:
             seen.append(resolved)
     return seen
+
+
+def _installed_cases_dir() -> Path | None:
+    """Directory of the installed package ``exudyn_atcm.example_cases`` (``cases/`` shipped with the package)."""
+    try:
+        spec = importlib.util.find_spec("exudyn_atcm.example_cases")
+    except (ImportError, ValueError):
+        return None
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    return Path(list(spec.submodule_search_locations)[0])
 
 
 def list_cases(cases_dir: str | os.PathLike | None = None) -> list[Path]:
@@ -681,9 +759,10 @@ def find_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
     for candidate in list_cases(cases_dir):
         if candidate.stem == text:
             return candidate
-    names = ", ".join(p.stem for p in list_cases(cases_dir)) or "none"
+    stems = [p.stem for p in list_cases(cases_dir)]
+    names = ", ".join(stems) or "none"
     dirs = ", ".join(str(d) for d in case_dirs(cases_dir)) or "none"
-    raise CaseError(f"no case named {text!r}; available: {names} (searched {dirs})")
+    raise CaseError(f"no case named {text!r}{closest(text, stems)}; available: {names} (searched {dirs})")
 
 
 def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> Case:

@@ -10,8 +10,10 @@
 
 Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
 up by name first) and ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
-fails or a benchmark metric fails; 2 for a usage error (unknown case or parameter, value of
-the wrong type, missing ``--reason``).  Errors are one line on stderr.
+fails, a benchmark metric fails or ``list`` finds no case; 2 for a usage error (unknown case
+or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C (a run writes
+what it computed until then, marked partial).  Errors are one line on stderr; a misspelt
+case or parameter name is answered with the closest valid one.
 """
 
 from __future__ import annotations
@@ -94,8 +96,7 @@ def _list(cases_dir: str | None) -> int:
     files = _cases.list_cases(cases_dir)
     if not files:
         dirs = ", ".join(str(d) for d in _cases.case_dirs(cases_dir)) or "none"
-        print(f"no cases found (searched: {dirs}; set --cases-dir or ${_cases.ENV_CASES})")
-        return 0
+        return _error(f"no cases found (searched: {dirs}); pass --cases-dir DIR or set ${_cases.ENV_CASES}", False, 1)
     for path in files:
         try:
             case = _cases.load_case(path)

@@ -6,14 +6,18 @@ The format is the one :meth:`Result.to_csv` writes::
     # exudyn 1.13.6
     # period [s]: 1.0              <- parameters, "# key: value"
     # info.steps: 801              <- run information, "# info.key: value"
+    # data_rows: 801               <- number of data rows (checked when present)
     time [s],voltage [V],stroke [m]
-    0,-500,-4.0000000000000001e-06
+    0,-500,-4e-06
     ...
 
-:func:`read_csv` round-trips it: series names, units and values exactly (17 significant
-digits), parameters and info where their text parses as a Python literal (numbers, booleans,
-``None``, lists, dicts), otherwise as strings.  A malformed file is refused with a
-``ValueError`` that names the file, the line and what is wrong.
+:func:`read_csv` round-trips it: series names, units and values exactly (each number is
+written as the shortest text that reads back to the same float), parameters and info where
+their text parses as a Python literal (numbers, booleans, ``None``, lists, dicts), otherwise
+as strings.  A malformed file is refused with a ``ValueError`` that names the file, the line
+and what is wrong: among others a file with fewer or more rows than its ``data_rows`` line
+states (cut off or appended to), and non-finite numbers (``nan``, ``inf``, ``1e400``) unless
+``allow_nonfinite=True``.
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from ._atomic import describe_os_error
 from .result import Result
 
 __all__ = ["read_csv", "read_csv_header", "CsvHeader"]
@@ -48,6 +53,8 @@ class CsvHeader:
         ``# key: value`` and ``# info.key: value`` lines, values parsed where possible.
     header_line : int
         1-based line number of the header row.
+    data_rows : int or None
+        Number of data rows stated by the ``# data_rows: N`` line (``None`` if absent).
     """
 
     names: list[str] = field(default_factory=list)
@@ -57,6 +64,7 @@ class CsvHeader:
     parameters: dict[str, Any] = field(default_factory=dict)
     info: dict[str, Any] = field(default_factory=dict)
     header_line: int = 0
+    data_rows: int | None = None
 
 
 def _parse_value(text: str) -> Any:
@@ -76,6 +84,10 @@ def _read_lines(path: str | os.PathLike) -> tuple[str, list[str]]:
             return name, handle.read().split("\n")
     except FileNotFoundError:
         raise ValueError(f"{name}: no such file") from None
+    except IsADirectoryError:
+        raise ValueError(f"{name}: is a directory, not a CSV file") from None
+    except OSError as exc:
+        raise ValueError(f"{name}: cannot be read: {describe_os_error(exc)}") from None
     except UnicodeDecodeError as exc:
         raise ValueError(f"{name}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
 
@@ -103,6 +115,16 @@ def _parse_header(name: str, lines: list[str]) -> tuple[CsvHeader, int]:
             if not sep or not key.strip():
                 continue  # free comment
             key = key.strip()
+            if key == "data_rows":
+                try:
+                    header.data_rows = int(value.strip())
+                except ValueError:
+                    raise ValueError(
+                        f"{name}, line {index + 1}: data_rows must be a whole number of rows, got {value.strip()!r}"
+                    ) from None
+                if header.data_rows < 0:
+                    raise ValueError(f"{name}, line {index + 1}: data_rows must be >= 0, got {header.data_rows}")
+                continue
             if key.startswith("info."):
                 header.info[key[5:]] = _parse_value(value)
             else:
@@ -153,13 +175,17 @@ def read_csv_header(path: str | os.PathLike) -> CsvHeader:
     return header
 
 
-def read_csv(path: str | os.PathLike) -> Result:
+def read_csv(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Result:
     """Read a CSV file written by :meth:`Result.to_csv` (or by hand in the same format).
 
     Parameters
     ----------
     path : str or os.PathLike
         The file.
+    allow_nonfinite : bool, optional
+        Accept ``nan``, ``inf`` and numbers too large for a float (``1e400``); by default
+        they are refused (a simulation result never holds them, so they mean a damaged or
+        hand-edited file).
 
     Returns
     -------
@@ -173,7 +199,9 @@ def read_csv(path: str | os.PathLike) -> Result:
     ValueError
         Naming the file, the line and the fault: missing file, no header row, a header
         column without ``[unit]``, duplicate names, a row with the wrong number of cells,
-        or a cell that is not a number.
+        a cell that is not a number, a non-finite number (unless ``allow_nonfinite``), or a
+        number of data rows different from the file's ``# data_rows: N`` line (a file cut
+        off at a row boundary).
 
     Examples
     --------
@@ -210,8 +238,21 @@ def read_csv(path: str | os.PathLike) -> Result:
                 ) from None
             if math.isnan(value) and cell.strip().lower() not in ("nan", "+nan", "-nan"):
                 raise ValueError(f"{name}, line {index + 1}: column {column + 1} is {cell.strip()!r}, not a number")
+            if not allow_nonfinite and not math.isfinite(value):
+                raise ValueError(
+                    f"{name}, line {index + 1}: column {column + 1} ({header.names[column]}) is "
+                    f"{cell.strip()!r}, not a finite number"
+                    + (" (too large for a float)" if cell.strip().lower().lstrip("+-") not in ("nan", "inf", "infinity") else "")
+                    + "; pass allow_nonfinite=True to read non-finite values"
+                )
             row.append(value)
         rows.append(row)
+    if header.data_rows is not None and len(rows) != header.data_rows:
+        raise ValueError(
+            f"{name}: the file states {header.data_rows} data rows (line 'data_rows') but holds {len(rows)}; "
+            + ("it was cut off (an interrupted copy or write?)" if len(rows) < header.data_rows
+               else "rows were appended after it was written")
+        )
     matrix = np.array(rows, dtype=float).reshape(len(rows), n_columns)
     info = dict(header.info)
     if header.exudyn_version is not None:

@@ -4,13 +4,27 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from typing import Any, Callable, Union
 
-from ._checks import positive_float
+from ._checks import finite_float, positive_float
 
 VoltageProgram = Union[float, Callable[[float], float]]
 
 _OPERATOR_METHODS = ("evaluate", "commit", "reset", "apply", "checkpoint", "restore")
+
+#: Rated operating voltage of the MFC P1 type [V] (d33 mode, -500 ... +1500 V; Smart Material
+#: Corp. data sheet; the paper drives its MFC over exactly this range).
+MFC_P1_RATED_RANGE = (-500.0, 1500.0)
+
+#: Free strains [-] above this magnitude are implausible for a piezo layer (MFC P1 reaches
+#: about 1.4e-3 at 1500 V, piezo ceramics about 2e-3): most likely a unit mistake.
+PLAUSIBLE_STRAIN = 1e-2
+
+
+def _is_controller(value: Any) -> bool:
+    """A controller of :mod:`exudyn_atcm.control`'s protocol (duck-typed)."""
+    return all(callable(getattr(value, m, None)) for m in ("voltage_at", "observe", "reset"))
 
 
 class PiezoDrive:
@@ -18,9 +32,12 @@ class PiezoDrive:
 
     Parameters
     ----------
-    voltage : float or callable
-        Applied voltage ``U`` [V]: a constant number, or a callable of time ``t`` [s] returning
-        volts (every object of :mod:`exudyn_atcm.signals` qualifies).
+    voltage : float, callable or controller
+        Applied voltage ``U`` [V]: a constant number, a callable of time ``t`` [s] returning
+        volts (every object of :mod:`exudyn_atcm.signals` qualifies), or a controller (an
+        object with ``voltage_at(t)``, ``observe(t, tip_deflection)`` and ``reset()``, e.g.
+        :class:`exudyn_atcm.control.PIDController`; see :mod:`exudyn_atcm.control` for the
+        protocol) that sets the voltage from the simulated tip deflection during the run.
     d33 : float, optional
         Piezoelectric constant [m/V] (= C/N), > 0.  Default 460e-12 (MFC P1, high field).
         Used only without ``hysteresis``.
@@ -32,6 +49,14 @@ class PiezoDrive:
         :func:`exudyn_atcm.parameter_sets.paper_strain_preisach`).  It must provide
         ``evaluate``, ``commit``, ``reset``, ``apply``, ``checkpoint`` and ``restore``.
         Without it, the free strain is linear: ``d33 U / electrode_spacing`` (Eq. 3).
+        The operator's output must be the free strain: an operator whose
+        ``output_quantity`` is set to anything but ``"strain"`` (e.g. the paper's stroke
+        model :func:`~exudyn_atcm.parameter_sets.paper_stroke_preisach`, ``"stroke"``) is
+        refused; ``None`` (not stated) is accepted.
+    rated_range : (float, float) or None, optional
+        Rated voltage range of the MFC [V]; default ``(-500, 1500)``, the MFC P1 type.
+        Voltages outside it, or outside the operator's ``input_range`` (where its output
+        saturates), give one ``RuntimeWarning`` per run.  ``None``: no rating check.
 
     Notes
     -----
@@ -46,8 +71,13 @@ class PiezoDrive:
         d33: float = 460e-12,
         electrode_spacing: float = 0.5e-3,
         hysteresis: Any = None,
+        rated_range: tuple[float, float] | None = MFC_P1_RATED_RANGE,
     ) -> None:
-        if callable(voltage):
+        self.controller = None
+        if _is_controller(voltage):
+            self.controller = voltage
+            self._voltage_fn = voltage.voltage_at
+        elif callable(voltage):
             self._voltage_fn = voltage
         elif isinstance(voltage, numbers.Real) and not isinstance(voltage, bool):
             value = float(voltage)
@@ -68,7 +98,28 @@ class PiezoDrive:
                     f"hysteresis must be a hysteresis operator with methods {', '.join(_OPERATOR_METHODS)}; "
                     f"got {type(hysteresis).__name__!s} lacking {', '.join(missing)}"
                 )
+            quantity = getattr(hysteresis, "output_quantity", None)
+            if quantity is not None and quantity != "strain":
+                raise ValueError(
+                    f"hysteresis must give the free strain [-] of the active layer, got an operator whose "
+                    f"output is {quantity!r}. The drive turns strain into each cell's stroke itself "
+                    "(stroke = strain x cell length); use a strain-valued operator, e.g. "
+                    "exudyn_atcm.parameter_sets.paper_strain_preisach() instead of paper_stroke_preisach(), "
+                    "or scale your operator's output to strain"
+                )
+            _check_strain_magnitude(_output_bound(hysteresis), "the hysteresis operator's output range", stacklevel=4)
         self.hysteresis = hysteresis
+        if rated_range is None:
+            self.rated_range = None
+        else:
+            try:
+                low, high = rated_range
+            except (TypeError, ValueError):
+                raise ValueError(f"rated_range must be None or a pair (U_min, U_max) [V], got {rated_range!r}") from None
+            low, high = finite_float("rated_range[0]", low), finite_float("rated_range[1]", high)
+            if not low < high:
+                raise ValueError(f"rated_range must have U_min < U_max, got {rated_range!r}")
+            self.rated_range = (low, high)
 
     def voltage_at(self, t: float) -> float:
         """Voltage [V] at time ``t`` [s]; raises ``ValueError`` if the program returns a non-finite value."""
@@ -94,9 +145,78 @@ class PiezoDrive:
             return self.linear_strain(voltage)
         return float(self.hysteresis.apply([float(voltage)])[-1])
 
+    def check_voltage_range(self, u_low: float, u_high: float) -> None:
+        """Warn once if voltages in ``[u_low, u_high]`` [V] leave the operator's input range or the rating.
+
+        Outside the hysteresis operator's ``input_range`` its output saturates (5000 V gives
+        the 1500 V answer); outside :attr:`rated_range` the MFC is driven beyond its rating.
+        One ``RuntimeWarning`` lists each range and how far the voltages go beyond it.
+        """
+        problems = []
+        op_range = getattr(self.hysteresis, "input_range", None) if self.hysteresis is not None else None
+        if op_range is not None:
+            text = _outside(u_low, u_high, op_range)
+            if text:
+                problems.append(
+                    f"{text} the hysteresis operator's input range {op_range[0]:g} ... {op_range[1]:g} V, "
+                    "where its output saturates (larger voltages give the same strain)"
+                )
+        if self.rated_range is not None:
+            text = _outside(u_low, u_high, self.rated_range)
+            if text:
+                problems.append(
+                    f"{text} the MFC's rated range {self.rated_range[0]:g} ... {self.rated_range[1]:g} V "
+                    "(rated_range of the PiezoDrive)"
+                )
+        if problems:
+            warnings.warn(
+                f"the voltage program spans {u_low:g} ... {u_high:g} V: " + "; ".join(problems),
+                RuntimeWarning,
+                stacklevel=4,
+            )
+
+    def check_strain(self, strain_low: float, strain_high: float) -> None:
+        """Warn if free strains in ``[strain_low, strain_high]`` exceed :data:`PLAUSIBLE_STRAIN` in magnitude."""
+        _check_strain_magnitude(max(abs(strain_low), abs(strain_high)), "the free strain of the run", stacklevel=5)
+
     def __repr__(self) -> str:
         hyst = "None" if self.hysteresis is None else type(self.hysteresis).__name__
         return (
             f"PiezoDrive(voltage={self.voltage!r}, d33={self.d33!r}, "
             f"electrode_spacing={self.electrode_spacing!r}, hysteresis={hyst})"
+        )
+
+
+def _outside(u_low: float, u_high: float, bounds: tuple[float, float]) -> str:
+    """``"reach 5000 V, 3500 V above"``-style text, or ``""`` when inside ``bounds``."""
+    parts = []
+    if u_high > bounds[1]:
+        parts.append(f"reach {u_high:g} V, {u_high - bounds[1]:g} V above")
+    if u_low < bounds[0]:
+        parts.append(f"reach {u_low:g} V, {bounds[0] - u_low:g} V below")
+    return " and ".join(parts) and "they " + " and ".join(parts)
+
+
+def _output_bound(operator: Any) -> float:
+    """Largest output magnitude an operator states (``y_min``/``y_max`` or ``output_range``), else 0."""
+    bounds = getattr(operator, "output_range", None)
+    if bounds is None:
+        low, high = getattr(operator, "y_min", None), getattr(operator, "y_max", None)
+        if low is None or high is None:
+            return 0.0
+        bounds = (low, high)
+    try:
+        return max(abs(float(bounds[0])), abs(float(bounds[1])))
+    except (TypeError, ValueError, IndexError):
+        return 0.0
+
+
+def _check_strain_magnitude(value: float, what: str, stacklevel: int) -> None:
+    if value > PLAUSIBLE_STRAIN:
+        warnings.warn(
+            f"{what} reaches a free strain of {value:.3g}, more than {PLAUSIBLE_STRAIN:g} (1 %); piezo "
+            "layers reach about 1e-3 (the paper's MFC: 1.38e-3 at 1500 V). Check the units: the drive "
+            "expects strain [-], not a stroke in micrometres or a strain in percent",
+            RuntimeWarning,
+            stacklevel=stacklevel,
         )

@@ -36,6 +36,9 @@ PAPER_ELECTRODE_SPACING = 0.5e-3
 def paper_stroke_preisach(rounded: bool = False) -> ContinuousPreisach:
     """The paper's continuous Preisach model as the stroke [m] of a 29 mm cell.
 
+    Its ``output_quantity`` is ``"stroke"``: a :class:`~exudyn_atcm.drive.PiezoDrive` refuses
+    it (the drive needs strain; use :func:`paper_strain_preisach`).
+
     Parameters
     ----------
     rounded : bool, optional
@@ -45,22 +48,24 @@ def paper_stroke_preisach(rounded: bool = False) -> ContinuousPreisach:
     """
     d = PAPER_LOOP
     if rounded:
-        return ContinuousPreisach(
+        operator = ContinuousPreisach(
             d["u_min [V]"], d["u_max [V]"], d["x_min [m]"], d["x_max [m]"], d["r1 (rounded)"], d["r2 (rounded)"]
         )
-    return ContinuousPreisach.from_points(
-        d["u_min [V]"], d["u_max [V]"], d["x_min [m]"], d["x_max [m]"], d["u_m [V]"], d["x_m1 [m]"], d["x_m2 [m]"]
-    )
+    else:
+        operator = ContinuousPreisach.from_points(
+            d["u_min [V]"], d["u_max [V]"], d["x_min [m]"], d["x_max [m]"], d["u_m [V]"], d["x_m1 [m]"], d["x_m2 [m]"]
+        )
+    return operator.with_output_quantity("stroke")
 
 
 def paper_strain_preisach(rounded: bool = False) -> ContinuousPreisach:
     """The paper's continuous Preisach model as free strain [-] (stroke / 29 mm).
 
     Same exponents as :func:`paper_stroke_preisach`; output range about
-    ``-1.3793e-4 ... 1.3793e-3``.
+    ``-1.3793e-4 ... 1.3793e-3``; ``output_quantity`` is ``"strain"``.
     """
     stroke = paper_stroke_preisach(rounded)
     length = PAPER_LOOP["cell_length [m]"]
     return ContinuousPreisach(
         stroke.u_min, stroke.u_max, stroke.y_min / length, stroke.y_max / length, stroke.r1, stroke.r2
-    )
+    ).with_output_quantity("strain")

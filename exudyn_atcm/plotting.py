@@ -13,8 +13,9 @@ from typing import Sequence
 import numpy as np
 from matplotlib.figure import Figure
 
-from ._atomic import _FILE_MODE
+from ._atomic import _FILE_MODE, WriteError, describe_os_error, make_directory
 from .plot_style import new_figure, save_figure
+from .progress import report_task
 
 
 def _save(fig: Figure, path: str) -> str:
@@ -136,15 +137,23 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
     directory = os.path.dirname(os.path.abspath(target))
     if not os.path.isdir(directory):
         raise ValueError(f"path must be in an existing directory, got {target!r}")
-    fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
+    except OSError as exc:
+        raise WriteError(f"cannot write {target!r} into {directory!r}: {describe_os_error(exc)}") from None
     os.close(fd)
     try:
         os.chmod(tmp, _FILE_MODE)
-        animation.save(tmp, writer=PillowWriter(fps=fps))
+        total = len(shapes)
+        report_task("GIF frames", 0, total)
+        animation.save(tmp, writer=PillowWriter(fps=fps),
+                       progress_callback=lambda done, _n: report_task("GIF frames", done + 1, total))
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as exc:
         if os.path.exists(tmp):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and not isinstance(exc, WriteError):
+            raise WriteError(f"cannot write {target!r}: {describe_os_error(exc)}") from None
         raise
     return target
 
@@ -154,10 +163,21 @@ def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[st
 
     Returns the paths written.
     """
+    if "voltage" not in result or "tip_y" not in result:
+        raise ValueError(
+            "plot_result draws the series of a BendingActuator run (voltage, tip_x, tip_y, ...); this result has "
+            f"{', '.join(list(result)[:6])}, ... - for a mechanism use exudyn_atcm.mechanism_plots.plot_mechanism"
+            "(mechanism, result, path) or plot_point_paths")
     out_dir = os.fspath(out_dir)
-    os.makedirs(out_dir, exist_ok=True)
-    return [
-        plot_time_series(result, os.path.join(out_dir, f"{prefix}time_series.png")),
-        plot_tip_vs_voltage(result, os.path.join(out_dir, f"{prefix}tip_vs_voltage.png")),
-        plot_shapes(result, os.path.join(out_dir, f"{prefix}shapes.png")),
+    make_directory(out_dir, "plot directory")
+    jobs = [
+        (plot_time_series, "time_series.png"),
+        (plot_tip_vs_voltage, "tip_vs_voltage.png"),
+        (plot_shapes, "shapes.png"),
     ]
+    written = []
+    report_task("plots", 0, len(jobs))
+    for k, (draw, name) in enumerate(jobs, start=1):
+        written.append(draw(result, os.path.join(out_dir, f"{prefix}{name}")))
+        report_task("plots", k, len(jobs))
+    return written

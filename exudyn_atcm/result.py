@@ -134,29 +134,40 @@ class Result(Mapping):
         """Write all series to a CSV file, atomically.
 
         The file starts with ``#`` comment lines (package and Exudyn versions, parameters,
-        run information), then the header row ``time [s],voltage [V],...``, then one row per
-        recorded instant with 17 significant digits.  It is written to a temporary file in
-        the target directory and renamed over ``path``, so readers never see a partial file.
+        run information, and ``# data_rows: N``, the number of data rows, which
+        :func:`~exudyn_atcm.csv_io.read_csv` checks), then the header row
+        ``time [s],voltage [V],...``, then one row per recorded instant.  Each number is
+        written as the shortest text that reads back to the same float (``1.9999``, not
+        ``1.9998999999999999``).  The file is written to a temporary file in the target
+        directory and renamed over ``path``, so readers never see a partial file.
 
         Read it back with :meth:`from_csv`, ``pandas.read_csv(path, comment="#")``, or
         ``numpy.loadtxt(path, delimiter=",", skiprows=k)`` with ``k`` the number of ``#`` lines
-        plus one (numpy's ``skiprows`` counts comment lines too; ``len(header_comment_lines()) + 1``).
+        plus one (numpy's ``skiprows`` counts comment lines too; ``len(header_comment_lines()) + 2``
+        with the ``data_rows`` line).
 
         Parameters
         ----------
         path : str or os.PathLike
-            Target file; its directory must exist.
+            Target file; missing parent directories are created.
+
+        Raises
+        ------
+        exudyn_atcm._atomic.WriteError
+            (an ``OSError``) if the file cannot be written, naming the file and the reason.
         """
-        matrix = np.column_stack([self._series[n] for n in self._series]) if self._series else np.empty((0, 0))
+        columns = [self._series[n].tolist() for n in self._series]
 
         def write(handle) -> None:
             for line in self.header_comment_lines():
                 handle.write(line + "\n")
+            handle.write(f"# data_rows: {self.n_rows}\n")
             handle.write(self.column_header() + "\n")
-            if matrix.size:
-                np.savetxt(handle, matrix, delimiter=",", fmt="%.17g")
+            if columns:
+                fmt = float.__repr__
+                handle.writelines(",".join(map(fmt, row)) + "\n" for row in zip(*columns))
 
-        write_atomic(path, write)
+        write_atomic(path, write, make_dirs=True)
 
     @classmethod
     def from_csv(cls, path: str | os.PathLike) -> "Result":

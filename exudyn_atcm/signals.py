@@ -16,7 +16,7 @@ import numpy as np
 
 from ._checks import finite_array, finite_float, positive_float
 
-__all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal"]
+__all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram"]
 
 TimeLike = Union[float, np.ndarray]
 
@@ -43,6 +43,22 @@ class Signal:
     def _scalar(self, t: float) -> float:
         """Value at one time; subclasses may override with a faster scalar formula."""
         return float(self._values(np.array([t]))[0])
+
+    def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
+        """The shortest interval [s] between corners of the program up to ``t_end``, and what it is.
+
+        A solver must take several steps across it to follow the program (see
+        :func:`exudyn_atcm.run_checks.check_step_against_program`): the ramp of a triangle
+        (half a period), half a sine period (extremum to extremum), the dwell of a step
+        program, the shortest segment of a piecewise-linear program.  ``None`` for a program
+        without corners (a constant).
+
+        Parameters
+        ----------
+        t_end : float, optional
+            Only features that start before ``t_end`` [s] count (default: all).
+        """
+        return None
 
     @property
     def parameters(self) -> dict[str, Any]:
@@ -110,6 +126,11 @@ class Triangle(Signal):
         sign = 1.0 if k % 2 == 0 else -1.0
         return self.u_med + self.u_amp * (2.0 * phase - 1.0 - 2.0 * k) * sign
 
+    def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
+        if self.u_amp == 0.0:
+            return None
+        return 0.5 * self.period, f"a ramp of the triangle wave (half its period of {self.period:g} s)"
+
     def _parameters(self) -> dict[str, Any]:
         return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period}
 
@@ -140,6 +161,11 @@ class Sine(Signal):
 
     def _scalar(self, t: float) -> float:
         return self.u_med + self.u_amp * math.sin(2.0 * math.pi * t / self.period + self.phase)
+
+    def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
+        if self.u_amp == 0.0:
+            return None
+        return 0.5 * self.period, f"half a period of the sine (period {self.period:g} s)"
 
     def _parameters(self) -> dict[str, Any]:
         return {"u_med": self.u_med, "u_amp": self.u_amp, "period": self.period, "phase": self.phase}
@@ -177,6 +203,20 @@ class Steps(Signal):
         index = np.searchsorted(self.times, t, side="right") - 1
         return self.values[np.clip(index, 0, None)]
 
+    def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
+        # dwell between successive switches that change the value (only those before t_end)
+        change = np.flatnonzero(np.diff(self.values) != 0.0) + 1
+        switches = self.times[change]
+        if switches.size < 2:
+            return None
+        dwell = np.diff(switches)
+        if t_end is not None:
+            dwell = np.where(switches[:-1] < t_end, dwell, np.inf)
+        k = int(np.argmin(dwell))
+        if not np.isfinite(dwell[k]):
+            return None
+        return float(dwell[k]), f"the dwell of {float(dwell[k]):g} s from t = {float(switches[k]):g} s of the step program"
+
     def _parameters(self) -> dict[str, Any]:
         return {"times": self.times.tolist(), "values": self.values.tolist()}
 
@@ -210,8 +250,78 @@ class PiecewiseLinear(Signal):
                 )
         return np.interp(t, self.times, self.values)
 
+    def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
+        # corners: breakpoints where the slope changes (collinear points are not corners)
+        t, v = self.times, self.values
+        if t.size < 2:
+            return None
+        slopes = np.diff(v) / np.diff(t)
+        scale = max(float(np.max(np.abs(slopes))), 1e-300)
+        corner = np.abs(np.diff(slopes)) > 1e-9 * scale
+        corners = np.concatenate([[t[0]], t[1:-1][corner], [t[-1]]])
+        if not np.any(slopes != 0.0):
+            return None
+        segments = np.diff(corners)
+        if t_end is not None:
+            segments = segments[corners[:-1] < t_end]
+        segments = segments[segments > 0.0]
+        if segments.size == 0:
+            return None
+        k = int(np.argmin(segments))
+        return float(segments[k]), f"a segment of {float(segments[k]):g} s between corners of the piecewise-linear program"
+
     def _parameters(self) -> dict[str, Any]:
         return {"times": self.times.tolist(), "values": self.values.tolist(), "outside": self.outside}
+
+
+class ForcProgram(PiecewiseLinear):
+    """First-order reversal curves (FORC): the input program that maps the Preisach plane.
+
+    From ``u_min`` (negative saturation) the input rises to ``u_max``; then, for each reversal
+    input ``u_r`` from the top down to ``u_min``, it falls from ``u_max`` to ``u_r`` and rises
+    back to ``u_max``.  The curve rising from ``u_r`` switches on exactly the relays with
+    ``beta >= u_r`` (Mayergoyz 2003), so the set of curves determines the Preisach density
+    down to the spacing of the reversal inputs; :meth:`DiscretePreisach.fit
+    <exudyn_atcm.hysteresis.DiscretePreisach.fit>` identifies it from such a record like from
+    any other.  The program ends with a fall to ``u_min``.  Ramps run at a constant ``rate``.
+
+    Parameters
+    ----------
+    u_min, u_max : float
+        Input range [V], ``u_max > u_min``.
+    n_curves : int
+        Number of reversal curves, ``>= 1``: reversal inputs
+        ``u_max - k (u_max - u_min)/n_curves``, ``k = 1 … n_curves``.
+    rate : float
+        Ramp rate [V/s], ``> 0``.
+    """
+
+    def __init__(self, u_min: float, u_max: float, n_curves: int, rate: float) -> None:
+        u_min = finite_float("u_min", u_min)
+        u_max = finite_float("u_max", u_max)
+        if u_max <= u_min:
+            raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
+        if isinstance(n_curves, bool) or not isinstance(n_curves, (int, np.integer)) or n_curves < 1:
+            raise ValueError(f"n_curves must be an integer >= 1, got {n_curves!r}")
+        rate = positive_float("rate", rate)
+        reversals = u_max - (u_max - u_min) * np.arange(1, n_curves + 1) / n_curves
+        corners = [u_min, u_max]
+        for r in reversals.tolist():
+            corners += [r, u_max]
+        corners.append(u_min)
+        values = np.array(corners)
+        times = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(values)) / rate)])
+        self.u_min, self.u_max, self.n_curves, self.rate = u_min, u_max, int(n_curves), rate
+        self.reversal_inputs = reversals
+        super().__init__(times, values)
+
+    @property
+    def duration(self) -> float:
+        """Length of the program [s]."""
+        return float(self.times[-1])
+
+    def _parameters(self) -> dict[str, Any]:
+        return {"u_min": self.u_min, "u_max": self.u_max, "n_curves": self.n_curves, "rate": self.rate}
 
 
 class CsvSignal(PiecewiseLinear):
@@ -265,7 +375,13 @@ def _read_table(path: Path) -> tuple[list[str] | None, list[tuple[int, list[str]
         raise ValueError(f"path must be an existing CSV file, got {str(path)!r}")
     header: list[str] | None = None
     rows: list[tuple[int, list[str]]] = []
-    with path.open(newline="") as handle:
+    try:
+        handle = path.open(newline="")
+    except OSError as exc:
+        from ._atomic import describe_os_error
+
+        raise ValueError(f"path {str(path)!r} cannot be read: {describe_os_error(exc)}") from None
+    with handle:
         for line_number, row in enumerate(csv.reader(handle), start=1):
             if not row or row[0].lstrip().startswith("#"):
                 continue

@@ -23,7 +23,19 @@ import numpy as np
 from . import _mbs_builder as builder
 from ._checks import finite_float, positive_float, positive_int
 from .actuator import BendingActuator
+from .recording import RecordingSchedule, recording_schedule
+from .mechanism import Mechanism
 from .result import Result
+from .run_checks import (
+    InterruptGuard,
+    SimulationInterrupted,
+    WallClock,
+    check_step_against_frequency,
+    check_step_against_program,
+    snap_time,
+    time_grid,
+    warn_if_long,
+)
 
 #: Default time step of :func:`simulate` [s] (EXUDYN_NOTES.md: converged to 2e-7 m at 10 cells).
 DEFAULT_STEP = 1e-4
@@ -59,6 +71,9 @@ class InStepStrain:
         self._u = 0.0
         self._strain = 0.0
         self.evaluations = 0
+        #: lowest and highest committed voltage [V] (for the range check after the run)
+        self.u_low = math.inf
+        self.u_high = -math.inf
         if self.hysteresis is not None:
             self.hysteresis.reset()
 
@@ -76,6 +91,10 @@ class InStepStrain:
     def commit(self, t: float) -> tuple[float, float]:
         # the voltage of the accepted step was computed for its trial (same t)
         u = self._u if t == self._t else self.drive.voltage_at(t)
+        if u < self.u_low:
+            self.u_low = u
+        if u > self.u_high:
+            self.u_high = u
         if self.hysteresis is None:
             strain = self.drive.linear_strain(u)
         else:
@@ -98,6 +117,8 @@ class TableStrain:
         self.strains = np.asarray(strains, dtype=float)
         self._t = None
         self._strain = 0.0
+        self.u_low = float(self.voltages.min()) if self.voltages.size else math.inf
+        self.u_high = float(self.voltages.max()) if self.voltages.size else -math.inf
 
     @classmethod
     def from_drive(cls, drive, t_end: float, step: float) -> "TableStrain":
@@ -121,6 +142,13 @@ class TableStrain:
 
 
 # ------------------------------------------------------------------------------ argument checks
+
+def _mechanism_only(tip_force: Any) -> None:
+    """A mechanism carries its loads itself (``mechanism.force``); ``tip_force`` is for a lone actuator."""
+    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
+        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
+                         f"(Fx, Fy)), got tip_force={tip_force!r}")
+
 
 def _check_actuator(actuator: Any) -> BendingActuator:
     if not isinstance(actuator, BendingActuator):
@@ -146,34 +174,68 @@ def _strain_scale(actuator: BendingActuator, strain: float, force: tuple[float, 
 # ------------------------------------------------------------------------------ recording
 
 class _Recorder:
-    """Post-step hook: commits the strain source and stores the accepted step's state."""
+    """Post-step hook: commits the strain source and stores the recorded steps' state.
 
-    def __init__(self, model, source, progress=None, t_end: float = 1.0) -> None:
+    Every accepted step is committed; :class:`~exudyn_atcm.recording.RecordingSchedule`
+    decides which are stored (the last accepted step always is).  Recorded times are put on
+    the step grid where they are within round-off of it (:func:`~exudyn_atcm.run_checks.snap_time`).
+    """
+
+    def __init__(self, model, source, progress=None, t_end: float = 1.0, step: float | None = None,
+                 schedule: RecordingSchedule | None = None) -> None:
         self.model = model
         self.source = source
+        # closed loop: the drive's controller observes every accepted step's tip deflection
+        self.controller = getattr(getattr(source, "drive", None), "controller", None)
         self.index = model.record_indices
         self.scalars: list[tuple] = []
         self.states: list[np.ndarray] = []
-        self.progress = progress
+        self.progress = WallClock(progress, t_end) if progress is not None else None
         self.t_end = t_end
-        self._next_report = 0.0
+        self.step = step
+        self.schedule = schedule
+        self.accepted = 0
+        self._pending = None
+        self._last_t = 0.0
 
     def post_step(self, t: float) -> None:
         u, strain = self.source.commit(t)
-        self.scalars.append((t, u, strain))
-        self.states.append(self.model.coordinates()[self.index])
-        if self.progress is not None and t >= self._next_report:
-            self.progress(t, self.t_end)
-            self._next_report = t + 0.01 * self.t_end
+        self.accepted += 1
+        self._last_t = t
+        if self.step is not None:
+            t = snap_time(t, self.step)
+        if self.schedule is None or self.schedule.take(t):
+            self.scalars.append((t, u, strain))
+            self.states.append(self.model.coordinates()[self.index])
+            self._pending = None
+        else:
+            self._pending = (t, u, strain, self.model.coordinates()[self.index])
+        if self.controller is not None:
+            # closed loop: the controller observes the accepted step's tip deflection
+            self.controller.observe(t, self.model.read_state(self.model.coordinates(), strain)[1])
+        if self.progress is not None:
+            self.progress(t)
+
+    def close(self) -> None:
+        """Add the last accepted step if the schedule skipped it."""
+        if self._pending is not None:
+            t, u, strain, state = self._pending
+            self.scalars.append((t, u, strain))
+            self.states.append(state)
+            self._pending = None
 
     @property
     def n_rows(self) -> int:
         return len(self.scalars)
 
     def last_time(self) -> float:
+        """Time [s] of the last accepted step (0 before the first)."""
+        if self._pending is not None:
+            return self._pending[0]
         return self.scalars[-1][0] if self.scalars else 0.0
 
     def result(self, actuator: BendingActuator, info: dict) -> Result:
+        self.close()
         scalars = np.array(self.scalars, dtype=float).reshape(-1, 3)
         states = np.array(self.states, dtype=float).reshape(len(self.states), self.index.size)
         x, y, a, angles = self.model.states_from_records(states, scalars[:, 2])
@@ -251,6 +313,8 @@ def _static_equilibrium(actuator, model, strain: float, force: tuple[float, floa
         builder.run_static(model, builder.static_settings(load_steps), lambda f: f * strain)
         return "static"
     except builder.ExudynFailure as exc:
+        if _is_interrupt(exc):
+            raise SimulationInterrupted(0.0) from None
         first = exc
     builder.reset_to_reference(model)
     omega1 = 2.0 * math.pi * actuator.first_frequency_estimate
@@ -296,10 +360,13 @@ def solve_static(
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator; its drive gives the voltage-to-strain law.
-    voltage : float, optional
-        Voltage [V].  Default: the drive's voltage at ``t = 0``.  With a hysteresis
+    actuator : BendingActuator or Mechanism
+        The actuator; its drive gives the voltage-to-strain law.  A
+        :class:`~exudyn_atcm.Mechanism` is solved with its own loads (``tip_force`` must stay
+        zero) and gives the columns listed on the :doc:`/mechanisms` page.
+    voltage : float or mapping, optional
+        Voltage [V].  Default: the drive's voltage at ``t = 0``.  For a mechanism: a number
+        for every drive, or ``{drive_name: volts}``.  With a hysteresis
         operator, the voltage is reached by a monotone ramp from the operator's reset state.
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
@@ -328,6 +395,11 @@ def solve_static(
     large tip forces the iteration then converges ever more slowly and can stall.  A warning
     is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.solve_static(actuator, voltage, load_steps)
     actuator = _check_actuator(actuator)
     force = _check_force(tip_force)
     if voltage is None:
@@ -336,7 +408,9 @@ def solve_static(
         volts = finite_float("voltage", voltage)
     if load_steps is not None:
         load_steps = positive_int("load_steps", load_steps)
+    actuator.drive.check_voltage_range(volts, volts)
     strain = actuator.drive.static_strain(volts)
+    actuator.drive.check_strain(strain, strain)
     model = builder.build(actuator, force)
     method = _static_equilibrium(actuator, model, strain, force, load_steps,
                                  f"voltage {volts:g} V, tip force {force} N")
@@ -355,22 +429,29 @@ def simulate(
     tip_force: tuple[float, float] = (0.0, 0.0),
     settings: Callable[[Any], None] | dict | None = None,
     progress: Callable[[float, float], None] | None = None,
+    record_every: int | float | None = None,
 ) -> Result:
     """Dynamic response of the actuator to its voltage program (generalized-alpha).
 
     The run starts from the static equilibrium at the voltage ``U(0)`` and the tip force
     (the hysteresis operator is reset and then fed ``U(0)``), then integrates to ``t_end``.
-    Every accepted step is recorded.
+    Every accepted step is committed to the hysteresis memory; ``record_every`` chooses which
+    are recorded.
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator, with its drive (voltage program, optional hysteresis operator).
+    actuator : BendingActuator or Mechanism
+        The actuator, with its drive (voltage program, optional hysteresis operator), or a
+        :class:`~exudyn_atcm.Mechanism` (its own loads; ``tip_force`` must stay zero; columns
+        as listed on the :doc:`/mechanisms` page).
     t_end : float
         End time [s], > 0.
     step : float, optional
-        Time step [s], > 0 and <= ``t_end``; default 1e-4.  Exudyn halves it temporarily
-        when a step's Newton iteration fails (those steps are repeated, not recorded).
+        Time step [s], > 0 and <= ``t_end``; default 1e-4.  A step that does not divide
+        ``t_end`` is replaced by ``t_end / ceil(t_end / step)`` with a warning, and the step
+        used is recorded (``info["step [s]"]``; the request in ``info["step_requested [s]"]``).
+        Exudyn halves it temporarily when a step's Newton iteration fails (those steps are
+        repeated, not recorded).
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates, constant in time.
     settings : callable or dict, optional
@@ -379,36 +460,73 @@ def simulate(
         ``{"timeIntegration.newton.maxIterations": 12}``.
     progress : callable, optional
         ``progress(t, t_end)`` is called with the simulated time [s] about every 1 % of
-        ``t_end`` (for progress bars).
+        ``t_end`` and at least every 0.5 s of wall time (for progress bars).  It may raise
+        ``KeyboardInterrupt`` to stop the run (see Raises).
+    record_every : int or float, optional
+        Recording interval: ``None`` (default) records every accepted step; an ``int`` ``n``
+        every ``n``-th accepted step; a ``float`` an interval in seconds (a multiple of the
+        step gives evenly spaced records).  The first and the last instant are always
+        recorded.  The solution is the same; only memory and output shrink.
 
     Returns
     -------
     Result
         Series ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
-        ``tip_angle``, ``cell_angle_1..N``; ``result.info`` holds the number of attempted and
-        rejected steps.
+        ``tip_angle``, ``cell_angle_1..N``; ``result.info`` holds the step used, the number of
+        accepted, attempted and rejected steps, the recording interval (and, in closed loop,
+        the controller's ``summary()`` under ``"controller"``).
+
+    Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.control`), it is reset at
+    the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
+    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``.
+    A ``RuntimeWarning`` says when its output was held at a limit.
 
     Raises
     ------
     ValueError
-        For non-positive or non-finite ``t_end``/``step``, a bad ``tip_force`` or ``settings``.
+        For non-positive or non-finite ``t_end``/``step``, a bad ``tip_force``, ``settings``
+        or ``record_every``, or a step too coarse for the voltage program (fewer than
+        :data:`~exudyn_atcm.run_checks.MIN_STEPS_PER_FEATURE` steps across its shortest
+        ramp, half period or dwell).
     SolverError
         If the time integration fails; the message gives the time reached.
+    SimulationInterrupted
+        On Ctrl-C (``KeyboardInterrupt`` in the solver's hooks, the voltage program or
+        ``progress``): a ``KeyboardInterrupt`` whose ``result`` holds the steps computed so
+        far (``info["partial"]`` True, ``info["interrupted_at [s]"]``).
+
+    Warns
+    -----
+    RuntimeWarning
+        A step that resolves the voltage program or the first bending mode only coarsely, a
+        step that does not divide ``t_end``, a run predicted to take long, voltages outside
+        the hysteresis operator's input range or the MFC's rating, implausible strains.
 
     Notes
     -----
     Defaults: generalized-alpha with spectral radius 0.8, modified Newton, absolute Newton
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
+    The step checks and their thresholds are described in :mod:`exudyn_atcm.run_checks`.
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.simulate(actuator, t_end, step, settings, progress)
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
     return _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
-                     progress=progress)
+                     progress=progress, record_every=record_every)
+
+
+def _is_interrupt(exc: BaseException) -> bool:
+    """Whether an Exudyn failure was a ``KeyboardInterrupt`` raised inside a user function."""
+    return "KeyboardInterrupt" in str(exc)
 
 
 def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
-              progress=None) -> Result:
+              progress=None, record_every=None) -> Result:
     t_end = positive_float("t_end", t_end)
     step = positive_float("step", step)
     if step > t_end:
@@ -416,6 +534,19 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     force = _check_force(tip_force)
     if settings is not None and not callable(settings) and not isinstance(settings, dict):
         raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {settings!r}")
+    grid = time_grid(t_end, step)
+    schedule = recording_schedule(record_every, grid.step)
+    check_step_against_program(actuator.drive.voltage, grid.step, t_end)
+    check_step_against_frequency(grid.step, actuator.first_frequency_estimate)
+    warn_if_long(actuator.cell, actuator.n_cells, grid.n_steps)
+    controller = getattr(actuator.drive, "controller", None)
+    if controller is not None:
+        if source is not None and not isinstance(source, InStepStrain):
+            raise ValueError(
+                f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
+                "the voltage depends on the simulated response and cannot be tabulated beforehand"
+            )
+        controller.reset()
     if source is None:
         source = InStepStrain(actuator.drive)
     model = builder.build(actuator, force, stroke_path=stroke_path)
@@ -424,60 +555,106 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     # initial equilibrium at U(0) (the hysteresis memory takes U(0) at the t = 0 post-step)
     strain0 = source.trial(0.0)
     if strain0 != 0.0 or force != (0.0, 0.0):
-        _static_equilibrium(actuator, model, strain0, force, None, "initial state at t = 0")
+        try:
+            _static_equilibrium(actuator, model, strain0, force, None, "initial state at t = 0")
+        except SolverError as exc:
+            if _is_interrupt(exc.__cause__ or exc):
+                raise SimulationInterrupted(0.0) from None
+            raise
         builder.set_current_as_initial(model, zero_velocity=True)
 
-    sim_settings = builder.dynamic_settings(t_end, step)
+    sim_settings = builder.dynamic_settings(t_end, grid.step)
     builder.apply_user_settings(sim_settings, settings)
-    recorder = _Recorder(model, source, progress, t_end)
+    recorder = _Recorder(model, source, progress, t_end, step=grid.step, schedule=schedule)
+    guard = InterruptGuard()
 
     if stroke_path != "user_function":
         def pre_step(t: float) -> None:
             model.set_strain(source.trial(t))
     else:
         pre_step = None
+    stats = None
     try:
-        stats = builder.run_dynamic(model, sim_settings, pre_step, recorder.post_step)
+        stats = builder.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(recorder.post_step))
     except builder.ExudynFailure as exc:
-        t_fail = exc.time
-        last = recorder.last_time()
-        raise SolverError(
-            f"time integration of the {actuator.cell} actuator with {actuator.n_cells} cells failed at "
-            f"t = {t_fail:.6g} s (last accepted step at t = {last:.6g} s, requested step {step:g} s): "
-            f"generalized-alpha with Newton (absolute tolerance "
-            f"{sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
-            f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
-            f"{exc}. Try a smaller step, a slower voltage program, more cells for large deflections, or a "
-            f"looser tolerance via settings={{'timeIntegration.newton.absoluteTolerance': 1e-7}}."
-        ) from exc
-    accepted = max(recorder.n_rows - 1, 0)
+        if not _is_interrupt(exc):
+            t_fail = exc.time
+            last = recorder.last_time()
+            raise SolverError(
+                f"time integration of the {actuator.cell} actuator with {actuator.n_cells} cells failed at "
+                f"t = {t_fail:.6g} s (last accepted step at t = {last:.6g} s, step {grid.step:g} s): "
+                f"generalized-alpha with Newton (absolute tolerance "
+                f"{sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
+                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
+                f"{exc}. Try a smaller step, a slower voltage program, more cells for large deflections, or a "
+                f"looser tolerance via settings={{'timeIntegration.newton.absoluteTolerance': 1e-7}}."
+            ) from exc
+        guard.interrupted = True
+    accepted = max(recorder.accepted - 1, 0)
     info = {
         "solver": "generalized-alpha",
-        "step [s]": step,
+        "step [s]": grid.step,
         "accepted_steps": accepted,
-        "attempted_steps": stats["pre_step_calls"],
-        "rejected_steps": max(stats["pre_step_calls"] - accepted, 0),
-        "newton_steps": stats["newton_steps"],
+        "recorded": schedule.describe(),
         "stroke_path": stroke_path,
     }
+    if grid.adjusted:
+        info["step_requested [s]"] = grid.requested_step
+    if stats is not None:
+        info["attempted_steps"] = stats["pre_step_calls"]
+        info["rejected_steps"] = max(stats["pre_step_calls"] - accepted, 0)
+        info["newton_steps"] = stats["newton_steps"]
     if isinstance(source, InStepStrain):
         info["hysteresis_evaluations"] = source.evaluations
-    return recorder.result(actuator, info)
+    u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
+    if u_low <= u_high:
+        actuator.drive.check_voltage_range(u_low, u_high)
+    if controller is not None:
+        info["controller"] = controller.summary() if callable(getattr(controller, "summary", None)) else {}
+        limited = info["controller"].get("limited_samples", 0)
+        if limited:
+            warnings.warn(
+                f"the controller's output was at its limits {info['controller'].get('output_limits [V]')} V in "
+                f"{limited} of {info['controller'].get('samples')} samples (largest excess "
+                f"{info['controller'].get('largest_excess [V]', float('nan')):.4g} V): the wanted deflection is "
+                "partly out of reach",
+                RuntimeWarning,
+                stacklevel=3,
+            )
+    if guard.interrupted:
+        t_stop = recorder.last_time()
+        info["partial"] = True
+        info["interrupted_at [s]"] = t_stop
+        info.setdefault("attempted_steps", accepted)
+        info.setdefault("rejected_steps", 0)
+        partial = recorder.result(actuator, info) if recorder.n_rows or recorder._pending else None
+        raise SimulationInterrupted(t_stop, partial)
+    result = recorder.result(actuator, info)
+    if result.n_rows:
+        actuator.drive.check_strain(float(result["strain"].min()), float(result["strain"].max()))
+    return result
 
 
 # ------------------------------------------------------------------------------ eigenfrequencies
 
-def eigenfrequencies(actuator: BendingActuator, n: int = 3) -> np.ndarray:
+def eigenfrequencies(actuator: BendingActuator, n: int = 3, *, voltage: Any = None,
+                     tip_force: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
     """Lowest eigenfrequencies [Hz] of the undamped actuator about its undeformed state.
 
     The motor strokes are held at zero (motors are constraints), no tip load.
 
     Parameters
     ----------
-    actuator : BendingActuator
-        The actuator.
+    actuator : BendingActuator or Mechanism
+        The actuator, or a mechanism.
     n : int, optional
         Number of frequencies, >= 1 (default 3).
+    voltage : float or mapping, optional
+        Linearise about the static equilibrium at this voltage [V] (a mechanism: a number for
+        every drive or ``{drive_name: volts}``) with the loads.  ``None`` (default): about the
+        undeformed reference pose without loads (an actuator with a ``tip_force``: at 0 V).
+    tip_force : (float, float), optional
+        Actuator only: dead tip load [N] of the equilibrium.
 
     Returns
     -------
@@ -485,7 +662,18 @@ def eigenfrequencies(actuator: BendingActuator, n: int = 3) -> np.ndarray:
         The ``n`` lowest eigenfrequencies [Hz], ascending.  For a slender actuator these are
         its bending modes; the six-bar cell's shear and axial modes lie far above.
     """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        return mechanism_solve.eigenfrequencies(actuator, n, voltage)
     actuator = _check_actuator(actuator)
+    if voltage is not None or _check_force(tip_force) != (0.0, 0.0):
+        from . import mechanism_solve  # noqa: PLC0415 - imports this module
+
+        # the same model as a one-bender mechanism, linearised about its equilibrium
+        return mechanism_solve.eigenfrequencies(mechanism_solve.actuator_mechanism(actuator, tip_force), n,
+                                                0.0 if voltage is None else finite_float("voltage", voltage))
     n = positive_int("n", n)
     model = builder.build(actuator, (0.0, 0.0))
     freqs = builder.eigenfrequencies(model, n)

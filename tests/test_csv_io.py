@@ -27,7 +27,7 @@ def test_round_trip_is_exact(tmp_path):
     assert back.names == original.names
     assert back.units == original.units
     for name in original:
-        np.testing.assert_array_equal(back[name], original[name])  # 17 significant digits: exact
+        np.testing.assert_array_equal(back[name], original[name])  # shortest round-trip text: exact
     assert back.parameters == original.parameters
     assert back.info == original.info
     # and a second round is identical text
@@ -103,3 +103,42 @@ def test_hand_written_file_without_metadata(tmp_path):
     assert r.unit("tip_y") == "m"
     np.testing.assert_array_equal(r["tip_y"], [0.0, 1e-3])
     assert r.parameters == {} and r.info == {}
+
+
+def test_file_cut_at_a_row_boundary_is_refused(tmp_path):
+    # issue 9: a file cut after a complete row used to read as a shorter, valid result
+    path = tmp_path / "r.csv"
+    _result().to_csv(path)
+    lines = path.read_text().splitlines(keepends=True)
+    assert "# data_rows: 11\n" in lines
+    cut = tmp_path / "cut.csv"
+    cut.write_text("".join(lines[:-3]))  # 8 of 11 rows, ends with a complete line
+    with pytest.raises(ValueError) as info:
+        read_csv(cut)
+    message = str(info.value)
+    assert str(cut) in message and "states 11 data rows" in message and "holds 8" in message
+    assert "cut off" in message
+    appended = tmp_path / "appended.csv"
+    appended.write_text("".join(lines) + lines[-1])
+    with pytest.raises(ValueError, match="states 11 data rows .* holds 12"):
+        read_csv(appended)
+    assert read_csv(path).n_rows == 11  # the intact file reads
+
+
+@pytest.mark.parametrize("cell, extra", [("nan", ""), ("inf", ""), ("-inf", ""), ("1e400", "too large for a float")])
+def test_non_finite_numbers_are_refused_unless_asked(tmp_path, cell, extra):
+    path = _write(tmp_path, f"time [s],stroke [m]\n0,1\n0.5,{cell}\n")
+    with pytest.raises(ValueError) as info:
+        read_csv(path)
+    message = str(info.value)
+    assert str(path) in message and "line 3:" in message and "(stroke)" in message
+    assert "not a finite number" in message and "allow_nonfinite=True" in message and extra in message
+    value = read_csv(path, allow_nonfinite=True)["stroke"][1]
+    assert not np.isfinite(value)
+    assert (np.isnan(value) if cell == "nan" else value == float(cell))
+
+
+def test_unreadable_path_is_named_without_errno(tmp_path):
+    with pytest.raises(ValueError) as info:
+        read_csv(tmp_path)
+    assert str(info.value) == f"{tmp_path}: is a directory, not a CSV file"

@@ -11,6 +11,7 @@ import pytest
 
 import exudyn
 from exudyn_atcm._version import __version__
+from exudyn_atcm.csv_io import read_csv
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.result import Result
 from exudyn_atcm.simulation import simulate
@@ -99,16 +100,24 @@ def test_pandas_reads_the_csv(tmp_path):
 
 
 def test_to_csv_is_atomic(tmp_path, monkeypatch):
+    import errno
+
+    import exudyn_atcm._atomic as atomic
+
     path = tmp_path / "out.csv"
     path.write_text("old content\n")
     r = small_result()
 
     def broken(*args, **kwargs):
-        raise OSError("disk full")
+        raise OSError(errno.ENOSPC, "No space left on device", str(args[0]))
 
-    monkeypatch.setattr(np, "savetxt", broken)
-    with pytest.raises(OSError, match="disk full"):
+    monkeypatch.setattr(atomic.os, "replace", broken)
+    with pytest.raises(OSError) as info:
         r.to_csv(path)
+    # the user sees the file asked for and the reason, not the errno text or the temporary name
+    message = str(info.value)
+    assert "out.csv" in message and "the disk is full" in message
+    assert ".tmp_" not in message and "Errno" not in message
     # the old file is untouched and no temporary file is left behind
     assert path.read_text() == "old content\n"
     assert sorted(os.listdir(tmp_path)) == ["out.csv"]
@@ -118,6 +127,53 @@ def test_to_csv_is_atomic(tmp_path, monkeypatch):
     assert sorted(os.listdir(tmp_path)) == ["out.csv"]
 
 
-def test_to_csv_rejects_missing_directory(tmp_path):
-    with pytest.raises(ValueError, match="directory"):
-        small_result().to_csv(tmp_path / "missing" / "r.csv")
+def test_to_csv_creates_missing_directory(tmp_path):
+    # issue 9: Result.to_csv("out/run.csv") failed after the simulation when out/ was missing
+    target = tmp_path / "out" / "deeper" / "run.csv"
+    small_result().to_csv(target)
+    assert read_csv(target)["tip_y"].tolist() == small_result()["tip_y"].tolist()
+
+
+@pytest.mark.skipif(os.geteuid() == 0 if hasattr(os, "geteuid") else True,
+                    reason="root can write into read-only directories")
+def test_to_csv_into_read_only_directory_says_what_and_why(tmp_path):
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    locked.chmod(0o500)
+    try:
+        with pytest.raises(OSError) as info:
+            small_result().to_csv(locked / "run.csv")
+    finally:
+        locked.chmod(0o700)
+    message = str(info.value)
+    assert "run.csv" in message and "permission denied" in message
+    assert ".tmp_" not in message and "Errno" not in message
+
+
+def test_write_error_messages_name_target_and_reason(tmp_path, monkeypatch):
+    """Errno text and temporary names are replaced by the target and the reason (read-only file system)."""
+    import errno
+    import tempfile
+
+    import exudyn_atcm._atomic as atomic
+
+    def refuse(*args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system", str(tmp_path / ".tmp_abc123.csv"))
+
+    monkeypatch.setattr(tempfile, "mkstemp", refuse)
+    with pytest.raises(atomic.WriteError) as info:
+        small_result().to_csv(tmp_path / "run.csv")
+    message = str(info.value)
+    assert message == f"cannot write {str(tmp_path / 'run.csv')!r} into {str(tmp_path)!r}: the file system is read-only"
+
+
+def test_csv_floats_are_shortest_round_trip_text(tmp_path):
+    # 19999 * 1e-4 is 1.9999000000000002 in floats; the file must show what the number carries
+    r = Result({"time": [0.0, 1e-4, 1.9999, 2.0], "x": [0.1, -4e-06, 1 / 3, 1e-300]},
+               {"time": "s", "x": "m"})
+    r.to_csv(tmp_path / "r.csv")
+    lines = (tmp_path / "r.csv").read_text().splitlines()
+    data = lines[lines.index("time [s],x [m]") + 1:]
+    assert data == ["0.0,0.1", "0.0001,-4e-06", "1.9999,0.3333333333333333", "2.0,1e-300"]
+    back = read_csv(tmp_path / "r.csv")
+    assert back["x"].tolist() == r["x"].tolist()

@@ -7,12 +7,18 @@ effect), ``commit(u)`` (accept ``u``), ``reset()``, ``apply(u_series)`` and
 * :class:`ContinuousPreisach`: the paper's power-law loop (Eqs. 8-10), a true Preisach operator
   for every input history;
 * :class:`DiscretePreisach`: non-ideal relays with gains (Eq. 12), ``O(log n)`` per step;
+* :class:`EverettPreisach`: a relay grid with each weight spread over its cell (continuous
+  output), e.g. from :meth:`EverettPreisach.fit`;
 * :class:`PrandtlIshlinskii`: play operators with the analytic inverse.
+
+Identification from records: :mod:`exudyn_atcm.hysteresis.identification`; inverses:
+:mod:`exudyn_atcm.hysteresis.inverse`.
 """
 
 from .base import HysteresisOperator
 from .continuous import ContinuousPreisach
 from .discrete import DiscretePreisach
+from .everett import EverettPreisach
 from .prandtl_ishlinskii import PrandtlIshlinskii
 from .staircase import StaircasePreisach
 
@@ -21,5 +27,6 @@ __all__ = [
     "StaircasePreisach",
     "ContinuousPreisach",
     "DiscretePreisach",
+    "EverettPreisach",
     "PrandtlIshlinskii",
 ]

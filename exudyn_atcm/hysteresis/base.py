@@ -31,6 +31,23 @@ class HysteresisOperator(abc.ABC):
     (volts in and strain out when the operator models a piezo layer).
     """
 
+    #: What the output is: ``"strain"`` [-], ``"stroke"`` [m], ... or ``None`` when not stated.
+    #: The parameter sets state it; :class:`~exudyn_atcm.drive.PiezoDrive` accepts ``"strain"``
+    #: or ``None`` only.  Set it with :meth:`with_output_quantity`.
+    output_quantity: str | None = None
+
+    @property
+    def input_range(self) -> tuple[float, float] | None:
+        """``(u_low, u_high)``: beyond it the output saturates; ``None`` if the operator has no such range."""
+        return None
+
+    def with_output_quantity(self, quantity: str | None) -> "HysteresisOperator":
+        """Set :attr:`output_quantity` (e.g. ``"strain"`` or ``"stroke"``) and return the operator."""
+        if quantity is not None and (not isinstance(quantity, str) or not quantity.strip()):
+            raise ValueError(f"quantity must be None or a non-empty string such as 'strain', got {quantity!r}")
+        self.output_quantity = quantity
+        return self
+
     @abc.abstractmethod
     def evaluate(self, u: float) -> float:
         """Output for input ``u`` from the committed memory, without changing it."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from .._checks import finite_float
 from .staircase import StaircasePreisach
@@ -100,6 +101,48 @@ class ContinuousPreisach(StaircasePreisach):
         r1 = math.log((y_m1 - y_min) / dy) / math.log((u_m - u_min) / du)
         r2 = math.log((y_max - y_m2) / dy) / math.log((u_max - u_m) / du)
         return cls(u_min, u_max, y_min, y_max, r1, r2)
+
+    @property
+    def input_range(self) -> tuple[float, float]:
+        """``(u_min, u_max)``: beyond it the output saturates at ``y_min``/``y_max``."""
+        return (self.u_min, self.u_max)
+
+    @classmethod
+    def fit(cls, u: Any, y: Any, *, n_fit: int | None = None,
+            output_unit: str = "") -> tuple["ContinuousPreisach", Any]:
+        """Least-squares fit of the power-law model to a whole record (not three points).
+
+        ``u_min``, ``u_max`` are the input's extremes over the fitted samples; ``y_min``,
+        ``y_max``, ``r1`` and ``r2`` (each ``>= 1``) minimise the squared error of the
+        operator's output over the record (SciPy's bounded ``least_squares``; every residual
+        evaluation runs the operator over the record, so minor loops count too).
+
+        Parameters
+        ----------
+        u, y : array_like
+            Input and output samples in time order (at least 10).
+        n_fit : int, optional
+            Fit the first ``n_fit`` samples and predict the rest.  Default: all.
+        output_unit : str, optional
+            Unit of ``y`` for the report.
+
+        Returns
+        -------
+        (ContinuousPreisach, FitReport)
+
+        Raises
+        ------
+        ValueError
+            For fewer than 10 samples, non-finite values, different lengths, or a constant
+            input or output.
+
+        Notes
+        -----
+        The samples before the input first reaches its minimum are left out.
+        """
+        from .identification import fit_continuous
+
+        return fit_continuous(cls, u, y, n_fit=n_fit, output_unit=output_unit)
 
     def ascending(self, u: float) -> float:
         """Ascending major-loop branch (Eq. 8), held constant outside ``[u_min, u_max]``."""

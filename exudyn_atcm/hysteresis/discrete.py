@@ -8,10 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_int, same_length
+from .._checks import finite_array, finite_float, same_length
+from ._dominance import DominanceSums
 from .staircase import StaircasePreisach
-
-_CACHE_SIZE = 256
 
 
 class DiscretePreisach(StaircasePreisach):
@@ -31,9 +30,10 @@ class DiscretePreisach(StaircasePreisach):
     * ``kernel == "table"``: any other relay set whose grid of distinct thresholds has at most
       ``max_table_entries`` cells (a Preisach grid of ``n`` relays has about ``n``): the Everett
       function tabulated on that grid, every step ``O(log n)``;
-    * ``kernel == "rows"``: otherwise (many scattered thresholds), a step is ``O(log n)``
-      except the first one after a new reversal point, which builds that point's prefix-sum
-      row once (``O(n)``, vectorised; rows are cached).
+    * ``kernel == "dominance"``: otherwise (many scattered thresholds), weighted dominance
+      sums over the thresholds in a blocked table (``exudyn_atcm.hysteresis._dominance``,
+      ``O(n**1.5)`` memory, ``O(n**(4/3))`` for larger sets): every step three or four
+      binary searches and two or three table look-ups, whatever the input.
 
     Parameters
     ----------
@@ -46,7 +46,8 @@ class DiscretePreisach(StaircasePreisach):
     offset : float, optional
         Output with all relays off.
     max_table_entries : int, optional
-        Largest Everett table (number of float cells) built for a non-monotone relay set.
+        Largest Everett table (number of float cells) built for a non-monotone relay set;
+        beyond it the ``"dominance"`` kernel is used (``0``: always, for a non-monotone set).
 
     Notes
     -----
@@ -72,6 +73,7 @@ class DiscretePreisach(StaircasePreisach):
         self.weights = weights_a.copy()
         self.offset = finite_float("offset", offset)
         self._y_reset = self.offset
+        self._beta_low = float(beta_a.min())
         if isinstance(max_table_entries, bool) or not isinstance(max_table_entries, (int, np.integer)) or max_table_entries < 0:
             raise ValueError(f"max_table_entries must be an integer >= 0, got {max_table_entries!r}")
 
@@ -102,17 +104,9 @@ class DiscretePreisach(StaircasePreisach):
             self._table_item = table.item
             self._k_rising = self._k_falling = self._k_table  # type: ignore[method-assign]
         else:
-            self.kernel = "rows"
-            self._w_by_alpha = weights_a[order]
-            self._beta_by_alpha = beta_by_alpha
-            border = np.argsort(beta_a, kind="stable")
-            self._beta_sorted = beta_a[border].tolist()
-            self._w_by_beta = weights_a[border]
-            self._alpha_by_beta = alpha_a[border]
-            self._rows: dict[float, list[float]] = {}
-            self._columns: dict[float, list[float]] = {}
-            self._k_rising = self._k_row  # type: ignore[method-assign]
-            self._k_falling = self._k_column  # type: ignore[method-assign]
+            self.kernel = "dominance"
+            self._dominance = DominanceSums(alpha_a, beta_a, weights_a)
+            self._k_rising = self._k_falling = self._dominance.query  # type: ignore[method-assign]
         ties: dict[float, float] = {}
         for a, b, w in zip(alpha_a.tolist(), beta_a.tolist(), weights_a.tolist()):
             if a == b:
@@ -122,12 +116,27 @@ class DiscretePreisach(StaircasePreisach):
         super().__init__()
 
     @property
+    def input_range(self) -> tuple[float, float]:
+        """``(min beta, max alpha)``: below it every relay is off, above it every relay is on."""
+        return (self._beta_low, self._alpha_sorted[-1])
+
+    @property
     def n_relays(self) -> int:
         """Number of relays."""
         return len(self._alpha_sorted)
 
     @classmethod
-    def from_loop(cls, u: Any, y: Any, n: int) -> "DiscretePreisach":
+    def from_loop(
+        cls,
+        u: Any,
+        y: Any,
+        n: int,
+        *,
+        reversal_tolerance: float = 0.0,
+        coverage: float = 0.9,
+        report: bool = False,
+        output_unit: str = "",
+    ) -> Any:
         """Identify ``n`` equal-gain relays from a measured major loop (the paper's Eq. 12).
 
         The gain is ``Δy = (y_max − y_min)/n``.  Relay ``i = 1 … n`` sits at level
@@ -136,52 +145,127 @@ class DiscretePreisach(StaircasePreisach):
         does (the left-hand crossing), both by linear interpolation between samples.  On the
         loop itself the model's error is below one gain step ``Δy``.
 
+        The rule for measured records (several cycles, noise):
+
+        1. The input is cut at its reversals into monotone segments; a reversal counts once
+           the input has moved back by more than ``reversal_tolerance`` × its range (0: every
+           reversal; use about twice the input's noise for measured voltages).
+        2. Only segments spanning at least ``coverage`` × the input range are major-loop
+           branches (minor loops and a partial first rise are left out).
+        3. Per direction, the samples of all those segments are pooled and sorted by input,
+           and the branch is their least-squares non-decreasing fit (isotonic regression): an
+           average over the cycles which crosses every level exactly once, however often the
+           noise crosses it.  On clean, monotone branches it is the data itself, so a single
+           clean loop gives exactly the paper's construction.
+        4. ``y_min``, ``y_max`` are the extremes of the two averaged branches.  A level an
+           averaged branch never reaches gets the switch at that branch's end input (its
+           highest input for switch-on, its lowest for switch-off); a level where the averaged
+           branches cross (switch-on below switch-off) by no more than ``reversal_tolerance`` ×
+           the input range gets both thresholds at their mean.  Both are said in a
+           ``RuntimeWarning`` and in the report's notes; a larger crossing is an error.
+
         Parameters
         ----------
         u, y : array_like
-            Samples of the loop in time order (input, output); the ascending branch is taken
-            from the samples where ``u`` rises, the descending one from where it falls.
+            Samples of the loop(s) in time order (input, output).
         n : int
             Number of relays, ``>= 1``.
+        reversal_tolerance : float, optional
+            Fraction of the input range a reversal must exceed (default 0).
+        coverage : float, optional
+            Fraction of the input range a segment must span to count as a branch (default 0.9).
+        report : bool, optional
+            Also return a :class:`~exudyn_atcm.hysteresis.fit_report.FitReport` of the model on
+            the record.
+        output_unit : str, optional
+            Unit of ``y`` for the report.
+
+        Returns
+        -------
+        DiscretePreisach or (DiscretePreisach, FitReport)
 
         Raises
         ------
         ValueError
-            For empty, non-finite or mismatched data, ``n < 1``, a loop without both branches,
-            a branch that does not reach a level, or branches that cross (ascending above
-            descending, which gives a relay with ``alpha < beta``).
+            For empty, non-finite or mismatched data, ``n < 1``, a record without a branch in
+            each direction spanning ``coverage`` of the range, a constant output, or branches
+            that cross by more than the tolerance (not a hysteresis loop).
         """
-        u_a = finite_array("u", u, min_length=2)
-        y_a = finite_array("y", y, min_length=2)
-        same_length(("u", "y"), (u_a, y_a))
-        n = positive_int("n", n)
-        du = np.diff(u_a)
-        rising = np.zeros(u_a.size, dtype=bool)
-        falling = np.zeros(u_a.size, dtype=bool)
-        rising[:-1] |= du > 0
-        rising[1:] |= du > 0
-        falling[:-1] |= du < 0
-        falling[1:] |= du < 0
-        if not rising.any() or not falling.any():
-            missing = "ascending (rising u)" if not rising.any() else "descending (falling u)"
-            raise ValueError(f"u, y must describe a loop with both branches; the {missing} branch is missing")
-        y_min, y_max = float(y_a.min()), float(y_a.max())
-        if y_max <= y_min:
-            raise ValueError(f"y must vary over the loop, got a constant {y_min!r}")
-        gain = (y_max - y_min) / n
-        levels = y_min + gain * np.arange(1, n + 1)
-        levels[-1] = y_max  # exact top level, free of round-off
-        alpha = _crossings(u_a[rising], y_a[rising], levels, ascending=True)
-        beta = _crossings(u_a[falling], y_a[falling], levels, ascending=False)
-        bad = alpha < beta
-        if bad.any():
-            i = int(np.argmax(bad))
-            raise ValueError(
-                f"u, y: the ascending branch lies above the descending one at level {float(levels[i])!r} "
-                f"(ascending crossing u = {float(alpha[i])!r} < descending crossing u = {float(beta[i])!r}); "
-                "not a hysteresis loop"
-            )
-        return cls(alpha, beta, np.full(n, gain), offset=y_min)
+        from .loop_identification import identify_from_loop
+
+        return identify_from_loop(cls, u, y, n, reversal_tolerance=reversal_tolerance, coverage=coverage,
+                                  report=report, output_unit=output_unit)
+
+    @classmethod
+    def fit(
+        cls,
+        u: Any,
+        y: Any,
+        n_levels: int,
+        *,
+        smoothing: float = 1e-3,
+        n_fit: int | None = None,
+        input_range: tuple[float, float] | None = None,
+        output_unit: str = "",
+    ) -> tuple["DiscretePreisach", Any]:
+        """Variable gains: relay weights on a Preisach grid by non-negative least squares.
+
+        The input range of the fitted samples (or ``input_range``) is cut into ``n_levels``
+        cells; one relay sits at every pair of cell centres ``alpha >= beta``
+        (``n_levels (n_levels + 1)/2`` relays, the diagonal ones giving the reversible part).
+        The relay states along the record follow from the input alone, so the output is
+        linear in the weights: ``y ≈ c + S w``.  The weights ``w >= 0`` (a non-negative
+        Preisach density keeps the operator monotone, so its inverse exists) and the offset
+        ``c`` minimise
+
+        ``|| c + S w - y ||² + λ || D w ||²``,
+
+        with ``D`` the differences between neighbouring grid cells (smoothness of the density)
+        and ``λ = smoothing · trace(SᵀS)/trace(DᵀD)`` (centred ``S``), solved with SciPy's NNLS
+        on the Cholesky factor of the normal equations.  Any input history identifies the
+        density where the history explores the Preisach plane: major loops only the
+        neighbourhood of the boundary, minor loops and first-order reversal curves (see
+        :class:`exudyn_atcm.signals.ForcProgram`) the interior; so a model fitted on records
+        with minor loops predicts minor loops whose outputs change right after a reversal
+        (sloped), unlike the equal-gain construction of :meth:`from_loop`.
+
+        Parameters
+        ----------
+        u, y : array_like
+            Input and output samples in time order (at least 10).
+        n_levels : int
+            Grid cells along the input, ``>= 2``.
+        smoothing : float, optional
+            Dimensionless regularisation weight, ``>= 0`` (default 1e-3).
+        n_fit : int, optional
+            Fit the first ``n_fit`` samples, predict the rest (held out).  Default: all.
+        input_range : (float, float), optional
+            Input range of the grid; default the range of the fitted samples.
+        output_unit : str, optional
+            Unit of ``y`` for the report.
+
+        Returns
+        -------
+        (DiscretePreisach, FitReport)
+            The model (reset state: all relays off) and its errors on the fitted and held-out
+            parts against the best linear model.
+
+        Raises
+        ------
+        ValueError
+            For fewer than 10 samples, non-finite values, different lengths, a constant input
+            or output, ``n_levels < 2``, a negative ``smoothing``, or a record whose input never
+            comes down to the grid's lowest threshold (the memory at its start is unknown).
+
+        Notes
+        -----
+        Samples before the input first comes down to the lowest threshold are left out: until
+        then the relays' states depend on the history before the record.
+        """
+        from .identification import fit_discrete
+
+        return fit_discrete(cls, u, y, n_levels, smoothing=smoothing, n_fit=n_fit, input_range=input_range,
+                            output_unit=output_unit)
 
     # -- the function K -----------------------------------------------------------------
     def _k_rising(self, a: float, b: float) -> float:
@@ -196,52 +280,9 @@ class DiscretePreisach(StaircasePreisach):
     def _k_table(self, a: float, b: float) -> float:
         return self._table_item(bisect_right(self._alpha_levels, a), bisect_left(self._beta_levels, b))
 
-    def _k_row(self, a: float, b: float) -> float:
-        row = self._rows.get(b)
-        if row is None:
-            row = self._cache(self._rows, b, np.cumsum(self._w_by_alpha * (self._beta_by_alpha >= b)))
-        return row[bisect_right(self._alpha_sorted, a)]
-
-    def _k_column(self, a: float, b: float) -> float:
-        column = self._columns.get(a)
-        if column is None:
-            selected = self._w_by_beta * (self._alpha_by_beta <= a)
-            column = self._cache(self._columns, a, np.cumsum(selected[::-1])[::-1], at_end=True)
-        return column[bisect_left(self._beta_sorted, b)]
-
-    @staticmethod
-    def _cache(store: dict, key: float, sums: np.ndarray, at_end: bool = False) -> list[float]:
-        values = sums.tolist()
-        values = values + [0.0] if at_end else [0.0] + values
-        if len(store) >= _CACHE_SIZE:
-            store.clear()
-        store[key] = values
-        return values
-
     def _tie(self, u: float) -> float:
         return self._ties.get(u, 0.0)
 
     def __repr__(self) -> str:
         return f"DiscretePreisach(n_relays={self.n_relays}, offset={self.offset!r}, kernel={self.kernel!r})"
 
-
-def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: bool) -> np.ndarray:
-    """Input at which a branch first reaches each level, walking the branch in its direction."""
-    order = np.argsort(u, kind="stable")
-    u, y = u[order], y[order]
-    if not ascending:  # walk the descending branch from u_max downwards
-        u, y = u[::-1], y[::-1]
-    result = np.empty(levels.size)
-    for j, level in enumerate(levels.tolist()):
-        reached = y >= level if ascending else y <= level
-        if not reached.any():
-            kind = "ascending" if ascending else "descending"
-            raise ValueError(f"u, y: the {kind} branch never reaches the level y = {level!r}")
-        k = int(np.argmax(reached))
-        if k == 0:
-            result[j] = u[0]
-        else:
-            y0, y1 = y[k - 1], y[k]
-            s = (level - y0) / (y1 - y0)
-            result[j] = u[k - 1] + s * (u[k] - u[k - 1])
-    return result

@@ -11,7 +11,7 @@ from .base import HysteresisOperator, check_input
 
 
 class PrandtlIshlinskii(HysteresisOperator):
-    r"""Prandtl-Ishlinskii operator ``y = p0·u + Σ_j p_j·z_j``.
+    r"""Prandtl-Ishlinskii operator ``y = offset + p0·u + Σ_j p_j·z_j``.
 
     Each play operator of radius ``r_j`` follows
     :math:`z_j(t) = \max(u - r_j, \min(u + r_j, z_j(t^-)))`.
@@ -24,6 +24,8 @@ class PrandtlIshlinskii(HysteresisOperator):
         Play weights ``p_j`` (output units per input unit), same length as ``radii``.
     p0 : float
         Weight of the input itself (the play of radius 0).
+    offset : float, optional
+        Output added to the sum (default 0; set by :meth:`fit` for measured outputs).
 
     Notes
     -----
@@ -32,7 +34,7 @@ class PrandtlIshlinskii(HysteresisOperator):
     ``u = 0``); not a negative saturation, which a PI operator does not have.
     """
 
-    def __init__(self, radii: Any, weights: Any, p0: float) -> None:
+    def __init__(self, radii: Any, weights: Any, p0: float, offset: float = 0.0) -> None:
         r = finite_array("radii", radii, min_length=0)
         p = finite_array("weights", weights, min_length=0)
         same_length(("radii", "weights"), (r, p))
@@ -45,12 +47,13 @@ class PrandtlIshlinskii(HysteresisOperator):
         self.radii = r.copy()
         self.weights = p.copy()
         self.p0 = finite_float("p0", p0)
+        self.offset = finite_float("offset", offset)
         self.reset()
 
     def reset(self) -> None:
         """All plays at zero."""
         self._z = np.zeros(self.radii.size)
-        self._y = 0.0
+        self._y = self.offset
 
     def checkpoint(self) -> tuple:
         """Snapshot of the play states and the last output."""
@@ -75,13 +78,13 @@ class PrandtlIshlinskii(HysteresisOperator):
     def evaluate(self, u: float) -> float:
         """Output for input ``u`` from the committed play states; nothing is changed."""
         u = check_input(u)
-        return self.p0 * u + float(self.weights @ self._plays(u))
+        return self.offset + self.p0 * u + float(self.weights @ self._plays(u))
 
     def commit(self, u: float) -> float:
         """Accept input ``u``: update the play states and return the output."""
         u = check_input(u)
         self._z = self._plays(u)
-        self._y = self.p0 * u + float(self.weights @ self._z)
+        self._y = self.offset + self.p0 * u + float(self.weights @ self._z)
         return self._y
 
     def inverse(self) -> "PrandtlIshlinskii":
@@ -96,8 +99,16 @@ class PrandtlIshlinskii(HysteresisOperator):
         Raises
         ------
         ValueError
-            If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible).
+            If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible),
+            or ``offset != 0`` (the inverse of ``y = offset + P[u]`` is ``P⁻¹[y − offset]``,
+            whose plays do not start at rest for the input ``y``: use
+            :func:`exudyn_atcm.hysteresis.inverse.inverse_operator`, which shifts the input).
         """
+        if self.offset != 0.0:
+            raise ValueError(
+                f"inverse() needs offset == 0, got offset = {self.offset!r}; use "
+                "exudyn_atcm.hysteresis.inverse.inverse_operator(model), which subtracts the offset"
+            )
         radii, weights = self.radii, self.weights
         p0 = self.p0 + float(weights[radii == 0.0].sum())
         keep = radii > 0.0
@@ -116,4 +127,47 @@ class PrandtlIshlinskii(HysteresisOperator):
         return PrandtlIshlinskii(inv_radii, inv_weights, 1.0 / p0)
 
     def __repr__(self) -> str:
-        return f"PrandtlIshlinskii(radii={self.radii.tolist()!r}, weights={self.weights.tolist()!r}, p0={self.p0!r})"
+        extra = f", offset={self.offset!r}" if self.offset else ""
+        return (f"PrandtlIshlinskii(radii={self.radii.tolist()!r}, weights={self.weights.tolist()!r}, "
+                f"p0={self.p0!r}{extra})")
+
+    @classmethod
+    def fit(cls, u: Any, y: Any, n: int, *, n_fit: int | None = None,
+            output_unit: str = "") -> tuple["PrandtlIshlinskii", Any]:
+        """Fit ``n`` plays (radius 0 included) with non-negative weights to a record.
+
+        The radii are ``r_j = j·Δu/(2n)``, ``j = 1 … n−1`` (``Δu`` the input range of the fitted
+        samples); the play outputs along the record follow from the input alone (from the
+        reset state, as :meth:`apply` runs them), so ``p0``, the weights and the offset are a
+        linear least-squares problem, solved with SciPy's NNLS under ``p_j >= 0`` and
+        ``p0 >= 10⁻³ Δy/Δu``: a strictly increasing operator, so :meth:`inverse` exists.
+
+        Parameters
+        ----------
+        u, y : array_like
+            Input and output samples in time order (at least 10).
+        n : int
+            Number of plays including the radius-0 one, ``>= 2``.
+        n_fit : int, optional
+            Fit the first ``n_fit`` samples and predict the rest.  Default: all.
+        output_unit : str, optional
+            Unit of ``y`` for the report.
+
+        Returns
+        -------
+        (PrandtlIshlinskii, FitReport)
+
+        Raises
+        ------
+        ValueError
+            For fewer than 10 samples, non-finite values, different lengths, a constant input
+            or output, or ``n < 2``.
+
+        Notes
+        -----
+        The samples before the input has come within ``Δu/(2n)`` of both its minimum and its
+        maximum are left out (the play states depend on the history before the record).
+        """
+        from .identification import fit_prandtl_ishlinskii
+
+        return fit_prandtl_ishlinskii(cls, u, y, n, n_fit=n_fit, output_unit=output_unit)

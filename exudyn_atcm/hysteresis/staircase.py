@@ -31,6 +31,75 @@ from .base import HysteresisOperator, check_input
 _INF = math.inf
 
 
+def _staircase_step(store: bool):
+    """One body for :meth:`StaircasePreisach.evaluate` (``store=False``) and ``commit`` (``True``).
+
+    Both methods are made from this one function, so they cannot drift apart, and neither
+    carries a private argument nor pays for an extra call level (the step is a hot path: it
+    runs once per attempted solver step).
+    """
+
+    def step(self, u: float) -> float:
+        if type(u) is not float:
+            u = check_input(u)
+        elif not -_INF < u < _INF:  # nan compares false, too
+            raise ValueError(f"u must be a finite real number, got {u!r}")
+        u_now = self._u
+        if u == u_now:
+            return self._y
+        values = self._values
+        if u > u_now:
+            if self._rising:
+                i = len(values) - 1
+            elif u < values[-1]:
+                # A new minimum at u_now, no extremum wiped out.
+                y = self._y + self._k_rising(u, u_now) - (self._tie(u_now) if self._has_ties else 0.0)
+                if store:
+                    values.append(u_now)
+                    self._outputs.append(self._y)
+                    self._rising, self._u, self._y = True, u, y
+                return y
+            else:
+                i = len(values) - 2  # the new minimum and the last maximum are wiped out
+            while u >= values[i - 1]:
+                i -= 2
+            m = values[i]
+            y = self._outputs[i] + self._k_rising(u, m) - (self._tie(m) if self._has_ties else 0.0)
+            if store:
+                if i + 1 < len(values):
+                    del values[i + 1 :]
+                    del self._outputs[i + 1 :]
+                self._rising, self._u, self._y = True, u, y
+            return y
+        if not self._rising:
+            i = len(values) - 1
+        elif u > values[-1]:
+            # A new maximum at u_now, no extremum wiped out.
+            y = self._y - self._k_falling(u_now, u) + (self._tie(u) if self._has_ties else 0.0)
+            if store:
+                values.append(u_now)
+                self._outputs.append(self._y)
+                self._rising, self._u, self._y = False, u, y
+            return y
+        else:
+            i = len(values) - 2
+        while u <= values[i - 1]:
+            i -= 2
+        big_m = values[i]
+        y = self._outputs[i] - self._k_falling(big_m, u) + (self._tie(u) if self._has_ties else 0.0)
+        if store:
+            if i + 1 < len(values):
+                del values[i + 1 :]
+                del self._outputs[i + 1 :]
+            self._rising, self._u, self._y = False, u, y
+        return y
+
+    name = "commit" if store else "evaluate"
+    step.__name__ = name
+    step.__qualname__ = f"StaircasePreisach.{name}"
+    return step
+
+
 class StaircasePreisach(HysteresisOperator):
     """Base class: staircase memory plus a model-specific function ``K``.
 
@@ -102,66 +171,45 @@ class StaircasePreisach(HysteresisOperator):
         return list(zip(self._values[2:], self._outputs[2:]))
 
     # -- stepping ----------------------------------------------------------------------
-    def evaluate(self, u: float) -> float:
-        """Output for input ``u`` from the committed memory; the memory is not changed."""
-        return self.commit(u, _store=False)
+    # evaluate and commit are one body (_staircase_step below) with the memory update
+    # switched off or on.
+    evaluate = _staircase_step(store=False)
+    evaluate.__doc__ = """Output for input ``u`` from the committed memory; the memory is not changed.
 
-    def commit(self, u: float, _store: bool = True) -> float:
-        """Accept input ``u``, update the staircase and return the output.
+        Parameters
+        ----------
+        u : float
+            Input (finite).
 
-        (``_store=False`` is :meth:`evaluate`: one body for both keeps them identical.)
+        Returns
+        -------
+        float
+            The output :meth:`commit` would return for ``u``.
+
+        Raises
+        ------
+        ValueError
+            If ``u`` is not a finite real number.
         """
-        store = _store
-        if type(u) is not float:
-            u = check_input(u)
-        elif not -_INF < u < _INF:  # nan compares false, too
-            raise ValueError(f"u must be a finite real number, got {u!r}")
-        u_now = self._u
-        if u == u_now:
-            return self._y
-        values = self._values
-        if u > u_now:
-            if self._rising:
-                i = len(values) - 1
-            elif u < values[-1]:
-                # A new minimum at u_now, no extremum wiped out.
-                y = self._y + self._k_rising(u, u_now) - (self._tie(u_now) if self._has_ties else 0.0)
-                if store:
-                    values.append(u_now)
-                    self._outputs.append(self._y)
-                    self._rising, self._u, self._y = True, u, y
-                return y
-            else:
-                i = len(values) - 2  # the new minimum and the last maximum are wiped out
-            while u >= values[i - 1]:
-                i -= 2
-            m = values[i]
-            y = self._outputs[i] + self._k_rising(u, m) - (self._tie(m) if self._has_ties else 0.0)
-            if store:
-                if i + 1 < len(values):
-                    del values[i + 1 :]
-                    del self._outputs[i + 1 :]
-                self._rising, self._u, self._y = True, u, y
-            return y
-        if not self._rising:
-            i = len(values) - 1
-        elif u > values[-1]:
-            # A new maximum at u_now, no extremum wiped out.
-            y = self._y - self._k_falling(u_now, u) + (self._tie(u) if self._has_ties else 0.0)
-            if store:
-                values.append(u_now)
-                self._outputs.append(self._y)
-                self._rising, self._u, self._y = False, u, y
-            return y
-        else:
-            i = len(values) - 2
-        while u <= values[i - 1]:
-            i -= 2
-        big_m = values[i]
-        y = self._outputs[i] - self._k_falling(big_m, u) + (self._tie(u) if self._has_ties else 0.0)
-        if store:
-            if i + 1 < len(values):
-                del values[i + 1 :]
-                del self._outputs[i + 1 :]
-            self._rising, self._u, self._y = False, u, y
-        return y
+
+    commit = _staircase_step(store=True)
+    commit.__doc__ = """Accept input ``u``, update the staircase and return the output.
+
+        A new extremum is stored as a reversal point; an input beyond earlier extrema of its
+        kind wipes them out.
+
+        Parameters
+        ----------
+        u : float
+            Input (finite).
+
+        Returns
+        -------
+        float
+            The output for ``u``.
+
+        Raises
+        ------
+        ValueError
+            If ``u`` is not a finite real number.
+        """

@@ -1,0 +1,91 @@
+"""Cost per cell and step of the time integration, the basis of the long-run warning (issue 9).
+
+:func:`exudyn_atcm.run_checks.estimate_run_time` predicts the wall time of a run as steps x a
+cost per step ``a + b n + c n^2`` for the cell type and ``n`` cells (``run_checks.COST_PER_STEP``).
+This script measures that cost on the REF-A bender (87 mm, paper laminate, the paper's Preisach
+loop in the step, triangle of 0.5 s, step 1e-4 s) for both cell types at several cell counts,
+side by side in one run, and prints the measured costs next to the constants in use, with the
+estimate's error for each run.
+
+Usage: ``python benchmarks/bench_run_cost.py [--t-sim 0.2] [--cells 3 10 40]``.  Writes JSON to
+``benchmarks/results/`` (git-ignored).  Default run: about 15 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import os
+import platform
+import time
+
+import exudyn
+
+from exudyn_atcm._version import __version__
+from exudyn_atcm.actuator import BendingActuator
+from exudyn_atcm.drive import PiezoDrive
+from exudyn_atcm.materials import Layer
+from exudyn_atcm.parameter_sets import paper_strain_preisach
+import numpy as np
+
+from exudyn_atcm.run_checks import COST_PER_STEP, estimate_run_time
+from exudyn_atcm.signals import Triangle
+from exudyn_atcm.simulation import simulate
+
+STEP = 1e-4
+
+
+def actuator(n_cells: int, cell: str) -> BendingActuator:
+    drive = PiezoDrive(Triangle(500.0, 1000.0, 0.5), hysteresis=paper_strain_preisach())
+    return BendingActuator(n_cells, 87e-3 / n_cells, 28e-3, Layer(0.2e-3, 70e9, 1550.0),
+                           Layer(0.3e-3, 30.336e9, 5440.0), drive, cell=cell)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--t-sim", type=float, default=0.2, help="simulated time per run [s]")
+    parser.add_argument("--cells", type=int, nargs="+", default=[3, 10, 40])
+    args = parser.parse_args()
+    rows = []
+    for n in args.cells:
+        for cell in ("rigid", "six-bar"):
+            act = actuator(n, cell)
+            start = time.perf_counter()
+            result = simulate(act, args.t_sim, step=STEP, record_every=10)
+            wall = time.perf_counter() - start
+            steps = int(result.info["accepted_steps"])
+            estimate = estimate_run_time(cell, n, steps)
+            rows.append({
+                "cell": cell, "n_cells": n, "steps": steps, "wall [s]": wall,
+                "cost per cell-step [us]": 1e6 * wall / (n * steps),
+                "cost per step [us]": 1e6 * wall / steps,
+                "estimate [s]": estimate, "estimate / measured": estimate / wall,
+            })
+    print("| cell | cells | steps | wall [s] | per step [µs] | per cell-step [µs] | estimate / measured |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['cell']} | {r['n_cells']} | {r['steps']} | {r['wall [s]']:.3f} | {r['cost per step [us]']:.1f} | "
+              f"{r['cost per cell-step [us]']:.1f} | {r['estimate / measured']:.2f} |")
+    fits = {}
+    for cell in ("rigid", "six-bar"):
+        mine = [r for r in rows if r["cell"] == cell]
+        a = np.array([[1.0, r["n_cells"], r["n_cells"] ** 2] for r in mine])
+        b = np.array([r["cost per step [us]"] for r in mine])
+        coef, *_ = np.linalg.lstsq(a, b, rcond=None)
+        fits[cell] = {"a [us]": coef[0], "b [us]": coef[1], "c [us]": coef[2]}
+        used = [1e6 * v for v in COST_PER_STEP[cell]]
+        print(f"{cell}: fit per step a + b n + c n^2 = {coef[0]:.1f} + {coef[1]:.2f} n + {coef[2]:.3f} n^2 µs; "
+              f"in use (run_checks.COST_PER_STEP): {used[0]:.0f} + {used[1]:.2f} n + {used[2]:.3f} n^2 µs")
+    out = os.path.join(os.path.dirname(__file__), "results")
+    os.makedirs(out, exist_ok=True)
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    path = os.path.join(out, f"run_cost_{stamp}.json")
+    with open(path, "w", encoding="utf-8") as handle:
+        json.dump({"rows": rows, "fits": fits, "t_sim [s]": args.t_sim, "step [s]": STEP, "exudyn_atcm": __version__,
+                   "exudyn": exudyn.__version__, "platform": platform.platform()}, handle, indent=2)
+    print(f"\nwrote {path}")
+
+
+if __name__ == "__main__":
+    main()

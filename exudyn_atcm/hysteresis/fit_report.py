@@ -1,0 +1,204 @@
+"""How well an identified hysteresis model predicts a record: :class:`FitReport`.
+
+Every fit of :mod:`exudyn_atcm.hysteresis.identification` runs the identified operator over
+the *whole* record from its reset state (so the held-out part is predicted with the memory
+the fitted part left behind) and compares with the measured output on
+
+* the fitted part: samples ``fit_start ... n_fit - 1`` (before ``fit_start`` the model's
+  memory depends on the unknown history before the record; see the fit's documentation),
+* the held-out part: samples ``n_fit ... n_samples - 1`` (empty without a split),
+
+by the RMS and the largest absolute error, in output units and in % of the measured output
+range of the fitted part.  The same numbers for the best linear model ``y = a·u + b``
+(least squares on the fitted part) show what the hysteresis model gains.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._atomic import write_json
+
+__all__ = ["FitReport", "error_measures", "make_report"]
+
+
+def _no_nan(value: Any) -> Any:
+    """``value`` with every NaN float replaced by ``None`` (strict JSON has no NaN)."""
+    if isinstance(value, dict):
+        return {k: _no_nan(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_no_nan(v) for v in value]
+    if isinstance(value, float) and math.isnan(value):
+        return None
+    return value
+
+
+def error_measures(measured: np.ndarray, predicted: np.ndarray, output_range: float) -> dict[str, float]:
+    """RMS and largest absolute error, absolute and in % of ``output_range``; NaN for no samples."""
+    if measured.size == 0:
+        nan = math.nan
+        return {"rms": nan, "max": nan, "rms_percent": nan, "max_percent": nan, "samples": 0}
+    error = np.asarray(predicted, dtype=float) - np.asarray(measured, dtype=float)
+    rms = float(np.sqrt(np.mean(error**2)))
+    peak = float(np.max(np.abs(error)))
+    return {
+        "rms": rms,
+        "max": peak,
+        "rms_percent": 100.0 * rms / output_range,
+        "max_percent": 100.0 * peak / output_range,
+        "samples": int(measured.size),
+    }
+
+
+@dataclass
+class FitReport:
+    """Errors of an identified model and of the best linear model on the fitted and held-out parts.
+
+    Attributes
+    ----------
+    model : str
+        ``repr`` of the identified operator.
+    method : str
+        How it was identified (e.g. ``"DiscretePreisach.fit"``).
+    n_samples, n_fit, fit_start : int
+        Record length, first held-out sample (``n_samples`` without a held-out part) and first
+        sample compared on the fitted part.
+    output_range : float
+        Measured output range on the fitted part (output units); the ``%`` figures refer to it.
+    model_errors, linear_errors : dict
+        ``{"fit": {...}, "held_out": {...}}`` each with ``rms``, ``max`` (output units),
+        ``rms_percent``, ``max_percent`` and ``samples``.
+    linear_model : dict
+        Slope ``a`` (output per input unit) and intercept ``b`` of the best linear model.
+    output_unit : str
+        Unit of the output (for printing; ``""`` if unknown).
+    settings : dict
+        The fit's settings (levels, regularisation, ...).
+    notes : list of str
+        What the identification had to decide (unreached levels, excluded samples, ...).
+    predicted : numpy.ndarray
+        The model's output over the whole record (not written to JSON).
+    """
+
+    model: str
+    method: str
+    n_samples: int
+    n_fit: int
+    fit_start: int
+    output_range: float
+    model_errors: dict
+    linear_errors: dict
+    linear_model: dict
+    output_unit: str = ""
+    settings: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+    fit_time: float = math.nan
+    predicted: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+
+    def improvement_over_linear(self, part: str = "held_out") -> float:
+        """Linear model's RMS error divided by the model's, on ``part`` (``"fit"`` or ``"held_out"``)."""
+        if part not in ("fit", "held_out"):
+            raise ValueError(f"part must be 'fit' or 'held_out', got {part!r}")
+        model, linear = self.model_errors[part]["rms"], self.linear_errors[part]["rms"]
+        if not (model > 0.0) or math.isnan(linear):
+            return math.nan if math.isnan(linear) or math.isnan(model) else math.inf
+        return linear / model
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-serialisable contents (without the predicted series); NaN (no held-out part) as ``None``."""
+        return _no_nan({
+            "method": self.method,
+            "model": self.model,
+            "n_samples": self.n_samples,
+            "n_fit": self.n_fit,
+            "fit_start": self.fit_start,
+            "output_range": self.output_range,
+            "output_unit": self.output_unit,
+            "model_errors": self.model_errors,
+            "linear_errors": self.linear_errors,
+            "linear_model": self.linear_model,
+            "improvement_over_linear": {
+                "fit": self.improvement_over_linear("fit"),
+                "held_out": self.improvement_over_linear("held_out"),
+            },
+            "settings": self.settings,
+            "notes": list(self.notes),
+            "fit_time [s]": self.fit_time,
+        })
+
+    def write_json(self, path: str | Path) -> Path:
+        """Write :meth:`to_dict` as JSON (atomically) and return the path."""
+        return write_json(path, self.to_dict())
+
+    def table(self) -> str:
+        """The errors as a fixed-width text table."""
+        unit = f" [{self.output_unit}]" if self.output_unit else ""
+        lines = [
+            f"{self.method}: {self.model}",
+            f"samples: {self.n_samples} (fitted {self.fit_start}..{self.n_fit - 1}, held out {self.n_fit}..{self.n_samples - 1}), "
+            f"output range {self.output_range:.4g}{unit}",
+            f"{'model':<12}{'part':<10}{'RMS' + unit:>16}{'RMS [%]':>10}{'max' + unit:>16}{'max [%]':>10}",
+        ]
+        for name, errors in (("hysteresis", self.model_errors), ("linear", self.linear_errors)):
+            for part in ("fit", "held_out"):
+                e = errors[part]
+                lines.append(
+                    f"{name:<12}{part:<10}{e['rms']:>16.4g}{e['rms_percent']:>10.3f}{e['max']:>16.4g}{e['max_percent']:>10.3f}"
+                )
+        lines.append(
+            f"linear RMS / model RMS: fit {self.improvement_over_linear('fit'):.3g}, "
+            f"held out {self.improvement_over_linear('held_out'):.3g}"
+        )
+        lines.extend(f"note: {n}" for n in self.notes)
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.table()
+
+
+def make_report(
+    operator: Any,
+    u: np.ndarray,
+    y: np.ndarray,
+    n_fit: int,
+    fit_start: int,
+    method: str,
+    *,
+    settings: dict | None = None,
+    notes: list | None = None,
+    output_unit: str = "",
+    fit_time: float = math.nan,
+) -> FitReport:
+    """Run ``operator`` over the whole record and compare with the measured output (see module)."""
+    predicted = operator.apply(u)
+    fit = slice(fit_start, n_fit)
+    held = slice(n_fit, u.size)
+    output_range = float(np.ptp(y[fit]))
+    if output_range <= 0.0:
+        output_range = float(np.ptp(y)) or 1.0
+    design = np.column_stack([u[fit], np.ones(n_fit - fit_start)])
+    (a, b), *_ = np.linalg.lstsq(design, y[fit], rcond=None)
+    linear = a * u + b
+    return FitReport(
+        model=repr(operator),
+        method=method,
+        n_samples=int(u.size),
+        n_fit=int(n_fit),
+        fit_start=int(fit_start),
+        output_range=output_range,
+        model_errors={"fit": error_measures(y[fit], predicted[fit], output_range),
+                      "held_out": error_measures(y[held], predicted[held], output_range)},
+        linear_errors={"fit": error_measures(y[fit], linear[fit], output_range),
+                       "held_out": error_measures(y[held], linear[held], output_range)},
+        linear_model={"a": float(a), "b": float(b)},
+        output_unit=output_unit,
+        settings=dict(settings or {}),
+        notes=list(notes or []),
+        fit_time=fit_time,
+        predicted=predicted,
+    )

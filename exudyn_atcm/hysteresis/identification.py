@@ -1,0 +1,374 @@
+"""Identification of hysteresis operators from measured input-output records.
+
+The public entry points are class methods of the operators (:meth:`DiscretePreisach.fit`,
+:meth:`EverettPreisach.fit`, :meth:`PrandtlIshlinskii.fit`, :meth:`ContinuousPreisach.fit`;
+:meth:`DiscretePreisach.from_loop` is in :mod:`exudyn_atcm.hysteresis.loop_identification`);
+this module holds their least-squares bodies.  The operator classes are passed in, so nothing here imports them (no cycle).
+
+Conventions shared by every fit
+-------------------------------
+* ``u``, ``y``: the record's input and output in time order; the first ``n_fit`` samples are
+  fitted, the rest is held out and only predicted (the model runs over the whole record, so
+  the held-out part is predicted with the memory the fitted part left behind).
+* The identified operator starts from its reset state at the first sample.  The real device's
+  memory before the record is unknown, so the samples before the input has wiped that memory
+  out are left out of the least squares and of the fitted-part errors (``fit_start`` in the
+  :class:`~exudyn_atcm.hysteresis.fit_report.FitReport`): for the Preisach grid, until the
+  input first comes down to the lowest threshold (half a cell above its minimum; for spread
+  cells the lowest cell edge), from when every relay of the grid is off, whatever happened
+  before; for the Prandtl-Ishlinskii plays, until the input has come within half a play
+  spacing of both its minimum and its maximum.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from .._checks import finite_array, same_length
+from .fit_report import FitReport, make_report
+from .staircase import StaircasePreisach
+
+#: Fewest samples accepted by the least-squares fits.
+MIN_SAMPLES = 10
+
+
+# ------------------------------------------------------------------------------ checks
+
+def check_record(u: Any, y: Any, n_fit: int | None = None, *, min_samples: int = MIN_SAMPLES) -> tuple:
+    """Return ``u``, ``y`` as float arrays and ``n_fit``; ``ValueError`` for every bad input.
+
+    Bad inputs: non-numeric or non-finite values, different lengths, fewer than
+    ``min_samples`` samples (in the fitted part, too), an input or output that does not vary.
+    """
+    u_a = finite_array("u", u, min_length=0)
+    y_a = finite_array("y", y, min_length=0)
+    same_length(("u", "y"), (u_a, y_a))
+    if u_a.size < min_samples:
+        raise ValueError(f"u, y must hold at least {min_samples} samples to identify a model, got {u_a.size}")
+    if n_fit is None:
+        n_fit = u_a.size
+    elif isinstance(n_fit, bool) or not isinstance(n_fit, (int, np.integer)) or not min_samples <= n_fit <= u_a.size:
+        raise ValueError(
+            f"n_fit (samples fitted, the rest held out) must be an integer in [{min_samples}, {u_a.size}], got {n_fit!r}"
+        )
+    n_fit = int(n_fit)
+    span = float(np.ptp(u_a[:n_fit]))
+    if span <= 0.0:
+        raise ValueError(f"u must vary over the fitted samples, got a constant input {float(u_a[0])!r}")
+    if float(np.ptp(y_a[:n_fit])) <= 0.0:
+        raise ValueError(f"y must vary over the fitted samples, got a constant output {float(y_a[0])!r}")
+    return u_a, y_a, n_fit
+
+
+def _levels_int(name: str, value: Any, minimum: int = 2) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def _nonnegative(name: str, value: Any) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number) or number < 0.0:
+        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+    return number
+
+
+def _first_near(u: np.ndarray, target: float, tolerance: float) -> int:
+    hits = np.flatnonzero(np.abs(u - target) <= tolerance)
+    return int(hits[0]) if hits.size else u.size
+
+
+# ------------------------------------------------------------------------------ relay grid
+
+def relay_grid(u_lo: float, u_hi: float, n_levels: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Relays of a regular grid on the Preisach triangle.
+
+    The input range is cut into ``n_levels`` cells of width ``h``; the thresholds sit at the
+    cell centres ``v_k = u_lo + (k + 1/2) h``.  One relay per pair ``alpha = v_i >= beta = v_j``:
+    ``n_levels (n_levels + 1) / 2`` relays, those on the diagonal (``alpha == beta``) giving the
+    reversible part.
+
+    Returns
+    -------
+    alpha, beta : numpy.ndarray
+        Thresholds of each relay.
+    index : numpy.ndarray
+        ``(i, j)`` grid indices of each relay, shape ``(n_relays, 2)``.
+    """
+    h = (u_hi - u_lo) / n_levels
+    levels = u_lo + (np.arange(n_levels) + 0.5) * h
+    i, j = np.tril_indices(n_levels)
+    return levels[i], levels[j], np.column_stack([i, j])
+
+
+def _smoothness_matrix(index: np.ndarray, n_levels: int) -> np.ndarray:
+    """First differences between neighbouring grid cells (along alpha and along beta)."""
+    position = -np.ones((n_levels, n_levels), dtype=int)
+    position[index[:, 0], index[:, 1]] = np.arange(index.shape[0])
+    rows = []
+    for k, (i, j) in enumerate(index.tolist()):
+        for ni, nj in ((i + 1, j), (i, j + 1)):
+            if ni < n_levels and nj <= ni and position[ni, nj] >= 0:
+                rows.append((k, int(position[ni, nj])))
+    d = np.zeros((len(rows), index.shape[0]))
+    for r, (a, b) in enumerate(rows):
+        d[r, a], d[r, b] = 1.0, -1.0
+    return d
+
+
+def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
+               chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+    """Normal equations of ``y ≈ c + S w`` over samples ``start .. stop - 1``.
+
+    ``S[k, r]`` is the state of relay ``r`` after sample ``k`` of ``u`` from all relays off
+    (relay rule of Mayergoyz 2003: on if ``u >= alpha``, else off if ``u <= beta``, else
+    unchanged).  Returns ``S^T S``, ``S^T y``, the column sums of ``S``, ``sum(y)`` and the
+    number of samples, accumulated in chunks so ``S`` is never stored whole.
+    """
+
+    def rows():
+        state = np.zeros(alpha.size)
+        for k in range(stop):
+            v = u[k]
+            state = np.where(v >= alpha, 1.0, np.where(v <= beta, 0.0, state))
+            yield state
+
+    return _gram(rows(), alpha.size, y, start, stop, chunk)
+
+
+class _CellFractions(StaircasePreisach):
+    """Vector-valued Preisach operator: the share of each grid cell's spread relays that is on.
+
+    The output after each input is the vector ``F`` with ``EverettPreisach output = offset +
+    weights · F`` (the Everett function is linear in the cell weights, so the staircase memory
+    works on vectors as on numbers).
+    """
+
+    def __init__(self, edges: np.ndarray, index: np.ndarray) -> None:
+        self._low = edges[:-1]
+        self._width = np.diff(edges)
+        self._i, self._j = index[:, 0], index[:, 1]
+        self._diagonal = self._i == self._j
+        self._y_reset = np.zeros(index.shape[0])
+        super().__init__()
+
+    def _k_rising(self, a: float, b: float) -> np.ndarray:
+        s = np.clip((a - self._low) / self._width, 0.0, 1.0)
+        r = np.clip((b - self._low) / self._width, 0.0, 1.0)
+        off = s[self._i] * (1.0 - r[self._j])
+        on_diagonal = np.maximum(s[self._i] - r[self._i], 0.0) ** 2
+        return np.where(self._diagonal, on_diagonal, off)
+
+    _k_falling = _k_rising
+
+
+def cell_gram(edges: np.ndarray, index: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
+              chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+    """As :func:`relay_gram` for relays spread over their grid cells (see :class:`EverettPreisach`)."""
+    fractions = _CellFractions(edges, index)
+
+    def rows():
+        for k in range(stop):
+            yield fractions.commit(float(u[k]))
+
+    return _gram(rows(), index.shape[0], y, start, stop, chunk)
+
+
+def _gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chunk: int) -> tuple:
+    gram = np.zeros((n_r, n_r))
+    rhs = np.zeros(n_r)
+    colsum = np.zeros(n_r)
+    block = np.empty((chunk, n_r))
+    block_y = np.empty(chunk)
+    filled = 0
+
+    def flush(count: int) -> None:
+        s = block[:count]
+        gram[:] += s.T @ s
+        rhs[:] += s.T @ block_y[:count]
+        colsum[:] += s.sum(axis=0)
+
+    for k, state in enumerate(rows):
+        if k >= start:
+            block[filled] = state
+            block_y[filled] = y[k]
+            filled += 1
+            if filled == chunk:
+                flush(filled)
+                filled = 0
+    if filled:
+        flush(filled)
+    return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
+
+
+def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: np.ndarray) -> np.ndarray:
+    """``argmin_{w >= 0} w^T (G + R) w - 2 b^T w`` via a Cholesky factor and scipy's NNLS."""
+    from scipy.linalg import cholesky, solve_triangular
+    from scipy.optimize import nnls
+
+    matrix = gram + regulariser
+    ridge = 1e-10 * max(float(np.trace(matrix)) / matrix.shape[0], 1e-300)
+    matrix = matrix + ridge * np.eye(matrix.shape[0])
+    upper = cholesky(matrix, lower=False)  # matrix = U^T U
+    target = solve_triangular(upper, rhs, trans="T", lower=False)
+    weights, _ = nnls(upper, target, maxiter=50 * matrix.shape[0])
+    return weights
+
+
+# ------------------------------------------------------------------------------ Preisach fit
+
+def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float = 1e-3, n_fit: int | None = None,
+                 input_range: tuple[float, float] | None = None, output_unit: str = "",
+                 basis: str = "relays") -> tuple[Any, FitReport]:
+    """Body of :meth:`DiscretePreisach.fit` (``basis="relays"``) and :meth:`EverettPreisach.fit`
+    (``basis="cells"``: each weight spread over its grid cell)."""
+    if basis not in ("relays", "cells"):
+        raise ValueError(f"basis must be 'relays' or 'cells', got {basis!r}")
+    started = time.perf_counter()
+    u_a, y_a, n_fit = check_record(u, y, n_fit)
+    n_levels = _levels_int("n_levels", n_levels)
+    smoothing = _nonnegative("smoothing", smoothing)
+    if input_range is None:
+        u_lo, u_hi = float(u_a[:n_fit].min()), float(u_a[:n_fit].max())
+    else:
+        try:
+            u_lo, u_hi = (float(v) for v in input_range)
+        except (TypeError, ValueError):
+            raise ValueError(f"input_range must be a pair (u_lo, u_hi) of numbers, got {input_range!r}") from None
+        if not (math.isfinite(u_lo) and math.isfinite(u_hi) and u_hi > u_lo):
+            raise ValueError(f"input_range must be finite with u_hi > u_lo, got {input_range!r}")
+    alpha, beta, index = relay_grid(u_lo, u_hi, n_levels)
+    edges = np.linspace(u_lo, u_hi, n_levels + 1)
+    # all grid relays are off once the input is at or below the lowest threshold (for relays
+    # spread over their cells: at or below the lowest cell edge)
+    lowest = float(alpha.min()) if basis == "relays" else u_lo + 1e-12 * (u_hi - u_lo)
+    low = np.flatnonzero(u_a[:n_fit] <= lowest)
+    start = int(low[0]) if low.size else n_fit
+    notes = []
+    if start > 0:
+        notes.append(
+            f"samples 0..{start - 1} left out: the memory before the input first reaches its minimum is unknown"
+        )
+    if n_fit - start < MIN_SAMPLES:
+        raise ValueError(
+            f"u: only {n_fit - start} fitted samples remain after the input first reaches its minimum "
+            f"(sample {start}); at least {MIN_SAMPLES} are needed. Start the record at the input minimum."
+        )
+    scale = float(np.ptp(y_a[start:n_fit])) or 1.0
+    if basis == "relays":
+        gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
+    else:
+        gram, rhs, colsum, ysum, m = cell_gram(edges, index, u_a, y_a / scale, start, n_fit)
+    mean_s = colsum / m
+    gram_c = gram - m * np.outer(mean_s, mean_s)
+    rhs_c = rhs - mean_s * ysum
+    d = _smoothness_matrix(index, n_levels)
+    dtd = d.T @ d
+    lam = smoothing * float(np.trace(gram_c)) / max(float(np.trace(dtd)), 1e-300)
+    weights = _nnls_normal(gram_c, rhs_c, lam * dtd)
+    offset = (ysum / m - float(mean_s @ weights)) * scale
+    weights = weights * scale
+    never = colsum == 0.0
+    if never.any():
+        notes.append(f"{int(never.sum())} of {alpha.size} grid relays never switch on in the fitted samples "
+                     "(their weights come from the smoothing only)")
+    model = cls(alpha, beta, weights, offset=offset) if basis == "relays" else cls(edges, alpha, beta, weights, offset=offset)
+    elapsed = time.perf_counter() - started
+    report = make_report(
+        model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
+        settings={"n_levels": n_levels, "n_relays": int(alpha.size), "smoothing": smoothing,
+                  "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis},
+        notes=notes, output_unit=output_unit, fit_time=elapsed,
+    )
+    return model, report
+
+
+# ------------------------------------------------------------------------------ PI fit
+
+def fit_prandtl_ishlinskii(cls: type, u: Any, y: Any, n: int, *, n_fit: int | None = None,
+                           output_unit: str = "") -> tuple[Any, FitReport]:
+    """Body of :meth:`PrandtlIshlinskii.fit` (see there)."""
+    from scipy.optimize import nnls
+
+    started = time.perf_counter()
+    u_a, y_a, n_fit = check_record(u, y, n_fit)
+    n = _levels_int("n", n)
+    u_fit = u_a[:n_fit]
+    span = float(np.ptp(u_fit))
+    radii = span * np.arange(1, n) / (2.0 * n)
+    tolerance = 0.5 * span / n
+    start = max(_first_near(u_fit, float(u_fit.min()), tolerance), _first_near(u_fit, float(u_fit.max()), tolerance))
+    if n_fit - start < MIN_SAMPLES:
+        raise ValueError(
+            f"u: only {n_fit - start} fitted samples remain after the input has reached both its minimum and its "
+            f"maximum (sample {start}); at least {MIN_SAMPLES} are needed"
+        )
+    # play outputs from the reset state z = 0, as PrandtlIshlinskii.apply runs them
+    z = np.zeros(radii.size)
+    plays = np.empty((n_fit, radii.size))
+    for k in range(n_fit):
+        z = np.maximum(u_a[k] - radii, np.minimum(u_a[k] + radii, z))
+        plays[k] = z
+    design = np.column_stack([u_fit, plays])[start:]
+    target = y_a[start:n_fit]
+    scale = float(np.ptp(target)) or 1.0
+    # p0 > 0 keeps the operator strictly increasing, so that its analytic inverse exists
+    p0_min = 1e-3 * scale / span
+    target_shift = target / scale - (p0_min / scale) * design[:, 0]
+    mean_d, mean_t = design.mean(axis=0), float(target_shift.mean())
+    coef, _ = nnls(design - mean_d, target_shift - mean_t, maxiter=50 * design.shape[1])
+    coef = coef * scale
+    coef[0] += p0_min
+    offset = float(np.mean(target - design @ coef))
+    model = cls(radii, coef[1:], coef[0], offset=offset)
+    notes = []
+    if start > 0:
+        notes.append(f"samples 0..{start - 1} left out: the play states before the input has covered its range "
+                     "depend on the unknown history")
+    report = make_report(model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
+                         settings={"n": n, "radii": radii.tolist()}, notes=notes, output_unit=output_unit,
+                         fit_time=time.perf_counter() - started)
+    return model, report
+
+
+# ------------------------------------------------------------------------------ continuous fit
+
+def fit_continuous(cls: type, u: Any, y: Any, *, n_fit: int | None = None,
+                   output_unit: str = "") -> tuple[Any, FitReport]:
+    """Body of :meth:`ContinuousPreisach.fit` (see there)."""
+    from scipy.optimize import least_squares
+
+    started = time.perf_counter()
+    u_a, y_a, n_fit = check_record(u, y, n_fit)
+    u_fit, y_fit = u_a[:n_fit], y_a[:n_fit]
+    u_min, u_max = float(u_fit.min()), float(u_fit.max())
+    start = _first_near(u_fit, u_min, 1e-3 * (u_max - u_min))
+    if n_fit - start < MIN_SAMPLES:
+        raise ValueError(f"u: only {n_fit - start} fitted samples remain after the input first reaches its minimum")
+    scale = float(np.ptp(y_fit[start:]))
+    y0 = float(y_fit[start:].min())
+
+    def model_of(x: np.ndarray) -> Any:
+        low, span, r1, r2 = x
+        return cls(u_min, u_max, y0 + scale * low, y0 + scale * (low + span), r1, r2)
+
+    def residuals(x: np.ndarray) -> np.ndarray:
+        return (model_of(x).apply(u_fit)[start:] - y_fit[start:]) / scale
+
+    result = least_squares(residuals, x0=[0.0, 1.0, 1.5, 1.5],
+                           bounds=([-1.0, 1e-6, 1.0, 1.0], [1.0, 3.0, 50.0, 50.0]), x_scale=[0.1, 0.1, 0.5, 0.5])
+    model = model_of(result.x)
+    notes = [] if result.success else [f"least squares stopped without convergence: {result.message}"]
+    if start > 0:
+        notes.append(f"samples 0..{start - 1} left out: the memory before the input first reaches its minimum is unknown")
+    report = make_report(model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
+                         settings={"u_min": u_min, "u_max": u_max, "evaluations": int(result.nfev)},
+                         notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started)
+    return model, report

@@ -1,0 +1,171 @@
+"""Equal-gain relays (the paper's Eq. 12) from measured loops: the body of :meth:`DiscretePreisach.from_loop`.
+
+The rule (branches averaged per direction by isotonic regression, unreached levels and
+noise-level crossings handled and said) is documented on
+:meth:`DiscretePreisach.from_loop <exudyn_atcm.hysteresis.DiscretePreisach.from_loop>`.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from typing import Any
+
+import numpy as np
+
+from .._checks import finite_array, positive_int, same_length
+from .fit_report import make_report
+from .identification import _nonnegative
+
+def isotonic(values: np.ndarray) -> np.ndarray:
+    """Least-squares non-decreasing fit of ``values`` (pool-adjacent-violators algorithm)."""
+    means: list[float] = []
+    counts: list[int] = []
+    for v in values.tolist():
+        means.append(v)
+        counts.append(1)
+        while len(means) > 1 and means[-2] > means[-1]:
+            c = counts[-2] + counts[-1]
+            means[-2:] = [(means[-2] * counts[-2] + means[-1] * counts[-1]) / c]
+            counts[-2:] = [c]
+    return np.repeat(np.array(means), counts)
+
+
+def monotone_segments(u: np.ndarray, tolerance: float) -> list[tuple[int, int, bool]]:
+    """Split ``u`` at its reversals into ``(first, last, rising)`` index ranges (inclusive).
+
+    A reversal is recognised once the input has moved back by more than ``tolerance`` from
+    its running extremum; the segment boundary is that extremum (it belongs to both segments).
+    """
+    segments = []
+    first = 0
+    extreme = 0
+    rising: bool | None = None
+    for k in range(1, u.size):
+        v = u[k]
+        if rising is None:
+            if v > u[0] + tolerance or (tolerance == 0.0 and v > u[0]):
+                rising = True
+            elif v < u[0] - tolerance or (tolerance == 0.0 and v < u[0]):
+                rising = False
+            if rising is not None:
+                extreme = int(np.argmax(u[: k + 1])) if rising else int(np.argmin(u[: k + 1]))
+                first = int(np.argmin(u[: extreme + 1])) if rising else int(np.argmax(u[: extreme + 1]))
+            continue
+        if rising:
+            if v >= u[extreme]:
+                extreme = k
+            elif v < u[extreme] - tolerance or (tolerance == 0.0 and v < u[extreme]):
+                segments.append((first, extreme, True))
+                first, rising = extreme, False
+                extreme = k
+        else:
+            if v <= u[extreme]:
+                extreme = k
+            elif v > u[extreme] + tolerance or (tolerance == 0.0 and v > u[extreme]):
+                segments.append((first, extreme, False))
+                first, rising = extreme, True
+                extreme = k
+    if rising is not None:
+        segments.append((first, extreme, rising))
+    return segments
+
+
+def _branch(u: np.ndarray, y: np.ndarray, segments: list, rising: bool) -> tuple[np.ndarray, np.ndarray]:
+    idx = np.concatenate([np.arange(a, b + 1) for a, b, r in segments if r == rising])
+    order = np.argsort(u[idx], kind="stable")
+    u_b = u[idx][order]
+    return u_b, isotonic(y[idx][order])
+
+
+def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: bool) -> tuple[np.ndarray, list]:
+    """Input where a monotone branch first reaches each level walking in its direction; unreached levels listed."""
+    if not ascending:  # walk the descending branch from u_max downwards
+        u, y = u[::-1], y[::-1]
+    result = np.empty(levels.size)
+    unreached = []
+    for j, level in enumerate(levels.tolist()):
+        reached = y >= level if ascending else y <= level
+        if not reached.any():
+            result[j] = u[-1]
+            unreached.append(j)
+            continue
+        k = int(np.argmax(reached))
+        if k == 0 or y[k] == y[k - 1]:
+            result[j] = u[k]
+        else:
+            s = (level - y[k - 1]) / (y[k] - y[k - 1])
+            result[j] = u[k - 1] + s * (u[k] - u[k - 1])
+    return result, unreached
+
+
+def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance: float = 0.0,
+                       coverage: float = 0.9, report: bool = False, output_unit: str = "") -> Any:
+    """Body of :meth:`DiscretePreisach.from_loop` (see there for the rule)."""
+    started = time.perf_counter()
+    u_a = finite_array("u", u, min_length=2)
+    y_a = finite_array("y", y, min_length=2)
+    same_length(("u", "y"), (u_a, y_a))
+    n = positive_int("n", n)
+    reversal_tolerance = _nonnegative("reversal_tolerance", reversal_tolerance)
+    coverage = _nonnegative("coverage", coverage)
+    if coverage > 1.0:
+        raise ValueError(f"coverage must lie in [0, 1], got {coverage!r}")
+    span = float(np.ptp(u_a))
+    segments = monotone_segments(u_a, reversal_tolerance * span)
+    major = [s for s in segments if u_a[s[1]] != u_a[s[0]] and abs(u_a[s[1]] - u_a[s[0]]) >= coverage * span]
+    for rising, missing in ((True, "ascending (rising u)"), (False, "descending (falling u)")):
+        if not any(s[2] == rising for s in major):
+            seen = sum(1 for s in segments if s[2] == rising)
+            raise ValueError(
+                f"u, y must describe a loop with both branches; the {missing} branch is missing"
+                + (f" ({seen} such segment(s) span less than coverage = {coverage:g} of the input range)" if seen else "")
+            )
+    u_up, y_up = _branch(u_a, y_a, major, True)
+    u_dn, y_dn = _branch(u_a, y_a, major, False)
+    y_min = float(min(y_up.min(), y_dn.min()))
+    y_max = float(max(y_up.max(), y_dn.max()))
+    if y_max <= y_min:
+        raise ValueError(f"y must vary over the loop, got a constant {y_min!r}")
+    gain = (y_max - y_min) / n
+    levels = y_min + gain * np.arange(1, n + 1)
+    levels[-1] = y_max
+    alpha, up_missing = _crossings(u_up, y_up, levels, ascending=True)
+    beta, down_missing = _crossings(u_dn, y_dn, levels, ascending=False)
+    notes = []
+    n_up = sum(1 for s in major if s[2])
+    n_down = len(major) - n_up
+    if n_up > 1 or n_down > 1:
+        notes.append(f"branches averaged over {n_up} ascending and {n_down} descending segments (isotonic fit)")
+    for missing, kind, where in ((up_missing, "ascending", "its highest input"), (down_missing, "descending", "its lowest input")):
+        if missing:
+            text = (f"the {kind} branch never reaches the level(s) y = "
+                    f"{', '.join(f'{levels[j]:.6g}' for j in missing)}; those relays switch at {where}")
+            notes.append(text)
+            warnings.warn(f"from_loop: {text}", RuntimeWarning, stacklevel=3)
+    cross = alpha < beta
+    if cross.any():
+        allowed = reversal_tolerance * span
+        depth = beta - alpha
+        i = int(np.argmax(depth))
+        if depth[i] > allowed:
+            raise ValueError(
+                f"u, y: the ascending branch lies above the descending one at level {float(levels[i])!r} "
+                f"(ascending crossing u = {float(alpha[i])!r} < descending crossing u = {float(beta[i])!r}); "
+                "not a hysteresis loop"
+                + (f" (more than reversal_tolerance x input range = {allowed:.4g} apart)" if allowed > 0 else "")
+            )
+        mid = 0.5 * (alpha + beta)
+        alpha = np.where(cross, mid, alpha)
+        beta = np.where(cross, mid, beta)
+        text = (f"{int(cross.sum())} level(s) where the averaged branches cross by at most {float(depth[i]):.4g} "
+                "input units (noise): switch-on and -off put at their mean")
+        notes.append(text)
+        warnings.warn(f"from_loop: {text}", RuntimeWarning, stacklevel=3)
+    model = cls(alpha, beta, np.full(n, gain), offset=y_min)
+    if not report:
+        return model
+    fit_report = make_report(model, u_a, y_a, u_a.size, 0, f"{cls.__name__}.from_loop",
+                             settings={"n": n, "reversal_tolerance": reversal_tolerance, "coverage": coverage},
+                             notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started)
+    return model, fit_report

@@ -1,0 +1,483 @@
+"""Adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
+
+Six-bar benders are chains between real interface bodies (:mod:`exudyn_atcm.mbs.six_bar`);
+the rest of this description is about rigid cells.
+
+Model (planar, SI units):
+
+* Every rigid cell of a bender is one body (both layers' mass, the node at the cell's end
+  joint, reference angle = the bender's direction), as in :mod:`exudyn_atcm._mbs_builder`.
+  Neighbouring cells are joined by a revolute joint and a torsion spring ``2 EI/(L_j + L_{j+1})``
+  (``EI/L_c`` for equal cells).
+* Rigid groups (see :mod:`exudyn_atcm.mbs.layout`) are one body each (summed mass,
+  parallel-axis inertia, node at the centre of mass, reference angle 0); the ground group is
+  Exudyn's ground.
+* A bender end is an interface joined to its end cell by the end spring ``2 EI/L_c``
+  (half a cell).  A *hinge* joins two bodies by a revolute joint at the point and one
+  torsion spring-damper made of the compliances in series on the way: a virtual interface's
+  end spring, a pin's spring (0: free, weld: rigid), the other end spring.
+* Actuation: every spring's rest angle is the free rotation of the half cells it stands for.
+  The rest-angle moment ``k theta0(strains)`` is applied as a torque pair on the spring's two
+  bodies; the pairs are summed per body and drive, giving one ``LoadTorqueVector`` per body
+  whose net torque is not identically zero.  For a uniform cantilever that is one torque on
+  the last cell, exactly as in :mod:`exudyn_atcm._mbs_builder`.
+
+With :mod:`exudyn_atcm._mbs_builder`, the :mod:`exudyn_atcm.mbs` package holds the package's
+only Exudyn calls.
+"""
+
+from __future__ import annotations
+
+import math
+
+import exudyn as exu
+import numpy as np
+from exudyn import itemInterface as ii
+
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
+from ..mechanism.connections import Pin, Slider, joint_label
+from ..mechanism.flexure import Flexure
+from ..mechanism.link import Link
+from ..mechanism.points import GROUND, MechanismError, PointRef
+from .layout import part_of, rigid_groups
+from .items import NOVIS as _NOVIS
+from .items import add_body as _add_body
+from .items import local_point
+from .items import position_marker as _marker_position
+from .items import rotation_marker as _rot_marker
+from .model import Body, Element, EndReadout, Hinge, MechanismModel
+from .loads import add_loads
+from .six_bar import add_six_bar_chain, six_bar_end_mass
+
+_CELL_COLOR = [0.2, 0.45, 0.8, 1.0]
+_LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
+_FLEX_COLOR = [0.85, 0.55, 0.15, 1.0]
+
+
+# ---------------------------------------------------------------------------- building
+
+class _Builder:
+    def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False) -> None:
+        self.mbs = mbs
+        self.mech = mech
+        self.free_end_bodies = free_end_bodies
+        self.model = MechanismModel(mechanism=mech, mbs=mbs)
+        self.ground_item = ground_item
+        sources: list = []
+        for name, drive in mech.drives.items():
+            for k, s in enumerate(sources):
+                if s is drive:
+                    self.model.drive_source[name] = k
+                    break
+            else:
+                self.model.drive_source[name] = len(sources)
+                sources.append(drive)
+        self.model.sources = sources
+        self.n_sources = len(sources)
+        self._theta: dict[str, tuple] = {}
+
+    def zeros(self) -> np.ndarray:
+        return np.zeros(self.n_sources)
+
+    # ---------------------------------------------------------------- ground and groups
+    def build(self) -> MechanismModel:
+        mbs, mech, model = self.mbs, self.mech, self.model
+        for bender in mech.benders:
+            if bender.cell == "six-bar" and bender.active is None:
+                raise MechanismError(
+                    f"bender {bender.name!r}: the six-bar cell models two layers; a passive strip (active=None) "
+                    "needs cell='rigid'")
+        if self.ground_item is None:
+            self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
+                                                                            'graphicsData': []}))
+        gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
+        self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+        model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
+        six_bar = {b.name for b in mech.benders if b.cell == "six-bar"}
+        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar)
+        self._group_bodies()
+        for bender in mech.benders:
+            self._bender_cells(bender)
+        self._anchor_points()
+        self._end_hinges()
+        for j in mech.joints:
+            if isinstance(j, Pin):
+                self._pin(j)
+            elif isinstance(j, Slider):
+                self._slider(j)
+        self._flexure_pivots()
+        self._realise_hinges()
+        add_loads(mbs, mech, model)
+        return model
+
+    def _flexure_pivots(self) -> None:
+        """The pseudo-rigid-body flexures' characteristic pivots: a hinge with the spring ``K``."""
+        for comp in self.mech.components.values():
+            if isinstance(comp, Flexure) and comp.model == "prbm":
+                a, b = self.group_of[f"{comp.name}#base"], self.group_of[f"{comp.name}#tip"]
+                if a == b:
+                    continue  # both segments in one rigid group: the hinge cannot turn
+                k = comp.torsion_stiffness
+                el = Element(k, comp.stiffness_damping_factor * k, self.zeros(), self.zeros())
+                self._hinge_at(a, b, [el], comp.pivot)
+
+    def _group_bodies(self) -> None:
+        model = self.model
+        for key, g in self.groups.items():
+            if g.kind == "ground":
+                model.bodies[key] = model.bodies[GROUND]
+                continue
+            if g.kind == "virtual":
+                continue
+            if len(g.parts) == 1 and g.interfaces:
+                model.bodies[key] = self._interface_body(key, g.parts[0])
+                continue
+            masses, graphics = [], []
+            for part in g.parts:
+                # a rigid-cell end's interface mass only where nothing else carries the bender end
+                if g.kind == "body" and part in g.interfaces and not self._is_six_bar(part):
+                    continue
+                masses += self._part_masses(part)
+                graphics += self._part_graphics(part)
+            m = sum(mm for mm, _, _ in masses)
+            com = sum(mm * c for mm, _, c in masses) / m
+            inertia = sum(j + mm * float((c - com) @ (c - com)) for mm, j, c in masses)
+            local_graphics = [self._shift(gd, -com) for gd in graphics]
+            model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
+
+    def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
+        """(mass, inertia about own centre, centre) of a rigid part."""
+        if part == GROUND:
+            return []
+        name, _, end = part.partition("#")
+        comp = self.mech.components[name]
+        if isinstance(comp, Link):
+            return [(comp.mass, comp.inertia, np.array(comp.center_of_mass))]
+        if isinstance(comp, Flexure) and comp.model == "prbm":
+            return [comp.segment_masses()[0 if end == "base" else 1]]
+        bender = comp if isinstance(comp, Bender) else comp.as_bender()
+        if bender.cell == "six-bar":
+            m, j, center, _ = six_bar_end_mass(bender, end)
+            return [(m, j, center)]
+        # a rigid-cell end's interface body: the laminate over s = min(h1 + h2, L_c/10)
+        lam = bender.laminate
+        lc = float(bender.cell_lengths[0 if end == "base" else -1])
+        h = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
+        s = lam.interface_length(lc)
+        m = lam.mass_per_length * s
+        return [(m, m * (s**2 + h**2) / 12.0, np.array(bender.points[end]))]
+
+    def _is_six_bar(self, part: str) -> bool:
+        comp = self.mech.components[part.partition("#")[0]]
+        return isinstance(comp, Bender) and comp.cell == "six-bar"
+
+    def _interface_body(self, key: str, part: str) -> Body:
+        """A bender end's own interface body: node at the end point, the bender's reference angle."""
+        name, _, end = part.partition("#")
+        comp = self.mech.components[name]
+        bender = comp if isinstance(comp, Bender) else comp.as_bender()
+        point = bender.points[end]
+        if bender.cell == "six-bar":
+            m, j, _, offset = six_bar_end_mass(bender, end)
+            com = (0.0, -bender.curvature_sign * offset)
+        else:
+            (m, j, _), = self._part_masses(part)
+            com = (0.0, 0.0)
+        return _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
+
+    def _part_graphics(self, part: str) -> list:
+        if part == GROUND:
+            return []
+        name, _, end = part.partition("#")
+        comp = self.mech.components[name]
+        if isinstance(comp, Link):
+            pts = list(comp.points.values())
+            if len(pts) == 1:
+                pts = [pts[0], comp.center_of_mass]
+            loop = pts + ([pts[0]] if len(pts) > 2 else [])
+            return [exu.graphics.Lines([[p[0], p[1], 0.0] for p in loop], color=_LINK_COLOR)]
+        if isinstance(comp, Flexure) and comp.model == "prbm":
+            a = comp.base_position if end == "base" else comp.pivot
+            b = comp.pivot if end == "base" else comp.tip_position
+            return [exu.graphics.Lines([[a[0], a[1], 0.0], [b[0], b[1], 0.0]], color=_FLEX_COLOR)]
+        return []
+
+    @staticmethod
+    def _shift(gdata: dict, offset: np.ndarray) -> dict:
+        gd = dict(gdata)
+        if "points" in gd:
+            pts = np.array(gd["points"], dtype=float).reshape(-1, 3)
+            pts[:, 0] += offset[0]
+            pts[:, 1] += offset[1]
+            gd["points"] = pts.ravel().tolist()
+        return gd
+
+    # ---------------------------------------------------------------- benders
+    def _bender_cells(self, bender: Bender) -> None:
+        mbs, model = self.mbs, self.model
+        if bender.cell == "six-bar":
+            ends = [model.bodies[self.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
+            model.cells[bender.name] = add_six_bar_chain(mbs, model, bender, *ends, self.gcoord)
+            return
+        lam = bender.laminate
+        ei, c, side = lam.bending_stiffness, lam.curvature_per_strain, bender.curvature_sign
+        beta = bender.stiffness_damping_factor
+        lengths = bender.cell_lengths
+        seg_of = bender.cell_segments
+        d = bender.direction
+        x0 = np.array(bender.base_position)
+        thick = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
+        keys, s = [], 0.0
+        for j, lc in enumerate(lengths):
+            s += lc
+            m, com_offset, j_com = lam.rigid_cell(lc)
+            # active layer on the right of base->tip = local -y
+            com = (-0.5 * lc, -side * com_offset)
+            gfx = [exu.graphics.Brick(centerPoint=[-0.5 * lc, -side * 0.5 * (thick - lam.passive.thickness), 0.0],
+                                      size=[lc, thick, 0.2 * lc], color=_CELL_COLOR)]
+            key = f"{bender.name}/cell{j + 1}"
+            model.bodies[key] = _add_body(mbs, key, x0 + s * d, bender.angle, m, j_com, com, gfx)
+            keys.append(key)
+        model.cells[bender.name] = keys
+
+        def theta(j: int) -> np.ndarray:
+            """Free rotation of half cell j per unit strain of each source [rad]."""
+            out = self.zeros()
+            drive = bender.segments[seg_of[j]].drive
+            if drive is not None:
+                out[model.drive_source[bender.drive_name(int(seg_of[j]))]] = 0.5 * side * c * lengths[j]
+            return out
+
+        def moment_full(j: int) -> np.ndarray:
+            """EI kappa per unit strain: the rest moment of a joint standing for two halves of one drive."""
+            out = self.zeros()
+            drive = bender.segments[seg_of[j]].drive
+            if drive is not None:
+                out[model.drive_source[bender.drive_name(int(seg_of[j]))]] = side * ei * c
+            return out
+
+        self._theta[bender.name] = (theta, moment_full, ei, beta, lengths)
+        # inner joints
+        for j in range(len(lengths) - 1):
+            k = 2.0 * ei / (lengths[j] + lengths[j + 1])
+            if seg_of[j] == seg_of[j + 1]:
+                k = ei / lengths[j] if lengths[j] == lengths[j + 1] else k
+                moment = moment_full(j)
+            else:
+                moment = k * (theta(j) + theta(j + 1))
+            el = Element(k, beta * k, theta(j) + theta(j + 1), moment)
+            left = model.bodies[keys[j]]
+            right = model.bodies[keys[j + 1]]
+            self._revolute(left, (0.0, 0.0), right, (-lengths[j + 1], 0.0))
+            model.hinges.append(Hinge(keys[j], keys[j + 1], [el]))
+
+    def end_element(self, bender_name: str, end: str) -> tuple[Element, str, tuple[float, float]]:
+        """The end spring of a bender end: element, end cell key, the end point in the cell's frame."""
+        theta, moment_full, ei, beta, lengths = self._theta[bender_name]
+        j = 0 if end == "base" else len(lengths) - 1
+        k = 2.0 * ei / lengths[j]
+        el = Element(k, beta * k, theta(j), moment_full(j))
+        cell = self.model.cells[bender_name][j]
+        local = (-lengths[j], 0.0) if end == "base" else (0.0, 0.0)
+        return el, cell, local
+
+    def _revolute(self, a: Body, la, b: Body, lb) -> None:
+        self.mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[_marker_position(self.mbs, a, la),
+                                                                   _marker_position(self.mbs, b, lb)],
+                                                    visualization=_NOVIS))
+
+    # ---------------------------------------------------------------- points
+    def _anchor_points(self) -> None:
+        """Body and local position of every component point."""
+        mech, model = self.mech, self.model
+        for comp in mech.components.values():
+            for pname, pos in comp.points.items():
+                ref = PointRef(comp.name, pname)
+                part = part_of(mech, ref)
+                g = self.groups[self.group_of[part]]
+                rigid = isinstance(comp, Link) or (isinstance(comp, Flexure) and comp.model == "prbm")
+                if rigid:
+                    model.group_of_component[part] = g.key
+                if rigid or g.kind != "virtual":
+                    body = model.bodies[g.key]
+                    model.anchors[str(ref)] = (g.key, local_point(body, pos))
+                else:
+                    _, cell, local = self.end_element(comp.name, pname)
+                    model.anchors[str(ref)] = (cell, np.array(local, dtype=float))
+
+    # ---------------------------------------------------------------- hinges at bender ends
+    def _end_hinges(self) -> None:
+        mech, model = self.mech, self.model
+        for bender in mech.benders:
+            for end in ("base", "tip"):
+                part = f"{bender.name}#{end}"
+                g = self.groups[self.group_of[part]]
+                label = f"{bender.name}.{end}"
+                if bender.cell == "six-bar":  # the chain ends on the group's body itself
+                    model.ends[label] = EndReadout("body", body=g.key)
+                    continue
+                el, cell, _ = self.end_element(bender.name, end)
+                if g.kind != "virtual":
+                    a, b = (cell, g.key) if end == "tip" else (g.key, cell)
+                    self._hinge_at(a, b, [el], bender.points[end])
+                    model.ends[label] = EndReadout("body", body=g.key)
+                elif not g.joints and len(g.interfaces) == 1:
+                    sign = 1.0 if end == "tip" else -1.0
+                    model.ends[label] = EndReadout("free", body=cell, sign=sign, theta=el.theta)
+                elif not g.joints and part == g.interfaces[0]:
+                    # two ends welded together: one hinge from the first end cell to the second
+                    self._chain(g.interfaces[0], None, g.interfaces[1], bender.points[end])
+
+    def _chain(self, side_a: str, link: Element | None, side_b: str, position) -> None:
+        """A hinge from ``side_a`` to ``side_b`` (body keys, or ``"bender#end"`` for virtual interfaces)
+        through the interfaces' end springs and ``link`` (a pin's spring; ``None`` for a weld)."""
+        model = self.model
+        els: list[Element] = []
+        # A side
+        if self._virtual(side_a):
+            name, end = side_a.split("#")
+            el, cell_a, _ = self.end_element(name, end)
+            # tip on the A side: the interface turns +theta from the cell; base: -theta
+            els.append(el if end == "tip" else _flipped(el))
+            a_key, a_node = cell_a, (f"{name}.{end}", 1)
+        else:
+            a_key, a_node = side_a, None
+        if link is not None:
+            els.append(link)
+        if self._virtual(side_b):
+            name, end = side_b.split("#")
+            el, cell_b, _ = self.end_element(name, end)
+            els.append(el if end == "base" else _flipped(el))
+            b_key, b_node = cell_b, (f"{name}.{end}", len(els) - 1)
+        else:
+            b_key, b_node = side_b, None
+        index = self._hinge_at(a_key, b_key, els, position)
+        for node in (a_node, b_node):
+            if node is not None:
+                model.ends[node[0]] = EndReadout("hinge", hinge=index, node=node[1])
+
+    def _hinge_at(self, a: str, b: str, elements: list[Element], position) -> int:
+        body_a, body_b = self.model.bodies[a], self.model.bodies[b]
+        self._revolute(body_a, local_point(body_a, position), body_b, local_point(body_b, position))
+        self.model.hinges.append(Hinge(a, b, elements))
+        return len(self.model.hinges) - 1
+
+    # ---------------------------------------------------------------- joints
+    def _virtual(self, side: str) -> bool:
+        """True if ``side`` is a bender-end part of a virtual group (not a body key)."""
+        return side in self.group_of and self.groups[self.group_of[side]].kind == "virtual"
+
+    def _side(self, ref: PointRef | None) -> str:
+        """Group key, or the interface part if ``ref`` is a virtual bender end."""
+        part = part_of(self.mech, ref)
+        g = self.groups[self.group_of[part]]
+        return part if g.kind == "virtual" else g.key
+
+    def _movable(self, j, side_a: str, side_b: str) -> None:
+        """Refuse a joint between two points of one rigid group (welded together): it could not move."""
+        if side_a == side_b:
+            group = self.groups[self.group_of[side_a]] if side_a in self.group_of else self.groups[side_a]
+            parts = ", ".join(sorted(p.replace("#", ".") for p in group.parts))
+            raise MechanismError(
+                f"{joint_label(j)} joins two points of one rigid group (welded together: {parts}); it cannot "
+                "move. Remove the joint or one of the welds")
+
+    def _pin(self, j: Pin) -> None:
+        side_a, side_b = self._side(j.p), self._side(j.q)
+        self._movable(j, side_a, side_b)
+        k = j.stiffness
+        pin_el = Element(k, j.damping, self.zeros(), self.zeros())
+        self._chain(side_a, pin_el, side_b, self.mech.position(j.p))
+
+    def _slider(self, j: Slider) -> None:
+        mbs, model = self.mbs, self.model
+        a, b = self._side(j.p), self._side(j.q)
+        self._movable(j, a, b)
+        body_a, body_b = model.bodies[a], model.bodies[b]
+        pos = self.mech.position(j.p)
+        pos_q = pos if j.q is None else self.mech.position(j.q)
+        la, lb = local_point(body_a, pos), local_point(body_b, pos_q)
+        ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
+        cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
+        ax, ay = j.axis
+        axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
+        normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
+        ma = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body_a.item, localPosition=[la[0], la[1], 0.0]))
+        mb = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body_b.item, localPosition=[lb[0], lb[1], 0.0]))
+        mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
+                                                constrainRotation=True, visualization=_NOVIS))
+        if j.stiffness > 0.0 or j.damping > 0.0:
+            # the sliding coordinate: relative translation along the axis (zero in the reference pose)
+            coord = mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
+                bodyNumbers=[body_a.item, body_b.item], localPosition0=[la[0], la[1], 0.0],
+                localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
+            item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
+                markerNumbers=[self.gcoord, coord], stiffness=j.stiffness, damping=j.damping, visualization=_NOVIS))
+            model.springs.append((item, j.stiffness))
+
+    # ---------------------------------------------------------------- springs of the hinges, actuation torques
+    def _realise_hinges(self) -> None:
+        mbs, model = self.mbs, self.model
+        per_body: dict[str, np.ndarray] = {}
+        for h in model.hinges:
+            if len(h.elements) == 1:
+                e = h.elements[0]
+                h.stiffness, damping, h.moment = e.stiffness, e.damping, e.moment
+            else:
+                finite = [e for e in h.elements if math.isfinite(e.stiffness)]
+                if any(e.stiffness == 0.0 for e in finite):
+                    h.stiffness, h.moment = 0.0, self.zeros()
+                    dampers = [e.damping for e in finite if e.stiffness == 0.0]
+                    damping = sum(dampers)
+                else:
+                    h.stiffness = 1.0 / sum(1.0 / e.stiffness for e in finite)
+                    h.moment = h.stiffness * sum((e.theta for e in h.elements), self.zeros())
+                    # series Kelvin-Voigt elements with equal beta = d/k give beta k_s; in general
+                    # k_s^2 sum(d_i / k_i^2) (exact for equal beta, an approximation otherwise)
+                    damping = h.stiffness**2 * sum(e.damping / e.stiffness**2 for e in finite)
+            if h.stiffness > 0.0 or damping > 0.0:
+                ra = _rot_marker(mbs, model.bodies[h.a], self.gcoord)
+                rb = _rot_marker(mbs, model.bodies[h.b], self.gcoord)
+                h.spring_item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
+                    markerNumbers=[ra, rb], stiffness=h.stiffness, damping=damping, visualization=_NOVIS))
+                model.springs.append((h.spring_item, h.stiffness))
+            if np.any(h.moment != 0.0):
+                per_body[h.b] = per_body.get(h.b, self.zeros()) + h.moment
+                per_body[h.a] = per_body.get(h.a, self.zeros()) - h.moment
+        scale = max((float(np.max(np.abs(v))) for v in per_body.values()), default=0.0)
+        for key, coef in per_body.items():
+            body = model.bodies[key]
+            if body.node is None or float(np.max(np.abs(coef))) <= 1e-12 * scale:
+                continue  # ground, or moments that cancel (inner cells of one drive)
+            marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
+            load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
+            model.torque_loads.append((load, coef))
+
+def _flipped(el: Element) -> Element:
+    return Element(el.stiffness, el.damping, -el.theta, -el.moment)
+
+
+def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,
+                  free_end_bodies: bool = False) -> MechanismModel:
+    """Add the items of ``mechanism`` to ``mbs`` (not assembled); ``mechanism.check()`` must have passed.
+
+    ``free_end_bodies=True`` gives free bender ends small interface bodies (for user joints).
+    """
+    return _Builder(mbs, mechanism, ground_item, free_end_bodies).build()
+
+
+def build(mechanism: Mechanism) -> MechanismModel:
+    """A new Exudyn system holding ``mechanism``, assembled."""
+    mechanism.check()
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    model = add_mechanism(mbs, mechanism)
+    model.SC = SC
+    mbs.Assemble()
+    model.resolve_indices()
+    n = len(model.sources)
+    model.path_from = np.zeros(n)
+    model.path_to = np.zeros(n)
+    model.set_strains(np.zeros(n))
+    return model

@@ -1,0 +1,247 @@
+"""The handle of a mechanism built into an Exudyn system: bodies, hinges, drives, loads, read-outs.
+
+Built by :mod:`exudyn_atcm.mbs.builder`.  The model writes the actuation (free strains of
+the drives) and the loads into the system for each step, and turns recorded ODE2
+coordinates into point positions and angles.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+
+from ..mechanism.assembly import Mechanism
+
+
+@dataclass
+class Body:
+    """A body of the built model (``node is None`` for the ground)."""
+
+    key: str
+    node: int | None
+    item: int
+    reference: np.ndarray          # x, y, angle of the node in the reference pose
+    rot_marker: Any = None
+    ode2: int = -1                 # first ODE2 index (set after Assemble)
+
+
+@dataclass
+class Element:
+    """A compliance on a hinge: stiffness [N m/rad] (``inf``: rigid), damping, rest angle and moment per strain."""
+
+    stiffness: float
+    damping: float
+    theta: np.ndarray              # rest angle per unit strain of each source [rad]
+    moment: np.ndarray             # stiffness * theta, computed exactly where possible [N m]
+
+
+@dataclass
+class Hinge:
+    """Revolute joint between bodies ``a`` and ``b`` with the series spring of its elements."""
+
+    a: str
+    b: str
+    elements: list[Element]
+    stiffness: float = 0.0
+    moment: np.ndarray | None = None   # rest-angle moment per strain of each source (+ on b, - on a)
+    spring_item: int = -1
+
+
+@dataclass
+class EndReadout:
+    """How a bender end's interface rotation is obtained from the state."""
+
+    kind: str                      # "body" | "free" | "hinge"
+    body: str = ""                 # "body": the group body; "free": the end cell
+    sign: float = 1.0              # "free": +1 tip, -1 base
+    theta: np.ndarray | None = None
+    hinge: int = -1                # "hinge": index into model.hinges
+    node: int = 0                  # "hinge": the interface sits after this many elements
+
+
+@dataclass
+class LoadRecord:
+    """A force or torque load whose value may change per step."""
+
+    load: int
+    kind: str                      # "force" | "torque"
+    value: Any                     # tuple / float or callable of t
+    follower: bool = False
+    rotation: float = 0.0          # follower: reference angle of the carrying body
+    free_end: EndReadout | None = None  # follower on a free interface: turns with the interface
+    name: str = ""
+
+    def at(self, t: float) -> tuple[float, ...]:
+        """The load's value at time ``t`` [s]: ``(Fx, Fy)`` [N] or ``(T,)`` [N m], checked finite."""
+        value = self.value(t) if callable(self.value) else self.value
+        try:
+            out = (float(value),) if self.kind == "torque" else (float(value[0]), float(value[1]))
+            if len(out) == 2 and len(value) != 2:
+                raise TypeError
+        except (TypeError, ValueError, IndexError):
+            out = None
+        if out is None or not all(math.isfinite(v) for v in out):
+            what = "a finite torque [N m]" if self.kind == "torque" else "a pair (Fx, Fy) of finite forces [N]"
+            raise ValueError(f"{self.kind} {self.name!r} gave {value!r} at t = {t!r} s; it must give {what}")
+        return out
+
+
+@dataclass
+class MechanismModel:
+    """Handles of a mechanism inside an Exudyn system (internal; see :func:`exudyn_atcm.add_to`)."""
+
+    mechanism: Mechanism
+    mbs: Any
+    SC: Any = None
+    bodies: dict[str, Body] = field(default_factory=dict)
+    anchors: dict[str, tuple[str, np.ndarray]] = field(default_factory=dict)
+    hinges: list[Hinge] = field(default_factory=list)
+    sources: list[Any] = field(default_factory=list)          # unique PiezoDrive objects
+    drive_source: dict[str, int] = field(default_factory=dict)  # drive name -> source index
+    torque_loads: list[tuple[int, np.ndarray]] = field(default_factory=list)
+    motor_offsets: list[tuple[int, float, int]] = field(default_factory=list)  # six-bar: (item, L_c, source)
+    loads: list[LoadRecord] = field(default_factory=list)
+    spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
+    ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
+    cells: dict[str, list[str]] = field(default_factory=dict)   # bender -> its cell body keys
+    springs: list[tuple[int, float]] = field(default_factory=list)  # (item, stiffness) for relaxation
+    group_of_component: dict[str, str] = field(default_factory=dict)  # link / prbm segment -> body key
+    # state of the actuation path (see set_path / set_strain)
+    strains: np.ndarray | None = None
+    path_from: np.ndarray | None = None
+    path_to: np.ndarray | None = None
+    ramp_loads: bool = True
+    load_factor: float = 1.0
+    time: float = 0.0
+    uf_strain: Any = None
+
+    # ------------------------------------------------------------------ actuation and loads
+    def set_strains(self, strains: np.ndarray) -> None:
+        """Write the free strains of every source [-] into the actuation torques (and follower loads)."""
+        self.strains = np.asarray(strains, dtype=float)
+        for load, coef in self.torque_loads:
+            self.mbs.SetLoadParameter(load, "loadVector", [0.0, 0.0, float(coef @ self.strains)])
+        for item, factor, source in self.motor_offsets:
+            self.mbs.SetObjectParameter(item, "offset", factor * float(self.strains[source]))
+        self._write_loads()
+
+    def set_path(self, start: np.ndarray, end: np.ndarray, ramp_loads: bool) -> None:
+        """Static path: strains go from ``start`` to ``end`` with the path parameter; loads ramp if asked."""
+        self.path_from = np.asarray(start, dtype=float)
+        self.path_to = np.asarray(end, dtype=float)
+        self.ramp_loads = ramp_loads
+
+    def set_strain(self, f: float) -> None:
+        """Path parameter ``f`` in [0, 1] (the static solver's load factor): strains and, if ramped, loads."""
+        if self.ramp_loads:
+            self.load_factor = f
+        self.set_strains(self.path_from + f * (self.path_to - self.path_from))
+
+    def scale_loads(self, factor: float) -> None:
+        """Scale every external force and torque by ``factor`` (relaxation ramps; kept at 1 on a sweep's later steps)."""
+        self.load_factor = factor if self.ramp_loads else 1.0
+        self._write_loads()
+
+    def set_time(self, t: float) -> None:
+        """Time [s] at which callable loads are evaluated."""
+        self.time = t
+        self._write_loads()
+
+    def _write_loads(self) -> None:
+        f = self.load_factor
+        for rec in self.loads:
+            value = rec.at(self.time)
+            if rec.kind == "torque":
+                self.mbs.SetLoadParameter(rec.load, "loadVector", [0.0, 0.0, f * value[0]])
+                continue
+            fx, fy = value[0] * f, value[1] * f
+            if rec.follower:
+                angle = -rec.rotation
+                if rec.free_end is not None and self.strains is not None:
+                    angle += rec.free_end.sign * float(rec.free_end.theta @ self.strains)
+                c, s = math.cos(angle), math.sin(angle)
+                fx, fy = c * fx - s * fy, s * fx + c * fy
+            self.mbs.SetLoadParameter(rec.load, "loadVector", [fx, fy, 0.0])
+
+    # ------------------------------------------------------------------ state read-out
+    def coordinates(self) -> np.ndarray:
+        """Current ODE2 coordinates (a view)."""
+        return self.mbs.systemData.GetODE2Coordinates(copy=False)
+
+    def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """Pose (x, y, angle) of every body for rows of ODE2 coordinates ``q`` (shape (n, nODE2))."""
+        q = np.atleast_2d(q)
+        out = {}
+        for key, body in self.bodies.items():
+            if body.node is None:
+                out[key] = np.tile(body.reference, (q.shape[0], 1))
+            else:
+                out[key] = body.reference + q[:, body.ode2:body.ode2 + 3]
+        return out
+
+    def point_positions(self, poses: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Position (x, y) rows of every component point (``"comp.point"``)."""
+        out = {}
+        for name, (key, local) in self.anchors.items():
+            pose = poses[key]
+            c, s = np.cos(pose[:, 2]), np.sin(pose[:, 2])
+            out[name] = np.column_stack([pose[:, 0] + c * local[0] - s * local[1],
+                                         pose[:, 1] + s * local[0] + c * local[1]])
+        return out
+
+    def rotation(self, poses: dict[str, np.ndarray], key: str) -> np.ndarray:
+        """Rotation of body ``key`` from its reference pose [rad]."""
+        return poses[key][:, 2] - self.bodies[key].reference[2]
+
+    def end_rotation(self, poses: dict[str, np.ndarray], strains: np.ndarray, end: str) -> np.ndarray:
+        """Rotation [rad] of a bender end's interface from the reference pose (quasi-static for virtual ends)."""
+        r = self.ends[end]
+        strains = np.atleast_2d(strains)
+        if r.kind == "body":
+            return self.rotation(poses, r.body)
+        if r.kind == "free":
+            return self.rotation(poses, r.body) + r.sign * (strains @ r.theta)
+        hinge = self.hinges[r.hinge]
+        ra, rb = self.rotation(poses, hinge.a), self.rotation(poses, hinge.b)
+        thetas = [strains @ e.theta for e in hinge.elements]
+        if hinge.stiffness == 0.0:
+            # no moment: the interface follows its own end cell
+            zero = next(i for i, e in enumerate(hinge.elements) if e.stiffness == 0.0)
+            if r.node <= zero:
+                return ra + sum(thetas[:r.node], 0.0)
+            return rb - sum(thetas[r.node:], 0.0)
+        moment = hinge.stiffness * (rb - ra - sum(thetas, 0.0))
+        out = ra
+        for e, th in zip(hinge.elements[:r.node], thetas[:r.node]):
+            out = out + th + (moment / e.stiffness if math.isfinite(e.stiffness) else 0.0)
+        return out
+
+    # ------------------------------------------------------------------ connectors
+    def connector_names(self) -> list[str]:
+        """Names of the springs and stops, in the order of :meth:`connector_forces`."""
+        return list(self.spring_items)
+
+    def connector_forces(self) -> list[float]:
+        """Force [N] of every spring (tension positive) and stop (compression positive) now."""
+        normals = {s.name: s.normal for s in self.mechanism.stops}
+        out = []
+        for name, item in self.spring_items.items():
+            force = self.mbs.GetObjectOutput(item, exu.OutputVariableType.Force)
+            if name in normals:
+                nx, ny = normals[name]
+                out.append(-float(force[0] * nx + force[1] * ny))
+            else:
+                # Exudyn's spring force vector points from marker 0 to marker 1 under tension
+                d = np.asarray(self.mbs.GetObjectOutput(item, exu.OutputVariableType.Displacement), dtype=float)
+                out.append(float(np.dot(force, d) / np.linalg.norm(d)))
+        return out
+
+    def resolve_indices(self) -> None:
+        """Read the bodies' ODE2 indices (after ``mbs.Assemble()``)."""
+        for body in self.bodies.values():
+            if body.node is not None:
+                body.ode2 = self.mbs.GetNodeODE2Index(body.node)

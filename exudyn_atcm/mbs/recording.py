@@ -1,0 +1,97 @@
+"""Recorded states of a mechanism model and the :class:`~exudyn_atcm.Result` made from them.
+
+Columns (``name [unit]``): ``time [s]``; per drive ``{drive}.voltage [V]`` and
+``{drive}.strain [-]``; per named point ``{comp}.{point}_x [m]`` and ``_y``; per link
+``{link}.angle [rad]`` (rotation from the reference pose); per bender and flexure
+``{comp}.base_angle``, ``{comp}.tip_angle`` and ``{comp}.cell_angle_{j}`` [rad] (absolute
+direction of the axis; the reference value is the component's angle; a pseudo-rigid-body
+flexure has two "cells", its segments); per spring and stop ``{name}.force [N]`` (tension
+positive for springs, compression positive for stops).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _mbs_builder as runs
+from ..mechanism.link import Link
+from ..result import Result
+from ..simulation import SolverError
+from .model import MechanismModel
+
+
+class Rows:
+    """Accepted states: time, voltages and strains per source, ODE2 coordinates, spring forces."""
+
+    def __init__(self, model: MechanismModel) -> None:
+        self.model = model
+        self.times: list[float] = []
+        self.volts: list[np.ndarray] = []
+        self.strains: list[np.ndarray] = []
+        self.q: list[np.ndarray] = []
+        self.forces: list[list[float]] = []
+
+    def add(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
+        self.times.append(t)
+        self.volts.append(np.array(volts, dtype=float))
+        self.strains.append(np.array(strains, dtype=float))
+        self.q.append(np.array(self.model.coordinates()))
+        self.forces.append(self.model.connector_forces())
+
+    def last_time(self) -> float:
+        return self.times[-1] if self.times else 0.0
+
+    def result(self, info: dict) -> Result:
+        return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
+                           np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
+                           np.array(self.forces).reshape(len(self.times), -1), info)
+
+
+def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, strains: np.ndarray, q: np.ndarray,
+                forces: np.ndarray, info: dict) -> Result:
+    """The :class:`Result` of recorded rows (columns as in the module documentation)."""
+    mech = model.mechanism
+    series: dict[str, np.ndarray] = {"time": times}
+    units: dict[str, str] = {"time": "s"}
+    for name, k in model.drive_source.items():
+        series[f"{name}.voltage"], units[f"{name}.voltage"] = volts[:, k], "V"
+        series[f"{name}.strain"], units[f"{name}.strain"] = strains[:, k], "-"
+    poses = model.poses(q)
+    points = model.point_positions(poses)
+    benders = {b.name: b for b in mech.benders}
+    for comp in mech.components.values():
+        for pname in comp.points:
+            xy = points[f"{comp.name}.{pname}"]
+            for axis, col in (("x", 0), ("y", 1)):
+                key = f"{comp.name}.{pname}_{axis}"
+                series[key], units[key] = xy[:, col], "m"
+        c = comp.name
+        if isinstance(comp, Link):
+            series[f"{c}.angle"] = model.rotation(poses, model.group_of_component[c])
+            units[f"{c}.angle"] = "rad"
+            continue
+        if c in benders:
+            angle = benders[c].angle
+            base = angle + model.end_rotation(poses, strains, f"{c}.base")
+            tip = angle + model.end_rotation(poses, strains, f"{c}.tip")
+            cells = [angle + model.rotation(poses, key) for key in model.cells[c]]
+        else:  # pseudo-rigid-body flexure
+            angle = comp.angle
+            cells = [angle + model.rotation(poses, model.group_of_component[f"{c}#{end}"]) for end in ("base", "tip")]
+            base, tip = cells
+        series[f"{c}.base_angle"], series[f"{c}.tip_angle"] = base, tip
+        units[f"{c}.base_angle"] = units[f"{c}.tip_angle"] = "rad"
+        for j, values in enumerate(cells):
+            series[f"{c}.cell_angle_{j + 1}"], units[f"{c}.cell_angle_{j + 1}"] = values, "rad"
+    for k, name in enumerate(model.connector_names()):
+        series[f"{name}.force"], units[f"{name}.force"] = forces[:, k], "N"
+    info = dict(info)
+    info.setdefault("exudyn_version", runs.exudyn_version())
+    result = Result(series, units, parameters=mech.parameters(), info=info)
+    for name in result:
+        values = result[name]
+        if values.size and not np.all(np.isfinite(values)):
+            bad = int(np.argmax(~np.isfinite(values)))
+            raise SolverError(f"the solution contains a non-finite {name} at row {bad} (t = {times[bad]!r} s); "
+                              "the solver diverged. Try a smaller step or more cells.")
+    return result

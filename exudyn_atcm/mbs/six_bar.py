@@ -1,0 +1,141 @@
+"""The paper's six-bar cell (its Fig. 2) inside a mechanism: a chain between two end bodies.
+
+Per cell ``j`` (as :mod:`exudyn_atcm._mbs_builder` builds a lone actuator): the passive bar,
+the active layer as three bodies A1-A2-A3, revolute joints with torsion springs
+``2 E_i I_i / L_c`` to the interfaces on both layers, the prismatic motor A1-A2 (its offset
+is the stroke ``strain * L_c``, written per step) and the prismatic joint A2-A3 with the axial
+spring ``k1``.  Inner interfaces are bodies of the chain; the two end interfaces are the
+bodies of their rigid groups (the ground, a link, or an interface body of their own), so
+joints at the ends act on real interface bodies.
+
+Masses: each interface carries the laminate over ``s = min(h1 + h2, L_c/10)``, half from
+each neighbouring cell; an end interface carries its half (:func:`six_bar_end_mass`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import exudyn as exu
+import numpy as np
+from exudyn import itemInterface as ii
+
+from ..mechanism.bender import Bender
+from .items import NOVIS, add_body, local_point, position_marker, rotation_marker
+from .model import Body, MechanismModel
+
+
+PASSIVE_COLOR = [0.2, 0.45, 0.8, 1.0]
+ACTIVE_COLOR = [0.85, 0.3, 0.2, 1.0]
+
+
+def six_bar_end_mass(bender: Bender, end: str) -> tuple[float, float, np.ndarray, float]:
+    """Half an interface of the end cell: mass [kg], inertia about its centre [kg m²], centre [m]
+    (global, reference pose) and the centre's offset from the passive layer towards the active one [m]."""
+    lam = bender.laminate
+    lc = float(bender.cell_lengths[0 if end == "base" else -1])
+    m_if, j_if = _interface(bender, lc)
+    e = lam.layer_offset
+    normal = np.array([-math.sin(bender.angle), math.cos(bender.angle)])
+    center = np.array(bender.points[end]) - bender.curvature_sign * 0.5 * e * normal
+    return 0.5 * m_if, 0.5 * j_if, center, 0.5 * e
+
+
+def _interface(bender: Bender, lc: float) -> tuple[float, float]:
+    lam = bender.laminate
+    s = lam.interface_length(lc)
+    m_if = lam.mass_per_length * s
+    h = lam.passive.thickness + lam.active.thickness
+    return m_if, m_if * (s**2 + (lam.layer_offset + 0.5 * h) ** 2) / 12.0
+
+
+def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, tip: Body, ground_coordinate) -> list:
+    """Add the cells of ``bender`` between the end bodies ``base`` and ``tip``; returns the passive bars' keys.
+
+    Registers the motors in ``model.motor_offsets`` and the spring-dampers in ``model.springs``.
+    """
+    lam = bender.laminate
+    side = bender.curvature_sign
+    e = lam.layer_offset
+    w = bender.width
+    h1, h2 = lam.passive.thickness, lam.active.thickness
+    beta = bender.stiffness_damping_factor
+    angle = bender.angle
+    d = bender.direction
+    n_hat = np.array([-math.sin(angle), math.cos(angle)])
+    x_base = np.array(bender.base_position, dtype=float)
+    lengths = bender.cell_lengths
+    segment = bender.cell_segments
+    upper = (0.0, -side * e)  # the active layer's point of an interface, in the bender's frame
+
+    def hinge(positions, rotations, k):
+        mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=list(positions), visualization=NOVIS))
+        item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
+            markerNumbers=list(rotations), stiffness=k, damping=beta * k, visualization=NOVIS))
+        model.springs.append((item, k))
+
+    def ends(body: Body, point: np.ndarray):
+        """Markers of an end interface: lower (passive) and upper (active) points, rotation."""
+        low = position_marker(mbs, body, local_point(body, point))
+        up = position_marker(mbs, body, local_point(body, point - side * e * n_hat))
+        return low, up, rotation_marker(mbs, body, ground_coordinate)
+
+    prev_lower, prev_upper, prev_rot = ends(base, x_base)
+    bars, s_pos = [], 0.0
+    for j, lc in enumerate(lengths):
+        x0 = x_base + s_pos * d
+        s_pos += lc
+        k_p, k_a = lam.layer_joint_stiffness(lc)
+        k1 = lam.axial_spring_stiffness(lc)
+        keep = 1.0 - lam.interface_length(lc) / lc
+        m1 = lam.passive.mass_per_length(w) * lc * keep
+        key = f"{bender.name}/cell{j + 1}"
+        bar = add_body(mbs, key, x0 + 0.5 * lc * d, angle, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0),
+                       [exu.graphics.Brick(size=[lc, h1, 0.2 * lc], color=PASSIVE_COLOR)])
+        model.bodies[key] = bar
+        bars.append(key)
+        ma = lam.active.mass_per_length(w) * lc * keep / 3.0
+        la = lc / 3.0
+        act = []
+        for k in range(3):
+            pos = x0 + (k + 0.5) * la * d - side * e * n_hat
+            body = add_body(mbs, f"{key}/A{k + 1}", pos, angle, ma, ma * (la**2 + h2**2) / 12.0, (0.0, 0.0),
+                            [exu.graphics.Brick(size=[la, h2, 0.2 * lc], color=ACTIVE_COLOR)])
+            act.append(body)
+        if j < len(lengths) - 1:
+            # an inner interface: half the lumped laminate of each neighbouring cell
+            m_a, j_a = _interface(bender, lc)
+            m_b, j_b = _interface(bender, float(lengths[j + 1]))
+            nxt = add_body(mbs, f"{bender.name}/interface{j + 1}", x0 + lc * d, angle, 0.5 * (m_a + m_b),
+                           0.5 * (j_a + j_b), (0.0, -side * 0.5 * e), [])
+            model.bodies[nxt.key] = nxt
+            lower, upper_m, rot = (position_marker(mbs, nxt, (0.0, 0.0)), position_marker(mbs, nxt, upper),
+                                   rotation_marker(mbs, nxt, ground_coordinate))
+        else:
+            lower, upper_m, rot = ends(tip, x0 + lc * d)
+        bar_rot = rotation_marker(mbs, bar, ground_coordinate)
+        hinge((prev_lower, position_marker(mbs, bar, (-0.5 * lc, 0.0))), (prev_rot, bar_rot), k_p)
+        hinge((position_marker(mbs, bar, (0.5 * lc, 0.0)), lower), (bar_rot, rot), k_p)
+        hinge((prev_upper, position_marker(mbs, act[0], (-0.5 * la, 0.0))),
+              (prev_rot, rotation_marker(mbs, act[0], ground_coordinate)), k_a)
+        hinge((position_marker(mbs, act[2], (0.5 * la, 0.0)), upper_m),
+              (rotation_marker(mbs, act[2], ground_coordinate), rot), k_a)
+        for left, right in ((0, 1), (1, 2)):
+            m0 = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=act[left].item, localPosition=[0.5 * la, 0.0, 0.0]))
+            m1_ = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=act[right].item, localPosition=[-0.5 * la, 0.0, 0.0]))
+            mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[m0, m1_], axisMarker0=[1.0, 0.0, 0.0],
+                                                    normalMarker1=[0.0, 1.0, 0.0], constrainRotation=True,
+                                                    visualization=NOVIS))
+        m_motor, m_spring = (mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
+            bodyNumbers=[act[a].item, act[b].item], localPosition0=[0.5 * la, 0.0, 0.0],
+            localPosition1=[-0.5 * la, 0.0, 0.0], axis0=[1.0, 0.0, 0.0])) for a, b in ((0, 1), (1, 2)))
+        motor = mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[ground_coordinate, m_motor], offset=0.0,
+                                                           visualization=NOVIS))
+        drive = bender.segments[segment[j]].drive
+        if drive is not None:
+            model.motor_offsets.append((motor, float(lc), model.drive_source[bender.drive_name(int(segment[j]))]))
+        spring = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
+            markerNumbers=[ground_coordinate, m_spring], stiffness=k1, damping=beta * k1, visualization=NOVIS))
+        model.springs.append((spring, k1))
+        prev_lower, prev_upper, prev_rot = lower, upper_m, rot
+    return bars

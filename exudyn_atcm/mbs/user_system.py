@@ -1,0 +1,184 @@
+"""Adding a mechanism or a lone bender to a user's own Exudyn ``MainSystem``.
+
+The convention of ``exudyn.robotics`` and ``exudyn.beams``: :func:`add_to` adds the items to
+``mbs`` and returns a handle with markers for the user's joints, the body numbers and
+sensors.  The drives' hysteresis runs in the step through :class:`~exudyn_atcm.mbs.hooks.StepHooks`
+(trial in ``PreStep``, commit in ``PostStep``), so any solver the user calls
+(``mbs.SolveDynamic``, ``exudyn.SolveStatic``...) takes the voltage programs into account.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Union
+
+import exudyn as exu
+import numpy as np
+from exudyn import itemInterface as ii
+
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
+from ..mechanism.points import MechanismError, PointRef, closest
+from ..result import Result
+from ..simulation import InStepStrain
+from .builder import add_mechanism
+from .hooks import add_post_step, add_pre_step
+from .model import MechanismModel
+from .recording import make_result
+
+
+class MechanismHandle:
+    """What :func:`exudyn_atcm.add_to` added: markers, bodies, sensors and the recorded run.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+        The mechanism added (a lone bender is wrapped in a one-component mechanism).
+    model : MechanismModel
+        The built items (internal details).
+    sensors : dict of str to int
+        Exudyn sensor numbers (``storeInternal=True``): ``"{comp}.{point}"`` -> position
+        [m] of every named point, ``"{link}.angle"`` -> rotation [rad] of every link's body.
+        Read them with ``mbs.GetSensorStoredData(number)`` after a run (their write period
+        is ``simulationSettings.solution.sensors.writePeriod``).
+    """
+
+    def __init__(self, mechanism: Mechanism, model: MechanismModel, sources: list) -> None:
+        self.mechanism = mechanism
+        self.model = model
+        self.sensors: dict[str, int] = {}
+        self._sources = sources
+        self._rows: list[tuple] = []
+
+    # ------------------------------------------------------------------ markers and bodies
+    def _anchor(self, point: PointRef | str) -> tuple[Any, np.ndarray]:
+        ref = self.mechanism.resolve(point)
+        key, local = self.model.anchors[str(ref)]
+        return self.model.bodies[key], local
+
+    def marker(self, point: PointRef | str) -> int:
+        """A new ``MarkerBodyRigid`` at ``point`` (for the user's joints: revolute, generic...).
+
+        At a bender end that is joined to nothing inside the mechanism, this is the end's
+        interface body; the marker's frame is the body's frame (global axes in the reference pose
+        for links and interface bodies, the bender's axis for cells).
+        """
+        body, local = self._anchor(point)
+        return self.model.mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item,
+                                                           localPosition=[float(local[0]), float(local[1]), 0.0]))
+
+    def position_marker(self, point: PointRef | str) -> int:
+        """A new ``MarkerBodyPosition`` at ``point`` (for springs, forces, position joints)."""
+        body, local = self._anchor(point)
+        return self.model.mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body.item,
+                                                              localPosition=[float(local[0]), float(local[1]), 0.0]))
+
+    def body(self, component_or_point: PointRef | str) -> int:
+        """Exudyn object number of the body that carries a point (``"comp.point"``) or a link (``"comp"``)."""
+        name = str(component_or_point)
+        if "." in name or isinstance(component_or_point, PointRef):
+            return int(self._anchor(component_or_point)[0].item)
+        key = self.model.group_of_component.get(name)
+        if key is None:
+            known = list(self.model.group_of_component)
+            raise MechanismError(f"no rigid component {name!r}{closest(name, known)}; give a point "
+                                 f"'component.point' or one of the links: {', '.join(known) or 'none'}")
+        return int(self.model.bodies[key].item)
+
+    # ------------------------------------------------------------------ recording
+    def _record(self, t: float, committed: list) -> None:
+        self._rows.append((t, [u for u, _ in committed], [e for _, e in committed],
+                           np.array(self.model.coordinates()), self.model.connector_forces()))
+
+    def result(self) -> Result:
+        """The accepted steps recorded by the package's post-step hook, with the columns of
+        :func:`exudyn_atcm.simulate` for mechanisms (``result.info`` is empty of solver statistics)."""
+        if not self._rows:
+            raise ValueError("nothing recorded yet: solve the system (e.g. mbs.SolveDynamic) first")
+        self.model.resolve_indices()
+        n = len(self._sources)
+        times = np.array([r[0] for r in self._rows])
+        volts = np.array([r[1] for r in self._rows], dtype=float).reshape(-1, n)
+        strains = np.array([r[2] for r in self._rows], dtype=float).reshape(-1, n)
+        q = np.array([r[3] for r in self._rows])
+        forces = np.array([r[4] for r in self._rows], dtype=float).reshape(len(times), -1)
+        return make_result(self.model, times, volts, strains, q, forces, {"solver": "user (add_to)"})
+
+    def clear(self) -> None:
+        """Forget the recorded rows (e.g. before a second solve)."""
+        self._rows.clear()
+
+
+def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bool = True) -> MechanismHandle:
+    """Add a mechanism or a lone bender to an existing Exudyn ``MainSystem``.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The user's system (not yet assembled, or to be assembled again).
+    mechanism_or_bender : Mechanism or Bender
+        What to add.  A mechanism's own ground connections are kept; it need not be grounded
+        (the user's joints may hold it).
+    clamp_base : bool, optional
+        A lone bender only: weld its base to the ground (default) or leave it free.
+
+    Returns
+    -------
+    MechanismHandle
+        Markers at any named point (:meth:`~MechanismHandle.marker`), bodies, sensors,
+        and :meth:`~MechanismHandle.result` after a solve.
+
+    Notes
+    -----
+    Bender ends joined to nothing inside the mechanism get small interface bodies (the
+    laminate over ``min(h1 + h2, L_c/10)``), so a user's joint there is exact.  Every drive's
+    hysteresis operator is reset here; its trial runs in ``PreStep`` and its commit in
+    ``PostStep`` through :class:`~exudyn_atcm.mbs.hooks.StepHooks` (add your own step
+    functions with :func:`~exudyn_atcm.mbs.add_pre_step` / :func:`~exudyn_atcm.mbs.add_post_step`).
+    The system starts from the undeformed reference pose (no static pre-solve): start the
+    voltage programs at 0 V, or solve statically first.
+    """
+    if isinstance(mechanism_or_bender, Bender):
+        bender = mechanism_or_bender
+        mechanism = Mechanism(bender.name).add(bender)
+        if clamp_base:
+            mechanism.ground(bender.base)
+    elif isinstance(mechanism_or_bender, Mechanism):
+        mechanism = mechanism_or_bender
+    else:
+        raise ValueError(f"add_to takes a Mechanism or a Bender, got {mechanism_or_bender!r}")
+    if not isinstance(clamp_base, bool):
+        raise ValueError(f"clamp_base must be True or False, got {clamp_base!r}")
+    mechanism.check(grounded=False)
+    model = add_mechanism(mbs, mechanism, free_end_bodies=True)
+    sources = [InStepStrain(drive) for drive in model.sources]
+    handle = MechanismHandle(mechanism, model, sources)
+    n = len(sources)
+    model.path_from, model.path_to = np.zeros(n), np.zeros(n)
+    model.ramp_loads, model.load_factor = False, 1.0
+
+    def pre_step(mbs_, t: float) -> bool:
+        model.time = t
+        model.set_strains(np.array([s.trial(t) for s in sources]))
+        return True
+
+    def post_step(mbs_, t: float) -> bool:
+        handle._record(t, [s.commit(t) for s in sources])
+        return True
+
+    add_pre_step(mbs, pre_step)
+    add_post_step(mbs, post_step)
+    model.strains = np.zeros(n)
+    for name, (key, local) in model.anchors.items():
+        body = model.bodies[key]
+        if body.node is None:
+            continue
+        handle.sensors[name] = mbs.AddSensor(ii.SensorBody(
+            bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0],
+            outputVariableType=exu.OutputVariableType.Position, storeInternal=True))
+    for comp, key in model.group_of_component.items():
+        body = model.bodies[key]
+        if "#" in comp or body.node is None:
+            continue
+        handle.sensors[f"{comp}.angle"] = mbs.AddSensor(ii.SensorNode(
+            nodeNumber=body.node, outputVariableType=exu.OutputVariableType.Rotation, storeInternal=True))
+    return handle

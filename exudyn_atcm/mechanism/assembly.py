@@ -1,0 +1,415 @@
+"""A planar mechanism: components, connections, loads, and the checks that it can be built."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Union
+
+import numpy as np
+
+from .._checks import finite_float
+from .bender import Bender
+from .connections import Force, Joint, Pin, Slider, Spring, Stop, Torque, Weld, joint_label
+from .flexure import Flexure
+from .link import Link
+from .points import GROUND, MechanismError, PointRef, check_name, closest
+
+Component = Union[Bender, Link, Flexure]
+PointLike = Union[PointRef, str]
+
+#: Joined points may be apart by this much relative to the mechanism's size in the reference pose.
+ASSEMBLY_TOLERANCE = 1e-9
+
+
+def _nonneg(name: str, value: Any) -> float:
+    number = finite_float(name, value)
+    if number < 0.0:
+        raise MechanismError(f"{name} must be >= 0, got {value!r}")
+    return number
+
+
+def _vector(name: str, value: Any) -> tuple[float, float]:
+    try:
+        x, y = value
+    except (TypeError, ValueError):
+        raise MechanismError(f"{name} must be a pair of finite numbers, got {value!r}") from None
+    return finite_float(f"{name}[0]", x), finite_float(f"{name}[1]", y)
+
+
+class Mechanism:
+    """A planar mechanism of benders, links and flexures, described in its assembled reference pose.
+
+    Parameters
+    ----------
+    name : str, optional
+        Name of the mechanism (default ``"mechanism"``).
+
+    Notes
+    -----
+    Build it with :meth:`add`, connect points with :meth:`weld`, :meth:`pin`, :meth:`slider`
+    and :meth:`ground`, load it with :meth:`force`, :meth:`torque`, :meth:`spring` and
+    :meth:`stop`.  Points are :class:`PointRef` objects (``bender.tip``, ``link.point("P")``)
+    or strings ``"component.point"``.  Names are resolved when a connection is made (the
+    components must have been added); :meth:`check` runs the whole-mechanism checks, and
+    every solve runs it first.  All errors are :class:`MechanismError` (a ``ValueError``)
+    naming the parts involved.
+
+    Examples
+    --------
+    >>> from exudyn_atcm import Layer
+    >>> strip = Bender("strip", width=5e-3, passive=Layer(0.2e-3, 70e9, 1550), length=0.03, n_cells=4)
+    >>> mech = Mechanism().add(strip)
+    >>> mech.ground(strip.base).force(strip.tip, (0.0, 1e-3)).check()
+    """
+
+    def __init__(self, name: str = "mechanism") -> None:
+        self.name = check_name("Mechanism name", name)
+        self.components: dict[str, Component] = {}
+        self.joints: list[Joint] = []
+        self.forces: list[Force] = []
+        self.torques: list[Torque] = []
+        self.springs: list[Spring] = []
+        self.stops: list[Stop] = []
+
+    # ------------------------------------------------------------------ building
+    def add(self, *components: Component) -> "Mechanism":
+        """Add components (:class:`Bender`, :class:`Link`, :class:`Flexure`); returns the mechanism."""
+        for comp in components:
+            if not isinstance(comp, (Bender, Link, Flexure)):
+                raise MechanismError(f"components must be Bender, Link or Flexure objects, got {comp!r}")
+            if comp.name == GROUND:
+                raise MechanismError(f"the component name {GROUND!r} is reserved for the ground; rename {comp!r}")
+            if comp.name in self.components:
+                raise MechanismError(
+                    f"duplicate component name {comp.name!r}: {self.components[comp.name]!r} and {comp!r}; "
+                    "every component needs its own name")
+            if comp.name in self._load_names():
+                raise MechanismError(f"component name {comp.name!r} is already the name of a spring or stop")
+            self.components[comp.name] = comp
+        return self
+
+    def resolve(self, point: PointLike) -> PointRef:
+        """The :class:`PointRef` of ``point``, checked against the added components."""
+        ref = PointRef.parse(point)
+        comp = self.components.get(ref.component)
+        if comp is None:
+            known = list(self.components)
+            raise MechanismError(
+                f"unknown component {ref.component!r} in point {str(ref)!r}{closest(ref.component, known)} "
+                f"(components: {', '.join(known) if known else 'none added yet'}; add it first with mechanism.add)")
+        return comp.point(ref.point)
+
+    def position(self, point: PointLike) -> np.ndarray:
+        """Position of ``point`` in the reference pose [m]."""
+        ref = self.resolve(point)
+        return np.array(self.components[ref.component].points[ref.point], dtype=float)
+
+    def _joint(self, joint: Joint) -> "Mechanism":
+        if joint.q is not None and joint.p.component == joint.q.component:
+            raise MechanismError(
+                f"{joint_label(joint)} connects component {joint.p.component!r} to itself; "
+                "connections join two different components (or a component and the ground)")
+        key = frozenset((str(joint.p), GROUND if joint.q is None else str(joint.q)))
+        for other in self.joints:
+            okey = frozenset((str(other.p), GROUND if other.q is None else str(other.q)))
+            if okey == key:
+                how = "twice" if type(other) is type(joint) else "in conflicting ways"
+                raise MechanismError(
+                    f"{joint_label(joint)}: the points {' and '.join(sorted(key))} are already joined by "
+                    f"{joint_label(other)}; a pair of points can be joined once only (joined {how})")
+        self.joints.append(joint)
+        return self
+
+    def _other(self, q: PointLike | None) -> PointRef | None:
+        return None if q is None else self.resolve(q)
+
+    def weld(self, p: PointLike, q: PointLike) -> "Mechanism":
+        """Rigid connection of ``p`` and ``q``: positions and relative angle fixed."""
+        return self._joint(Weld(self.resolve(p), self.resolve(q)))
+
+    def pin(self, p: PointLike, q: PointLike, *, stiffness: float = 0.0, damping: float = 0.0) -> "Mechanism":
+        """Revolute joint at ``p`` = ``q`` with an optional torsion spring [N m/rad] and damper [N m s/rad]."""
+        return self._joint(Pin(self.resolve(p), self.resolve(q), _nonneg("stiffness", stiffness),
+                               _nonneg("damping", damping)))
+
+    def slider(self, p: PointLike, q: PointLike, *, axis: tuple[float, float] = (1.0, 0.0), stiffness: float = 0.0,
+               damping: float = 0.0) -> "Mechanism":
+        """Prismatic joint: ``q`` slides along ``axis`` (global, reference pose) relative to ``p``'s body.
+
+        Optional axial spring [N/m] and damper [N s/m] on the sliding coordinate (zero in the
+        reference pose).
+        """
+        return self._joint(Slider(self.resolve(p), self.resolve(q), self._axis(axis),
+                                  _nonneg("stiffness", stiffness), _nonneg("damping", damping)))
+
+    def ground(self, p: PointLike, joint: str = "weld", *, stiffness: float = 0.0, damping: float = 0.0,
+               axis: tuple[float, float] | None = None) -> "Mechanism":
+        """Connect ``p`` to the ground by ``joint`` = ``"weld"``, ``"pin"`` or ``"slider"`` (along ``axis``)."""
+        ref = self.resolve(p)
+        if joint == "weld":
+            if stiffness or damping or axis is not None:
+                raise MechanismError(f"ground({ref}, joint='weld') takes no stiffness, damping or axis")
+            return self._joint(Weld(ref, None))
+        if joint == "pin":
+            if axis is not None:
+                raise MechanismError(f"ground({ref}, joint='pin') takes no axis")
+            return self._joint(Pin(ref, None, _nonneg("stiffness", stiffness), _nonneg("damping", damping)))
+        if joint == "slider":
+            return self._joint(Slider(ref, None, self._axis((1.0, 0.0) if axis is None else axis),
+                                      _nonneg("stiffness", stiffness), _nonneg("damping", damping)))
+        raise MechanismError(f"joint must be 'weld', 'pin' or 'slider', got {joint!r}")
+
+    @staticmethod
+    def _axis(axis: Any) -> tuple[float, float]:
+        ax, ay = _vector("axis", axis)
+        norm = math.hypot(ax, ay)
+        if norm == 0.0:
+            raise MechanismError(f"axis must be a non-zero direction (x, y), got {axis!r}")
+        return ax / norm, ay / norm
+
+    # ------------------------------------------------------------------ loads
+    def _load_names(self) -> set[str]:
+        return {s.name for s in self.springs} | {s.name for s in self.stops} | {f.name for f in self.forces} \
+            | {t.name for t in self.torques}
+
+    def _load_name(self, name: str | None, prefix: str, count: int) -> str:
+        if name is None:
+            name = f"{prefix}_{count + 1}"
+        name = check_name(f"{prefix} name", name)
+        if name in self._load_names() or name in self.components:
+            raise MechanismError(f"duplicate name {name!r}: loads, springs, stops and components need distinct names")
+        return name
+
+    def force(self, p: PointLike, force: Any, *, follower: bool = False, name: str | None = None) -> "Mechanism":
+        """Point force at ``p``: ``(Fx, Fy)`` [N] or a callable ``t -> (Fx, Fy)``.
+
+        Dead (fixed global direction) by default; ``follower=True``: given in the reference
+        pose, it turns with the body that carries ``p``.
+        """
+        ref = self.resolve(p)
+        if not callable(force):
+            force = _vector("force", force)
+        if not isinstance(follower, bool):
+            raise MechanismError(f"follower must be True or False, got {follower!r}")
+        self.forces.append(Force(ref, force, follower, self._load_name(name, "force", len(self.forces))))
+        return self
+
+    def torque(self, component: str | Link, torque: Any, *, name: str | None = None) -> "Mechanism":
+        """Torque [N m] (number or callable of t) on a link, counter-clockwise positive."""
+        cname = component.name if isinstance(component, (Bender, Link, Flexure)) else component
+        comp = self.components.get(cname)
+        if comp is None:
+            raise MechanismError(f"torque: unknown component {cname!r}{closest(str(cname), self.components)}")
+        if not isinstance(comp, Link):
+            raise MechanismError(
+                f"torque: {cname!r} is a {type(comp).__name__}; torques act on links (weld a Link to the "
+                "bender or flexure end and load the link)")
+        if not callable(torque):
+            torque = finite_float("torque", torque)
+        self.torques.append(Torque(cname, torque, self._load_name(name, "torque", len(self.torques))))
+        return self
+
+    def spring(self, p: PointLike, q: PointLike, stiffness: float, *, damping: float = 0.0,
+               rest_length: float | None = None, name: str | None = None) -> "Mechanism":
+        """Linear spring-damper [N/m], [N s/m] between two points (e.g. a grasped object).
+
+        ``rest_length`` [m] defaults to the points' distance in the reference pose; its
+        force (tension positive) is recorded as ``{name}.force [N]``.
+        """
+        pr, qr = self.resolve(p), self.resolve(q)
+        if pr == qr:
+            raise MechanismError(f"spring between {pr} and itself")
+        k = finite_float("stiffness", stiffness)
+        if k <= 0.0:
+            raise MechanismError(f"spring stiffness must be > 0 N/m, got {stiffness!r}")
+        if rest_length is not None:
+            rest_length = _nonneg("rest_length", rest_length)
+        distance = float(np.linalg.norm(self.position(pr) - self.position(qr)))
+        if distance == 0.0:
+            raise MechanismError(
+                f"spring {pr}-{qr}: the points coincide in the reference pose, so the spring has no direction; "
+                "attach it between points that are apart")
+        self.springs.append(Spring(pr, qr, k, _nonneg("damping", damping), rest_length,
+                                   self._load_name(name, "spring", len(self.springs))))
+        return self
+
+    def stop(self, p: PointLike, *, position: tuple[float, float], normal: tuple[float, float], stiffness: float,
+             damping: float = 0.0, name: str | None = None) -> "Mechanism":
+        """One-sided contact of ``p`` with a wall through ``position`` [m] whose free side is ``normal``.
+
+        The force ``stiffness * pen`` [N] (plus ``damping`` times the approach speed) acts on
+        ``p`` along ``normal`` while the penetration ``pen = -(x_p - position) . normal > 0``.
+        """
+        ref = self.resolve(p)
+        nx, ny = _vector("normal", normal)
+        norm = math.hypot(nx, ny)
+        if norm == 0.0:
+            raise MechanismError(f"stop normal must be a non-zero direction, got {normal!r}")
+        k = finite_float("stiffness", stiffness)
+        if k <= 0.0:
+            raise MechanismError(f"stop stiffness must be > 0 N/m, got {stiffness!r}")
+        self.stops.append(Stop(ref, _vector("position", position), (nx / norm, ny / norm), k,
+                               _nonneg("damping", damping), self._load_name(name, "stop", len(self.stops))))
+        return self
+
+    # ------------------------------------------------------------------ queries
+    @property
+    def benders(self) -> list[Bender]:
+        """Benders, and flexures of the ``"cells"`` model as passive benders, in insertion order."""
+        out = []
+        for comp in self.components.values():
+            if isinstance(comp, Bender):
+                out.append(comp)
+            elif isinstance(comp, Flexure) and comp.model == "cells":
+                out.append(comp.as_bender())
+        return out
+
+    @property
+    def drives(self) -> dict[str, Any]:
+        """Every drive by name (see :class:`Bender`)."""
+        out: dict[str, Any] = {}
+        for comp in self.components.values():
+            if isinstance(comp, Bender):
+                out.update(comp.drives)
+        return out
+
+    @property
+    def size(self) -> float:
+        """Extent of the mechanism in the reference pose [m] (largest span of its points)."""
+        pts = np.array([p for c in self.components.values() for p in c.points.values()], dtype=float)
+        if pts.size == 0:
+            return 0.0
+        return float(max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1]),
+                         max((c.length for c in self.components.values() if not isinstance(c, Link)), default=0.0)))
+
+    def parameters(self) -> dict[str, Any]:
+        """A flat description of the mechanism, parameters with units."""
+        out: dict[str, Any] = {"mechanism": self.name}
+        for comp in self.components.values():
+            out.update(comp.parameters())
+        for k, j in enumerate(self.joints):
+            extra = ""
+            if isinstance(j, (Pin, Slider)) and (j.stiffness or j.damping):
+                extra = f" stiffness={j.stiffness!r} damping={j.damping!r}"
+            if isinstance(j, Slider):
+                extra += f" axis={j.axis!r}"
+            out[f"joint_{k + 1}"] = joint_label(j) + extra
+        for f in self.forces:
+            out[f"{f.name} [N]"] = f"{f.point} {f.force!r}{' follower' if f.follower else ''}"
+        for t in self.torques:
+            out[f"{t.name} [N m]"] = f"{t.component} {t.torque!r}"
+        for s in self.springs:
+            out[f"{s.name}"] = (f"{s.p}-{s.q} stiffness={s.stiffness!r} N/m damping={s.damping!r} N s/m "
+                                f"rest_length={s.rest_length!r} m")
+        for s in self.stops:
+            out[f"{s.name}"] = (f"{s.point} position={s.position!r} m normal={s.normal!r} stiffness={s.stiffness!r} "
+                                f"N/m damping={s.damping!r} N s/m")
+        return out
+
+    def degrees_of_freedom(self):
+        """Degrees of freedom of the built multibody model (Exudyn's ``ComputeSystemDegreeOfFreedom``).
+
+        Every rigid cell of a bender is a body, so a bender of ``N`` cells contributes
+        compliant degrees of freedom; a mechanism of rigid links alone gives its Gruebler count.
+
+        Returns
+        -------
+        exudyn_atcm.mbs.DofReport
+            ``dof``, ``coordinates``, ``constraints`` and ``redundant`` (dependent constraints,
+            e.g. of an over-constrained loop).
+        """
+        from ..mbs.linear import degrees_of_freedom  # noqa: PLC0415 - the Exudyn layer builds on this one
+        from ..mbs.builder import build  # noqa: PLC0415
+
+        return degrees_of_freedom(build(self))
+
+    # ------------------------------------------------------------------ checks
+    def check(self, *, grounded: bool = True) -> None:
+        """Check the whole mechanism; raises :class:`MechanismError` naming the parts.
+
+        Checks: at least one component; a connection to the ground; every component
+        connected to the ground through joints; every joint's points coincide in the
+        reference pose (slider: ``q`` on the axis line through ``p``) within
+        ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator.
+
+        Parameters
+        ----------
+        grounded : bool, optional
+            ``False`` leaves out the two ground checks (for :func:`exudyn_atcm.add_to`, where
+            the user's own joints may hold the mechanism).
+        """
+        if not self.components:
+            raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")
+        if not grounded:
+            self._check_assembly()
+            self._check_drives()
+            return
+        if not any(j.q is None for j in self.joints):
+            raise MechanismError(
+                f"mechanism {self.name!r} has no ground connection; connect at least one point to the ground "
+                f"with mechanism.ground(point) (components: {', '.join(self.components)})")
+        self._check_connected()
+        self._check_assembly()
+        self._check_drives()
+
+    def _check_connected(self) -> None:
+        parent = {name: name for name in [GROUND, *self.components]}
+
+        def find(a: str) -> str:
+            while parent[a] != a:
+                parent[a] = parent[parent[a]]
+                a = parent[a]
+            return a
+
+        for j in self.joints:
+            parent[find(j.p.component)] = find(GROUND if j.q is None else j.q.component)
+        floating = [name for name in self.components if find(name) != find(GROUND)]
+        if floating:
+            by_spring = [n for n in floating if any(n in (s.p.component, s.q.component) for s in self.springs)]
+            hint = (f"; {', '.join(by_spring)} hang(s) on springs only, which do not hold a body in place"
+                    if by_spring else "")
+            raise MechanismError(
+                f"component(s) {', '.join(repr(n) for n in floating)} of mechanism {self.name!r} are not connected "
+                f"to the ground through any joint{hint}; weld, pin or slide them to the rest of the mechanism")
+
+    def _check_assembly(self) -> None:
+        tol = ASSEMBLY_TOLERANCE * max(self.size, 1e-300)
+        for j in self.joints:
+            xp = self.position(j.p)
+            xq = xp if j.q is None else self.position(j.q)
+            if isinstance(j, Slider):
+                axis = np.array(j.axis)
+                d = xq - xp
+                gap = abs(float(d[0] * axis[1] - d[1] * axis[0]))
+                what = f"{j.q} lies off the slider axis {j.axis} through {j.p}"
+            else:
+                gap = float(np.linalg.norm(xq - xp))
+                what = "the joined points do not coincide"
+            if gap > tol:
+                qname = GROUND if j.q is None else str(j.q)
+                raise MechanismError(
+                    f"{joint_label(j)} cannot be assembled: {what} in the reference pose: {j.p} at "
+                    f"({xp[0]:.9g}, {xp[1]:.9g}) m, {qname} at ({xq[0]:.9g}, {xq[1]:.9g}) m, gap {gap:.3g} m "
+                    f"(allowed {tol:.3g} m). Describe the mechanism in its assembled pose (benders straight)")
+
+    def _check_drives(self) -> None:
+        seen: dict[int, tuple[str, Any]] = {}
+        for name, drive in self.drives.items():
+            op = drive.hysteresis
+            if op is None:
+                continue
+            first = seen.get(id(op))
+            if first is not None and first[1] is not drive:
+                raise MechanismError(
+                    f"drives {first[0]!r} and {name!r} are different PiezoDrive objects sharing one hysteresis "
+                    "operator object; its memory would be updated twice per step. Give each drive its own "
+                    "operator, or use one PiezoDrive object for both")
+            seen.setdefault(id(op), (name, drive))
+
+    def __repr__(self) -> str:
+        return (f"Mechanism({self.name!r}: {len(self.components)} components, {len(self.joints)} joints, "
+                f"{len(self.forces)} forces, {len(self.torques)} torques, {len(self.springs)} springs, "
+                f"{len(self.stops)} stops)")
+
+
+__all__ = ["Mechanism", "MechanismError", "ASSEMBLY_TOLERANCE"]

@@ -1,0 +1,275 @@
+"""A bender as a mechanism component: a chain of cells of one laminate, in one or more segments."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .._checks import finite_float, positive_float, positive_int
+from ..drive import PiezoDrive
+from ..laminate import STIFFNESS_MODELS, Laminate
+from ..materials import Layer
+from .points import PointRef, check_name, unknown_point
+
+CELL_TYPES = ("rigid", "six-bar")
+ACTIVE_SIDES = ("right", "left")
+#: Default modal damping ratio of the first bending mode [-] (as for ``BendingActuator``).
+DEFAULT_DAMPING_RATIO = 0.02
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A stretch of a bender with its own drive.
+
+    Parameters
+    ----------
+    length : float
+        Segment length [m], > 0.
+    n_cells : int
+        Number of cells of the segment, >= 1.
+    drive : PiezoDrive, optional
+        Drive of the segment's active layer; ``None``: unpowered (zero free strain).
+    """
+
+    length: float
+    n_cells: int
+    drive: PiezoDrive | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "length", positive_float("length", self.length))
+        object.__setattr__(self, "n_cells", positive_int("n_cells", self.n_cells))
+        if self.drive is not None and not isinstance(self.drive, PiezoDrive):
+            raise ValueError(f"drive must be a PiezoDrive or None, got {self.drive!r}")
+
+    @property
+    def cell_length(self) -> float:
+        """Length of one cell of the segment [m]."""
+        return self.length / self.n_cells
+
+
+def _pair(name: str, value: Any) -> tuple[float, float]:
+    try:
+        x, y = value
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a pair (x, y) of finite numbers [m], got {value!r}") from None
+    return finite_float(f"{name}[0]", x), finite_float(f"{name}[1]", y)
+
+
+class Bender:
+    """A piezo bender (or a passive textile strip) as a component of a planar mechanism.
+
+    Parameters
+    ----------
+    name : str
+        Component name (no ``.``, ``,``, brackets, ``#`` or spaces).
+    width : float
+        Width of both layers [m], > 0.
+    passive : Layer
+        Passive layer (textile composite).
+    active : Layer, optional
+        Active (MFC) layer.  ``None``: a passive strip (a textile flexure); then every drive
+        must be ``None``.
+    length, n_cells, drive : optional
+        A one-segment bender: length [m], number of cells and drive.  Give either these or
+        ``segments``.
+    segments : sequence of Segment, optional
+        Segments in series from the base, each with its own drive (all share the laminate).
+    base : (float, float), optional
+        Base point in the reference pose [m] (default the origin).
+    angle : float, optional
+        Direction from base to tip in the reference pose [rad] (default 0: along +x).
+    cell : {"rigid", "six-bar"}, optional
+        Cell model (see :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; the
+        six-bar cell needs an active layer.
+    stiffness : {"composite", "paper"}, optional
+        Layer coupling, as for :class:`~exudyn_atcm.BendingActuator`.
+    active_side : {"right", "left"}, optional
+        Side of the active layer seen from base to tip.  ``"right"`` (default, the layout of
+        :class:`~exudyn_atcm.BendingActuator`): a positive free strain bends the bender
+        counter-clockwise; ``"left"`` mirrors it.
+    damping : float, optional
+        Modal damping ratio of the bender's first clamped-free bending mode [-] (default
+        0.02), realised as stiffness-proportional damping on its joints.
+
+    Notes
+    -----
+    Points: ``"base"`` and ``"tip"`` (``bender.base``, ``bender.tip``), on the passive
+    layer's mid-plane at the ends.  Drive names: the bender's name for a one-segment bender,
+    ``f"{name}.{k}"`` (``k = 1, 2, ...``) per segment otherwise.
+    """
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        width: float,
+        passive: Layer,
+        active: Layer | None = None,
+        length: float | None = None,
+        n_cells: int | None = None,
+        drive: PiezoDrive | None = None,
+        segments: Sequence[Segment] | None = None,
+        base: tuple[float, float] = (0.0, 0.0),
+        angle: float = 0.0,
+        cell: str = "rigid",
+        stiffness: str = "composite",
+        active_side: str = "right",
+        damping: float = DEFAULT_DAMPING_RATIO,
+    ) -> None:
+        self.name = check_name("Bender name", name)
+        self.width = positive_float("width", width)
+        if not isinstance(passive, Layer):
+            raise ValueError(f"passive must be an exudyn_atcm Layer, got {passive!r}")
+        if active is not None and not isinstance(active, Layer):
+            raise ValueError(f"active must be an exudyn_atcm Layer or None, got {active!r}")
+        if segments is not None:
+            if length is not None or n_cells is not None or drive is not None:
+                raise ValueError(
+                    f"bender {name!r}: give either length, n_cells and drive, or segments, not both "
+                    f"(got segments={segments!r} and length={length!r}, n_cells={n_cells!r}, drive={drive!r})")
+            segments = tuple(segments)
+            if not segments or not all(isinstance(s, Segment) for s in segments):
+                raise ValueError(f"segments must be a non-empty sequence of Segment, got {segments!r}")
+        else:
+            if length is None or n_cells is None:
+                raise ValueError(
+                    f"bender {name!r}: give length [m] and n_cells (and a drive), or segments; "
+                    f"got length={length!r}, n_cells={n_cells!r}")
+            segments = (Segment(length, n_cells, drive),)
+        if active is None:
+            powered = [k + 1 for k, s in enumerate(segments) if s.drive is not None]
+            if powered:
+                raise ValueError(
+                    f"bender {name!r} has no active layer (active=None) but segment(s) {powered} have a drive; "
+                    "a passive strip cannot be driven: give the active Layer or drop the drives")
+        self.segments: tuple[Segment, ...] = segments
+        self.passive = passive
+        self.active = active
+        self.base_position = _pair("base", base)
+        self.angle = finite_float("angle", angle)
+        for pname, value, allowed in (("cell", cell, CELL_TYPES), ("stiffness", stiffness, STIFFNESS_MODELS),
+                                      ("active_side", active_side, ACTIVE_SIDES)):
+            if not isinstance(value, str) or value not in allowed:
+                raise ValueError(f"{pname} must be one of {allowed}, got {value!r}")
+        self.cell = cell
+        self.stiffness = stiffness
+        self.active_side = active_side
+        if isinstance(damping, bool) or not isinstance(damping, numbers.Real):
+            raise ValueError(f"damping must be a finite damping ratio >= 0, got {damping!r}")
+        damping = finite_float("damping", damping)
+        if damping < 0.0:
+            raise ValueError(f"damping must be a damping ratio >= 0, got {damping!r}")
+        self.damping = damping
+
+    # ------------------------------------------------------------------ geometry
+    @property
+    def laminate(self) -> Laminate:
+        """The cross-section (layers, width, stiffness model)."""
+        return Laminate(self.width, self.passive, self.active, self.stiffness)
+
+    @property
+    def length(self) -> float:
+        """Total length [m]."""
+        return float(sum(s.length for s in self.segments))
+
+    @property
+    def n_cells(self) -> int:
+        """Total number of cells."""
+        return int(sum(s.n_cells for s in self.segments))
+
+    @property
+    def cell_lengths(self) -> np.ndarray:
+        """Length of every cell from the base [m]."""
+        return np.concatenate([np.full(s.n_cells, s.cell_length) for s in self.segments])
+
+    @property
+    def cell_segments(self) -> np.ndarray:
+        """Index (0-based) of the segment of every cell from the base."""
+        return np.concatenate([np.full(s.n_cells, k) for k, s in enumerate(self.segments)])
+
+    @property
+    def direction(self) -> np.ndarray:
+        """Unit vector from base to tip in the reference pose."""
+        return np.array([math.cos(self.angle), math.sin(self.angle)])
+
+    @property
+    def curvature_sign(self) -> float:
+        """+1 if a positive free strain bends counter-clockwise (active layer on the right), else -1."""
+        return 1.0 if self.active_side == "right" else -1.0
+
+    @property
+    def stiffness_damping_factor(self) -> float:
+        """``beta = 2 zeta / omega_1`` [s] of the whole bender as a cantilever (damping ``beta k`` per spring)."""
+        return self.laminate.stiffness_damping_factor(self.damping, self.length)
+
+    # ------------------------------------------------------------------ points and drives
+    @property
+    def points(self) -> dict[str, tuple[float, float]]:
+        """Named points in the reference pose [m]: ``base`` and ``tip``."""
+        x0, y0 = self.base_position
+        d = self.direction * self.length
+        return {"base": (x0, y0), "tip": (x0 + float(d[0]), y0 + float(d[1]))}
+
+    def point(self, name: str) -> PointRef:
+        """The point ``"base"`` or ``"tip"`` as a :class:`PointRef`."""
+        if name not in ("base", "tip"):
+            raise unknown_point(self.name, name, ("base", "tip"))
+        return PointRef(self.name, name)
+
+    @property
+    def base(self) -> PointRef:
+        """The base point (passive-layer point of the first interface)."""
+        return PointRef(self.name, "base")
+
+    @property
+    def tip(self) -> PointRef:
+        """The tip point (passive-layer point of the last interface)."""
+        return PointRef(self.name, "tip")
+
+    def drive_name(self, segment: int) -> str:
+        """Drive name of segment ``segment`` (0-based)."""
+        return self.name if len(self.segments) == 1 else f"{self.name}.{segment + 1}"
+
+    @property
+    def drives(self) -> dict[str, PiezoDrive]:
+        """Drives by name (segments without a drive are left out)."""
+        return {self.drive_name(k): s.drive for k, s in enumerate(self.segments) if s.drive is not None}
+
+    def parameters(self) -> dict[str, Any]:
+        """Parameters with units, for result headers."""
+        p = self.name
+        out: dict[str, Any] = {
+            f"{p}.type": "Bender",
+            f"{p}.cell": self.cell,
+            f"{p}.stiffness": self.stiffness,
+            f"{p}.active_side": self.active_side,
+            f"{p}.base [m]": self.base_position,
+            f"{p}.angle [rad]": self.angle,
+            f"{p}.width [m]": self.width,
+            f"{p}.passive.thickness [m]": self.passive.thickness,
+            f"{p}.passive.youngs_modulus [Pa]": self.passive.youngs_modulus,
+            f"{p}.passive.density [kg/m^3]": self.passive.density,
+        }
+        if self.active is not None:
+            out[f"{p}.active.thickness [m]"] = self.active.thickness
+            out[f"{p}.active.youngs_modulus [Pa]"] = self.active.youngs_modulus
+            out[f"{p}.active.density [kg/m^3]"] = self.active.density
+        for k, s in enumerate(self.segments):
+            q = f"{p}.segment_{k + 1}"
+            out[f"{q}.length [m]"] = s.length
+            out[f"{q}.n_cells"] = s.n_cells
+            out[f"{q}.drive"] = repr(s.drive)
+        out[f"{p}.damping ratio [-]"] = self.damping
+        out[f"{p}.bending_stiffness [N m^2]"] = self.laminate.bending_stiffness
+        return out
+
+    def __repr__(self) -> str:
+        return (f"Bender({self.name!r}, width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
+                f"segments={self.segments!r}, base={self.base_position!r}, angle={self.angle!r}, "
+                f"cell={self.cell!r}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
+                f"damping={self.damping!r})")

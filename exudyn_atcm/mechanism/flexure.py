@@ -1,0 +1,186 @@
+"""A passive compliant hinge: a pseudo-rigid-body model or a passive cell chain."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+import numpy as np
+
+from .._checks import finite_float, positive_float, positive_int
+from ..laminate import Laminate
+from ..materials import Layer
+from .bender import DEFAULT_DAMPING_RATIO, Bender
+from .link import _xy
+from .points import MechanismError, PointRef, check_name, unknown_point
+
+FLEXURE_MODELS = ("prbm", "cells")
+
+
+class Flexure:
+    """A passive flexure hinge (a straight strip of one material) between two points.
+
+    Parameters
+    ----------
+    name : str
+        Component name.
+    base, tip : (float, float)
+        End points in the reference pose [m] (the strip is straight there).
+    width, thickness : float
+        Cross-section [m], > 0.
+    youngs_modulus : float
+        [Pa], > 0.
+    density : float
+        [kg/m³], > 0.
+    model : {"prbm", "cells"}, optional
+        ``"prbm"`` (default): Howell's pseudo-rigid-body model for a fixed-guided/cantilever
+        flexure: two rigid segments joined by a pin at the characteristic pivot, at the
+        distance ``gamma L`` from the tip (``(1 - gamma) L`` from the base), with a torsion
+        spring ``K = gamma k_theta E I / L`` (Howell 2001).  ``gamma = 0.5, k_theta = 2``
+        gives the small-length flexural pivot (``K = E I / L``).
+        ``"cells"``: a passive chain of ``n_cells`` rigid cells (a :class:`Bender` without
+        active layer).
+    n_cells : int, optional
+        Cells of the ``"cells"`` model (default 4).
+    gamma : float, optional
+        Characteristic radius factor, 0 < gamma <= 1 (default 0.8517, Howell's value for an
+        end force).
+    k_theta : float, optional
+        Stiffness coefficient, > 0 (default 2.65).
+    damping : float, optional
+        Modal damping ratio of the strip's first clamped-free mode [-] (default 0.02).
+    """
+
+    def __init__(self, name: str, *, base: tuple[float, float], tip: tuple[float, float], width: float,
+                 thickness: float, youngs_modulus: float, density: float, model: str = "prbm", n_cells: int = 4,
+                 gamma: float = 0.8517, k_theta: float = 2.65, damping: float = DEFAULT_DAMPING_RATIO) -> None:
+        self.name = check_name("Flexure name", name)
+        self.base_position = _xy("base", base)
+        self.tip_position = _xy("tip", tip)
+        self.width = positive_float("width", width)
+        self.thickness = positive_float("thickness", thickness)
+        self.youngs_modulus = positive_float("youngs_modulus", youngs_modulus)
+        self.density = positive_float("density", density)
+        if not isinstance(model, str) or model not in FLEXURE_MODELS:
+            raise ValueError(f"model must be one of {FLEXURE_MODELS}, got {model!r}")
+        self.model = model
+        self.n_cells = positive_int("n_cells", n_cells)
+        self.gamma = positive_float("gamma", gamma)
+        if self.gamma > 1.0:
+            raise ValueError(f"gamma must be in (0, 1], got {gamma!r}")
+        self.k_theta = positive_float("k_theta", k_theta)
+        if isinstance(damping, bool) or not isinstance(damping, numbers.Real) or not finite_float("damping", damping) >= 0:
+            raise ValueError(f"damping must be a finite damping ratio >= 0, got {damping!r}")
+        self.damping = float(damping)
+        if self.length <= 0.0:
+            raise MechanismError(f"flexure {name!r}: base and tip coincide ({self.base_position}); it needs a length")
+
+    @property
+    def length(self) -> float:
+        """Length ``L`` [m]."""
+        return math.dist(self.base_position, self.tip_position)
+
+    @property
+    def angle(self) -> float:
+        """Direction from base to tip [rad]."""
+        dx = self.tip_position[0] - self.base_position[0]
+        dy = self.tip_position[1] - self.base_position[1]
+        return math.atan2(dy, dx)
+
+    @property
+    def layer(self) -> Layer:
+        """The strip's material as a layer."""
+        return Layer(self.thickness, self.youngs_modulus, self.density)
+
+    @property
+    def laminate(self) -> Laminate:
+        """The cross-section as a passive laminate."""
+        return Laminate(self.width, self.layer, None)
+
+    @property
+    def bending_stiffness(self) -> float:
+        """``E I`` [N m²]."""
+        return self.laminate.bending_stiffness
+
+    @property
+    def torsion_stiffness(self) -> float:
+        """PRBM torsion spring ``K = gamma k_theta E I / L`` [N m/rad]."""
+        return self.gamma * self.k_theta * self.bending_stiffness / self.length
+
+    @property
+    def pivot(self) -> tuple[float, float]:
+        """PRBM characteristic pivot in the reference pose [m], ``(1 - gamma) L`` from the base."""
+        s = 1.0 - self.gamma
+        return (self.base_position[0] + s * (self.tip_position[0] - self.base_position[0]),
+                self.base_position[1] + s * (self.tip_position[1] - self.base_position[1]))
+
+    @property
+    def segment_lengths(self) -> tuple[float, float]:
+        """PRBM rigid segments: base side ``(1 - gamma) L`` and tip side ``gamma L`` [m]."""
+        return (1.0 - self.gamma) * self.length, self.gamma * self.length
+
+    @property
+    def stiffness_damping_factor(self) -> float:
+        """``beta = 2 zeta / omega_1`` [s] of the strip as a cantilever (damping ``beta K`` on its spring)."""
+        return self.laminate.stiffness_damping_factor(self.damping, self.length)
+
+    @property
+    def points(self) -> dict[str, tuple[float, float]]:
+        """Named points in the reference pose [m]: ``base``, ``tip``."""
+        return {"base": self.base_position, "tip": self.tip_position}
+
+    def point(self, name: str) -> PointRef:
+        """``"base"`` or ``"tip"`` as a :class:`PointRef`."""
+        if name not in ("base", "tip"):
+            raise unknown_point(self.name, name, ("base", "tip"))
+        return PointRef(self.name, name)
+
+    @property
+    def base(self) -> PointRef:
+        """The base point."""
+        return PointRef(self.name, "base")
+
+    @property
+    def tip(self) -> PointRef:
+        """The tip point."""
+        return PointRef(self.name, "tip")
+
+    def as_bender(self) -> Bender:
+        """The ``"cells"`` model: a passive :class:`Bender` of ``n_cells`` rigid cells with this name."""
+        return Bender(self.name, width=self.width, passive=self.layer, active=None, length=self.length,
+                      n_cells=self.n_cells, base=self.base_position, angle=self.angle, damping=self.damping)
+
+    def segment_masses(self) -> list[tuple[float, float, np.ndarray]]:
+        """PRBM: (mass [kg], inertia about the centre [kg m²], centre [m]) of the base and tip segments."""
+        mpl = self.laminate.mass_per_length
+        b = np.array(self.base_position)
+        t = np.array(self.tip_position)
+        p = np.array(self.pivot)
+        out = []
+        for a, c in ((b, p), (p, t)):
+            seg = float(np.linalg.norm(c - a))
+            m = mpl * seg
+            out.append((m, m * (seg**2 + self.thickness**2) / 12.0, 0.5 * (a + c)))
+        return out
+
+    def parameters(self) -> dict[str, Any]:
+        """Parameters with units, for result headers."""
+        p = self.name
+        out: dict[str, Any] = {f"{p}.type": "Flexure", f"{p}.model": self.model, f"{p}.base [m]": self.base_position,
+                               f"{p}.tip [m]": self.tip_position, f"{p}.width [m]": self.width,
+                               f"{p}.thickness [m]": self.thickness, f"{p}.youngs_modulus [Pa]": self.youngs_modulus,
+                               f"{p}.density [kg/m^3]": self.density, f"{p}.damping ratio [-]": self.damping}
+        if self.model == "prbm":
+            out[f"{p}.gamma [-]"] = self.gamma
+            out[f"{p}.k_theta [-]"] = self.k_theta
+            out[f"{p}.torsion_stiffness [N m/rad]"] = self.torsion_stiffness
+        else:
+            out[f"{p}.n_cells"] = self.n_cells
+        return out
+
+    def __repr__(self) -> str:
+        return (f"Flexure({self.name!r}, base={self.base_position!r}, tip={self.tip_position!r}, width={self.width!r}, "
+                f"thickness={self.thickness!r}, youngs_modulus={self.youngs_modulus!r}, density={self.density!r}, "
+                f"model={self.model!r}, n_cells={self.n_cells!r}, gamma={self.gamma!r}, k_theta={self.k_theta!r}, "
+                f"damping={self.damping!r})")

@@ -1,0 +1,41 @@
+"""Issue 7, layout: the mechanism description and its solve path hold no Exudyn code.
+
+Exudyn is imported and called only in the builder layer (``exudyn_atcm/mbs/`` and
+``exudyn_atcm/_mbs_builder.py``); the description (``exudyn_atcm/mechanism/``) and the solve
+module work through it.  Checked on the source text (imports) and by importing the
+description in a fresh interpreter without Exudyn on the path.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import re
+import subprocess
+import sys
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exudyn_atcm"
+IMPORT = re.compile(r"^\s*(import exudyn|from exudyn\b)", re.MULTILINE)
+
+
+def test_description_and_solve_modules_do_not_import_exudyn():
+    files = sorted((PACKAGE / "mechanism").glob("*.py")) + [PACKAGE / "mechanism_solve.py", PACKAGE / "laminate.py"]
+    offenders = [f.name for f in files if IMPORT.search(f.read_text())]
+    assert offenders == []
+
+
+def test_description_layer_imports_without_exudyn():
+    """Block 'exudyn' in a fresh interpreter: the description modules load and describe a mechanism."""
+    code = f"""
+import sys, types, importlib.util, pathlib
+sys.modules['exudyn'] = None  # any 'import exudyn' now fails
+pkg = types.ModuleType('exudyn_atcm'); pkg.__path__ = [{str(PACKAGE)!r}]; sys.modules['exudyn_atcm'] = pkg
+from exudyn_atcm.mechanism import Bender, Link, Mechanism
+from exudyn_atcm.materials import Layer
+b = Bender('b', width=1e-2, passive=Layer(2e-4, 7e10, 1550.0), length=0.03, n_cells=3)
+m = Mechanism().add(b).ground(b.base)
+m.check()
+print('ok')
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
