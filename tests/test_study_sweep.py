@@ -320,3 +320,16 @@ def test_a_crashing_worker_does_not_stop_the_study(synthetic, tmp_path):
     assert _runs_logged(log) >= 5  # runs lost with the crashed pool ran again
     again = run_study(synthetic, grid, fixed=fixed, workers=2, out=tmp_path / "out")
     assert again.executed == 0 and again.reused == 6
+
+
+def test_grid_spec_of_a_list_parameter_and_the_csv_read_by_pandas(synthetic, tmp_path):
+    from exudyn_atcm.study import parse_grid_spec
+
+    case = load_case("tip_tracking")
+    assert parse_grid_spec(case, "frequencies=0.25,0.75;0.5,1") == ("frequencies", [(0.25, 0.75), (0.5, 1.0)])
+    pd = pytest.importorskip("pandas")
+    result = run_study(synthetic, {"x": [0.5, 1.5], "mode": ["plain", "other"]}, workers=1, out=tmp_path)
+    back = pd.read_csv(result.csv_path, comment="#")
+    assert list(back.columns) == list(result.table.columns)
+    np.testing.assert_array_equal(back["y [m]"].to_numpy(), column(result.table, "y"))
+    assert back["mode [-]"].tolist() == ["plain", "other", "plain", "other"]
