@@ -1,4 +1,4 @@
-"""Closed-form reference formulas for the two-layer piezo bending actuator (MODEL.md §4).
+"""Closed-form reference formulas for the two-layer piezo bending actuator.
 
 These functions are the independent references the validation tests compare the multibody
 model against.  They are plain formulas of classical beam theory (Euler-Bernoulli,
@@ -25,7 +25,7 @@ import numpy as np
 BETA1_L = 1.8751040687119611
 
 #: Elastica of a cantilever under a tip force perpendicular to the undeformed axis
-#: (Bisshopp & Drucker 1945, as quoted in MODEL.md §4): alpha = F L²/EI -> (y/L, 1 - x/L).
+#: (Bisshopp & Drucker, Q. Appl. Math. 3:272, 1945): alpha = F L²/EI -> (y/L, 1 - x/L).
 ELASTICA_TIP_FORCE = {
     1.0: (0.30172, 0.05643),
     2.0: (0.49346, 0.16064),
@@ -71,7 +71,7 @@ def composite_bending_stiffness(E1: float, h1: float, E2: float, h2: float, widt
 def paper_bending_stiffness(E1: float, h1: float, E2: float, h2: float, width: float) -> float:
     """Bending stiffness of the paper's cell as printed (rigid passive bar, ``k1 = E2 b h2/L``) [N m²].
 
-    ``EI = E1 I1 + E2 I2 + E2 A2 e²`` (MODEL.md §3), with the torsion springs doubled as the
+    ``EI = E1 I1 + E2 I2 + E2 A2 e²`` (the passive layer taken as axially rigid), with the torsion springs doubled as the
     paper's text says.
     """
     e = layer_offset(h1, h2)
@@ -160,7 +160,7 @@ def tip_compliance(bending_stiffness: float, length: float) -> float:
 
 
 def rigid_chain_compliance_factor(n_cells: int) -> float:
-    """Compliance factor ``1 + 1/(2 N²)`` of a chain of N rigid cells (MODEL.md §4).
+    """Compliance factor ``1 + 1/(2 N²)`` of a chain of N rigid cells under a small tip force (derived on the theory page of the documentation).
 
     Springs ``EI/L_c`` inside and ``2 EI/L_c`` at the clamp.
     """
@@ -168,7 +168,7 @@ def rigid_chain_compliance_factor(n_cells: int) -> float:
 
 
 def six_bar_chain_compliance_factor(n_cells: int, spring_share: float) -> float:
-    """Compliance factor ``1 + (3/(4 rho_s) - 1/4)/N²`` of a chain of six-bar cells (MODEL.md §4).
+    """Compliance factor ``1 + (3/(4 rho_s) - 1/4)/N²`` of a chain of six-bar cells under a small tip force (derived on the theory page of the documentation).
 
     ``spring_share`` is the share ``rho_s`` of the bending stiffness held by the torsion
     springs, ``(E1 I1 + E2 I2) / EI``.
