@@ -55,6 +55,8 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
+from ._eigen import constrained_eigenfrequencies
+
 #: Default absolute Newton tolerance in SI units (EXUDYN_NOTES.md: 1e-10 fails from 10 cells).
 NEWTON_ABSOLUTE_TOLERANCE = 1e-8
 
@@ -645,18 +647,12 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
 
 
 def eigenfrequencies(model: BuiltModel, n: int) -> np.ndarray:
-    """Lowest ``n`` eigenfrequencies [Hz] of the undamped system about its initial state."""
-    mbs = model.mbs
-    _quiet()
-    try:
-        values, _ = mbs.ComputeODE2Eigenvalues(simulationSettings=base_settings(), useSparseSolver=False,
-                                               numberOfEigenvalues=0, convert2Frequencies=False,
-                                               useAbsoluteValues=True, ignoreAlgebraicEquations=False,
-                                               singularValuesTolerance=1e-10)
-    finally:
-        _loud()
-    values = np.sort(np.asarray(values, dtype=float))
-    return np.sqrt(np.abs(values[:n])) / (2.0 * math.pi)
+    """Lowest ``n`` undamped eigenfrequencies [Hz] about the model's current (equilibrium) state.
+
+    Includes the constraint forces' geometric stiffness, which Exudyn's
+    ``ComputeODE2Eigenvalues`` leaves out (see :mod:`exudyn_atcm._eigen`).
+    """
+    return constrained_eigenfrequencies(model.mbs, n)
 
 
 def exudyn_version() -> str:
