@@ -73,6 +73,7 @@ class BuiltModel:
     # items whose offset carries the stroke; offset = factor * strain
     offset_items: list = field(default_factory=list)
     offset_factors: list = field(default_factory=list)
+    offset_parameter: str = "offset"  # the items' parameter that carries factor * strain
     # rigid cell: tip angle = last angle + tip_rotation_per_strain * strain
     tip_rotation_per_strain: float = 0.0
     # ODE2 indices of (x, y, phi) of the tip node and phi of every cell body
@@ -83,8 +84,18 @@ class BuiltModel:
     tip_load: int = -1
     # strain as a function of the solver's t, used by the user-function path
     uf_strain: Any = None
-    # (item, stiffness) of every spring-damper, for temporary damping changes
+    # (item, stiffness, damping parameter name) of every spring-damper and beam element, for
+    # temporary damping changes (damping = factor * stiffness)
     springs: list = field(default_factory=list)
+    # beam cell: the recorded angles are the n + 1 node rotations; a cell's angle is the mean
+    # of its two nodes' rotations
+    cell_angles_from_nodes: bool = False
+    # smallest absolute Newton tolerance [N, N m] the model can reach (round-off of stiff
+    # axial forces); the solves raise a tighter tolerance to it
+    newton_tolerance_floor: float = 0.0
+    # relative Newton tolerance of the static solves, if the default (1e-8 of the first
+    # residual of a load step) stops too early for this model
+    static_relative_tolerance: float | None = None
     tip_force: tuple = (0.0, 0.0)
 
     # rigid cell, pre-step path: the rest angles' net effect, one torque on the last body
@@ -95,7 +106,7 @@ class BuiltModel:
         """Write the stroke for free strain ``strain`` into the model (pre-step paths)."""
         mbs = self.mbs
         for item, factor in zip(self.offset_items, self.offset_factors):
-            mbs.SetObjectParameter(item, "offset", factor * strain)
+            mbs.SetObjectParameter(item, self.offset_parameter, factor * strain)
         if self.torque_load is not None:
             mbs.SetLoadParameter(self.torque_load, "loadVector", [0.0, 0.0, self.torque_per_strain * strain])
 
@@ -107,7 +118,10 @@ class BuiltModel:
         x = x0 + xt + self.tip_local_x * math.cos(phi)
         y = y0 + yt + self.tip_local_x * math.sin(phi)
         angle = phi + self.tip_rotation_per_strain * strain
-        return x, y, angle, q[self.cell_angle_indices]
+        angles = q[self.cell_angle_indices]
+        if self.cell_angles_from_nodes:
+            angles = 0.5 * (angles[:-1] + angles[1:])
+        return x, y, angle, angles
 
     @property
     def record_indices(self) -> np.ndarray:
@@ -121,7 +135,10 @@ class BuiltModel:
         x = x0 + records[:, 0] + self.tip_local_x * np.cos(phi)
         y = y0 + records[:, 1] + self.tip_local_x * np.sin(phi)
         angle = phi + self.tip_rotation_per_strain * strains
-        return x, y, angle, records[:, 3:]
+        angles = records[:, 3:]
+        if self.cell_angles_from_nodes:
+            angles = 0.5 * (angles[:, :-1] + angles[:, 1:])
+        return x, y, angle, angles
 
     def coordinates(self) -> np.ndarray:
         """Current ODE2 coordinates (a view, no copy)."""
@@ -188,6 +205,9 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     mbs = SC.AddSystem()
     if actuator.cell == "six-bar":
         model = _build_six_bar(SC, mbs, actuator, stroke_path)
+    elif actuator.cell == "beam":
+        from ._mbs_beam import build_beam  # noqa: PLC0415 - the beam module imports this one
+        model = build_beam(SC, mbs, actuator, stroke_path)
     else:
         model = _build_rigid(SC, mbs, actuator, stroke_path)
     model.uf_strain = _zero
@@ -197,7 +217,7 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     model.tip_force = (fx, fy)
     for i in range(mbs.systemData.NumberOfObjects()):
         if mbs.GetObject(i)["objectType"] == "ConnectorCoordinateSpringDamper":
-            model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness"))))
+            model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness")), "damping"))
     mbs.Assemble()
     _finish_indices(model)
     ref = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Reference)
@@ -470,6 +490,11 @@ def _loud():
     exu.config.printToConsole = True
 
 
+def _apply_tolerance_floor(model: BuiltModel, newton) -> None:
+    if newton.absoluteTolerance < model.newton_tolerance_floor:
+        newton.absoluteTolerance = model.newton_tolerance_floor
+
+
 def run_static(model: BuiltModel, settings, strain_at_factor: Callable[[float], float]) -> None:
     """Solve statically; the strain follows the load factor ``f`` in [0, 1] via ``strain_at_factor``."""
     mbs = model.mbs
@@ -478,6 +503,9 @@ def run_static(model: BuiltModel, settings, strain_at_factor: Callable[[float], 
         model.set_strain(strain_at_factor(min(max(t, 0.0), 1.0)))
         return True
 
+    _apply_tolerance_floor(model, settings.staticSolver.newton)
+    if model.static_relative_tolerance is not None:
+        settings.staticSolver.newton.relativeTolerance = model.static_relative_tolerance
     mbs.SetPreStepUserFunction(pre)
     model.set_strain(strain_at_factor(0.0))
     saved_uf = model.uf_strain
@@ -569,10 +597,11 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
                 tail["change"] = max(tail["change"], float(np.max(np.abs(q - tail["q"]))))
         return True
 
-    saved = [(item, mbs.GetObjectParameter(item, "damping")) for item, _ in model.springs]
-    for item, k in model.springs:
-        mbs.SetObjectParameter(item, "damping", damping_factor * k)
+    saved = [(item, name, mbs.GetObjectParameter(item, name)) for item, _, name in model.springs]
+    for item, k, name in model.springs:
+        mbs.SetObjectParameter(item, name, damping_factor * k)
     settings = dynamic_settings(t_end, h)
+    _apply_tolerance_floor(model, settings.timeIntegration.newton)
     settings.timeIntegration.newton.useModifiedNewton = False
     settings.timeIntegration.newton.maxIterations = 25
     mbs.SetPreStepUserFunction(pre)
@@ -590,8 +619,8 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
         mbs.SetPreStepUserFunction(0)
         mbs.SetPostStepUserFunction(0)
         model.uf_strain = saved_uf
-        for item, d in saved:
-            mbs.SetObjectParameter(item, "damping", d)
+        for item, name, d in saved:
+            mbs.SetObjectParameter(item, name, d)
         mbs.SetLoadParameter(model.tip_load, "loadVector", [fx, fy, 0.0])
     if not ok:
         raise ExudynFailure("dynamic relaxation did not converge", _solver_time(solver) / t_end)
@@ -622,6 +651,7 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
         post_step(t)
         return True
 
+    _apply_tolerance_floor(model, settings.timeIntegration.newton)
     mbs.SetPreStepUserFunction(pre)
     mbs.SetPostStepUserFunction(post)
     solver = exu.MainSolverImplicitSecondOrder()
