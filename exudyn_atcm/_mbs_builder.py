@@ -60,6 +60,10 @@ from ._eigen import constrained_eigenfrequencies
 #: Default absolute Newton tolerance in SI units (EXUDYN_NOTES.md: 1e-10 fails from 10 cells).
 NEWTON_ABSOLUTE_TOLERANCE = 1e-8
 
+#: How ``cell="rigid"`` is built with the default stroke path: ``"tree"`` (minimal coordinates,
+#: one ``ObjectKinematicTree``) or ``"bodies"`` (rigid bodies, revolute joints, springs).
+RIGID_FORMULATION = "bodies"
+
 
 @dataclass
 class BuiltModel:
@@ -208,6 +212,9 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     elif actuator.cell == "beam":
         from ._mbs_beam import build_beam  # noqa: PLC0415 - the beam module imports this one
         model = build_beam(SC, mbs, actuator, stroke_path)
+    elif RIGID_FORMULATION == "tree" and stroke_path == "prestep":
+        from ._mbs_tree import build_tree  # noqa: PLC0415 - the tree module imports this one
+        model = build_tree(SC, mbs, actuator, stroke_path)
     else:
         model = _build_rigid(SC, mbs, actuator, stroke_path)
     model.uf_strain = _zero
@@ -219,6 +226,9 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
         if mbs.GetObject(i)["objectType"] == "ConnectorCoordinateSpringDamper":
             model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness")), "damping"))
     mbs.Assemble()
+    if hasattr(model, "finish_indices"):
+        model.finish_indices()
+        return model
     _finish_indices(model)
     ref = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Reference)
     model.tip_reference = tuple(float(v) for v in np.asarray(ref)[model.tip_indices])
