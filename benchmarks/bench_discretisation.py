@@ -16,7 +16,8 @@ CFC 0.2 mm on MFC 0.3 mm, 28 mm wide; f1 = 35.97 Hz):
 
 Discretisations: the package's ``six-bar``, ``rigid`` (rigid bodies and joints), ``rigid-tree``
 (the same chain in minimal coordinates, ``ObjectKinematicTree``, internal alternative),
-``beam`` (geometrically exact beam elements), and ``GE by hand``: Exudyn's
+``beam`` (geometrically exact beam elements), ``ancf`` (ANCF cable elements, cubic), and
+``GE by hand``: Exudyn's
 ``ObjectBeamGeometricallyExact2D`` built directly in this file as an Exudyn user would (the
 same element, hooks and hysteresis, no package layer).
 
@@ -63,6 +64,7 @@ CELLS = {
     "rigid": (4, 8, 16, 32, 64),
     "rigid-tree": (4, 8, 16, 32),
     "beam": (2, 4, 8, 16, 32),
+    "ancf": (1, 2, 3, 4, 8),
     "GE by hand": (2, 4, 8, 16, 32),
 }
 REPEATS = 2  # cost: best of this many runs
@@ -270,7 +272,7 @@ def main(argv=None) -> int:
     for q, tol in TARGETS:
         key = f"{q} {tol:g}"
         ge = table.get("GE by hand", {}).get(key)
-        package = [(table[name][key]["cost [s/s]"], name) for name in ("six-bar", "rigid", "rigid-tree", "beam")
+        package = [(table[name][key]["cost [s/s]"], name) for name in ("six-bar", "rigid", "rigid-tree", "beam", "ancf")
                    if name in table and table[name][key] is not None]
         if ge is None or not package:
             continue

@@ -212,6 +212,9 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     elif actuator.cell == "beam":
         from ._mbs_beam import build_beam  # noqa: PLC0415 - the beam module imports this one
         model = build_beam(SC, mbs, actuator, stroke_path)
+    elif actuator.cell == "ancf":
+        from ._mbs_ancf import build_ancf  # noqa: PLC0415 - the ANCF module imports this one
+        model = build_ancf(SC, mbs, actuator, stroke_path)
     elif RIGID_FORMULATION == "tree" and stroke_path == "prestep":
         from ._mbs_tree import build_tree  # noqa: PLC0415 - the tree module imports this one
         model = build_tree(SC, mbs, actuator, stroke_path)
