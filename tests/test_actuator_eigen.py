@@ -101,7 +101,7 @@ def test_bent_chains_agree_and_change_at_second_order_in_kappa_L():
     np.testing.assert_allclose(parts["six-bar"], parts["rigid"], rtol=0, atol=1e-4)
 
 
-@pytest.mark.parametrize("cell", CELLS + ("beam",))
+@pytest.mark.parametrize("cell", CELLS + ("beam", "ancf"))
 def test_axial_tip_load_shifts_f1_as_the_rayleigh_quotient_of_the_beam_mode(cell):
     # Clamped-free Euler-Bernoulli beam with an axial tip force P (tension > 0):
     # omega^2(P) = omega^2(0) (1 + c P L^2/EI) + O(P^2), c = int(phi'^2) / int(phi''^2) of the first
