@@ -55,8 +55,14 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
+from ._eigen import constrained_eigenfrequencies
+
 #: Default absolute Newton tolerance in SI units (EXUDYN_NOTES.md: 1e-10 fails from 10 cells).
 NEWTON_ABSOLUTE_TOLERANCE = 1e-8
+
+#: How ``cell="rigid"`` is built with the default stroke path: ``"tree"`` (minimal coordinates,
+#: one ``ObjectKinematicTree``) or ``"bodies"`` (rigid bodies, revolute joints, springs).
+RIGID_FORMULATION = "bodies"
 
 
 @dataclass
@@ -71,6 +77,7 @@ class BuiltModel:
     # items whose offset carries the stroke; offset = factor * strain
     offset_items: list = field(default_factory=list)
     offset_factors: list = field(default_factory=list)
+    offset_parameter: str = "offset"  # the items' parameter that carries factor * strain
     # rigid cell: tip angle = last angle + tip_rotation_per_strain * strain
     tip_rotation_per_strain: float = 0.0
     # ODE2 indices of (x, y, phi) of the tip node and phi of every cell body
@@ -81,8 +88,18 @@ class BuiltModel:
     tip_load: int = -1
     # strain as a function of the solver's t, used by the user-function path
     uf_strain: Any = None
-    # (item, stiffness) of every spring-damper, for temporary damping changes
+    # (item, stiffness, damping parameter name) of every spring-damper and beam element, for
+    # temporary damping changes (damping = factor * stiffness)
     springs: list = field(default_factory=list)
+    # beam cell: the recorded angles are the n + 1 node rotations; a cell's angle is the mean
+    # of its two nodes' rotations
+    cell_angles_from_nodes: bool = False
+    # smallest absolute Newton tolerance [N, N m] the model can reach (round-off of stiff
+    # axial forces); the solves raise a tighter tolerance to it
+    newton_tolerance_floor: float = 0.0
+    # relative Newton tolerance of the static solves, if the default (1e-8 of the first
+    # residual of a load step) stops too early for this model
+    static_relative_tolerance: float | None = None
     tip_force: tuple = (0.0, 0.0)
 
     # rigid cell, pre-step path: the rest angles' net effect, one torque on the last body
@@ -93,7 +110,7 @@ class BuiltModel:
         """Write the stroke for free strain ``strain`` into the model (pre-step paths)."""
         mbs = self.mbs
         for item, factor in zip(self.offset_items, self.offset_factors):
-            mbs.SetObjectParameter(item, "offset", factor * strain)
+            mbs.SetObjectParameter(item, self.offset_parameter, factor * strain)
         if self.torque_load is not None:
             mbs.SetLoadParameter(self.torque_load, "loadVector", [0.0, 0.0, self.torque_per_strain * strain])
 
@@ -110,7 +127,10 @@ class BuiltModel:
         x = x0 + xt + self.tip_local_x * math.cos(phi)
         y = y0 + yt + self.tip_local_x * math.sin(phi)
         angle = phi + self.tip_rotation_per_strain * strain
-        return x, y, angle, q[self.cell_angle_indices]
+        angles = q[self.cell_angle_indices]
+        if self.cell_angles_from_nodes:
+            angles = 0.5 * (angles[:-1] + angles[1:])
+        return x, y, angle, angles
 
     @property
     def record_indices(self) -> np.ndarray:
@@ -124,7 +144,10 @@ class BuiltModel:
         x = x0 + records[:, 0] + self.tip_local_x * np.cos(phi)
         y = y0 + records[:, 1] + self.tip_local_x * np.sin(phi)
         angle = phi + self.tip_rotation_per_strain * strains
-        return x, y, angle, records[:, 3:]
+        angles = records[:, 3:]
+        if self.cell_angles_from_nodes:
+            angles = 0.5 * (angles[:, :-1] + angles[:, 1:])
+        return x, y, angle, angles
 
     def coordinates(self) -> np.ndarray:
         """Current ODE2 coordinates (a view, no copy)."""
@@ -191,6 +214,15 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     mbs = SC.AddSystem()
     if actuator.cell == "six-bar":
         model = _build_six_bar(SC, mbs, actuator, stroke_path)
+    elif actuator.cell == "beam":
+        from ._mbs_beam import build_beam  # noqa: PLC0415 - the beam module imports this one
+        model = build_beam(SC, mbs, actuator, stroke_path)
+    elif actuator.cell == "ancf":
+        from ._mbs_ancf import build_ancf  # noqa: PLC0415 - the ANCF module imports this one
+        model = build_ancf(SC, mbs, actuator, stroke_path)
+    elif RIGID_FORMULATION == "tree" and stroke_path == "prestep":
+        from ._mbs_tree import build_tree  # noqa: PLC0415 - the tree module imports this one
+        model = build_tree(SC, mbs, actuator, stroke_path)
     else:
         model = _build_rigid(SC, mbs, actuator, stroke_path)
     model.uf_strain = _zero
@@ -200,8 +232,11 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     model.tip_force = (fx, fy)
     for i in range(mbs.systemData.NumberOfObjects()):
         if mbs.GetObject(i)["objectType"] == "ConnectorCoordinateSpringDamper":
-            model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness"))))
+            model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness")), "damping"))
     mbs.Assemble()
+    if hasattr(model, "finish_indices"):
+        model.finish_indices()
+        return model
     _finish_indices(model)
     ref = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Reference)
     model.tip_reference = tuple(float(v) for v in np.asarray(ref)[model.tip_indices])
@@ -468,6 +503,11 @@ def _loud():
     exu.config.printToConsole = True
 
 
+def _apply_tolerance_floor(model: BuiltModel, newton) -> None:
+    if newton.absoluteTolerance < model.newton_tolerance_floor:
+        newton.absoluteTolerance = model.newton_tolerance_floor
+
+
 def run_static(model: BuiltModel, settings, strain_at_factor: Callable[[float], float]) -> None:
     """Solve statically; the strain follows the load factor ``f`` in [0, 1] via ``strain_at_factor``."""
     mbs = model.mbs
@@ -476,6 +516,9 @@ def run_static(model: BuiltModel, settings, strain_at_factor: Callable[[float], 
         model.set_strain(strain_at_factor(min(max(t, 0.0), 1.0)))
         return True
 
+    _apply_tolerance_floor(model, settings.staticSolver.newton)
+    if model.static_relative_tolerance is not None:
+        settings.staticSolver.newton.relativeTolerance = model.static_relative_tolerance
     mbs.SetPreStepUserFunction(pre)
     model.set_strain(strain_at_factor(0.0))
     saved_uf = model.uf_strain
@@ -566,10 +609,11 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
                 tail["change"] = max(tail["change"], float(np.max(np.abs(q - tail["q"]))))
         return True
 
-    saved = [(item, mbs.GetObjectParameter(item, "damping")) for item, _ in model.springs]
-    for item, k in model.springs:
-        mbs.SetObjectParameter(item, "damping", damping_factor * k)
+    saved = [(item, name, mbs.GetObjectParameter(item, name)) for item, _, name in model.springs]
+    for item, k, name in model.springs:
+        mbs.SetObjectParameter(item, name, damping_factor * k)
     settings = dynamic_settings(t_end, h)
+    _apply_tolerance_floor(model, settings.timeIntegration.newton)
     settings.timeIntegration.newton.useModifiedNewton = False
     settings.timeIntegration.newton.maxIterations = 25
     mbs.SetPreStepUserFunction(pre)
@@ -587,8 +631,8 @@ def run_relaxation(model: BuiltModel, strain: float, omega1: float, damping_fact
         mbs.SetPreStepUserFunction(0)
         mbs.SetPostStepUserFunction(0)
         model.uf_strain = saved_uf
-        for item, d in saved:
-            mbs.SetObjectParameter(item, "damping", d)
+        for item, name, d in saved:
+            mbs.SetObjectParameter(item, name, d)
         model.scale_loads(1.0)
     if not ok:
         raise ExudynFailure("dynamic relaxation did not converge", _solver_time(solver) / t_end)
@@ -619,6 +663,7 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
     def post(mbs_, t):
         return post_step(t) is not False
 
+    _apply_tolerance_floor(model, settings.timeIntegration.newton)
     mbs.SetPreStepUserFunction(pre)
     mbs.SetPostStepUserFunction(post)
     solver = exu.MainSolverImplicitSecondOrder()
@@ -644,18 +689,12 @@ def run_dynamic(model: BuiltModel, settings, pre_step: Callable[[float], None] |
 
 
 def eigenfrequencies(model: BuiltModel, n: int) -> np.ndarray:
-    """Lowest ``n`` eigenfrequencies [Hz] of the undamped system about its initial state."""
-    mbs = model.mbs
-    _quiet()
-    try:
-        values, _ = mbs.ComputeODE2Eigenvalues(simulationSettings=base_settings(), useSparseSolver=False,
-                                               numberOfEigenvalues=0, convert2Frequencies=False,
-                                               useAbsoluteValues=True, ignoreAlgebraicEquations=False,
-                                               singularValuesTolerance=1e-10)
-    finally:
-        _loud()
-    values = np.sort(np.asarray(values, dtype=float))
-    return np.sqrt(np.abs(values[:n])) / (2.0 * math.pi)
+    """Lowest ``n`` undamped eigenfrequencies [Hz] about the model's current (equilibrium) state.
+
+    Includes the constraint forces' geometric stiffness, which Exudyn's
+    ``ComputeODE2Eigenvalues`` leaves out (see :mod:`exudyn_atcm._eigen`).
+    """
+    return constrained_eigenfrequencies(model.mbs, n)
 
 
 def exudyn_version() -> str:

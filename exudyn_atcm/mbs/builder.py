@@ -414,7 +414,7 @@ class _Builder:
                 localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
             item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
                 markerNumbers=[self.gcoord, coord], stiffness=j.stiffness, damping=j.damping, visualization=_NOVIS))
-            model.springs.append((item, j.stiffness))
+            model.springs.append((item, j.stiffness, "damping"))
 
     # ---------------------------------------------------------------- springs of the hinges, actuation torques
     def _realise_hinges(self) -> None:
@@ -441,7 +441,7 @@ class _Builder:
                 rb = _rot_marker(mbs, model.bodies[h.b], self.gcoord)
                 h.spring_item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
                     markerNumbers=[ra, rb], stiffness=h.stiffness, damping=damping, visualization=_NOVIS))
-                model.springs.append((h.spring_item, h.stiffness))
+                model.springs.append((h.spring_item, h.stiffness, "damping"))
             if np.any(h.moment != 0.0):
                 per_body[h.b] = per_body.get(h.b, self.zeros()) + h.moment
                 per_body[h.a] = per_body.get(h.a, self.zeros()) - h.moment

@@ -11,22 +11,15 @@ from .model import MechanismModel
 
 
 def eigenfrequencies(model: MechanismModel, n: int) -> np.ndarray:
-    """Lowest ``n`` undamped eigenfrequencies [Hz] about the model's initial state.
+    """Lowest ``n`` undamped eigenfrequencies [Hz] about the model's current (equilibrium) state.
 
-    Exudyn's ``ComputeODE2Eigenvalues`` with the constraints kept (its null-space
-    projection).  The drive torques and loads act as constant loads during the linearisation.
-    It leaves out the geometric stiffness of the joints' internal forces (the Lagrange
-    multipliers times the constraints' second derivatives): exact where the joints carry no
-    force (see :func:`constraint_forces`).  Every mechanism eigenvalue computation of the
-    package goes through this function, so a solver that adds that term replaces it here.
+    The tangent stiffness of the constrained system, including the geometric stiffness of the
+    joints' internal forces (the Lagrange multipliers times the constraints' second
+    derivatives), which Exudyn's ``ComputeODE2Eigenvalues`` leaves out; projected onto the
+    constraints' null space (:func:`exudyn_atcm._eigen.constrained_eigenfrequencies`).  The
+    drive torques and loads act as constant loads during the linearisation.
     """
     return runs.eigenfrequencies(model, n)
-
-
-def constraint_forces(model: MechanismModel) -> float:
-    """Largest Lagrange multiplier of the current state [N or N m]: the joints' internal forces."""
-    values = np.asarray(model.mbs.systemData.GetAECoordinates(), dtype=float)
-    return float(np.max(np.abs(values))) if values.size else 0.0
 
 
 @dataclass(frozen=True)
@@ -62,4 +55,4 @@ def degrees_of_freedom(model: MechanismModel) -> DofReport:
                      int(info["redundantConstraints"]))
 
 
-__all__ = ["eigenfrequencies", "constraint_forces", "DofReport", "degrees_of_freedom"]
+__all__ = ["eigenfrequencies", "DofReport", "degrees_of_freedom"]

@@ -108,7 +108,12 @@ class MechanismModel:
     spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
     ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
     cells: dict[str, list[str]] = field(default_factory=dict)   # bender -> its cell body keys
-    springs: list[tuple[int, float]] = field(default_factory=list)  # (item, stiffness) for relaxation
+    # (item, stiffness, damping parameter name) of every spring-damper, for the relaxation
+    springs: list[tuple[int, float, str]] = field(default_factory=list)
+    # smallest absolute Newton tolerance the model can reach; None: no static relative tolerance
+    # override (the attributes the shared solver runs of _mbs_builder read)
+    newton_tolerance_floor: float = 0.0
+    static_relative_tolerance: float | None = None
     group_of_component: dict[str, str] = field(default_factory=dict)  # link / prbm segment -> body key
     # state of the actuation path (see set_path / set_strain)
     strains: np.ndarray | None = None

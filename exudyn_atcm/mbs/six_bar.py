@@ -72,7 +72,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=list(positions), visualization=NOVIS))
         item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
             markerNumbers=list(rotations), stiffness=k, damping=beta * k, visualization=NOVIS))
-        model.springs.append((item, k))
+        model.springs.append((item, k, "damping"))
 
     def ends(body: Body, point: np.ndarray):
         """Markers of an end interface: lower (passive) and upper (active) points, rotation."""
@@ -136,6 +136,6 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
             model.motor_offsets.append((motor, float(lc), model.drive_source[bender.drive_name(int(segment[j]))]))
         spring = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
             markerNumbers=[ground_coordinate, m_spring], stiffness=k1, damping=beta * k1, visualization=NOVIS))
-        model.springs.append((spring, k1))
+        model.springs.append((spring, k1, "damping"))
         prev_lower, prev_upper, prev_rot = lower, upper_m, rot
     return bars

@@ -1,0 +1,328 @@
+"""Cost at equal accuracy of the actuator's discretisations (issue 9, part 4).
+
+For each discretisation and number of cells/elements N, on the reference bender (3 x 29 mm,
+CFC 0.2 mm on MFC 0.3 mm, 28 mm wide; f1 = 35.97 Hz):
+
+* **f1 error**: the first eigenfrequency against the clamped-free Euler-Bernoulli beam
+  (``beam_theory.first_bending_frequency``).
+* **tip-angle error**: a 0.5 s voltage triangle at 1 % of the paper's amplitude (-5 ... 15 V,
+  linear drive: small deflections, where the closed form holds) against the modal solution of
+  the Euler-Bernoulli cantilever under the end moment ``EI kappa(t)`` (30 modes, mode
+  acceleration form, stiffness-proportional damping as in the models, exact for the
+  piecewise-linear input); error = max |angle - reference| / max |reference|.
+* **bent f1 error**: the first eigenfrequency about the static state at 1500 V (kappa L = 0.36
+  rad) against 64 linear beam elements (no closed form; see ``bent_reference``): shows the
+  cubic ANCF element's locking in the curved state (+4.5 % at 2 elements).
+* **cost**: wall time per simulated second of the paper's run (triangle -500 ... 1500 V,
+  period 0.5 s, Preisach operator evaluated in the step and committed on accepted steps),
+  step 1e-4 s, including building the system and the initial static equilibrium, best of three.
+
+Discretisations: the package's ``six-bar``, ``rigid`` (rigid bodies and joints), ``rigid-tree``
+(the same chain in minimal coordinates, ``ObjectKinematicTree``, internal alternative),
+``beam`` (geometrically exact beam elements), ``ancf`` (ANCF cable elements, cubic), and
+``GE by hand``: Exudyn's
+``ObjectBeamGeometricallyExact2D`` built directly in this file as an Exudyn user would (the
+same element, hooks and hysteresis, no package layer).
+
+For each accuracy target the table gives the fewest cells/elements that reach it and the cost
+there.  Figures are wall times (best of three) on a shared machine: compare within one run.
+
+Usage: ``python benchmarks/bench_discretisation.py [--quick]``; writes JSON to
+``benchmarks/results/``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import math
+import os
+import platform
+import sys
+import time
+
+import exudyn as exu
+import numpy as np
+from exudyn import itemInterface as ii
+from scipy.optimize import brentq
+from scipy.signal import lsim
+
+from exudyn_atcm import _mbs_builder as builder
+from exudyn_atcm import beam_theory as bt
+from exudyn_atcm._eigen import constrained_eigenfrequencies
+from exudyn_atcm._version import __version__
+from exudyn_atcm.actuator import BendingActuator
+from exudyn_atcm.drive import PiezoDrive
+from exudyn_atcm.materials import Layer
+from exudyn_atcm.parameter_sets import paper_strain_preisach
+from exudyn_atcm.signals import Triangle
+from exudyn_atcm.simulation import InStepStrain, _simulate, eigenfrequencies
+
+LENGTH, WIDTH = 87e-3, 28e-3
+CFC, MFC = Layer(0.2e-3, 70e9, 1550.0), Layer(0.3e-3, 30.336e9, 5440.0)
+PERIOD, STEP = 0.5, 1e-4
+CELLS = {
+    "six-bar": (4, 8, 16, 32),
+    "rigid": (4, 8, 16, 32, 64),
+    "rigid-tree": (4, 8, 16, 32),
+    "beam": (2, 4, 8, 16, 32),
+    "ancf": (1, 2, 3, 4, 8),
+    "GE by hand": (2, 4, 8, 16, 32),
+}
+REPEATS = 3  # cost: best of this many runs
+TARGETS = (("tip angle", 1e-3), ("tip angle", 1e-4), ("f1", 1e-2), ("f1", 1e-3), ("bent f1", 1e-2),
+           ("bent f1", 1e-3))
+BENT_VOLTAGE = 1500.0
+_BENT_REFERENCE: dict = {}
+
+
+def bent_reference() -> float:
+    """f1 [Hz] about the static state at 1500 V: 64 linear beam elements (converged reference).
+
+    No closed form exists for the pre-curved cantilever; the linear elements converge at
+    second order without locking (32 elements differ from 64 by ~1e-4 of f1).
+    """
+    if "f1" not in _BENT_REFERENCE:
+        act = actuator(64, "beam", PiezoDrive(0.0))
+        _BENT_REFERENCE["f1"] = float(eigenfrequencies(act, 1, voltage=BENT_VOLTAGE)[0])
+    return _BENT_REFERENCE["f1"]
+
+
+def actuator(n: int, cell: str, drive: PiezoDrive) -> BendingActuator:
+    return BendingActuator(n, LENGTH / n, WIDTH, CFC, MFC, drive, cell=cell)
+
+
+def paper_drive() -> PiezoDrive:
+    return PiezoDrive(Triangle(500.0, 1000.0, PERIOD), hysteresis=paper_strain_preisach())
+
+
+def small_drive() -> PiezoDrive:
+    return PiezoDrive(Triangle(5.0, 10.0, PERIOD))
+
+
+# ----------------------------------------------------------------------------- reference
+
+def modal_tip_angle(act: BendingActuator, times: np.ndarray, moments: np.ndarray, n_modes: int = 30) -> np.ndarray:
+    """Tip rotation [rad] of the Euler-Bernoulli cantilever under the end moment ``moments(times)``.
+
+    theta = M L/EI + sum_r w_r (y_r - M), y_r'' + 2 zeta_r w_r y_r' + w_r^2 y_r = w_r^2 M,
+    w_r = phi_r'(L)^2 / (mu L omega_r^2), zeta_r = beta omega_r / 2; starts at rest in the
+    static state of M(0).
+    """
+    EI, mu, L = act.bending_stiffness, act.mass_per_length, act.length
+    beta = act.stiffness_damping_factor
+    theta = moments * L / EI
+    for r in range(1, n_modes + 1):
+        guess = (r - 0.5) * math.pi
+        bl = brentq(lambda x: 1.0 + math.cos(x) * math.cosh(x), guess - 0.3, guess + 0.3) if r > 1 else bt.BETA1_L
+        sigma = (math.cosh(bl) + math.cos(bl)) / (math.sinh(bl) + math.sin(bl))
+        # phi'(L) with phi = cosh - cos - sigma (sinh - sin) of beta x, int phi^2 = L
+        dphi = bl / L * (math.sinh(bl) + math.sin(bl) - sigma * (math.cosh(bl) - math.cos(bl)))
+        omega = bl**2 / L**2 * math.sqrt(EI / mu)
+        weight = dphi**2 / (mu * L * omega**2)
+        zeta = 0.5 * beta * omega
+        a = np.array([[0.0, 1.0], [-omega**2, -2.0 * zeta * omega]])
+        b = np.array([[0.0], [omega**2]])
+        c = np.array([[1.0, 0.0]])
+        d = np.array([[0.0]])
+        _, y, _ = lsim((a, b, c, d), moments, times, X0=[moments[0], 0.0], interp=True)
+        theta += weight * (y - moments)
+    return theta
+
+
+# ----------------------------------------------------------------------------- GE by hand
+
+def ge_by_hand(n: int, drive: PiezoDrive, t_end: float, solve: bool = True, static_only: bool = False) -> tuple:
+    """Exudyn's GE beam built directly: clamp, n elements, tip torque EI kappa(t) in PreStep.
+
+    Returns accepted times, tip rotations and the system (for its eigenfrequencies).
+    """
+    ref = actuator(n, "beam", drive)  # only for the laminate numbers
+    EI, mu, lc = ref.bending_stiffness, ref.mass_per_length, ref.cell_length
+    EA = CFC.axial_rigidity(WIDTH) + MFC.axial_rigidity(WIDTH)
+    beta = ref.stiffness_damping_factor
+    e = ref.layer_offset
+    rho_i = CFC.density * WIDTH * CFC.thickness**3 / 12 + MFC.density * WIDTH * (MFC.thickness**3 / 12
+                                                                                + MFC.thickness * e**2)
+    torque_per_strain = EI * ref.curvature_per_strain
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    gnode = mbs.AddNode(ii.NodePointGround())
+    gmarker = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+    nodes = [mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[j * lc, 0.0, 0.0])) for j in range(n + 1)]
+    for k in range(3):
+        mk = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=k))
+        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gmarker, mk]))
+    for j in range(n):
+        mbs.AddObject(ii.ObjectBeamGeometricallyExact2D(
+            nodeNumbers=[nodes[j], nodes[j + 1]], length=lc, massPerLength=mu, crossSectionInertia=rho_i,
+            bendingStiffness=EI, axialStiffness=EA, shearStiffness=EA, bendingDamping=beta * EI,
+            axialDamping=beta * EA, shearDamping=beta * EA))
+    tip = mbs.AddMarker(ii.MarkerNodeRigid(nodeNumber=nodes[-1]))
+    load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=tip, loadVector=[0.0, 0.0, 0.0]))
+    mbs.Assemble()
+    i_tip = mbs.GetNodeODE2Index(nodes[-1]) + 2
+    source = InStepStrain(drive)
+    times, angles = [], []
+    if not solve:
+        return np.array(times), np.array(angles), mbs
+
+    def pre(mbs_, t):
+        mbs_.SetLoadParameter(load, "loadVector", [0.0, 0.0, torque_per_strain * source.trial(t)])
+        return True
+
+    def post(mbs_, t):
+        source.commit(t)
+        times.append(t)
+        angles.append(mbs_.systemData.GetODE2Coordinates(copy=False)[i_tip])
+        return True
+
+    s = exu.SimulationSettings()
+    s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    s.solution.file.write = False
+    s.solution.sensors.writePeriod = 1e30
+    s.timeIntegration.verboseMode = 0
+    s.staticSolver.verboseMode = 0
+    # round-off floor of the stiff axis's forces, ~eps EA L / lc: 1e-8 is out of reach from ~50 elements
+    tolerance = max(1e-8, 10.0 * np.finfo(float).eps * EA / lc * LENGTH)
+    s.timeIntegration.newton.absoluteTolerance = tolerance
+    s.staticSolver.newton.absoluteTolerance = tolerance
+    s.staticSolver.newton.relativeTolerance = 1e-10
+    exu.config.printToConsole = False
+    try:
+        # initial equilibrium at U(0): the static solver with the torque ramped by the load factor
+        mbs.SetLoadParameter(load, "loadVector", [0.0, 0.0, torque_per_strain * source.trial(0.0)])
+        s.staticSolver.numberOfLoadSteps = 4
+        mbs.SolveStatic(s)
+        if static_only:
+            return np.array(times), np.array(angles), mbs
+        state = mbs.systemData.GetSystemState()
+        mbs.systemData.SetSystemState(systemStateList=state, configuration=exu.ConfigurationType.Initial)
+        s.timeIntegration.endTime = t_end
+        s.timeIntegration.numberOfSteps = int(round(t_end / STEP))
+        s.timeIntegration.generalizedAlpha.spectralRadius = 0.8
+        mbs.SetPreStepUserFunction(pre)
+        mbs.SetPostStepUserFunction(post)
+        mbs.SolveDynamic(s)
+    finally:
+        exu.config.printToConsole = True
+    return np.array(times), np.array(angles), mbs
+
+
+# ----------------------------------------------------------------------------- measurements
+
+def measure(name: str, n: int) -> dict:
+    if name == "rigid-tree":
+        builder.RIGID_FORMULATION = "tree"
+    cell = "rigid" if name == "rigid-tree" else ("beam" if name == "GE by hand" else name)
+    try:
+        act_small = actuator(n, cell, small_drive())
+        f_ref = bt.first_bending_frequency(act_small.bending_stiffness, act_small.mass_per_length, LENGTH)
+        if name == "GE by hand":
+            times, angles, _ = ge_by_hand(n, small_drive(), PERIOD)
+            _, _, mbs = ge_by_hand(n, PiezoDrive(0.0), STEP, solve=False)  # undeformed
+            builder_f1 = constrained_eigenfrequencies(mbs, 1)[0]
+            _, _, mbs = ge_by_hand(n, PiezoDrive(BENT_VOLTAGE), STEP, static_only=True)
+            bent_f1 = constrained_eigenfrequencies(mbs, 1)[0]
+            wall = math.inf
+            for _ in range(REPEATS):
+                start = time.perf_counter()
+                ge_by_hand(n, paper_drive(), PERIOD)
+                wall = min(wall, time.perf_counter() - start)
+        else:
+            r = _simulate(act_small, PERIOD, STEP, (0.0, 0.0), None)
+            times, angles = r["time"], r["tip_angle"]
+            builder_f1 = eigenfrequencies(act_small, 1)[0]
+            bent_f1 = eigenfrequencies(act_small, 1, voltage=BENT_VOLTAGE)[0]
+            wall = math.inf
+            for _ in range(REPEATS):
+                start = time.perf_counter()
+                _simulate(actuator(n, cell, paper_drive()), PERIOD, STEP, (0.0, 0.0), None)
+                wall = min(wall, time.perf_counter() - start)
+    finally:
+        builder.RIGID_FORMULATION = "bodies"
+    strains = np.array([small_drive().static_strain(small_drive().voltage_at(t)) for t in times])
+    moments = act_small.bending_stiffness * act_small.curvature_per_strain * strains
+    reference = modal_tip_angle(act_small, np.asarray(times, dtype=float), moments)
+    angle_error = float(np.max(np.abs(angles - reference)) / np.max(np.abs(reference)))
+    return {"n": n, "f1 [Hz]": float(builder_f1), "f1 error": float(abs(builder_f1 / f_ref - 1.0)),
+            "bent f1 [Hz]": float(bent_f1), "bent f1 error": float(abs(bent_f1 / bent_reference() - 1.0)),
+            "tip angle error": angle_error, "wall [s]": wall, "cost [s/s]": wall / PERIOD}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description="exudyn_atcm discretisation benchmark")
+    parser.add_argument("--quick", action="store_true", help="fewer cell counts (smoke run)")
+    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
+    args = parser.parse_args(argv)
+    print(f"exudyn_atcm {__version__}, exudyn {exu.__version__}, python {platform.python_version()}, "
+          f"{os.cpu_count()} cpus; step {STEP:g} s, {PERIOD:g} s simulated per run")
+    runs: dict[str, list] = {}
+    print(f"\n{'discretisation':>14} | {'N':>3} | {'f1 error':>9} | {'bent f1 error':>13} | {'tip-angle error':>15} | "
+          f"{'cost [s/s]':>10}")
+    # interleaved by cell count so that machine load affects all discretisations alike
+    counts = sorted({n for ns in CELLS.values() for n in ns})
+    if args.quick:
+        counts = counts[:3]
+    for n in counts:
+        for name, ns in CELLS.items():
+            if n not in ns:
+                continue
+            try:
+                m = measure(name, n)
+            except Exception as exc:  # noqa: BLE001 - a failed run is reported, not fatal
+                print(f"{name:>14} | {n:>3} | failed: {type(exc).__name__}: {exc}", flush=True)
+                continue
+            runs.setdefault(name, []).append(m)
+            print(f"{name:>14} | {n:>3} | {m['f1 error']:>9.2e} | {m['bent f1 error']:>13.2e} | "
+                  f"{m['tip angle error']:>15.2e} | "
+                  f"{m['cost [s/s]']:>10.3f}", flush=True)
+
+    table = {}
+    print("\nfewest cells reaching each accuracy (N, cost per simulated second)")
+    header = " | ".join(f"{q} {tol:g}".rjust(18) for q, tol in TARGETS)
+    print(f"{'discretisation':>14} | {header}")
+    for name, ms in runs.items():
+        row = {}
+        for q, tol in TARGETS:
+            ok = [m for m in ms if m[f"{q} error"] <= tol]
+            best = min(ok, key=lambda m: m["n"]) if ok else None
+            row[f"{q} {tol:g}"] = None if best is None else {"n": best["n"], "cost [s/s]": best["cost [s/s]"]}
+        table[name] = row
+        cells = " | ".join(("not reached" if v is None else f"N={v['n']}: {v['cost [s/s]']:.3f}").rjust(18)
+                           for v in row.values())
+        print(f"{name:>14} | {cells}")
+
+    goals = {}
+    for q, tol in TARGETS:
+        key = f"{q} {tol:g}"
+        ge = table.get("GE by hand", {}).get(key)
+        package = [(table[name][key]["cost [s/s]"], name) for name in ("six-bar", "rigid", "rigid-tree", "beam", "ancf")
+                   if name in table and table[name][key] is not None]
+        if ge is None or not package:
+            continue
+        cost, name = min(package)
+        goals[key] = {"fastest": name, "speed-up over GE by hand": ge["cost [s/s]"] / cost,
+                      "met (>= 2)": ge["cost [s/s]"] / cost >= 2.0}
+    print("\ngoal: the package's fastest discretisation >= 2x faster than Exudyn's GE beam by hand")
+    for key, g in goals.items():
+        print(f"  {'met ' if g['met (>= 2)'] else 'MISS'}  {key}: {g['fastest']} "
+              f"{g['speed-up over GE by hand']:.2f}x")
+
+    os.makedirs(args.out, exist_ok=True)
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    path = os.path.join(args.out, f"bench_discretisation_{stamp}.json")
+    payload = {"exudyn_atcm": __version__, "exudyn": exu.__version__, "python": platform.python_version(),
+               "cpus": os.cpu_count(), "step_s": STEP, "period_s": PERIOD, "runs": runs, "table": table,
+               "goals": goals}
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as handle:
+        json.dump(payload, handle, indent=2)
+    os.replace(tmp, path)
+    print(f"\nwrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
