@@ -20,17 +20,26 @@ from typing import Any, Callable
 import numpy as np
 
 from . import _mbs_builder as runs
-from ._checks import finite_array, finite_float, positive_float, positive_int
+from ._checks import finite_array, finite_float, positive_int
 from .mbs import builder as mb
 from .mbs import linear
-from .mbs.recording import Rows
+from .mbs.recording import Rows, measurement_reader
 from .actuator import BendingActuator
 from .mechanism.assembly import Mechanism
 from .mechanism.bender import Bender
 from .mechanism.flexure import Flexure
 from .mechanism.points import MechanismError, closest
 from .result import Result
-from .run_checks import snap_time, time_grid
+from .run_checks import (
+    InterruptGuard,
+    SimulationInterrupted,
+    WallClock,
+    check_step_against_frequency,
+    check_step_against_program,
+    snap_time,
+    warn_if_long,
+)
+from .run_setup import prepare_run, report_controller, run_info
 from .simulation import DEFAULT_STEP, InStepStrain, SolverError
 
 VoltageSpec = Any  # None | float | Mapping[str, float]
@@ -266,29 +275,136 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)})
 
 
+def _drive_names(model: mb.MechanismModel) -> list[str]:
+    """The drive name(s) of every strain source, for messages (``"'crank'"`` or ``"'a.1', 'a.2'"``)."""
+    names: list[list[str]] = [[] for _ in model.sources]
+    for name, k in model.drive_source.items():
+        names[k].append(repr(name))
+    return [", ".join(n) for n in names]
+
+
+def check_drive_ranges(model: mb.MechanismModel, volts: np.ndarray, strains: np.ndarray, stacklevel: int = 4) -> None:
+    """Voltage-range and strain checks of every drive (one warning per drive and run, naming it).
+
+    ``volts`` and ``strains`` are rows (or one row) of per-source values, as recorded;
+    ``stacklevel`` counts from the caller of this function (default: its caller's caller).
+    """
+    volts = np.atleast_2d(volts)
+    strains = np.atleast_2d(strains)
+    if volts.shape[0] == 0:
+        return
+    for k, (drive, names) in enumerate(zip(model.sources, _drive_names(model))):
+        what = f"drive {names}"
+        drive.check_voltage_range(float(volts[:, k].min()), float(volts[:, k].max()), what=what,
+                                  stacklevel=stacklevel + 1)
+        drive.check_strain(float(strains[:, k].min()), float(strains[:, k].max()), what=what,
+                           stacklevel=stacklevel + 2)
+
+
+def lowest_first_frequency(mech: Mechanism) -> tuple[float, str]:
+    """The lowest first-frequency estimate [Hz] of the mechanism's benders and flexures, and which.
+
+    Each part as a clamped-free beam of its laminate and length (the same formula as
+    :attr:`exudyn_atcm.BendingActuator.first_frequency_estimate`); ``(inf, "")`` without such parts.
+    """
+    best, which = math.inf, ""
+    for comp in mech.components.values():
+        if isinstance(comp, (Bender, Flexure)):
+            f = comp.laminate.first_frequency(comp.length)
+            if f < best:
+                kind = "bender" if isinstance(comp, Bender) else "flexure"
+                best, which = f, f"the first bending mode of {kind} {comp.name!r} (clamped-free estimate)"
+    return best, which
+
+
+def cost_parts(mech: Mechanism) -> tuple[str, int]:
+    """Cell type and number of rigid parts for :func:`~exudyn_atcm.run_checks.warn_if_long`.
+
+    The cells of every bender and ``"cells"`` flexure, two segments per pseudo-rigid-body
+    flexure and one body per link; the cell type is ``"six-bar"`` if any bender uses it.
+    """
+    cell, count = "rigid", 0
+    for comp in mech.components.values():
+        if isinstance(comp, Bender):
+            count += sum(seg.n_cells for seg in comp.segments)
+            if comp.cell == "six-bar":
+                cell = "six-bar"
+        elif isinstance(comp, Flexure):
+            count += comp.n_cells if comp.model == "cells" else 2
+        else:
+            count += 1
+    return cell, count
+
+
+def _check_steps(mech: Mechanism, grid: Any, t_end: float) -> None:
+    """Step checks against every drive's voltage program and the lowest bender frequency; run-time estimate."""
+    for name, drive in mech.drives.items():
+        check_step_against_program(drive.voltage, grid.step, t_end, what=f"the voltage program of drive {name!r}",
+                                   stacklevel=5)
+    frequency, which = lowest_first_frequency(mech)
+    check_step_against_frequency(grid.step, frequency, what=which, stacklevel=5)
+    cell, parts = cost_parts(mech)
+    warn_if_long(cell, parts, grid.n_steps, parts=f"{parts} cells and bodies ({cell} cells)", stacklevel=5)
+
+
+def _feedback(mech: Mechanism, model: mb.MechanismModel) -> list[tuple[Any, str]]:
+    """``(controller, measurement column)`` of every drive set by a controller; refuses undeclared ones."""
+    out = []
+    for k, drive in enumerate(model.sources):
+        controller = getattr(drive, "controller", None)
+        if controller is None:
+            continue
+        names = [n for n, j in model.drive_source.items() if j == k]
+        declared = {mech.measurements[n] for n in names if n in mech.measurements}
+        if not declared:
+            raise MechanismError(
+                f"drive {names[0]!r} of mechanism {mech.name!r} is set by a controller "
+                f"({type(controller).__name__}), but the mechanism declares no measurement for it to observe. "
+                f"Declare one: mechanism.feedback({names[0]!r}, 'component.point_y') (any result column, e.g. "
+                f"a point's coordinate '{names[0].split('.')[0]}.tip_y', an angle or a spring force)")
+        if len(declared) > 1:
+            raise MechanismError(f"drives {', '.join(map(repr, names))} share one PiezoDrive but declare different "
+                                 f"measurements {sorted(declared)}; declare one")
+        out.append((controller, declared.pop()))
+    return out
+
+
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
-             progress: Callable[[float, float], None] | None = None) -> Result:
-    """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`)."""
-    t_end = positive_float("t_end", t_end)
-    step = positive_float("step", step)
-    if step > t_end:
-        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {step!r}")
-    if settings is not None and not callable(settings) and not isinstance(settings, dict):
-        raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {settings!r}")
-    if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+             progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
+    """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`).
+
+    The same checks as for an actuator (:mod:`exudyn_atcm.run_checks`): the step against every
+    drive's voltage program and against the lowest first-frequency estimate of the benders
+    and flexures, the step used when it does not divide ``t_end``, a warning up front for a
+    long run (cells of all benders and flexures plus the links), one voltage-range and strain
+    warning per drive, ``record_every``, progress, and Ctrl-C as
+    :class:`~exudyn_atcm.run_checks.SimulationInterrupted` carrying the partial result.
+    A drive set by a controller observes the column declared with
+    :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`.
+    """
+    t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
+    _check_steps(mech, grid, t_end)
     model = mb.build(mech)
+    feedback = _feedback(mech, model)
+    observers = [(c, measurement_reader(model, column)) for c, column in feedback]
+    for controller, _ in feedback:
+        controller.reset()
     sources = [InStepStrain(drive) for drive in model.sources]
     strains0 = np.array([s.trial(0.0) for s in sources])
     if np.any(strains0 != 0.0) or model.loads:
-        _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+        try:
+            _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+        except KeyboardInterrupt:
+            raise SimulationInterrupted(0.0) from None
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
-    sim_settings = runs.dynamic_settings(t_end, step)
+    sim_settings = runs.dynamic_settings(t_end, grid.step)
     runs.apply_user_settings(sim_settings, settings)
-    grid = time_grid(t_end, step)
     rows = Rows(model)
-    report = {"next": 0.0}
+    clock = WallClock(progress, t_end) if progress is not None else None
+    guard = InterruptGuard()
+    pending: list[Any] = []
+    counts = {"accepted": 0}
 
     user_errors: list[ValueError] = []
 
@@ -302,34 +418,53 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
 
     def post_step(t: float) -> None:
         committed = [s.commit(t) for s in sources]
+        counts["accepted"] += 1
         t = snap_time(t, grid.step)  # recorded times on the step grid, as for an actuator
-        rows.add(t, np.array([u for u, _ in committed]), np.array([e for _, e in committed]))
-        if progress is not None and t >= report["next"]:
-            progress(t, t_end)
-            report["next"] = t + 0.01 * t_end
+        volts = np.array([u for u, _ in committed])
+        strains = np.array([e for _, e in committed])
+        pending.clear()
+        if schedule.take(t):
+            rows.add(t, volts, strains)
+        else:
+            pending.append(rows.snapshot(t, volts, strains))
+        for controller, read in observers:
+            controller.observe(t, read(strains))
+        if clock is not None:
+            clock(t)
 
+    stats = None
     try:
-        stats = runs.run_dynamic(model, sim_settings, pre_step, post_step)
+        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(post_step))
     except runs.ExudynFailure as exc:
         if user_errors:
             raise user_errors[0] from None
-        raise SolverError(
-            f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
-            f"t = {rows.last_time():.6g} s, requested step {step:g} s): generalized-alpha with Newton (absolute "
-            f"tolerance {sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
-            f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: {exc}. "
-            "Try a smaller step, a slower voltage program, more cells, or check that the mechanism is not locked "
-            "(mechanism.degrees_of_freedom()).") from exc
-    accepted = max(len(rows.times) - 1, 0)
-    info = {
-        "solver": "generalized-alpha",
-        "step [s]": grid.step,
-        "accepted_steps": accepted,
-        "attempted_steps": stats["pre_step_calls"],
-        "rejected_steps": max(stats["pre_step_calls"] - accepted, 0),
-        "newton_steps": stats["newton_steps"],
-        "hysteresis_evaluations": sum(s.evaluations for s in sources),
-    }
+        if "KeyboardInterrupt" not in str(exc):
+            last = pending[0][0] if pending else rows.last_time()
+            raise SolverError(
+                f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
+                f"t = {last:.6g} s, step {grid.step:g} s): generalized-alpha with Newton (absolute "
+                f"tolerance {sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
+                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
+                f"{exc}. Try a smaller step, a slower voltage program, more cells, or check that the mechanism is "
+                "not locked (mechanism.degrees_of_freedom()).") from exc
+        guard.interrupted = True
+    for snapshot in pending:  # the last accepted step closes the record
+        rows.add_snapshot(snapshot)
+    accepted = max(counts["accepted"] - 1, 0)
+    info = run_info(grid, accepted, schedule, stats,
+                    hysteresis_evaluations=sum(s.evaluations for s in sources))
+    for controller, column in feedback:
+        report_controller(controller, info, f"the controller observing {column!r}")
+        info["controller"]["measurement"] = column
+    if rows.times:
+        check_drive_ranges(model, np.array(rows.volts), np.array(rows.strains))
+    if guard.interrupted:
+        t_stop = rows.last_time()
+        info["partial"] = True
+        info["interrupted_at [s]"] = t_stop
+        info.setdefault("attempted_steps", accepted)
+        info.setdefault("rejected_steps", 0)
+        raise SimulationInterrupted(t_stop, rows.result(info) if rows.times else None)
     return rows.result(info)
 
 

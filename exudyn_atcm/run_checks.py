@@ -101,7 +101,7 @@ class TimeGrid:
         return self.step != self.requested_step
 
 
-def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
+def time_grid(t_end: float, step: float, *, warn: bool = True, stacklevel: int = 4) -> TimeGrid:
     """Equal steps that end exactly at ``t_end``.
 
     ``n = ceil(t_end/step)`` steps of ``t_end/n`` (what the solver does with a step that does
@@ -116,6 +116,9 @@ def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
         Requested step [s], ``0 < step <= t_end``.
     warn : bool, optional
         Issue the warning (default True).
+    stacklevel : int, optional
+        Passed to ``warnings.warn`` (the frame the warning points at); the same in the
+        other checks.
     """
     ratio = t_end / step
     n = max(1, int(math.ceil(ratio - 1e-9)))
@@ -128,7 +131,7 @@ def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
             f"{n} steps of {used:.6g} s, and that step is recorded (info 'step [s]'). Choose a step "
             f"that divides t_end (e.g. {t_end / n:.6g} or {t_end / max(n - 1, 1):.6g} s) to silence this",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
     return TimeGrid(t_end, used, n, step)
 
@@ -150,7 +153,8 @@ def snap_time(t: float, step: float) -> float:
 
 # ------------------------------------------------------------------------------ step checks
 
-def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program") -> None:
+def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program",
+                               stacklevel: int = 4) -> None:
     """Refuse or warn when ``step`` resolves the program's shortest feature too coarsely.
 
     Parameters
@@ -196,11 +200,12 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
             f"{50.0 / per_feature:.2g} % of a ramp's swing. For {COMFORTABLE_STEPS_PER_FEATURE} steps per "
             f"feature use step <= {duration / COMFORTABLE_STEPS_PER_FEATURE:.6g} s",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
 
 
-def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode") -> None:
+def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode",
+                                 stacklevel: int = 4) -> None:
     """Warn when ``step`` [s] gives fewer than :data:`MIN_STEPS_PER_MODE_PERIOD` steps per ``1/frequency``.
 
     Parameters
@@ -224,7 +229,7 @@ def check_step_against_frequency(step: float, frequency: float, *, what: str = "
             f"period, so its vibrations are lost (acceptable for a quasi-static answer only). For the "
             f"dynamics use step <= {period / (2 * MIN_STEPS_PER_MODE_PERIOD):.4g} s",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
 
 
@@ -251,10 +256,13 @@ def _duration_text(seconds: float) -> str:
     return f"{seconds / 3600.0:.1f} h"
 
 
-def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None = None) -> float | None:
+def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None = None,
+                 parts: str | None = None, stacklevel: int = 4) -> float | None:
     """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
 
-    ``limit`` defaults to :data:`LONG_RUN_SECONDS`.
+    ``limit`` defaults to :data:`LONG_RUN_SECONDS`.  ``parts`` describes the model in the
+    message (default ``"{n_cells} {cell} cells"``; a mechanism counts the cells of all its
+    benders and flexures and its links).
     """
     limit = LONG_RUN_SECONDS if limit is None else limit
     estimate = estimate_run_time(cell, n_cells, n_steps)
@@ -262,11 +270,11 @@ def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None =
         per_step = estimate / max(n_steps, 1)
         warnings.warn(
             f"this run is predicted to take about {_duration_text(estimate)} ({n_steps} steps of "
-            f"{n_cells} {cell} cells at ~{per_step * 1e6:.3g} µs per step, measured). For a quicker answer "
+            f"{parts or f'{n_cells} {cell} cells'} at ~{per_step * 1e6:.3g} µs per step, measured). For a quicker answer "
             "use a larger step (within the voltage program's limits), fewer cells or a shorter t_end; "
             "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
     return estimate
 
