@@ -174,6 +174,7 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
     strains = _source_values(model, strains_by_drive, "solve_static")
     source_volts = _source_values(model, volts, "solve_static")
+    check_drive_ranges(model, source_volts, strains)
     method = _equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
     rows = Rows(model)
     rows.add(0.0, source_volts, strains)
@@ -196,10 +197,12 @@ def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float]
 
 def _actuator_result(actuator: BendingActuator, r: Result) -> Result:
     """The columns of :func:`exudyn_atcm.simulate` for an actuator from a one-bender mechanism's result."""
-    series = {"time": r["time"], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
+    base = "time" if "time" in r else "point"
+    series = {base: r[base], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
               "stroke": r["actuator.strain"] * actuator.cell_length, "tip_x": r["actuator.tip_x"],
               "tip_y": r["actuator.tip_y"], "tip_angle": r["actuator.tip_angle"]}
-    units = {"time": "s", "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m", "tip_angle": "rad"}
+    units = {base: r.unit(base), "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m",
+             "tip_angle": "rad"}
     for j in range(actuator.n_cells):
         series[f"cell_angle_{j + 1}"] = r[f"actuator.cell_angle_{j + 1}"]
         units[f"cell_angle_{j + 1}"] = "rad"
@@ -228,8 +231,15 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     Returns
     -------
     Result
-        One row per point; ``time [s]`` holds the point's index (0, 1, 2, ...).  The columns
-        of :func:`exudyn_atcm.simulate` for the mechanism, or for the actuator.
+        One row per point; the first column ``point [-]`` holds the point's index (0, 1, 2, ...;
+        a sweep has no time), then the columns of :func:`exudyn_atcm.simulate` for the
+        mechanism (``{drive}.voltage [V]`` holds each point's voltage), or for the actuator.
+
+    Warns
+    -----
+    RuntimeWarning
+        Once per drive, naming it, for voltages outside its hysteresis operator's input range
+        or its rating, and implausible free strains (as for an actuator).
     """
     if isinstance(mech, BendingActuator):
         return _actuator_result(mech, static_sweep(actuator_mechanism(mech, tip_force), voltages))
@@ -257,22 +267,27 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     else:
         values = finite_array("voltages", voltages)
         table = [{name: float(v) for name in drives} for v in values]
+    source_table = np.array([_source_values(model, per_drive, f"static_sweep point {i}")
+                             for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
     for drive in model.sources:
         if drive.hysteresis is not None:
             drive.hysteresis.reset()
+    strain_table = np.array([[d.linear_strain(u) if d.hysteresis is None else float(d.hysteresis.commit(u))
+                              for d, u in zip(model.sources, volts)] for volts in source_table])
+    strain_table = strain_table.reshape(source_table.shape)
+    check_drive_ranges(model, source_table, strain_table, stacklevel=3)
     rows = Rows(model)
     previous = np.zeros(len(model.sources))
     methods = []
     for i, per_drive in enumerate(table):
-        volts = _source_values(model, per_drive, f"static_sweep point {i}")
-        strains = np.array([d.linear_strain(u) if d.hysteresis is None else float(d.hysteresis.commit(u))
-                            for d, u in zip(model.sources, volts)])
+        volts, strains = source_table[i], strain_table[i]
         methods.append(_equilibrium(mech, model, previous, strains, i == 0, None,
                                     f"sweep point {i}, voltages {per_drive} V"))
         runs.set_current_as_initial(model, zero_velocity=True)
         rows.add(float(i), volts, strains)
         previous = strains
-    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)})
+    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)},
+                       base=("point", "-"))
 
 
 def _drive_names(model: mb.MechanismModel) -> list[str]:
@@ -485,6 +500,7 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -
         volts = drive_voltages(mech, voltage)
         strains = _source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
                                  "eigenfrequencies")
+        check_drive_ranges(model, _source_values(model, volts, "eigenfrequencies"), strains)
         _equilibrium(mech, model, np.zeros_like(strains), strains, True, None, f"voltages {volts} V")
         runs.set_current_as_initial(model, zero_velocity=True)
         internal = linear.constraint_forces(model)

@@ -55,10 +55,11 @@ class Rows:
     def last_time(self) -> float:
         return self.times[-1] if self.times else 0.0
 
-    def result(self, info: dict) -> Result:
+    def result(self, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
+        """The recorded rows as a :class:`Result`; ``base`` names the first column and its unit."""
         return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
                            np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
-                           np.array(self.forces).reshape(len(self.times), -1), info)
+                           np.array(self.forces).reshape(len(self.times), -1), info, base=base)
 
 
 def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarray], float]:
@@ -108,11 +109,15 @@ def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarr
 
 
 def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, strains: np.ndarray, q: np.ndarray,
-                forces: np.ndarray, info: dict) -> Result:
-    """The :class:`Result` of recorded rows (columns as in the module documentation)."""
+                forces: np.ndarray, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
+    """The :class:`Result` of recorded rows (columns as in the module documentation).
+
+    ``base`` is the first column's name and unit: ``("time", "s")`` for a time series,
+    ``("point", "-")`` for the point index of a quasi-static sweep.
+    """
     mech = model.mechanism
-    series: dict[str, np.ndarray] = {"time": times}
-    units: dict[str, str] = {"time": "s"}
+    series: dict[str, np.ndarray] = {base[0]: times}
+    units: dict[str, str] = {base[0]: base[1]}
     for name, k in model.drive_source.items():
         series[f"{name}.voltage"], units[f"{name}.voltage"] = volts[:, k], "V"
         series[f"{name}.strain"], units[f"{name}.strain"] = strains[:, k], "-"
@@ -152,6 +157,7 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
         values = result[name]
         if values.size and not np.all(np.isfinite(values)):
             bad = int(np.argmax(~np.isfinite(values)))
-            raise SolverError(f"the solution contains a non-finite {name} at row {bad} (t = {times[bad]!r} s); "
+            where = f"t = {times[bad]!r} s" if base[0] == "time" else f"{base[0]} {times[bad]!r}"
+            raise SolverError(f"the solution contains a non-finite {name} at row {bad} ({where}); "
                               "the solver diverged. Try a smaller step or more cells.")
     return result
