@@ -17,8 +17,9 @@ Thresholds and why
 ------------------
 A voltage program's *feature* is the shortest interval between its corners (see
 :meth:`exudyn_atcm.signals.Signal.shortest_feature`): the ramp of a triangle (half a period),
-half a sine period, the dwell of a step program, the shortest segment of a piecewise-linear
-program.  The solver samples the program once per step, so with ``n`` steps per feature a
+half a sine period, the dwell of a step program, the shortest stretch between reversals or
+marked kinks of a piecewise-linear program (a densely sampled smooth curve is judged by its
+extrema, not by its sampling interval).  The solver samples the program once per step, so with ``n`` steps per feature a
 peak of a ramp can be missed by up to ``1/(2n)`` of the ramp's swing, and a sine peak by
 ``1 - cos(pi/(2n))`` of its amplitude:
 
