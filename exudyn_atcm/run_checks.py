@@ -30,6 +30,11 @@ peak of a ramp can be missed by up to ``1/(2n)`` of the ramp's swing, and a sine
 * :data:`COMFORTABLE_STEPS_PER_FEATURE` = 20: below it a warning (peak error up to 2.5 % of a
   ramp's swing, 0.3 % of a sine amplitude).
 
+A piecewise-linear program whose corners all lie on the step grid is exempt: the solver then
+samples it exactly at every corner, and its input is the program itself
+(:func:`corners_on_grid`; e.g. a feedforward program tabulated at a controller's sample time
+that is a multiple of the step, whose inverse-hysteresis jumps at reversals last one sample).
+
 Against the first eigenfrequency ``f1``: generalized-alpha (spectral radius 0.8) damps a mode
 resolved by few steps per period and lengthens its period, so vibrations of the first bending
 mode are lost.  Below :data:`MIN_STEPS_PER_MODE_PERIOD` = 10 steps per ``1/f1`` a warning
@@ -45,6 +50,8 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Callable
 
+import numpy as np
+
 __all__ = [
     "MIN_STEPS_PER_FEATURE",
     "COMFORTABLE_STEPS_PER_FEATURE",
@@ -55,6 +62,7 @@ __all__ = [
     "time_grid",
     "snap_time",
     "check_step_against_program",
+    "corners_on_grid",
     "check_step_against_frequency",
     "estimate_run_time",
     "warn_if_long",
@@ -180,6 +188,8 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
     shortest = getattr(program, "shortest_feature", None)
     if not callable(shortest):
         return
+    if corners_on_grid(program, step, t_end):
+        return  # sampled exactly at every corner and linear between: nothing to miss
     feature = shortest(t_end)
     if feature is None:
         return
@@ -203,6 +213,26 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
             RuntimeWarning,
             stacklevel=stacklevel,
         )
+
+
+def corners_on_grid(program: Any, step: float, t_end: float) -> bool:
+    """Whether every corner of a piecewise-linear ``program`` before ``t_end`` lies on the step grid.
+
+    The solver samples the program at the grid times ``k * step``.  A program that is linear
+    between corners lying on that grid is then sampled exactly at every corner (peaks and
+    reversals included) and the solver's input is the program itself, however few steps a
+    segment spans; only the dynamics' resolution remains (:func:`check_step_against_frequency`).
+    Programs without ``corner_times(t_end)`` (:class:`~exudyn_atcm.signals.PiecewiseLinear`
+    has it) return False.
+    """
+    corner_times = getattr(program, "corner_times", None)
+    if not callable(corner_times):
+        return False
+    corners = np.asarray(corner_times(t_end), dtype=float)
+    if corners.size == 0:
+        return False
+    k = np.round(corners / step)
+    return bool(np.all(np.abs(corners - k * step) <= 1e-9 * max(step, 1e-300) + 1e-12 * np.abs(corners)))
 
 
 def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode",

@@ -287,6 +287,23 @@ class PiecewiseLinear(Signal):
         k = int(np.argmin(segments))
         return float(segments[k]), f"a segment of {float(segments[k]):g} s between corners (reversals or kinks) of the piecewise-linear program"
 
+    def corner_times(self, t_end: float | None = None) -> np.ndarray:
+        """Times [s] of every breakpoint where the slope changes (collinear points left out), up to ``t_end``.
+
+        Used by :func:`exudyn_atcm.run_checks.corners_on_grid`: a program whose corners all
+        lie on the solver's step grid is sampled exactly.
+        """
+        t, v = self.times, self.values
+        if t.size < 2:
+            return t.copy()
+        slopes = np.diff(v) / np.diff(t)
+        scale = max(float(np.max(np.abs(slopes))), 1e-300)
+        kink = np.abs(np.diff(slopes)) > 1e-12 * scale
+        corners = np.concatenate([[t[0]], t[1:-1][kink], [t[-1]]])
+        if t_end is not None:
+            corners = corners[corners <= t_end]
+        return corners
+
     def _parameters(self) -> dict[str, Any]:
         return {"times": self.times.tolist(), "values": self.values.tolist(), "outside": self.outside}
 

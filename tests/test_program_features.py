@@ -62,3 +62,19 @@ def test_dense_smooth_program_does_not_warn_at_a_step_that_resolves_it():
     # a step too coarse for the wave itself is still refused
     with pytest.raises(ValueError, match=r"too coarse"):
         simulate(act, 0.2, step=0.05)
+
+
+def test_program_with_corners_on_the_step_grid_is_sampled_exactly_and_accepted():
+    # a 10 ms triangle at a 5 ms step: 2 steps per ramp would be refused, but every corner lies
+    # on the grid, so the solver's input is the program itself: the 1000 V peak is not missed
+    program = PiecewiseLinear([0.0, 0.01, 0.02, 0.03], [0.0, 1000.0, 0.0, 1000.0])
+    act = REF_A.actuator(PiezoDrive(program, hysteresis=paper_strain_preisach()), cell="rigid")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the step vs f1 warning (dynamics) is expected
+        r = simulate(act, 0.03, step=0.005)
+    np.testing.assert_allclose(r["voltage"], program(r["time"]), atol=1e-9)
+    assert r["voltage"].max() == pytest.approx(1000.0, abs=1e-9)
+    np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(r["voltage"]), atol=1e-15)
+    # the same program with a step whose grid misses its corners is refused
+    with pytest.raises(ValueError, match=r"too coarse"):
+        simulate(act, 0.03, step=0.007)
