@@ -310,6 +310,10 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
         except KeyboardInterrupt:
             raise SimulationInterrupted(0.0) from None
+        except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
+            if "KeyboardInterrupt" in str(exc.__cause__ or exc):
+                raise SimulationInterrupted(0.0) from None
+            raise
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = runs.dynamic_settings(t_end, grid.step)

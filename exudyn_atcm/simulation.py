@@ -478,7 +478,10 @@ def simulate(
 
     Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.control`), it is reset at
     the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
-    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``.
+    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``
+    (a mechanism: the result column declared with
+    :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`; a controller without one
+    is refused).
     A ``RuntimeWarning`` says when its output was held at a limit.
 
     Raises
