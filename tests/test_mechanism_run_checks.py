@@ -220,3 +220,25 @@ def test_pid_on_a_mechanism_reaches_its_setpoint():
     r = simulate(mech, 2.0, step=1e-3)
     assert r["crank.tip_y"][-1] == pytest.approx(target, rel=0.01)
     assert r.info["controller"]["samples"] == 2001
+
+
+def test_warnings_point_at_the_callers_line():
+    # a warning is attributed to the user's call of simulate / solve_static, not to package internals
+    from exudyn_atcm import solve_static
+
+    mech = two_benders(PiezoDrive(400.0), PiezoDrive(Triangle(1000.0, 1000.0, 0.02)), length_b=0.174)
+    with pytest.warns(RuntimeWarning) as record:
+        simulate(mech, 0.01, step=3e-3)  # does not divide, coarse for the program, beyond the rating
+    assert len(record) == 3 and {w.filename for w in record} == {__file__}
+    with pytest.warns(RuntimeWarning) as record:
+        solve_static(mech, {"a": 0.0, "b": 1800.0})
+    assert {w.filename for w in record} == {__file__}
+
+
+def test_actuator_warnings_point_at_the_callers_line_too():
+    from exudyn_atcm import BendingActuator
+
+    act = BendingActuator(3, 0.029, W, CFC, MFC, PiezoDrive(Triangle(1000.0, 1000.0, 0.02)))
+    with pytest.warns(RuntimeWarning) as record:
+        simulate(act, 0.01, step=3e-3)  # does not divide, coarse for the program, beyond the rating
+    assert len(record) == 3 and {w.filename for w in record} == {__file__}
