@@ -1,7 +1,7 @@
 """Benchmark of the bending actuator on Exudyn (issue 3, part 5).
 
 1. Wall time per simulated second against cell count (5, 10, 20, 40) for both cell types,
-   REF-A (87 mm) split into N cells, driven by the paper's triangle wave through the paper's
+   The paper's actuator (87 mm) split into N cells, driven by the paper's triangle wave through the paper's
    Preisach loop evaluated inside the solver step.
 2. Side by side, interleaved in one run: the same actuator driven by the in-step hysteresis
    and by a precomputed stroke table interpolated in time (the paper's approach, Fig. 9).

@@ -2,7 +2,7 @@
 
 :func:`exudyn_atcm.run_checks.estimate_run_time` predicts the wall time of a run as steps x a
 cost per step ``a + b n + c n^2`` for the cell type and ``n`` cells (``run_checks.COST_PER_STEP``).
-This script measures that cost on the REF-A bender (87 mm, paper laminate, the paper's Preisach
+This script measures that cost on the bender of the paper's actuator (87 mm, paper laminate, the paper's Preisach
 loop in the step, triangle of 0.5 s, step 1e-4 s) for both cell types at several cell counts,
 side by side in one run, and prints the measured costs next to the constants in use, with the
 estimate's error for each run.

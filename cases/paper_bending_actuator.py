@@ -1,6 +1,6 @@
 """Fig. 12: the paper's bending actuator driven through its Preisach loop, hysteresis in the solver step.
 
-REF-A of MODEL.md §4 (Margineanu, Lovasz, Modler; Figs. 11, 12): three cells of 29 mm, CFC
+The paper's actuator (Margineanu, Lovasz, Modler; Figs. 11, 12): three cells of 29 mm, CFC
 0.2 mm / 70 GPa on MFC 0.3 mm / 30.336 GPa, 28 mm wide, the first interface clamped.  The MFC
 is driven by the paper's triangle wave (Eq. 11, U_med = 500 V, U_amp = 1000 V, -500 ... 1500 V)
 through the paper's continuous Preisach loop as free strain (Eqs. 8-10; exact exponents by
@@ -59,7 +59,7 @@ PARAMETERS = [
 
 
 def build(p: Parameters) -> BendingActuator:
-    """REF-A driven by the paper's triangle wave through the paper's Preisach loop."""
+    """The paper's actuator driven by the paper's triangle wave through the paper's Preisach loop."""
     drive = PiezoDrive(Triangle(500.0, 1000.0, p.period), hysteresis=paper_strain_preisach(rounded=p.exponents == "rounded"))
     return BendingActuator(
         n_cells=p.n_cells,

@@ -1,6 +1,6 @@
 """Figs. 6 and 8: the paper's continuous Preisach loop from its three precision points.
 
-The continuous model (Eqs. 8-10, corrected Eq. 10 of MODEL.md §5) is fitted through the
+The continuous model (Eqs. 8-10, with Eq. 10 corrected as derived on the theory page of the documentation) is fitted through the
 paper's points (U_min, x_min) = (-500 V, -4 µm), (U_max, x_max) = (1500 V, 40 µm) and the
 branch values x_m1 = 12 µm (ascending) and x_m2 = 28 µm (descending) at U_m = 500 V, giving
 r1 = 1.459432 and r2 = 1.874469.  Beside it runs the model with the paper's rounded exponents

@@ -1,22 +1,22 @@
 """The paper's stiffness calibration against the composite-consistent one, and beam theory.
 
-The same actuator (REF-A of MODEL.md §4 by default: 3 cells of 29 mm, 28 mm wide, CFC 0.2 mm
+The same actuator (the paper's actuator by default: 3 cells of 29 mm, 28 mm wide, CFC 0.2 mm
 / 70 GPa under MFC 0.3 mm / 30.336 GPa) is built twice: with ``stiffness="composite"``
 (reproduces lamination theory's bending stiffness EI and free curvature exactly) and with
 ``stiffness="paper"`` (Eqs. 4-5 as printed, with the text's doubling).  For both it computes
 
 * the static tip position over a voltage ramp 0 ... U (linear piezo law, Eq. 3) against the
   circular arc of beam theory (free curvature, Timoshenko's bimetal formula);
-* the tip compliance under a small tip force against ``L³/(3 EI)`` times the chain factor of
-  MODEL.md §4;
+* the tip compliance under a small tip force against ``L³/(3 EI)`` times the chain factor
+  ``1 + 1/(2N²)`` of a rigid chain (derived on the theory page of the documentation);
 * the first bending eigenfrequency against the Euler-Bernoulli ``f1``;
 * the large deflection under a tip force ``F = alpha EI/L²`` perpendicular to the undeformed
   axis (composite calibration, no voltage, a chain of ``elastica_cells`` rigid cells of the
   same total length), against the elastica (Bisshopp & Drucker 1945).
 
 The CSV holds the voltage ramp (one row per voltage, tip positions of both calibrations and
-of the arc).  The key scalars compare model and theory; MODEL.md predicts the paper's
-calibration about 1.49x too stiff with a 1.11x too large free curvature for REF-A.
+of the arc).  The key scalars compare model and theory; lamination theory predicts the paper's
+calibration about 1.49x too stiff with a 1.11x too large free curvature for this actuator.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Closed-form reference formulas for the two-layer piezo bending actuator (MODEL.md §4).
+"""Closed-form reference formulas for the two-layer piezo bending actuator.
 
 These functions are the independent references the validation tests compare the multibody
 model against.  They are plain formulas of classical beam theory (Euler-Bernoulli,
@@ -25,7 +25,7 @@ import numpy as np
 BETA1_L = 1.8751040687119611
 
 #: Elastica of a cantilever under a tip force perpendicular to the undeformed axis
-#: (Bisshopp & Drucker 1945, as quoted in MODEL.md §4): alpha = F L²/EI -> (y/L, 1 - x/L).
+#: (Bisshopp & Drucker, Q. Appl. Math. 3:272, 1945): alpha = F L²/EI -> (y/L, 1 - x/L).
 ELASTICA_TIP_FORCE = {
     1.0: (0.30172, 0.05643),
     2.0: (0.49346, 0.16064),
@@ -71,7 +71,7 @@ def composite_bending_stiffness(E1: float, h1: float, E2: float, h2: float, widt
 def paper_bending_stiffness(E1: float, h1: float, E2: float, h2: float, width: float) -> float:
     """Bending stiffness of the paper's cell as printed (rigid passive bar, ``k1 = E2 b h2/L``) [N m²].
 
-    ``EI = E1 I1 + E2 I2 + E2 A2 e²`` (MODEL.md §3), with the torsion springs doubled as the
+    ``EI = E1 I1 + E2 I2 + E2 A2 e²`` (the passive layer taken as axially rigid), with the torsion springs doubled as the
     paper's text says.
     """
     e = layer_offset(h1, h2)
@@ -160,7 +160,7 @@ def tip_compliance(bending_stiffness: float, length: float) -> float:
 
 
 def rigid_chain_compliance_factor(n_cells: int) -> float:
-    """Compliance factor ``1 + 1/(2 N²)`` of a chain of N rigid cells (MODEL.md §4).
+    """Compliance factor ``1 + 1/(2 N²)`` of a chain of N rigid cells under a small tip force (derived on the theory page of the documentation).
 
     Springs ``EI/L_c`` inside and ``2 EI/L_c`` at the clamp.
     """
@@ -168,7 +168,7 @@ def rigid_chain_compliance_factor(n_cells: int) -> float:
 
 
 def six_bar_chain_compliance_factor(n_cells: int, spring_share: float) -> float:
-    """Compliance factor ``1 + (3/(4 rho_s) - 1/4)/N²`` of a chain of six-bar cells (MODEL.md §4).
+    """Compliance factor ``1 + (3/(4 rho_s) - 1/4)/N²`` of a chain of six-bar cells under a small tip force (derived on the theory page of the documentation).
 
     ``spring_share`` is the share ``rho_s`` of the bending stiffness held by the torsion
     springs, ``(E1 I1 + E2 I2) / EI``.
@@ -430,3 +430,45 @@ def curved_cantilever_spring_force(
     while residual(low) * residual(high) > 0.0:
         high *= 2.0
     return float(brentq(residual, min(low, high), max(low, high), xtol=1e-15, rtol=1e-13))
+
+
+def actuator_work(E1: float, h1: float, E2: float, h2: float, width: float, strain: float, length: float) -> float:
+    """Product of free tip deflection and blocked tip force, ``delta_free F_b`` [J].
+
+    With ``delta_free = kappa L²/2`` (:func:`linear_tip_deflection`) and
+    ``F_b = 1.5 EI kappa / L`` (:func:`blocked_force`), ``W = 0.75 L EI kappa²``, and with
+    Timoshenko's curvature ``kappa = a_s e strain / EI`` (:func:`free_curvature`,
+    ``a_s = a1 a2/(a1 + a2)``)::
+
+        W = 0.75 L (a_s e strain)² / EI = 2.25 L strain² E2 b h2 g(n, t),
+        g(n, t) = n² t² (1 + t)² / [(1 + n t)(1 + 4nt + 6nt² + 4nt³ + n²t⁴)]
+
+    with ``n = E1/E2`` and ``t = h1/h2``.
+    """
+    kappa = free_curvature(E1, h1, E2, h2, width, strain)
+    return linear_tip_deflection(kappa, length) * blocked_force(composite_bending_stiffness(E1, h1, E2, h2, width), kappa, length)
+
+
+def optimal_thickness_ratio(modulus_ratio: float) -> float:
+    """Passive-to-active thickness ratio ``t = h1/h2`` that maximises :func:`actuator_work` [-].
+
+    For a given active layer (``E2``, ``h2``, strain) and modulus ratio ``n = E1/E2``,
+    ``d ln g / dt = 0`` factors into ``(n t² + 2t + 1)(n² t⁴ + (3n² - 2n) t³ - 3n t² - 5n t - 2) = 0``;
+    the first factor is positive, and the quartic has exactly one positive root
+    (one sign change, Descartes), the optimum.  For ``n = 1`` the quartic is
+    ``(t - 2)(t + 1)³``: the passive layer twice as thick as the active one.
+
+    Raises
+    ------
+    ValueError
+        If ``modulus_ratio`` is not a finite positive number.
+    """
+    n = float(modulus_ratio)
+    if not (math.isfinite(n) and n > 0.0):
+        raise ValueError(f"modulus_ratio must be a finite number > 0, got {modulus_ratio!r}")
+    roots = np.roots([n * n, 3.0 * n * n - 2.0 * n, -3.0 * n, -5.0 * n, -2.0])
+    positive = [r.real for r in roots if abs(r.imag) <= 1e-9 * max(1.0, abs(r)) and r.real > 0.0]
+    t = max(positive)
+    # one Newton step on the quartic polishes the root to machine precision
+    p = np.polynomial.Polynomial([-2.0, -5.0 * n, -3.0 * n, 3.0 * n * n - 2.0 * n, n * n])
+    return float(t - p(t) / p.deriv()(t))

@@ -4,6 +4,8 @@
 
     exudyn-atcm list                                   the cases, their description and parameters
     exudyn-atcm run CASE [--set NAME=VALUE ...] [--out DIR] [--no-plot]
+    exudyn-atcm sweep CASE --grid NAME=START:STOP:N [--grid NAME=A,B,C] [--samples N] [--workers N] [--out DIR]
+    exudyn-atcm optimize CASE --objective NAME [--maximize] --bound NAME=LOW:HIGH [--constraint "NAME>=V"]
     exudyn-atcm bench [--quick] [--only ID ...] [--out DIR] [--update-references --reason TEXT]
 
 Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
@@ -64,7 +66,22 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--reason", default=None, metavar="TEXT", help="why the references change (recorded)")
     bench.add_argument("--no-plots", action="store_true", help="skip the channel-against-reference plots")
     bench.add_argument("--only", nargs="+", default=None, metavar="ID", help="run only these benchmark ids (e.g. to update one reference)")
+    _add_study_commands(sub, sub_common)
     return parser
+
+
+def _add_study_commands(sub, sub_common: argparse.ArgumentParser) -> None:
+    """The ``sweep`` and ``optimize`` subcommands (options in :mod:`exudyn_atcm.study.command`)."""
+    from .study.command import add_optimize_parser, add_sweep_parser
+
+    add_sweep_parser(sub, [sub_common])
+    add_optimize_parser(sub, [sub_common])
+
+
+def _study_command(args: argparse.Namespace) -> int:
+    from .study.command import optimize_command, sweep_command
+
+    return sweep_command(args) if args.command == "sweep" else optimize_command(args)
 
 
 def _error(exc: BaseException | str, debug: bool, status: int) -> int:
@@ -139,6 +156,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             except _cases.CaseError as exc:
                 return _error(exc, debug, 2)
             return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
+        if args.command in ("sweep", "optimize"):
+            return _study_command(args)
         return _bench(args)
     except KeyboardInterrupt:
         return _error("interrupted", debug, 130)

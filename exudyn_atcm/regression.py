@@ -14,7 +14,7 @@ Each benchmark in ``suite.json`` runs one case with fixed parameters and checks
   with that channel's own absolute tolerances ``{"rms": ..., "max": ...}`` (in the channel's
   SI unit);
 * ``scalars``: key scalars of the case, each either against an ``"analytic"`` value (from
-  MODEL.md or the paper, with its ``"source"``; never from the code's output) or against
+  the paper or a closed form of the theory page, with its ``"source"``; never from the code's output) or against
   the stored reference, with tolerance ``"abs"`` and/or ``"rel"`` (passes if the error is
   within either).
 

@@ -82,7 +82,7 @@ LONG_RUN_SECONDS = 60.0
 
 #: Measured wall time of the time integration per accepted step [s], by cell type, as
 #: ``(a, b, c)``: a run of ``n`` cells and ``k`` steps takes about ``k * (a + b n + c n^2)``.
-#: Measured with ``benchmarks/bench_run_cost.py`` (REF-A bender, the paper's Preisach loop in
+#: Measured with ``benchmarks/bench_run_cost.py`` (bender of the paper's actuator, the paper's Preisach loop in
 #: the step, triangle 0.5 s, step 1e-4 s, 3, 10 and 40 cells; 2-core machine shared with other
 #: jobs): 20, 28 and 192 µs per step for the rigid chain, 148, 655 and 4268 µs for the six-bar
 #: chain; the constants are the fit through these points, rounded up.  The quadratic term is
@@ -335,6 +335,17 @@ class SimulationInterrupted(KeyboardInterrupt):
         return str(self.args[0])
 
 
+def _caused_by_interrupt(exc: BaseException) -> bool:
+    """Whether ``KeyboardInterrupt`` is in the cause/context chain of ``exc``."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
 class InterruptGuard:
     """Wraps solver hooks so that ``KeyboardInterrupt`` inside them stops the solver cleanly.
 
@@ -366,6 +377,15 @@ class InterruptGuard:
             try:
                 hook(t)
             except KeyboardInterrupt:
+                self.interrupted = True
+                self.at = t
+                return False
+            except SystemError as exc:
+                # a Ctrl-C that lands while a C function returns inside the hook surfaces as
+                # "SystemError: ... returned a result with an exception set", caused by the
+                # KeyboardInterrupt: still an interrupt, not a fault of the model
+                if not _caused_by_interrupt(exc):
+                    raise
                 self.interrupted = True
                 self.at = t
                 return False

@@ -1,4 +1,4 @@
-"""Geometries shared by the actuator tests: REF-A (MODEL.md §4) and two others."""
+"""Geometries shared by the actuator tests: the paper's actuator (docs/theory.rst) and two others."""
 
 from __future__ import annotations
 
@@ -35,8 +35,8 @@ class Geometry:
         )
 
 
-# REF-A of MODEL.md §4: 3 x 29 mm, CFC 0.2 mm on MFC 0.3 mm
-REF_A = Geometry("REF-A", 3, 29e-3, 28e-3, 0.2e-3, 70e9, 1550.0, 0.3e-3, 30.336e9, 5440.0)
+# the paper's actuator of docs/theory.rst: 3 x 29 mm, CFC 0.2 mm on MFC 0.3 mm
+REF_A = Geometry("paper actuator", 3, 29e-3, 28e-3, 0.2e-3, 70e9, 1550.0, 0.3e-3, 30.336e9, 5440.0)
 # thick CFC on MFC, narrow strip (spring share rho_s ~ 0.5)
 GEO_B = Geometry("GEO-B", 4, 20e-3, 10e-3, 0.5e-3, 70e9, 1550.0, 0.3e-3, 30.336e9, 5440.0)
 # thin steel on a soft active layer (the MFC's transverse modulus), 5 x 12 mm

@@ -1,6 +1,6 @@
 """Issue 3, parts 1 and 3: public API, input validation, stiffness calibration numbers, solver errors.
 
-Reference numbers come from MODEL.md (§3, §4), not from the code under test.
+Reference numbers come from beam and lamination theory (docs/theory.rst), not from the code under test.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ def ref_a(**kwargs) -> BendingActuator:
     return BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(1500.0), **kwargs)
 
 
-# ----------------------------------------------------------------------------- beam theory vs MODEL.md §4
+# ----------------------------------------------------------------------------- beam theory vs docs/theory.rst
 
 def test_beam_theory_reproduces_model_md_ref_a_numbers():
     E1, h1, E2, h2, b, L = 70e9, 0.2e-3, 30.336e9, 0.3e-3, 28e-3, 87e-3
@@ -34,7 +34,7 @@ def test_beam_theory_reproduces_model_md_ref_a_numbers():
     assert lam == pytest.approx(1.38e-3, rel=1e-12)
     EI = bt.composite_bending_stiffness(E1, h1, E2, h2, b)
     kappa = bt.free_curvature(E1, h1, E2, h2, b, lam)
-    # MODEL.md quotes 5-6 significant digits; tolerances are half a unit of the last digit
+    # The theory page quotes 5-6 significant digits; tolerances are half a unit of the last digit
     assert EI == pytest.approx(1.28699e-2, abs=0.5e-7)
     assert kappa == pytest.approx(4.13984, abs=0.5e-5)
     assert bt.linear_tip_deflection(kappa, L) == pytest.approx(15.667e-3, abs=0.5e-6)
@@ -51,10 +51,10 @@ def test_actuator_calibration_matches_lamination_theory_and_model_md_ratios():
     paper = ref_a(stiffness="paper")
     EI = bt.composite_bending_stiffness(70e9, 0.2e-3, 30.336e9, 0.3e-3, 28e-3)
     assert comp.bending_stiffness == pytest.approx(EI, rel=1e-13)
-    # MODEL.md §3: the printed model is 1.49x too stiff and its free curvature 1.11x too large
+    # docs/theory.rst: the printed model is 1.49x too stiff and its free curvature 1.11x too large
     assert paper.bending_stiffness / comp.bending_stiffness == pytest.approx(1.49, abs=0.005)
     assert paper.curvature_per_strain / comp.curvature_per_strain == pytest.approx(1.11, abs=0.005)
-    # per-joint springs: 2 E I / L_j (the text's doubling), k1 per MODEL.md §3
+    # per-joint springs: 2 E I / L_j (the text's doubling), k1 per docs/theory.rst
     assert comp.torsion_stiffness_passive == pytest.approx(2 * 70e9 * 28e-3 * 0.2e-3**3 / 12 / 29e-3, rel=1e-13)
     assert comp.torsion_stiffness_active == pytest.approx(2 * 30.336e9 * 28e-3 * 0.3e-3**3 / 12 / 29e-3, rel=1e-13)
     a1, a2 = 70e9 * 28e-3 * 0.2e-3, 30.336e9 * 28e-3 * 0.3e-3
@@ -68,7 +68,7 @@ def test_actuator_calibration_matches_lamination_theory_and_model_md_ratios():
 def test_default_damping_is_two_percent_of_first_mode():
     act = ref_a()
     assert act.damping == 0.02
-    omega1 = 2 * math.pi * 35.968  # MODEL.md f1 of REF-A
+    omega1 = 2 * math.pi * 35.968  # docs/theory.rst f1 of the paper's actuator
     assert act.stiffness_damping_factor == pytest.approx(2 * 0.02 / omega1, rel=1e-4)
 
 
@@ -157,7 +157,7 @@ def test_solve_static_and_eigenfrequencies_reject_bad_input():
     with pytest.raises(ValueError, match="n"):
         eigenfrequencies(ref_a(), n=0)
     with pytest.raises(ValueError, match="actuator"):
-        solve_static("REF-A")
+        solve_static("the paper actuator")
 
 
 def test_settings_callable_and_dict_reach_exudyn():

@@ -1,7 +1,7 @@
 """Issue 3, parts 2, 3 and 4 (dynamics): hysteresis inside the solver step, robustness, Fig. 12 run.
 
 References: the hysteresis operator applied offline to the recorded voltages (part 2),
-beam theory and the hysteresis data of MODEL.md (part 4).
+beam theory and the hysteresis data of docs/theory.rst (part 4).
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ REJECTING = {
 
 
 def fast_triangle_actuator(cell, hysteresis):
-    # REF-A, a 20 Hz triangle over the paper's full range: fast enough to need Newton work
+    # the paper's actuator, a 20 Hz triangle over the paper's full range: fast enough to need Newton work
     return REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=hysteresis), cell=cell)
 
 
@@ -195,7 +195,7 @@ def test_paper_fig12_loop_closes_after_first_cycle(cell):
     # the first cycle still carries the start transient, far above that level
     assert np.max(np.abs(cycles[1] - cycles[0])) > 10 * np.max(np.abs(cycles[2] - cycles[1]))
     # the loop: at 500 V the paper's branches give 12 um (ascending) and 28 um (descending)
-    # stroke per 29 mm cell (MODEL.md §5); quasi-statically the tip sits on the chain polygon
+    # stroke per 29 mm cell (docs/theory.rst); quasi-statically the tip sits on the chain polygon
     # of the beam-theory curvature for that strain.  Tolerance 1 % of the range: the viscous
     # lag 2 zeta v / omega1 is ~5 um, the hysteresis opening it checks is 6.2 mm
     for k in (1, 2):

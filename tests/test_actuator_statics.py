@@ -1,7 +1,7 @@
 """Issue 3, part 4 (statics and eigenfrequencies): the multibody model against beam theory.
 
-References are the closed-form formulas of MODEL.md §4 (``exudyn_atcm.beam_theory``) on
-REF-A and two other geometries; each tolerance says what makes the comparison approximate.
+References are the closed-form formulas of docs/theory.rst (``exudyn_atcm.beam_theory``) on
+the paper's actuator and two other geometries; each tolerance says what makes the comparison approximate.
 """
 
 from __future__ import annotations
@@ -72,21 +72,21 @@ def test_free_actuation_tip_angle_is_kappa_L_and_tip_on_chain_polygon(geometry, 
 
 
 def test_chain_polygon_converges_to_the_arc_of_model_md():
-    # MODEL.md: REF-A arc tip (85.131, 15.499) mm.  A chain vertex lies within
+    # docs/theory.rst: the paper's actuator arc tip (85.131, 15.499) mm.  A chain vertex lies within
     # L theta_c² / 12 of the arc (chord vs arc length of each cell), for both cell types.
     for cell in CELLS:
         for n in (3, 24):
             act = REF_A.actuator(PiezoDrive(1500.0), n_cells=n, cell=cell)
             r = solve_static(act)
             theta_c = 4.13984 * act.cell_length
-            bound = REF_A.length * theta_c**2 / 12 + 0.5e-6  # + MODEL.md rounding
+            bound = REF_A.length * theta_c**2 / 12 + 0.5e-6  # + docs/theory.rst rounding
             assert r["tip_x"][0] == pytest.approx(85.131e-3, abs=bound)
             assert r["tip_y"][0] == pytest.approx(15.499e-3, abs=bound)
 
 
 @pytest.mark.parametrize("cell", CELLS)
 def test_large_actuation_rotation_beyond_90_degrees_converges(cell):
-    # 16 REF-A cells (464 mm) at 1500 V: kappa L = 1.92 rad (110 degrees)
+    # 16 the paper's actuator cells (464 mm) at 1500 V: kappa L = 1.92 rad (110 degrees)
     g = REF_A
     ref = g.actuator(PiezoDrive(1500.0), cell=cell)
     act = BendingActuator(16, 29e-3, g.width, ref.passive, ref.active, ref.drive, cell=cell)
@@ -110,7 +110,7 @@ def test_paper_stiffness_curvature_ratio(geometry, cell):
     strain = bt.piezo_strain(500.0)
     ratio_ref = bt.paper_free_curvature(g.E1, g.h1, g.E2, g.h2, g.width, strain) / composite_kappa(g, strain)
     if g is REF_A:
-        assert ratio_ref == pytest.approx(1.11, abs=0.005)  # MODEL.md §3
+        assert ratio_ref == pytest.approx(1.11, abs=0.005)  # docs/theory.rst
     comp = solve_static(g.actuator(PiezoDrive(500.0), cell=cell, stiffness="composite"))
     paper = solve_static(g.actuator(PiezoDrive(500.0), cell=cell, stiffness="paper"))
     # six-bar: both runs carry the cell's O(theta_c²) kinematic deviation (see six_bar_rel_bound)
@@ -172,7 +172,7 @@ def test_first_eigenfrequency_converges_to_beam_f1(cell):
     g = REF_A
     mu = bt.mass_per_length(g.rho1, g.h1, g.rho2, g.h2, g.width)
     f1 = bt.first_bending_frequency(composite_EI(g), mu, g.length)
-    assert f1 == pytest.approx(35.97, abs=0.005)  # MODEL.md
+    assert f1 == pytest.approx(35.97, abs=0.005)  # docs/theory.rst
     ns = (4, 8, 16)
     errors = []
     for n in ns:
@@ -198,7 +198,7 @@ def test_second_eigenfrequency_of_fine_rigid_chain_near_beam_f2():
 @pytest.mark.parametrize("cell", CELLS)
 def test_static_with_hysteresis_follows_the_rising_branch_from_reset(cell):
     # from the reset state (negative saturation) a monotone ramp to 500 V ends on the rising
-    # branch, which passes through 12 um per 29 mm cell at 500 V (MODEL.md §5, exact exponents)
+    # branch, which passes through 12 um per 29 mm cell at 500 V (docs/theory.rst, exact exponents)
     H = paper_strain_preisach()
     H.commit(1000.0)  # some history: solve_static must start from the reset state anyway
     before = H.checkpoint()

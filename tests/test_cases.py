@@ -1,4 +1,4 @@
-"""The case convention and the paper cases (checked against the paper's and MODEL.md's numbers)."""
+"""The case convention and the paper cases (checked against the paper's and the theory page's numbers)."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from exudyn_atcm.csv_io import read_csv
 
 from _cli_helpers import CASES, cli, run
 
-# Paper / MODEL.md §1, §5 numbers (independent of the code)
+# Paper / docs/theory.rst numbers (independent of the code)
 R1, R2 = 1.459432, 1.874469
 LOOP_AREA_EXACT = 21605.0e-6  # m V  (21605.0 µm·V)
 LOOP_AREA_ROUNDED = 23466.7e-6  # m V
@@ -91,7 +91,7 @@ def test_stroke_table_is_the_motor_table():
     u = r["voltage"][:11]
     expected = STROKE_MIN + 44e-6 * ((u + 500.0) / 2000.0) ** 1.5
     np.testing.assert_allclose(r["stroke"][:11], expected, atol=1e-15)
-    assert out.scalars["stroke_linear_law"] == pytest.approx(40.02e-6, abs=5e-9)  # MODEL.md §1
+    assert out.scalars["stroke_linear_law"] == pytest.approx(40.02e-6, abs=5e-9)  # docs/theory.rst
     assert 0.0 < out.scalars["table_max_interpolation_error"] < 1e-6
 
 
@@ -108,7 +108,7 @@ def test_discrete_preisach_identifies_relays_by_eq12():
     assert relays.n_rows == 6
     gain = (STROKE_MAX - STROKE_MIN) / 6
     np.testing.assert_allclose(relays["gain"], gain, rtol=1e-12)
-    # switch-on: where the exact ascending branch reaches level i*gain above x_min (MODEL.md §5)
+    # switch-on: where the exact ascending branch reaches level i*gain above x_min (docs/theory.rst)
     levels = np.arange(1, 7) / 6.0
     alpha = -500.0 + 2000.0 * levels ** (1.0 / R1)
     beta = 1500.0 - 2000.0 * (1.0 - levels) ** (1.0 / R2)
@@ -128,10 +128,10 @@ def test_stiffness_comparison_against_model_md():
     pytest.importorskip("exudyn_atcm.actuator")
     out = load_case(CASES / "stiffness_comparison.py").run({"n_voltages": 2})
     s = out.scalars
-    assert s["EI_theory_composite"] == pytest.approx(1.28699e-2, rel=1e-5)  # MODEL.md §4 REF-A
+    assert s["EI_theory_composite"] == pytest.approx(1.28699e-2, rel=1e-5)  # the paper's actuator, docs/theory.rst
     assert s["tip_angle_composite"] == pytest.approx(4.13984 * 0.087, rel=1e-5)
     assert s["f1_theory_composite"] == pytest.approx(35.97, abs=0.005)
-    assert s["EI_ratio_paper_to_composite"] == pytest.approx(1.49, abs=0.005)  # MODEL.md §3
+    assert s["EI_ratio_paper_to_composite"] == pytest.approx(1.49, abs=0.005)  # docs/theory.rst
     assert s["curvature_ratio_paper_to_composite"] == pytest.approx(1.11, abs=0.005)
     assert s["compliance_composite"] == pytest.approx(17.055e-3 * (1 + 1 / 18), rel=2e-4)
 

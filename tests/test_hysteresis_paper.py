@@ -1,4 +1,4 @@
-"""The paper's numbers (MODEL.md §1, §5) reproduced by the continuous Preisach model."""
+"""The paper's numbers (docs/theory.rst) reproduced by the continuous Preisach model."""
 
 import numpy as np
 import pytest
@@ -12,7 +12,7 @@ UM = 1e-6
 
 def test_from_points_gives_the_exponents_of_corrected_eq_10():
     model = ContinuousPreisach.from_points(-500, 1500, -4, 40, 500, 12, 28)
-    # MODEL.md §5 prints them to 6 decimals.
+    # docs/theory.rst prints them to 6 decimals.
     assert model.r1 == pytest.approx(1.459432, abs=5e-7)
     assert model.r2 == pytest.approx(1.874469, abs=5e-7)
     # and the branches pass through the precision points
@@ -45,7 +45,7 @@ def test_second_cycle_repeats_the_first_on_complete_cycles():
 
 @pytest.mark.parametrize(
     "rounded, area",
-    [(False, 21605.0), (True, 23466.7)],  # µm·V, MODEL.md §5
+    [(False, 21605.0), (True, 23466.7)],  # µm·V, docs/theory.rst
 )
 def test_loop_area_formula_and_numerical_area(rounded, area):
     model = paper_stroke_preisach(rounded)

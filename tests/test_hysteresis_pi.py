@@ -1,4 +1,4 @@
-"""Prandtl-Ishlinskii operator and its analytic inverse (MODEL.md §5 test vector:
+"""Prandtl-Ishlinskii operator and its analytic inverse (docs/theory.rst test vector:
 Al Janaideh et al., IEEE Control Systems Magazine 2023, Ex. 1)."""
 
 import numpy as np
@@ -47,7 +47,7 @@ def test_inverse_composed_with_operator_is_identity(model):
 def test_inverse_parameters_follow_the_published_formulas():
     inverse = PrandtlIshlinskii(R, P, p0=0.0).inverse()
     p0, r, p = P[0], R[1:], P[1:]
-    # the formulas of MODEL.md §5 written out term by term
+    # the formulas of docs/theory.rst written out term by term
     expected_p, expected_r = [], []
     for j in range(len(r)):
         upto = p0 + sum(p[: j + 1])

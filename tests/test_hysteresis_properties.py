@@ -6,11 +6,13 @@ the continuous model, a discrete model identified from a loop (monotone relay fa
 discrete model with random relays (general relay family).
 """
 
+from unittest import mock
+
 import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach
+from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, _dominance
 
 U_LO, U_HI = -800.0, 1800.0  # beyond the models' range on both sides, to test saturation
 
@@ -36,11 +38,17 @@ def discrete_random(max_table_entries=1 << 22):
     return DiscretePreisach(a, b, w, offset=-1.0, max_table_entries=max_table_entries)
 
 
+def discrete_random_three_levels():
+    with mock.patch.object(_dominance, "TWO_LEVEL_ENTRIES", 0):
+        return discrete_random(0)
+
+
 MODELS = {
     "continuous": continuous,
     "from_loop": discrete_from_loop,  # prefix-sum kernel
     "random": discrete_random,  # Everett-table kernel
-    "random_rows": lambda: discrete_random(0),  # per-reversal row kernel
+    "random_dominance": lambda: discrete_random(0),  # dominance sums, two levels
+    "random_dominance3": discrete_random_three_levels,  # dominance sums, three levels
 }
 model_names = st.sampled_from(sorted(MODELS))
 inputs = st.floats(U_LO, U_HI, allow_nan=False, allow_infinity=False)
@@ -157,7 +165,7 @@ def test_continuous_model_is_lipschitz_continuous(history, step, u):
     assert abs(model.evaluate(u + step) - model.evaluate(u)) <= lip * abs(step) * (1 + 1e-9) + 1e-20
 
 
-@given(st.sampled_from(["from_loop", "random", "random_rows"]), histories, values)
+@given(st.sampled_from(["from_loop", "random", "random_dominance", "random_dominance3"]), histories, values)
 def test_discrete_output_jumps_only_by_relays_crossed(name, history, u):
     """A discrete model's output changes only by the weights of relays whose thresholds lie
     between the last input and the new one (its form of continuity)."""

@@ -46,7 +46,7 @@ def test_stored_suite_is_well_formed_with_provenance():
         for key in ("date", "exudyn_atcm", "exudyn", "platform"):
             assert meta["provenance"][key]
         assert (SUITE / "references" / f"{bid}.csv").is_file()
-    # analytic references come from MODEL.md / the paper, not from the code
+    # analytic references come from the paper / docs/theory.rst, not from the code
     loop = next(b for b in suite["benchmarks"] if b["id"] == "hysteresis_loop")
     analytic = {m["scalar"]: m["analytic"] for m in loop["scalars"] if "analytic" in m}
     assert analytic["r1"] == 1.459432 and analytic["r2"] == 1.874469

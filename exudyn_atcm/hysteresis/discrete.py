@@ -9,9 +9,8 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, finite_float, same_length
+from ._dominance import DominanceSums
 from .staircase import StaircasePreisach
-
-_CACHE_SIZE = 256
 
 
 class DiscretePreisach(StaircasePreisach):
@@ -31,9 +30,10 @@ class DiscretePreisach(StaircasePreisach):
     * ``kernel == "table"``: any other relay set whose grid of distinct thresholds has at most
       ``max_table_entries`` cells (a Preisach grid of ``n`` relays has about ``n``): the Everett
       function tabulated on that grid, every step ``O(log n)``;
-    * ``kernel == "rows"``: otherwise (many scattered thresholds), a step is ``O(log n)``
-      except the first one after a new reversal point, which builds that point's prefix-sum
-      row once (``O(n)``, vectorised; rows are cached).
+    * ``kernel == "dominance"``: otherwise (many scattered thresholds), weighted dominance
+      sums over the thresholds in a blocked table (``exudyn_atcm.hysteresis._dominance``,
+      ``O(n**1.5)`` memory, ``O(n**(4/3))`` for larger sets): every step three or four
+      binary searches and two or three table look-ups, whatever the input.
 
     Parameters
     ----------
@@ -46,7 +46,8 @@ class DiscretePreisach(StaircasePreisach):
     offset : float, optional
         Output with all relays off.
     max_table_entries : int, optional
-        Largest Everett table (number of float cells) built for a non-monotone relay set.
+        Largest Everett table (number of float cells) built for a non-monotone relay set;
+        beyond it the ``"dominance"`` kernel is used (``0``: always, for a non-monotone set).
 
     Notes
     -----
@@ -103,17 +104,9 @@ class DiscretePreisach(StaircasePreisach):
             self._table_item = table.item
             self._k_rising = self._k_falling = self._k_table  # type: ignore[method-assign]
         else:
-            self.kernel = "rows"
-            self._w_by_alpha = weights_a[order]
-            self._beta_by_alpha = beta_by_alpha
-            border = np.argsort(beta_a, kind="stable")
-            self._beta_sorted = beta_a[border].tolist()
-            self._w_by_beta = weights_a[border]
-            self._alpha_by_beta = alpha_a[border]
-            self._rows: dict[float, list[float]] = {}
-            self._columns: dict[float, list[float]] = {}
-            self._k_rising = self._k_row  # type: ignore[method-assign]
-            self._k_falling = self._k_column  # type: ignore[method-assign]
+            self.kernel = "dominance"
+            self._dominance = DominanceSums(alpha_a, beta_a, weights_a)
+            self._k_rising = self._k_falling = self._dominance.query  # type: ignore[method-assign]
         ties: dict[float, float] = {}
         for a, b, w in zip(alpha_a.tolist(), beta_a.tolist(), weights_a.tolist()):
             if a == b:
@@ -286,28 +279,6 @@ class DiscretePreisach(StaircasePreisach):
 
     def _k_table(self, a: float, b: float) -> float:
         return self._table_item(bisect_right(self._alpha_levels, a), bisect_left(self._beta_levels, b))
-
-    def _k_row(self, a: float, b: float) -> float:
-        row = self._rows.get(b)
-        if row is None:
-            row = self._cache(self._rows, b, np.cumsum(self._w_by_alpha * (self._beta_by_alpha >= b)))
-        return row[bisect_right(self._alpha_sorted, a)]
-
-    def _k_column(self, a: float, b: float) -> float:
-        column = self._columns.get(a)
-        if column is None:
-            selected = self._w_by_beta * (self._alpha_by_beta <= a)
-            column = self._cache(self._columns, a, np.cumsum(selected[::-1])[::-1], at_end=True)
-        return column[bisect_left(self._beta_sorted, b)]
-
-    @staticmethod
-    def _cache(store: dict, key: float, sums: np.ndarray, at_end: bool = False) -> list[float]:
-        values = sums.tolist()
-        values = values + [0.0] if at_end else [0.0] + values
-        if len(store) >= _CACHE_SIZE:
-            store.clear()
-        store[key] = values
-        return values
 
     def _tie(self, u: float) -> float:
         return self._ties.get(u, 0.0)

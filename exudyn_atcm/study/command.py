@@ -1,0 +1,270 @@
+"""The ``exudyn-atcm sweep`` and ``optimize`` commands: options, the progress bar over runs, summaries.
+
+::
+
+    exudyn-atcm sweep CASE --grid NAME=START:STOP:N --grid NAME=A,B,C [--samples N]
+                      [--set NAME=VALUE] [--workers N | --scheduler tcp://HOST:8786]
+                      [--out DIR] [--store DIR] [--retry-failed] [--no-plot]
+    exudyn-atcm optimize CASE --objective NAME [--maximize] --bound NAME=LOW:HIGH
+                      [--constraint "NAME>=VALUE"] [--method differential_evolution]
+                      [--set NAME=VALUE] [--workers N | --scheduler ADDRESS] [--out DIR]
+
+Exit status of ``sweep``: 0 if every run succeeded, 1 if any run failed (the study still
+completes and the table holds each error), 2 for a usage error (unknown case or
+parameter, bad grid).  Of ``optimize``: 0 if the best design satisfies the constraints,
+1 if no evaluated design does, 2 for a usage error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from typing import IO
+
+from ..cases import CaseError, load_case
+
+__all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
+
+
+class RunProgressBar:
+    """``[#######.......] 12/40 runs, 1 failed, 25 s left`` on a terminal stream (nothing otherwise).
+
+    Parameters
+    ----------
+    stream : file-like, optional
+        Output stream (default ``sys.stderr``).
+    force : bool
+        Draw even if the stream is not a terminal (for tests).
+    width : int
+        Number of bar characters.
+    """
+
+    def __init__(self, stream: IO[str] | None = None, force: bool = False, width: int = 30) -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        isatty = getattr(self.stream, "isatty", None)
+        self.enabled = bool(force or (isatty is not None and isatty()))
+        self.width = int(width)
+        self._start = time.perf_counter()
+        self._first: int | None = None
+        self._drawn = False
+
+    def __call__(self, done: int, total: int, failed: int) -> None:
+        if not self.enabled or total <= 0:
+            return
+        if self._first is None:
+            self._first = done  # runs answered from the store do not count for the estimate
+            self._start = time.perf_counter()
+        share = done / total
+        filled = int(round(share * self.width))
+        elapsed = time.perf_counter() - self._start
+        fresh = done - self._first
+        eta = f", {elapsed / fresh * (total - done):.0f} s left" if fresh > 0 and done < total else ""
+        fail = f", {failed} failed" if failed else ""
+        self.stream.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] {done}/{total} runs{fail}{eta}   ")
+        self.stream.flush()
+        self._drawn = True
+
+    def close(self) -> None:
+        """End the bar's line if anything was drawn."""
+        if self._drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self._drawn = False
+
+
+def add_sweep_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
+    """Add the ``sweep`` subcommand to ``sub``; returns its parser."""
+    sweep = sub.add_parser(
+        "sweep",
+        help="run a case over a grid or samples of its parameters (parallel, resumable)",
+        parents=parents,
+        description="Run CASE over a full grid (--grid) or Latin-hypercube samples (--samples) of its "
+        "parameters; writes DIR/<case>_sweep.csv, a JSON summary, plots, and stores every finished "
+        "run in DIR/runs so that running the same command again resumes.",
+    )
+    sweep.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
+    sweep.add_argument("--grid", action="append", default=[], metavar="SPEC",
+                       help="NAME=START:STOP:N (N values), NAME=START:STOP (integers; a range with --samples) or NAME=A,B,C (repeatable)")
+    sweep.add_argument("--samples", type=int, default=None, metavar="N",
+                       help="draw N points in the START:STOP ranges of --grid (crossed with the lists)")
+    sweep.add_argument("--sampling", choices=("lhs", "random"), default="lhs", help="sampler of --samples (default: lhs)")
+    sweep.add_argument("--seed", type=int, default=0, help="seed of the sampler (default 0)")
+    sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
+    sweep.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
+    sweep.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://HOST:8786 (needs the [distributed] extra)")
+    sweep.add_argument("--out", default="out/sweep", metavar="DIR", help="output directory (default: ./out/sweep)")
+    sweep.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
+    sweep.add_argument("--retry-failed", action="store_true", help="run again the points whose stored run failed")
+    sweep.add_argument("--no-plot", action="store_true", help="do not write the plots")
+    return sweep
+
+
+def _error(exc: BaseException | str, debug: bool, status: int) -> int:
+    if debug and isinstance(exc, BaseException):
+        import traceback
+
+        traceback.print_exception(type(exc), exc, exc.__traceback__)
+    text = exc if isinstance(exc, str) else (" ".join(str(exc).split()) or type(exc).__name__)
+    print(f"error: {text}", file=sys.stderr)
+    return status
+
+
+def sweep_command(args: argparse.Namespace) -> int:
+    """Run ``exudyn-atcm sweep``; returns the exit status."""
+    from .design import GridError, parse_grid_spec
+    from .plots import plot_study
+    from .sweep import run_study
+
+    debug = bool(getattr(args, "debug", False))
+    if args.workers is not None and args.workers < 1:
+        return _error(f"--workers must be an integer >= 1, got {args.workers}", debug, 2)
+    if args.workers is not None and args.scheduler is not None:
+        return _error("give either --workers (this machine) or --scheduler (a Dask cluster), not both", debug, 2)
+    if args.samples is not None and args.samples < 1:
+        return _error(f"--samples must be an integer >= 1, got {args.samples}", debug, 2)
+    try:
+        case = load_case(args.case, getattr(args, "cases_dir", None))
+        grid, bounds = {}, {}
+        for text in args.grid:
+            name, values = parse_grid_spec(case, text, ranges=args.samples is not None)
+            if name in grid or name in bounds:
+                raise GridError(f"--grid {name}: given twice")
+            (bounds if isinstance(values, tuple) else grid)[name] = values
+        if args.samples is not None and not bounds:
+            raise GridError("--samples needs at least one range --grid NAME=START:STOP to sample in")
+        if not grid and not bounds:
+            raise GridError("nothing to vary: give --grid NAME=START:STOP:N or NAME=A,B,C")
+        fixed = case.parse_assignments(args.set)
+    except (CaseError, ValueError) as exc:
+        return _error(exc, debug, 2)
+    bar = RunProgressBar(sys.stderr)
+    try:
+        result = run_study(
+            case, grid or None, samples=args.samples, bounds=bounds or None, method=args.sampling, seed=args.seed,
+            fixed=fixed, workers=args.workers, scheduler=args.scheduler, out=args.out, store=args.store,
+            retry_failed=args.retry_failed, progress=bar,
+        )
+    except (CaseError, ValueError) as exc:
+        bar.close()
+        return _error(exc, debug, 2)
+    except ImportError as exc:
+        bar.close()
+        return _error(exc, debug, 2)
+    bar.close()
+    files = list(result.files)
+    if not args.no_plot:
+        scalars = [c.name for c in result.columns[1 + len(case.parameters):-4]]
+        files += plot_study(result.table, result.varied, scalars, args.out, f"{case.name}_sweep_", grid=args.samples is None)
+    total = len(result.records)
+    print(f"{case.name}: {total} runs ({result.executed} executed, {result.reused} from the store, "
+          f"{result.failed} failed) in {result.wall_time:.3g} s on {result.engine} ({result.workers} workers)")
+    for record in result.records:
+        if record["status"] != "ok":
+            print(f"  run {record['index']} failed: {record['error']}")
+            break
+    print(f"  table: {result.csv_path}")
+    print(f"  wrote {len(files)} files to {args.out}")
+    return 1 if result.failed else 0
+
+
+def add_optimize_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
+    """Add the ``optimize`` subcommand to ``sub``; returns its parser."""
+    from .optimize import METHODS
+
+    opt = sub.add_parser(
+        "optimize",
+        help="find the parameters of a case that minimise or maximise a key scalar (scipy.optimize)",
+        parents=parents,
+        description="Optimise CASE over the parameters given with --bound; every evaluation is a stored run "
+        "(DIR/runs), so running the same command again replays them and continues.  Writes the history "
+        "(DIR/<case>_optimize_history.csv), a JSON summary and the best design's full run (DIR/best).",
+    )
+    opt.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
+    opt.add_argument("--objective", required=True, metavar="NAME", help="key scalar to minimise (or maximise)")
+    opt.add_argument("--maximize", action="store_true", help="maximise the objective")
+    opt.add_argument("--bound", action="append", default=[], metavar="NAME=LOW:HIGH", help="a design variable and its range (repeatable)")
+    opt.add_argument("--constraint", action="append", default=[], metavar="NAME>=VALUE",
+                     help="limit on a key scalar, NAME>=VALUE or NAME<=VALUE (repeatable; quote it in the shell)")
+    opt.add_argument("--method", choices=METHODS, default="differential_evolution", help="optimiser (default: differential_evolution)")
+    opt.add_argument("--maxiter", type=int, default=100, metavar="N", help="generations (differential evolution; default 100)")
+    opt.add_argument("--popsize", type=int, default=15, metavar="N", help="population size per variable (default 15)")
+    opt.add_argument("--seed", type=int, default=0, help="seed of differential evolution (default 0)")
+    opt.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
+    opt.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
+    opt.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://HOST:8786")
+    opt.add_argument("--out", default="out/optimize", metavar="DIR", help="output directory (default: ./out/optimize)")
+    opt.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
+    opt.add_argument("--no-plot", action="store_true", help="do not write the best run's plots")
+    return opt
+
+
+def _parse_constraint(text: str) -> tuple[str, tuple[float | None, float | None]]:
+    import re
+
+    match = re.fullmatch(r"\s*([A-Za-z_]\w*)\s*(>=|<=)\s*(\S+)\s*", text)
+    if match is None:
+        raise ValueError(f"--constraint expects NAME>=VALUE or NAME<=VALUE, got {text!r}")
+    name, op, value = match.groups()
+    try:
+        number = float(value)
+    except ValueError:
+        raise ValueError(f"--constraint {name}: VALUE must be a number, got {value!r}") from None
+    return name, ((number, None) if op == ">=" else (None, number))
+
+
+def optimize_command(args: argparse.Namespace) -> int:
+    """Run ``exudyn-atcm optimize``; returns the exit status."""
+    from .design import GridError, parse_grid_spec
+    from .optimize import optimize
+
+    debug = bool(getattr(args, "debug", False))
+    if args.workers is not None and args.workers < 1:
+        return _error(f"--workers must be an integer >= 1, got {args.workers}", debug, 2)
+    if args.workers is not None and args.scheduler is not None:
+        return _error("give either --workers (this machine) or --scheduler (a Dask cluster), not both", debug, 2)
+    for name in ("maxiter", "popsize"):
+        if getattr(args, name) < 1:
+            return _error(f"--{name} must be an integer >= 1, got {getattr(args, name)}", debug, 2)
+    try:
+        case = load_case(args.case, getattr(args, "cases_dir", None))
+        if not args.bound:
+            raise GridError("give at least one design variable: --bound NAME=LOW:HIGH")
+        bounds = {}
+        for text in args.bound:
+            name, values = parse_grid_spec(case, text, ranges=True)
+            if not isinstance(values, tuple):
+                raise GridError(f"--bound {name}: expects NAME=LOW:HIGH, got {text!r}")
+            if name in bounds:
+                raise GridError(f"--bound {name}: given twice")
+            bounds[name] = values
+        constraints = {}
+        for text in args.constraint:
+            name, (low, high) = _parse_constraint(text)
+            old_low, old_high = constraints.get(name, (None, None))
+            constraints[name] = (low if low is not None else old_low, high if high is not None else old_high)
+        fixed = case.parse_assignments(args.set)
+    except (CaseError, ValueError) as exc:
+        return _error(exc, debug, 2)
+    try:
+        best = optimize(
+            case, args.objective, bounds, method=args.method, maximize=args.maximize, constraints=constraints,
+            fixed=fixed, seed=args.seed, maxiter=args.maxiter, popsize=args.popsize, workers=args.workers,
+            scheduler=args.scheduler, out=args.out, store=args.store, plot=not args.no_plot,
+        )
+    except (CaseError, ValueError, ImportError) as exc:
+        return _error(exc, debug, 2)
+    units = {p.name: p.unit for p in case.parameters}
+    sense = "maximum" if args.maximize else "minimum"
+    print(f"{case.name}: {sense} of {args.objective} = {best.objective:.7g} after {best.evaluations} evaluations "
+          f"({best.executed} runs executed){'' if best.feasible else ' - NO DESIGN MEETS THE CONSTRAINTS'}")
+    for name, value in best.design.items():
+        print(f"  {name} = {value:.7g} [{units[name]}]")
+    for name, (low, high) in constraints.items():
+        value = best.scalars.get(name, float("nan"))
+        limit = f">= {low:g}" if low is not None else ""
+        limit += (" and " if low is not None and high is not None else "") + (f"<= {high:g}" if high is not None else "")
+        print(f"  constraint {name} = {value:.7g} ({limit})")
+    print(f"  {best.message}")
+    print(f"  wrote {len(best.files)} files to {args.out}")
+    return 0 if best.feasible else 1

@@ -1,0 +1,133 @@
+"""Design optimisation: closed-form optima, constraints, parallel and resumable evaluation."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from exudyn_atcm import beam_theory as bt
+from exudyn_atcm.cases import load_case
+from exudyn_atcm.study import GridError, optimize
+
+from _cli_helpers import CASES
+
+SYNTHETIC = Path(__file__).resolve().parent / "study_cases" / "synthetic_study.py"
+
+
+@pytest.fixture(scope="module")
+def bender():
+    return load_case(CASES / "optimise_bender.py")
+
+
+def test_closed_form_optimum_thickness_ratio():
+    # n = 1: the quartic is (t - 2)(t + 1)^3, so t* = 2 exactly (derived by hand in the case docstring)
+    assert bt.optimal_thickness_ratio(1.0) == pytest.approx(2.0, rel=1e-14)
+    # for other n, t* is where W = delta_free F_b of the beam-theory formulas peaks (dense evaluation)
+    for n in (0.4, 2.307489, 6.0):
+        t = bt.optimal_thickness_ratio(n)
+        grid = np.linspace(0.5 * t, 1.5 * t, 20001)
+        work = [bt.actuator_work(n * 30e9, ti * 0.3e-3, 30e9, 0.3e-3, 0.028, 1.38e-3, 0.1) for ti in grid]
+        assert t == pytest.approx(grid[int(np.argmax(work))], rel=1e-4)  # grid spacing 5e-5 t
+
+
+def test_local_optimiser_finds_the_closed_form_thickness_ratio(bender):
+    """Nelder-Mead over h1 with the multibody model (3 rigid cells, E1 = 70 GPa): t* of beam theory.
+
+    The rigid chain's work is the beam's divided by the compliance factor 1 + 1/(2 N^2), which
+    does not depend on h1, so the optimum ratio is the same; the tolerance 1e-3 covers the
+    optimiser's stopping tolerance (xatol 1e-4 of the 1.45 mm range = 5e-4 of h1*).
+    """
+    fixed = {"mode": "evaluate", "n_cells": 3, "passive_modulus": 70e9}
+    best = optimize(bender, "work", {"passive_thickness": (0.05e-3, 1.5e-3)}, method="nelder-mead",
+                    maximize=True, fixed=fixed, workers=1, rerun_best=True)
+    expected = bt.optimal_thickness_ratio(70e9 / 30.336e9)
+    assert best.design["passive_thickness"] / 0.3e-3 == pytest.approx(expected, rel=1e-3)
+    assert best.output is not None and best.output.scalars["work"] == best.scalars["work"]
+    chain = 1.0 + 1.0 / (2.0 * 3**2)
+    strain = 460e-12 * 1500.0 / 0.5e-3
+    closed = bt.actuator_work(70e9, expected * 0.3e-3, 30.336e9, 0.3e-3, 28e-3, strain, 3 * 29e-3) / chain
+    assert best.objective == pytest.approx(closed, rel=1e-6)  # linear statics of the chain: exact to the solver tolerance
+
+
+def test_optimise_bender_case_finds_the_design(bender, tmp_path):
+    """The case on its defaults (2 workers): stiffest passive layer, most cells, t within 1 % of t*."""
+    out = bender.run({"workers": 2}, out_dir=tmp_path, plot=True)
+    s = out.scalars
+    assert abs(s["thickness_ratio_error"]) < 0.01  # the goal; measured about 1e-8
+    assert s["thickness_ratio_beam_theory"] == pytest.approx(bt.optimal_thickness_ratio(70e9 / 30.336e9), rel=1e-12)
+    assert s["passive_modulus_optimum"] == pytest.approx(70e9, rel=1e-3)  # g(n, t*(n)) grows with n
+    assert s["n_cells_optimum"] == 4  # W grows with L; 4 cells still meet f1 >= 20 Hz at t*
+    assert s["first_frequency_optimum"] >= 20.0 and s["frequency_bound_active"] == 0.0
+    # geometric nonlinearity at 1500 V favours thicker layers (smaller free rotation): t grows
+    assert 1.0 < s["thickness_ratio_optimum_nonlinear"] / s["thickness_ratio_optimum"] < 1.05
+    assert (tmp_path / "optimise_bender_work.png").is_file()
+
+
+def test_differential_evolution_with_integer_and_constraint_parallel_and_resumable(tmp_path):
+    """max z = n sin(x) subject to y = x^2 + n <= 3: n = 2, x = 1 (n = 1 gives sin(sqrt 2) < 1, n = 3 gives 0)."""
+    kwargs = dict(maximize=True, constraints={"y": (None, 3.0)}, maxiter=40, out=tmp_path)
+    bounds = {"x": (0.0, 3.0), "n": (1, 3)}
+    first = optimize(SYNTHETIC, "z", bounds, workers=2, **kwargs)
+    assert first.design["n"] == 2 and first.design["x"] == pytest.approx(1.0, abs=1e-3)
+    assert first.feasible and first.objective == pytest.approx(2.0 * math.sin(1.0), rel=1e-3)
+    assert first.executed > 0 and (tmp_path / "synthetic_study_optimize_history.csv").is_file()
+    # the same optimisation again: every evaluation comes from the store, same answer, in one process
+    again = optimize(SYNTHETIC, "z", bounds, workers=1, **kwargs)
+    assert again.executed == 0 and again.design == first.design and again.evaluations == first.evaluations
+
+
+def test_lbfgsb_with_finite_differences_and_a_callable_objective():
+    best = optimize(SYNTHETIC, lambda scalars, values: (values["x"] - 0.7) ** 2 + scalars["y"] * 0.0,
+                    {"x": (-1.0, 2.0)}, method="l-bfgs-b", workers=1)
+    assert best.design["x"] == pytest.approx(0.7, abs=1e-5)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "message"),
+    [
+        ({"bounds": {"xx": (0, 1)}}, GridError, "did you mean 'x'?"),
+        ({"bounds": {"x": (1, 1)}}, GridError, "low < high"),
+        ({"bounds": {"mode": (0, 1)}}, GridError, "must be float or int"),
+        ({"bounds": {"n": (1, 3)}, "method": "nelder-mead"}, ValueError, "need method='differential_evolution'"),
+        ({"bounds": {"x": (0, 1)}, "method": "newton"}, ValueError, "method must be one of"),
+        ({"bounds": {"x": (0, 1)}, "constraints": {"y": (None, None)}}, ValueError, "give a lower or an upper limit"),
+        ({"bounds": {"x": (0, 1)}, "constraints": {"f1": (1.0, None)}}, ValueError,
+         "constraints: 'f1' is not a key scalar of case synthetic_study; its key scalars: y, z"),
+    ],
+)
+def test_bad_optimisation_input(kwargs, error, message):
+    with pytest.raises(error, match=None) as info:
+        optimize(SYNTHETIC, "y", workers=1, **kwargs)
+    assert message in str(info.value)
+
+
+def test_unknown_objective_scalar():
+    with pytest.raises(ValueError, match="objective 'w' is not a key scalar of case synthetic_study; its key scalars: y, z"):
+        optimize(SYNTHETIC, "w", {"x": (0.0, 1.0)}, method="nelder-mead", workers=1)
+
+
+def test_scipy_constraints_in_differential_evolution():
+    """The same problem with scipy's NonlinearConstraint (feasibility rules), population vectorised."""
+    best = optimize(SYNTHETIC, "z", {"x": (0.0, 3.0), "n": (1, 3)}, maximize=True, constraints={"y": (None, 3.0)},
+                    constraint_handling="scipy", maxiter=40, workers=2)
+    assert best.design["n"] == 2 and best.design["x"] == pytest.approx(1.0, abs=1e-3)
+    assert best.feasible and best.scalars["y"] <= 3.0
+
+
+def test_cli_optimize(tmp_path, capsys):
+    from exudyn_atcm.cli import main
+
+    args = ["optimize", str(SYNTHETIC), "--objective", "z", "--maximize", "--bound", "x=0:3", "--bound", "n=1:3",
+            "--constraint", "y<=3", "--maxiter", "40", "--workers", "1", "--out", str(tmp_path)]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "synthetic_study: maximum of z = 1.68" in out and "  n = 2 [-]" in out  # 2 sin(1) = 1.683
+    assert (tmp_path / "synthetic_study_optimize_history.csv").is_file()
+    # no design can meet y = x^2 + n <= 0.5 (n >= 1): exit status 1, said on the first line
+    assert main(args[:-8] + ["--constraint", "y<=0.5", "--maxiter", "3", "--workers", "1", "--out", str(tmp_path / "b")]) == 1
+    assert "NO DESIGN MEETS THE CONSTRAINTS" in capsys.readouterr().out
+    assert main(["optimize", str(SYNTHETIC), "--objective", "y", "--bound", "x=0:1:3"]) == 2
+    assert capsys.readouterr().err.strip() == "error: --bound x: expects NAME=LOW:HIGH, got 'x=0:1:3'"
