@@ -94,10 +94,17 @@ def cost_parts(mech: Mechanism) -> tuple[str, int]:
 
 
 def check_steps(mech: Mechanism, grid: Any, t_end: float) -> None:
-    """Step checks against every drive's voltage program and the lowest bender frequency; run-time estimate."""
+    """Step checks against every drive's voltage program and the lowest bender frequency; run-time estimate.
+
+    Drives sharing one program object (segments driven by one PiezoDrive) are checked once,
+    named together.
+    """
+    shared: dict[int, tuple[Any, list[str]]] = {}
     for name, drive in mech.drives.items():
-        check_step_against_program(drive.voltage, grid.step, t_end, what=f"the voltage program of drive {name!r}",
-                                   stacklevel=5)
+        shared.setdefault(id(drive.voltage), (drive.voltage, []))[1].append(repr(name))
+    for program, names in shared.values():
+        label = "drive " + ", ".join(names) if len(names) == 1 else "drives " + ", ".join(names)
+        check_step_against_program(program, grid.step, t_end, what=f"the voltage program of {label}", stacklevel=5)
     frequency, which = lowest_first_frequency(mech)
     check_step_against_frequency(grid.step, frequency, what=which, stacklevel=5)
     cell, parts = cost_parts(mech)

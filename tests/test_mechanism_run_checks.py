@@ -242,3 +242,15 @@ def test_actuator_warnings_point_at_the_callers_line_too():
     with pytest.warns(RuntimeWarning) as record:
         simulate(act, 0.01, step=3e-3)  # does not divide, coarse for the program, beyond the rating
     assert len(record) == 3 and {w.filename for w in record} == {__file__}
+
+
+def test_segments_sharing_one_program_are_checked_once_naming_both():
+    from exudyn_atcm import Segment
+
+    drive = PiezoDrive(Triangle(500.0, 500.0, 0.02))
+    s = Bender("s", width=W, passive=CFC, active=MFC, segments=[Segment(0.04, 2, drive), Segment(0.04, 2, drive)])
+    mech = Mechanism("m").add(s).ground(s.base)
+    with pytest.warns(RuntimeWarning) as record:
+        simulate(mech, 0.002, step=1e-3)  # 10 steps per 0.01 s ramp: a warning, once
+    hits = [m for m in _messages(record) if "shortest feature" in m]
+    assert len(hits) == 1 and "drives 's.1', 's.2'" in hits[0]
