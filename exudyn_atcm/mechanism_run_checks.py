@@ -112,11 +112,22 @@ def check_steps(mech: Mechanism, grid: Any, t_end: float) -> None:
 
 
 def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[Any, str]]:
-    """``(controller, measurement column)`` of every drive set by a controller; refuses undeclared ones."""
+    """``(controller, measurement column)`` of every drive set by a controller.
+
+    Refuses a controller without a declared measurement, and a measurement declared for a
+    drive that has no controller (the user meant a closed loop that would not exist).
+    """
     out = []
     for k, drive in enumerate(model.sources):
         controller = getattr(drive, "controller", None)
         if controller is None:
+            names = [n for n, j in model.drive_source.items() if j == k and n in mech.measurements]
+            if names:
+                raise MechanismError(
+                    f"mechanism {mech.name!r} declares the measurement {mech.measurements[names[0]]!r} for drive "
+                    f"{names[0]!r}, but that drive's voltage is not a controller ({drive.voltage!r}): nothing "
+                    "would observe it. Give the PiezoDrive a controller (exudyn_atcm.control) or remove the "
+                    "feedback declaration")
             continue
         names = [n for n, j in model.drive_source.items() if j == k]
         declared = {mech.measurements[n] for n in names if n in mech.measurements}

@@ -254,3 +254,10 @@ def test_segments_sharing_one_program_are_checked_once_naming_both():
         simulate(mech, 0.002, step=1e-3)  # 10 steps per 0.01 s ramp: a warning, once
     hits = [m for m in _messages(record) if "shortest feature" in m]
     assert len(hits) == 1 and "drives 's.1', 's.2'" in hits[0]
+
+
+def test_measurement_declared_for_a_drive_without_controller_is_refused():
+    mech = cantilever(bender("crank", PiezoDrive(300.0)))
+    mech.feedback("crank", "crank.tip_y")
+    with pytest.raises(MechanismError, match=r"declares the measurement 'crank.tip_y' for drive 'crank'.*not a controller"):
+        simulate(mech, 1e-3, step=1e-4)
