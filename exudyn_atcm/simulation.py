@@ -197,10 +197,15 @@ class _Recorder:
         self.accepted = 0
         self._pending = None
         self._last_t = 0.0
+        #: lowest and highest committed strain [-] over every accepted step (the record may be thinned)
+        self.strain_low = math.inf
+        self.strain_high = -math.inf
 
     def post_step(self, t: float) -> None:
         u, strain = self.source.commit(t)
         self.accepted += 1
+        self.strain_low = min(self.strain_low, strain)
+        self.strain_high = max(self.strain_high, strain)
         self._last_t = t
         if self.step is not None:
             t = snap_time(t, self.step)
@@ -604,8 +609,8 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         partial = recorder.result(actuator, info) if recorder.n_rows or recorder._pending else None
         raise SimulationInterrupted(t_stop, partial)
     result = recorder.result(actuator, info)
-    if result.n_rows:
-        actuator.drive.check_strain(float(result["strain"].min()), float(result["strain"].max()))
+    if recorder.strain_low <= recorder.strain_high:
+        actuator.drive.check_strain(recorder.strain_low, recorder.strain_high)
     return result
 
 

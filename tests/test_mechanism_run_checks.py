@@ -261,3 +261,13 @@ def test_measurement_declared_for_a_drive_without_controller_is_refused():
     mech.feedback("crank", "crank.tip_y")
     with pytest.raises(MechanismError, match=r"declares the measurement 'crank.tip_y' for drive 'crank'.*not a controller"):
         simulate(mech, 1e-3, step=1e-4)
+
+
+def test_range_check_sees_every_step_not_only_the_recorded_ones():
+    # the triangle peaks at 2000 V at t = 0.01 s; records at 0, 7, 14, 20 ms see at most 1400 V
+    mech = cantilever(bender("a", PiezoDrive(Triangle(1000.0, 1000.0, 0.02))))
+    with pytest.warns(RuntimeWarning) as record:
+        r = simulate(mech, 0.02, step=1e-4, record_every=0.007)
+    assert r["a.voltage"].max() == pytest.approx(1400.0)
+    hits = [m for m in _messages(record) if "rated range" in m]
+    assert len(hits) == 1 and "spans 0 ... 2000 V" in hits[0]
