@@ -145,12 +145,14 @@ class PiezoDrive:
             return self.linear_strain(voltage)
         return float(self.hysteresis.apply([float(voltage)])[-1])
 
-    def check_voltage_range(self, u_low: float, u_high: float) -> None:
+    def check_voltage_range(self, u_low: float, u_high: float, *, what: str | None = None,
+                            stacklevel: int = 4) -> None:
         """Warn once if voltages in ``[u_low, u_high]`` [V] leave the operator's input range or the rating.
 
         Outside the hysteresis operator's ``input_range`` its output saturates (5000 V gives
         the 1500 V answer); outside :attr:`rated_range` the MFC is driven beyond its rating.
-        One ``RuntimeWarning`` lists each range and how far the voltages go beyond it.
+        One ``RuntimeWarning`` lists each range and how far the voltages go beyond it; ``what``
+        (e.g. ``"drive 'crank'"``) names the drive in it.
         """
         problems = []
         op_range = getattr(self.hysteresis, "input_range", None) if self.hysteresis is not None else None
@@ -170,14 +172,20 @@ class PiezoDrive:
                 )
         if problems:
             warnings.warn(
-                f"the voltage program spans {u_low:g} ... {u_high:g} V: " + "; ".join(problems),
+                (f"{what}: " if what else "") + f"the voltage program spans {u_low:g} ... {u_high:g} V: "
+                + "; ".join(problems),
                 RuntimeWarning,
-                stacklevel=4,
+                stacklevel=stacklevel,
             )
 
-    def check_strain(self, strain_low: float, strain_high: float) -> None:
-        """Warn if free strains in ``[strain_low, strain_high]`` exceed :data:`PLAUSIBLE_STRAIN` in magnitude."""
-        _check_strain_magnitude(max(abs(strain_low), abs(strain_high)), "the free strain of the run", stacklevel=5)
+    def check_strain(self, strain_low: float, strain_high: float, *, what: str | None = None,
+                     stacklevel: int = 5) -> None:
+        """Warn if free strains in ``[strain_low, strain_high]`` exceed :data:`PLAUSIBLE_STRAIN` in magnitude.
+
+        ``what`` (e.g. ``"drive 'crank'"``) names the drive in the warning.
+        """
+        _check_strain_magnitude(max(abs(strain_low), abs(strain_high)),
+                                f"the free strain of {what}" if what else "the free strain of the run", stacklevel=stacklevel)
 
     def __repr__(self) -> str:
         hyst = "None" if self.hysteresis is None else type(self.hysteresis).__name__

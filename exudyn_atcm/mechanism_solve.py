@@ -20,18 +20,20 @@ from typing import Any, Callable
 import numpy as np
 
 from . import _mbs_builder as runs
-from ._checks import finite_array, finite_float, positive_float, positive_int
+from ._checks import finite_array, finite_float, positive_int
 from .mbs import builder as mb
 from .mbs import linear
-from .mbs.recording import Rows
+from .mbs.recording import Rows, measurement_reader
 from .actuator import BendingActuator
 from .mechanism.assembly import Mechanism
 from .mechanism.bender import Bender
 from .mechanism.flexure import Flexure
 from .mechanism.points import MechanismError, closest
+from .mechanism_run_checks import check_drive_ranges, check_steps, feedback_controllers
 from .result import Result
-from .run_checks import snap_time, time_grid
-from .simulation import DEFAULT_STEP, InStepStrain, SolverError
+from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time
+from .run_setup import prepare_run, report_controller, run_info
+from .simulation import DEFAULT_STEP, InStepStrain, SolverError, _is_interrupt
 
 VoltageSpec = Any  # None | float | Mapping[str, float]
 
@@ -162,6 +164,7 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
     strains = _source_values(model, strains_by_drive, "solve_static")
     source_volts = _source_values(model, volts, "solve_static")
+    check_drive_ranges(model, source_volts, strains)
     method = _equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
     rows = Rows(model)
     rows.add(0.0, source_volts, strains)
@@ -184,10 +187,12 @@ def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float]
 
 def _actuator_result(actuator: BendingActuator, r: Result) -> Result:
     """The columns of :func:`exudyn_atcm.simulate` for an actuator from a one-bender mechanism's result."""
-    series = {"time": r["time"], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
+    base = "time" if "time" in r else "point"
+    series = {base: r[base], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
               "stroke": r["actuator.strain"] * actuator.cell_length, "tip_x": r["actuator.tip_x"],
               "tip_y": r["actuator.tip_y"], "tip_angle": r["actuator.tip_angle"]}
-    units = {"time": "s", "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m", "tip_angle": "rad"}
+    units = {base: r.unit(base), "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m",
+             "tip_angle": "rad"}
     for j in range(actuator.n_cells):
         series[f"cell_angle_{j + 1}"] = r[f"actuator.cell_angle_{j + 1}"]
         units[f"cell_angle_{j + 1}"] = "rad"
@@ -216,8 +221,15 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     Returns
     -------
     Result
-        One row per point; ``time [s]`` holds the point's index (0, 1, 2, ...).  The columns
-        of :func:`exudyn_atcm.simulate` for the mechanism, or for the actuator.
+        One row per point; the first column ``point [-]`` holds the point's index (0, 1, 2, ...;
+        a sweep has no time), then the columns of :func:`exudyn_atcm.simulate` for the
+        mechanism (``{drive}.voltage [V]`` holds each point's voltage), or for the actuator.
+
+    Warns
+    -----
+    RuntimeWarning
+        Once per drive, naming it, for voltages outside its hysteresis operator's input range
+        or its rating, and implausible free strains (as for an actuator).
     """
     if isinstance(mech, BendingActuator):
         return _actuator_result(mech, static_sweep(actuator_mechanism(mech, tip_force), voltages))
@@ -245,47 +257,72 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     else:
         values = finite_array("voltages", voltages)
         table = [{name: float(v) for name in drives} for v in values]
+    source_table = np.array([_source_values(model, per_drive, f"static_sweep point {i}")
+                             for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
     for drive in model.sources:
         if drive.hysteresis is not None:
             drive.hysteresis.reset()
+    strain_table = np.array([[d.linear_strain(u) if d.hysteresis is None else float(d.hysteresis.commit(u))
+                              for d, u in zip(model.sources, volts)] for volts in source_table])
+    strain_table = strain_table.reshape(source_table.shape)
+    check_drive_ranges(model, source_table, strain_table, stacklevel=3)
     rows = Rows(model)
     previous = np.zeros(len(model.sources))
     methods = []
     for i, per_drive in enumerate(table):
-        volts = _source_values(model, per_drive, f"static_sweep point {i}")
-        strains = np.array([d.linear_strain(u) if d.hysteresis is None else float(d.hysteresis.commit(u))
-                            for d, u in zip(model.sources, volts)])
+        volts, strains = source_table[i], strain_table[i]
         methods.append(_equilibrium(mech, model, previous, strains, i == 0, None,
                                     f"sweep point {i}, voltages {per_drive} V"))
         runs.set_current_as_initial(model, zero_velocity=True)
         rows.add(float(i), volts, strains)
         previous = strains
-    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)})
+    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)},
+                       base=("point", "-"))
 
 
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
-             progress: Callable[[float, float], None] | None = None) -> Result:
-    """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`)."""
-    t_end = positive_float("t_end", t_end)
-    step = positive_float("step", step)
-    if step > t_end:
-        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {step!r}")
-    if settings is not None and not callable(settings) and not isinstance(settings, dict):
-        raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {settings!r}")
-    if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+             progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
+    """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`).
+
+    The same checks as for an actuator (:mod:`exudyn_atcm.run_checks`): the step against every
+    drive's voltage program and against the lowest first-frequency estimate of the benders
+    and flexures, the step used when it does not divide ``t_end``, a warning up front for a
+    long run (cells of all benders and flexures plus the links), one voltage-range and strain
+    warning per drive, ``record_every``, progress, and Ctrl-C as
+    :class:`~exudyn_atcm.run_checks.SimulationInterrupted` carrying the partial result.
+    A drive set by a controller observes the column declared with
+    :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`.
+    """
+    t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
+    check_steps(mech, grid, t_end)
     model = mb.build(mech)
+    feedback = feedback_controllers(mech, model)
+    observers = [(c, measurement_reader(model, column)) for c, column in feedback]
+    for controller, _ in feedback:
+        controller.reset()
     sources = [InStepStrain(drive) for drive in model.sources]
     strains0 = np.array([s.trial(0.0) for s in sources])
     if np.any(strains0 != 0.0) or model.loads:
-        _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+        try:
+            _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+        except KeyboardInterrupt:
+            raise SimulationInterrupted(0.0) from None
+        except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
+            if _is_interrupt(exc.__cause__ or exc):
+                raise SimulationInterrupted(0.0) from None
+            raise
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
-    sim_settings = runs.dynamic_settings(t_end, step)
+    sim_settings = runs.dynamic_settings(t_end, grid.step)
     runs.apply_user_settings(sim_settings, settings)
-    grid = time_grid(t_end, step)
     rows = Rows(model)
-    report = {"next": 0.0}
+    clock = WallClock(progress, t_end) if progress is not None else None
+    guard = InterruptGuard()
+    pending: list[Any] = []
+    counts = {"accepted": 0}
+    # extremes over every accepted step (the record may be thinned), for the range checks
+    n_src = len(sources)
+    extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
 
     user_errors: list[ValueError] = []
 
@@ -299,34 +336,57 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
 
     def post_step(t: float) -> None:
         committed = [s.commit(t) for s in sources]
+        counts["accepted"] += 1
         t = snap_time(t, grid.step)  # recorded times on the step grid, as for an actuator
-        rows.add(t, np.array([u for u, _ in committed]), np.array([e for _, e in committed]))
-        if progress is not None and t >= report["next"]:
-            progress(t, t_end)
-            report["next"] = t + 0.01 * t_end
+        volts = np.array([u for u, _ in committed])
+        strains = np.array([e for _, e in committed])
+        np.minimum(extremes[0], volts, out=extremes[0])
+        np.maximum(extremes[1], volts, out=extremes[1])
+        np.minimum(extremes[2], strains, out=extremes[2])
+        np.maximum(extremes[3], strains, out=extremes[3])
+        pending.clear()
+        if schedule.take(t):
+            rows.add(t, volts, strains)
+        else:
+            pending.append(rows.snapshot(t, volts, strains))
+        for controller, read in observers:
+            controller.observe(t, read(strains))
+        if clock is not None:
+            clock(t)
 
+    stats = None
     try:
-        stats = runs.run_dynamic(model, sim_settings, pre_step, post_step)
+        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(post_step))
     except runs.ExudynFailure as exc:
         if user_errors:
             raise user_errors[0] from None
-        raise SolverError(
-            f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
-            f"t = {rows.last_time():.6g} s, requested step {step:g} s): generalized-alpha with Newton (absolute "
-            f"tolerance {sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
-            f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: {exc}. "
-            "Try a smaller step, a slower voltage program, more cells, or check that the mechanism is not locked "
-            "(mechanism.degrees_of_freedom()).") from exc
-    accepted = max(len(rows.times) - 1, 0)
-    info = {
-        "solver": "generalized-alpha",
-        "step [s]": grid.step,
-        "accepted_steps": accepted,
-        "attempted_steps": stats["pre_step_calls"],
-        "rejected_steps": max(stats["pre_step_calls"] - accepted, 0),
-        "newton_steps": stats["newton_steps"],
-        "hysteresis_evaluations": sum(s.evaluations for s in sources),
-    }
+        if not _is_interrupt(exc):
+            last = pending[0][0] if pending else rows.last_time()
+            raise SolverError(
+                f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
+                f"t = {last:.6g} s, step {grid.step:g} s): generalized-alpha with Newton (absolute "
+                f"tolerance {sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
+                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
+                f"{exc}. Try a smaller step, a slower voltage program, more cells, or check that the mechanism is "
+                "not locked (mechanism.degrees_of_freedom()).") from exc
+        guard.interrupted = True
+    for snapshot in pending:  # the last accepted step closes the record
+        rows.add_snapshot(snapshot)
+    accepted = max(counts["accepted"] - 1, 0)
+    info = run_info(grid, accepted, schedule, stats,
+                    hysteresis_evaluations=sum(s.evaluations for s in sources))
+    for controller, column in feedback:
+        report_controller(controller, info, f"the controller observing {column!r}")
+        info["controller"]["measurement"] = column
+    if counts["accepted"] and n_src:
+        check_drive_ranges(model, extremes[:2], extremes[2:])
+    if guard.interrupted:
+        t_stop = rows.last_time()
+        info["partial"] = True
+        info["interrupted_at [s]"] = t_stop
+        info.setdefault("attempted_steps", accepted)
+        info.setdefault("rejected_steps", 0)
+        raise SimulationInterrupted(t_stop, rows.result(info) if rows.times else None)
     return rows.result(info)
 
 
@@ -346,6 +406,7 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -
         volts = drive_voltages(mech, voltage)
         strains = _source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
                                  "eigenfrequencies")
+        check_drive_ranges(model, _source_values(model, volts, "eigenfrequencies"), strains)
         _equilibrium(mech, model, np.zeros_like(strains), strains, True, None, f"voltages {volts} V")
         runs.set_current_as_initial(model, zero_velocity=True)
     else:

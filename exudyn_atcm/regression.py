@@ -335,8 +335,19 @@ def _write_reference(ref_dir: Path, bid: str, bench: dict[str, Any], output: Any
         "provenance": entry,
         "history": previous.get("history", []) + [entry],
     }
-    series = Result(output.result, output.result.units, parameters={"benchmark": bid, "case": bench["case"], "reason": reason.strip()}, info={"exudyn_version": vers["exudyn"], "date": entry["date"]})
-    series.to_csv(ref_dir / f"{bid}.csv")
+    # only the series the benchmark compares (its base and channels): a scalars-only benchmark
+    # stores no CSV, so the references stay small
+    csv_path = ref_dir / f"{bid}.csv"
+    channels = list(bench.get("channels", {}))
+    if channels:
+        base = bench.get("base", "time")
+        names = [n for n in [base, *channels] if n in output.result]
+        series = Result({n: output.result[n] for n in names}, {n: output.result.unit(n) for n in names},
+                        parameters={"benchmark": bid, "case": bench["case"], "reason": reason.strip()},
+                        info={"exudyn_version": vers["exudyn"], "date": entry["date"]})
+        series.to_csv(csv_path)
+    elif csv_path.is_file():
+        csv_path.unlink()
     write_json(meta_path, meta)
     history = ref_dir / "HISTORY.md"
     old = history.read_text(encoding="utf-8") if history.is_file() else (

@@ -17,8 +17,9 @@ Thresholds and why
 ------------------
 A voltage program's *feature* is the shortest interval between its corners (see
 :meth:`exudyn_atcm.signals.Signal.shortest_feature`): the ramp of a triangle (half a period),
-half a sine period, the dwell of a step program, the shortest segment of a piecewise-linear
-program.  The solver samples the program once per step, so with ``n`` steps per feature a
+half a sine period, the dwell of a step program, the shortest stretch between reversals or
+marked kinks of a piecewise-linear program (a densely sampled smooth curve is judged by its
+extrema, not by its sampling interval).  The solver samples the program once per step, so with ``n`` steps per feature a
 peak of a ramp can be missed by up to ``1/(2n)`` of the ramp's swing, and a sine peak by
 ``1 - cos(pi/(2n))`` of its amplitude:
 
@@ -28,6 +29,11 @@ peak of a ramp can be missed by up to ``1/(2n)`` of the ramp's swing, and a sine
   response);
 * :data:`COMFORTABLE_STEPS_PER_FEATURE` = 20: below it a warning (peak error up to 2.5 % of a
   ramp's swing, 0.3 % of a sine amplitude).
+
+A piecewise-linear program whose corners all lie on the step grid is exempt: the solver then
+samples it exactly at every corner, and its input is the program itself
+(:func:`corners_on_grid`; e.g. a feedforward program tabulated at a controller's sample time
+that is a multiple of the step, whose inverse-hysteresis jumps at reversals last one sample).
 
 Against the first eigenfrequency ``f1``: generalized-alpha (spectral radius 0.8) damps a mode
 resolved by few steps per period and lengthens its period, so vibrations of the first bending
@@ -44,6 +50,8 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Callable
 
+import numpy as np
+
 __all__ = [
     "MIN_STEPS_PER_FEATURE",
     "COMFORTABLE_STEPS_PER_FEATURE",
@@ -54,6 +62,7 @@ __all__ = [
     "time_grid",
     "snap_time",
     "check_step_against_program",
+    "corners_on_grid",
     "check_step_against_frequency",
     "estimate_run_time",
     "warn_if_long",
@@ -101,7 +110,7 @@ class TimeGrid:
         return self.step != self.requested_step
 
 
-def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
+def time_grid(t_end: float, step: float, *, warn: bool = True, stacklevel: int = 4) -> TimeGrid:
     """Equal steps that end exactly at ``t_end``.
 
     ``n = ceil(t_end/step)`` steps of ``t_end/n`` (what the solver does with a step that does
@@ -116,6 +125,9 @@ def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
         Requested step [s], ``0 < step <= t_end``.
     warn : bool, optional
         Issue the warning (default True).
+    stacklevel : int, optional
+        Passed to ``warnings.warn`` (the frame the warning points at); the same in the
+        other checks.
     """
     ratio = t_end / step
     n = max(1, int(math.ceil(ratio - 1e-9)))
@@ -128,7 +140,7 @@ def time_grid(t_end: float, step: float, *, warn: bool = True) -> TimeGrid:
             f"{n} steps of {used:.6g} s, and that step is recorded (info 'step [s]'). Choose a step "
             f"that divides t_end (e.g. {t_end / n:.6g} or {t_end / max(n - 1, 1):.6g} s) to silence this",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
     return TimeGrid(t_end, used, n, step)
 
@@ -150,7 +162,8 @@ def snap_time(t: float, step: float) -> float:
 
 # ------------------------------------------------------------------------------ step checks
 
-def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program") -> None:
+def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program",
+                               stacklevel: int = 4) -> None:
     """Refuse or warn when ``step`` resolves the program's shortest feature too coarsely.
 
     Parameters
@@ -175,6 +188,8 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
     shortest = getattr(program, "shortest_feature", None)
     if not callable(shortest):
         return
+    if corners_on_grid(program, step, t_end):
+        return  # sampled exactly at every corner and linear between: nothing to miss
     feature = shortest(t_end)
     if feature is None:
         return
@@ -196,11 +211,32 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
             f"{50.0 / per_feature:.2g} % of a ramp's swing. For {COMFORTABLE_STEPS_PER_FEATURE} steps per "
             f"feature use step <= {duration / COMFORTABLE_STEPS_PER_FEATURE:.6g} s",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
 
 
-def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode") -> None:
+def corners_on_grid(program: Any, step: float, t_end: float) -> bool:
+    """Whether every corner of a piecewise-linear ``program`` before ``t_end`` lies on the step grid.
+
+    The solver samples the program at the grid times ``k * step``.  A program that is linear
+    between corners lying on that grid is then sampled exactly at every corner (peaks and
+    reversals included) and the solver's input is the program itself, however few steps a
+    segment spans; only the dynamics' resolution remains (:func:`check_step_against_frequency`).
+    Programs without ``corner_times(t_end)`` (:class:`~exudyn_atcm.signals.PiecewiseLinear`
+    has it) return False.
+    """
+    corner_times = getattr(program, "corner_times", None)
+    if not callable(corner_times):
+        return False
+    corners = np.asarray(corner_times(t_end), dtype=float)
+    if corners.size == 0:
+        return False
+    k = np.round(corners / step)
+    return bool(np.all(np.abs(corners - k * step) <= 1e-9 * max(step, 1e-300) + 1e-12 * np.abs(corners)))
+
+
+def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode",
+                                 stacklevel: int = 4) -> None:
     """Warn when ``step`` [s] gives fewer than :data:`MIN_STEPS_PER_MODE_PERIOD` steps per ``1/frequency``.
 
     Parameters
@@ -224,7 +260,7 @@ def check_step_against_frequency(step: float, frequency: float, *, what: str = "
             f"period, so its vibrations are lost (acceptable for a quasi-static answer only). For the "
             f"dynamics use step <= {period / (2 * MIN_STEPS_PER_MODE_PERIOD):.4g} s",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
 
 
@@ -251,10 +287,13 @@ def _duration_text(seconds: float) -> str:
     return f"{seconds / 3600.0:.1f} h"
 
 
-def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None = None) -> float | None:
+def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None = None,
+                 parts: str | None = None, stacklevel: int = 4) -> float | None:
     """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
 
-    ``limit`` defaults to :data:`LONG_RUN_SECONDS`.
+    ``limit`` defaults to :data:`LONG_RUN_SECONDS`.  ``parts`` describes the model in the
+    message (default ``"{n_cells} {cell} cells"``; a mechanism counts the cells of all its
+    benders and flexures and its links).
     """
     limit = LONG_RUN_SECONDS if limit is None else limit
     estimate = estimate_run_time(cell, n_cells, n_steps)
@@ -262,11 +301,11 @@ def warn_if_long(cell: str, n_cells: int, n_steps: int, *, limit: float | None =
         per_step = estimate / max(n_steps, 1)
         warnings.warn(
             f"this run is predicted to take about {_duration_text(estimate)} ({n_steps} steps of "
-            f"{n_cells} {cell} cells at ~{per_step * 1e6:.3g} µs per step, measured). For a quicker answer "
+            f"{parts or f'{n_cells} {cell} cells'} at ~{per_step * 1e6:.3g} µs per step, measured). For a quicker answer "
             "use a larger step (within the voltage program's limits), fewer cells or a shorter t_end; "
             "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",
             RuntimeWarning,
-            stacklevel=4,
+            stacklevel=stacklevel,
         )
     return estimate
 

@@ -50,7 +50,8 @@ class Signal:
         A solver must take several steps across it to follow the program (see
         :func:`exudyn_atcm.run_checks.check_step_against_program`): the ramp of a triangle
         (half a period), half a sine period (extremum to extremum), the dwell of a step
-        program, the shortest segment of a piecewise-linear program.  ``None`` for a program
+        program, the shortest stretch between reversals or marked kinks of a piecewise-linear
+        program.  ``None`` for a program
         without corners (a constant).
 
         Parameters
@@ -250,17 +251,33 @@ class PiecewiseLinear(Signal):
                 )
         return np.interp(t, self.times, self.values)
 
+    #: A breakpoint whose slope change exceeds this fraction of the program's steepest slope is
+    #: a corner (see :meth:`shortest_feature`).
+    KINK_FRACTION = 0.1
+
     def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
-        # corners: breakpoints where the slope changes (collinear points are not corners)
+        """The shortest interval [s] between corners of the program, and what it is.
+
+        A *corner* is a breakpoint where the program reverses (the slope changes sign, a hold
+        counting as its own sign: the hysteresis input turns there) or kinks markedly (the
+        slope changes by more than :attr:`KINK_FRACTION` of the program's steepest slope).
+        Breakpoints where the slope changes a little, as in a smooth curve sampled densely
+        (a sine sampled every millisecond has slope changes of ``2 pi dt / period`` of its
+        steepest slope), are not corners: a solver step spanning several of them misses at
+        most ``|slope change| x step / 4`` of the value at each, which is what a step check
+        against the smooth curve allows anyway.  Collinear points are never corners.
+        """
         t, v = self.times, self.values
         if t.size < 2:
             return None
         slopes = np.diff(v) / np.diff(t)
-        scale = max(float(np.max(np.abs(slopes))), 1e-300)
-        corner = np.abs(np.diff(slopes)) > 1e-9 * scale
-        corners = np.concatenate([[t[0]], t[1:-1][corner], [t[-1]]])
         if not np.any(slopes != 0.0):
             return None
+        scale = float(np.max(np.abs(slopes)))
+        sign = np.sign(slopes)
+        change = np.abs(np.diff(slopes))
+        corner = (sign[1:] != sign[:-1]) | (change > self.KINK_FRACTION * scale)
+        corners = np.concatenate([[t[0]], t[1:-1][corner], [t[-1]]])
         segments = np.diff(corners)
         if t_end is not None:
             segments = segments[corners[:-1] < t_end]
@@ -268,7 +285,24 @@ class PiecewiseLinear(Signal):
         if segments.size == 0:
             return None
         k = int(np.argmin(segments))
-        return float(segments[k]), f"a segment of {float(segments[k]):g} s between corners of the piecewise-linear program"
+        return float(segments[k]), f"a segment of {float(segments[k]):g} s between corners (reversals or kinks) of the piecewise-linear program"
+
+    def corner_times(self, t_end: float | None = None) -> np.ndarray:
+        """Times [s] of every breakpoint where the slope changes (collinear points left out), up to ``t_end``.
+
+        Used by :func:`exudyn_atcm.run_checks.corners_on_grid`: a program whose corners all
+        lie on the solver's step grid is sampled exactly.
+        """
+        t, v = self.times, self.values
+        if t.size < 2:
+            return t.copy()
+        slopes = np.diff(v) / np.diff(t)
+        scale = max(float(np.max(np.abs(slopes))), 1e-300)
+        kink = np.abs(np.diff(slopes)) > 1e-12 * scale
+        corners = np.concatenate([[t[0]], t[1:-1][kink], [t[-1]]])
+        if t_end is not None:
+            corners = corners[corners <= t_end]
+        return corners
 
     def _parameters(self) -> dict[str, Any]:
         return {"times": self.times.tolist(), "values": self.values.tolist(), "outside": self.outside}

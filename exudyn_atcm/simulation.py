@@ -21,11 +21,12 @@ from typing import Any, Callable
 import numpy as np
 
 from . import _mbs_builder as builder
-from ._checks import finite_float, positive_float, positive_int
+from ._checks import finite_float, positive_int
 from .actuator import BendingActuator
-from .recording import RecordingSchedule, recording_schedule
+from .recording import RecordingSchedule
 from .mechanism import Mechanism
 from .result import Result
+from .run_setup import prepare_run, report_controller, run_info
 from .run_checks import (
     InterruptGuard,
     SimulationInterrupted,
@@ -33,7 +34,6 @@ from .run_checks import (
     check_step_against_frequency,
     check_step_against_program,
     snap_time,
-    time_grid,
     warn_if_long,
 )
 
@@ -197,10 +197,15 @@ class _Recorder:
         self.accepted = 0
         self._pending = None
         self._last_t = 0.0
+        #: lowest and highest committed strain [-] over every accepted step (the record may be thinned)
+        self.strain_low = math.inf
+        self.strain_high = -math.inf
 
     def post_step(self, t: float) -> None:
         u, strain = self.source.commit(t)
         self.accepted += 1
+        self.strain_low = min(self.strain_low, strain)
+        self.strain_high = max(self.strain_high, strain)
         self._last_t = t
         if self.step is not None:
             t = snap_time(t, self.step)
@@ -478,7 +483,10 @@ def simulate(
 
     Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.control`), it is reset at
     the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
-    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``.
+    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``
+    (a mechanism: the result column declared with
+    :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`; a controller without one
+    is refused).
     A ``RuntimeWarning`` says when its output was held at a limit.
 
     Raises
@@ -512,7 +520,7 @@ def simulate(
         _mechanism_only(tip_force)
         from . import mechanism_solve  # noqa: PLC0415 - imports this module
 
-        return mechanism_solve.simulate(actuator, t_end, step, settings, progress)
+        return mechanism_solve.simulate(actuator, t_end, step, settings, progress, record_every)
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
@@ -527,15 +535,8 @@ def _is_interrupt(exc: BaseException) -> bool:
 
 def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
               progress=None, record_every=None) -> Result:
-    t_end = positive_float("t_end", t_end)
-    step = positive_float("step", step)
-    if step > t_end:
-        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {step!r}")
+    t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
     force = _check_force(tip_force)
-    if settings is not None and not callable(settings) and not isinstance(settings, dict):
-        raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {settings!r}")
-    grid = time_grid(t_end, step)
-    schedule = recording_schedule(record_every, grid.step)
     check_step_against_program(actuator.drive.voltage, grid.step, t_end)
     check_step_against_frequency(grid.step, actuator.first_frequency_estimate)
     warn_if_long(actuator.cell, actuator.n_cells, grid.n_steps)
@@ -591,36 +592,14 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
             ) from exc
         guard.interrupted = True
     accepted = max(recorder.accepted - 1, 0)
-    info = {
-        "solver": "generalized-alpha",
-        "step [s]": grid.step,
-        "accepted_steps": accepted,
-        "recorded": schedule.describe(),
-        "stroke_path": stroke_path,
-    }
-    if grid.adjusted:
-        info["step_requested [s]"] = grid.requested_step
-    if stats is not None:
-        info["attempted_steps"] = stats["pre_step_calls"]
-        info["rejected_steps"] = max(stats["pre_step_calls"] - accepted, 0)
-        info["newton_steps"] = stats["newton_steps"]
+    info = run_info(grid, accepted, schedule, stats, stroke_path=stroke_path)
     if isinstance(source, InStepStrain):
         info["hysteresis_evaluations"] = source.evaluations
     u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
     if u_low <= u_high:
         actuator.drive.check_voltage_range(u_low, u_high)
     if controller is not None:
-        info["controller"] = controller.summary() if callable(getattr(controller, "summary", None)) else {}
-        limited = info["controller"].get("limited_samples", 0)
-        if limited:
-            warnings.warn(
-                f"the controller's output was at its limits {info['controller'].get('output_limits [V]')} V in "
-                f"{limited} of {info['controller'].get('samples')} samples (largest excess "
-                f"{info['controller'].get('largest_excess [V]', float('nan')):.4g} V): the wanted deflection is "
-                "partly out of reach",
-                RuntimeWarning,
-                stacklevel=3,
-            )
+        report_controller(controller, info)
     if guard.interrupted:
         t_stop = recorder.last_time()
         info["partial"] = True
@@ -630,8 +609,8 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         partial = recorder.result(actuator, info) if recorder.n_rows or recorder._pending else None
         raise SimulationInterrupted(t_stop, partial)
     result = recorder.result(actuator, info)
-    if result.n_rows:
-        actuator.drive.check_strain(float(result["strain"].min()), float(result["strain"].max()))
+    if recorder.strain_low <= recorder.strain_high:
+        actuator.drive.check_strain(recorder.strain_low, recorder.strain_high)
     return result
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import json
 import math
 
@@ -27,6 +29,7 @@ HYSTERESIS_CASES = ["paper_hysteresis_loop", "paper_stroke_table", "paper_discre
 def test_case_script_runs_standalone_with_defaults(tmp_path, name):
     proc = run([str(CASES / f"{name}.py"), "--out", "out"], tmp_path)
     assert proc.returncode == 0, proc.stderr
+    assert "warning" not in proc.stderr.lower(), proc.stderr  # a case must not warn on its defaults
     out = tmp_path / "out"
     assert (out / f"{name}.csv").is_file()
     pngs = sorted(out.glob(f"{name}_*.png"))
@@ -41,6 +44,15 @@ def test_case_script_runs_standalone_with_defaults(tmp_path, name):
     data = read_csv(out / f"{name}.csv")
     assert data.parameters["case"] == name
     assert data.n_rows == record["steps"]
+
+
+@pytest.mark.parametrize("name", ["paper_bending_actuator", "stiffness_comparison"])
+def test_case_is_quiet_on_its_defaults(name):
+    """A case must not warn on its defaults (the other cases are checked where their tests run them)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        out = load_case(CASES / f"{name}.py").run({"animation": False} if name == "paper_bending_actuator" else None)
+    assert out.scalars
 
 
 # ----------------------------------------------------------------------------- paper numbers

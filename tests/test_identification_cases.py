@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import json
 
 import numpy as np
@@ -33,6 +35,7 @@ def test_shipped_record_is_what_its_header_says():
 
 def test_identify_and_predict_meets_the_noise_goal(tmp_path):
     proc = run([str(CASES / "identify_and_predict.py"), "--out", "out"], tmp_path)
+    assert "warning" not in proc.stderr.lower(), proc.stderr  # a case must not warn on its defaults
     assert proc.returncode == 0, proc.stderr
     out = tmp_path / "out"
     record = json.loads((out / "identify_and_predict.json").read_text())
@@ -53,7 +56,9 @@ def test_identify_and_predict_meets_the_noise_goal(tmp_path):
 
 
 def test_tip_tracking_feedforward_plus_pid_beats_linear_inversion_tenfold():
-    out = load_case(CASES / "tip_tracking.py").run()
+    with warnings.catch_warnings():  # a case must not warn on its defaults
+        warnings.simplefilter("error", RuntimeWarning)
+        out = load_case(CASES / "tip_tracking.py").run()
     s = {k: (v[0] if isinstance(v, tuple) else v) for k, v in out.scalars.items()}
     # goal of the issue: feedforward + PID at least 10x smaller RMS error than linear inversion
     assert s["rms_error_linear"] >= 10 * s["rms_error_pid_feedforward"]

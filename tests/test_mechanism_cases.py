@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import warnings
 
 import pytest
 
@@ -21,24 +22,31 @@ E1, H1, E2, H2 = 70e9, 0.2e-3, 30.336e9, 0.3e-3
 STATIC_TOL = 1e-8  # m
 
 
+def _quiet_run(name):
+    """The case on its defaults; any RuntimeWarning fails (a case must not warn on its defaults)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        return load_case(CASES / f"{name}.py").run()
+
+
 @pytest.fixture(scope="module")
 def four_bar():
-    return load_case(CASES / "compliant_four_bar.py").run()
+    return _quiet_run("compliant_four_bar")
 
 
 @pytest.fixture(scope="module")
 def gripper():
-    return load_case(CASES / "micro_gripper.py").run()
+    return _quiet_run("micro_gripper")
 
 
 @pytest.fixture(scope="module")
 def guide():
-    return load_case(CASES / "parallel_guide.py").run()
+    return _quiet_run("parallel_guide")
 
 
 @pytest.fixture(scope="module")
 def lever():
-    return load_case(CASES / "bender_with_lever.py").run()
+    return _quiet_run("bender_with_lever")
 
 
 # ----------------------------------------------------------------------------- four-bar

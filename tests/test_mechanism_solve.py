@@ -279,7 +279,8 @@ def test_static_sweep_of_a_bending_actuator_keeps_its_columns(cell):
     act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0, hysteresis=paper_strain_preisach()), cell=cell)
     volts = [0.0, 750.0, 1500.0, 750.0]
     r = static_sweep(act, volts, tip_force=(0.0, -0.01))
-    assert r.names[:7] == ["time", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
+    assert r.names[:7] == ["point", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
+    assert r.unit("point") == "-" and r["point"].tolist() == [0.0, 1.0, 2.0, 3.0]
     np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
     single = solve_static(act, voltage=1500.0, tip_force=(0.0, -0.01))
     assert r["tip_y"][2] == pytest.approx(single["tip_y"][0], rel=1e-7)

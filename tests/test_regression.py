@@ -116,7 +116,21 @@ def test_update_references_records_the_reason(suite, tmp_path):
     assert meta["provenance"]["reason"] == "test: new solver settings"
     assert "test: new solver settings" in (suite / "references" / "HISTORY.md").read_text()
     assert read_csv(path).parameters["reason"] == "test: new solver settings"
+    # only the compared series are stored: the base and the benchmark's channels
+    assert read_csv(path).names == ["time", "voltage", "stroke", "stroke_rounded"]
     assert (suite / "suite.json").read_text() == suite_json  # analytic references untouched
+    assert run_suite(suite, tmp_path / "again", plots=False).passed
+
+
+def test_scalars_only_benchmark_stores_no_series(suite, tmp_path):
+    data = json.loads((suite / "suite.json").read_text())
+    table = next(b for b in data["benchmarks"] if b["id"] == "stroke_table")
+    del table["channels"]
+    data["benchmarks"] = [table]
+    (suite / "suite.json").write_text(json.dumps(data))
+    report = run_suite(suite, tmp_path / "r", plots=False, update=True, reason="test: scalars only")
+    assert report.passed
+    assert not (suite / "references" / "stroke_table.csv").exists()
     assert run_suite(suite, tmp_path / "again", plots=False).passed
 
 

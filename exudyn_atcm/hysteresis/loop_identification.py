@@ -137,7 +137,16 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     n_down = len(major) - n_up
     if n_up > 1 or n_down > 1:
         notes.append(f"branches averaged over {n_up} ascending and {n_down} descending segments (isotonic fit)")
-    for missing, kind, where in ((up_missing, "ascending", "its highest input"), (down_missing, "descending", "its lowest input")):
+    # Both branches of a major loop meet at its turning points, so an ascending branch that
+    # falls short of the top level by less than half a gain does so by noise: the top relay
+    # switches at the turning point, as the crossing rule gives; noted, not warned.
+    for missing, branch_y, kind, where in ((up_missing, y_up, "ascending", "its highest input"),
+                                           (down_missing, y_dn, "descending", "its lowest input")):
+        if missing == [n - 1] and kind == "ascending" and y_max - float(branch_y.max()) < 0.5 * gain:
+            notes.append(f"the ascending branch peaks at y = {float(branch_y.max()):.6g}, {y_max - float(branch_y.max()):.3g} "
+                         f"below the loop's top y = {y_max:.6g} (less than half a relay gain, {gain:.3g}: noise at the "
+                         "turning point); the top relay switches at the branch's highest input")
+            continue
         if missing:
             text = (f"the {kind} branch never reaches the level(s) y = "
                     f"{', '.join(f'{levels[j]:.6g}' for j in missing)}; those relays switch at {where}")

@@ -11,10 +11,13 @@ positive for springs, compression positive for stops).
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
 from .. import _mbs_builder as runs
 from ..mechanism.link import Link
+from ..mechanism.points import MechanismError, closest
 from ..result import Result
 from ..simulation import SolverError
 from .model import MechanismModel
@@ -32,27 +35,89 @@ class Rows:
         self.forces: list[list[float]] = []
 
     def add(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
+        """Record the model's current state at time ``t`` [s]."""
+        self.add_snapshot(self.snapshot(t, volts, strains))
+
+    def snapshot(self, t: float, volts: np.ndarray, strains: np.ndarray) -> tuple:
+        """The model's current state at ``t`` [s], copied, for a later :meth:`add_snapshot`."""
+        return (t, np.array(volts, dtype=float), np.array(strains, dtype=float), np.array(self.model.coordinates()),
+                self.model.connector_forces())
+
+    def add_snapshot(self, snapshot: tuple) -> None:
+        """Record a state taken with :meth:`snapshot` (e.g. the last step of a thinned record)."""
+        t, volts, strains, q, forces = snapshot
         self.times.append(t)
-        self.volts.append(np.array(volts, dtype=float))
-        self.strains.append(np.array(strains, dtype=float))
-        self.q.append(np.array(self.model.coordinates()))
-        self.forces.append(self.model.connector_forces())
+        self.volts.append(volts)
+        self.strains.append(strains)
+        self.q.append(q)
+        self.forces.append(forces)
 
     def last_time(self) -> float:
         return self.times[-1] if self.times else 0.0
 
-    def result(self, info: dict) -> Result:
+    def result(self, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
+        """The recorded rows as a :class:`Result`; ``base`` names the first column and its unit."""
         return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
                            np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
-                           np.array(self.forces).reshape(len(self.times), -1), info)
+                           np.array(self.forces).reshape(len(self.times), -1), info, base=base)
+
+
+def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarray], float]:
+    """A function ``read(strains) -> float`` giving result column ``column`` for the model's current state.
+
+    ``column`` is a column name of :func:`make_result` without unit (``"crank.tip_y"``,
+    ``"lever.angle"``, ``"spring_1.force"``); ``strains`` are the current free strains per
+    source (needed for the angles of free bender ends).  A point coordinate is read directly;
+    any other column through :func:`make_result` of the one state.
+
+    Raises
+    ------
+    MechanismError
+        For a name that is not a column, with the closest column names.
+    """
+    column = column.split(" [")[0]
+    nsrc = len(model.sources)
+    probe = make_result(model, np.zeros(1), np.zeros((1, nsrc)), np.zeros((1, nsrc)),
+                        np.atleast_2d(np.array(model.coordinates())),
+                        np.array(model.connector_forces(), dtype=float).reshape(1, -1), {})
+    if column not in probe or column in ("time",):
+        names = [n for n in probe if n != "time"]
+        raise MechanismError(f"measurement: {column!r} is not a result column of mechanism "
+                             f"{model.mechanism.name!r}{closest(column, names)}")
+    point, _, axis = column.rpartition("_")
+    if axis in ("x", "y") and point in model.anchors:
+        key, local = model.anchors[point]
+        body = model.bodies[key]
+        axis_index = 0 if axis == "x" else 1
+
+        def read_point(strains: np.ndarray) -> float:
+            pose = body.reference if body.node is None else body.reference + model.coordinates()[body.ode2:body.ode2 + 3]
+            c, s = np.cos(pose[2]), np.sin(pose[2])
+            xy = (pose[0] + c * local[0] - s * local[1], pose[1] + s * local[0] + c * local[1])
+            return float(xy[axis_index])
+
+        return read_point
+
+    def read_any(strains: np.ndarray) -> float:
+        strains = np.atleast_2d(np.asarray(strains, dtype=float))
+        result = make_result(model, np.zeros(1), np.zeros_like(strains), strains,
+                             np.atleast_2d(np.array(model.coordinates())),
+                             np.array(model.connector_forces(), dtype=float).reshape(1, -1), {})
+        return float(result[column][0])
+
+    return read_any
 
 
 def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, strains: np.ndarray, q: np.ndarray,
-                forces: np.ndarray, info: dict) -> Result:
-    """The :class:`Result` of recorded rows (columns as in the module documentation)."""
+                forces: np.ndarray, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
+    """The :class:`Result` of recorded rows (columns as in the module documentation).
+
+    ``base`` is the first column's name and unit: ``("time", "s")`` for a time series,
+    ``("point", "-")`` for the point index of a quasi-static sweep.
+    """
     mech = model.mechanism
-    series: dict[str, np.ndarray] = {"time": times}
-    units: dict[str, str] = {"time": "s"}
+    series: dict[str, np.ndarray] = {base[0]: times}
+    units: dict[str, str] = {base[0]: base[1]}
     for name, k in model.drive_source.items():
         series[f"{name}.voltage"], units[f"{name}.voltage"] = volts[:, k], "V"
         series[f"{name}.strain"], units[f"{name}.strain"] = strains[:, k], "-"
@@ -92,6 +157,7 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
         values = result[name]
         if values.size and not np.all(np.isfinite(values)):
             bad = int(np.argmax(~np.isfinite(values)))
-            raise SolverError(f"the solution contains a non-finite {name} at row {bad} (t = {times[bad]!r} s); "
+            where = f"t = {times[bad]!r} s" if base[0] == "time" else f"{base[0]} {times[bad]!r}"
+            raise SolverError(f"the solution contains a non-finite {name} at row {bad} ({where}); "
                               "the solver diverged. Try a smaller step or more cells.")
     return result

@@ -70,6 +70,8 @@ class Mechanism:
         self.torques: list[Torque] = []
         self.springs: list[Spring] = []
         self.stops: list[Stop] = []
+        #: drive name -> result column its controller observes (see :meth:`feedback`)
+        self.measurements: dict[str, str] = {}
 
     # ------------------------------------------------------------------ building
     def add(self, *components: Component) -> "Mechanism":
@@ -250,6 +252,31 @@ class Mechanism:
             raise MechanismError(f"stop stiffness must be > 0 N/m, got {stiffness!r}")
         self.stops.append(Stop(ref, _vector("position", position), (nx / norm, ny / norm), k,
                                _nonneg("damping", damping), self._load_name(name, "stop", len(self.stops))))
+        return self
+
+    def feedback(self, drive: str, measurement: str) -> "Mechanism":
+        """Declare what the controller of ``drive`` observes: a result column of the mechanism.
+
+        A drive whose voltage is a controller (:mod:`exudyn_atcm.control`) needs one; after
+        every accepted step of :func:`exudyn_atcm.simulate` the controller's
+        ``observe(t, value)`` receives the column's value in SI units.
+
+        Parameters
+        ----------
+        drive : str
+            A drive name (see :class:`Bender`: the bender's name, or ``"name.k"`` per segment).
+        measurement : str
+            A result column name, without or with its unit: a point's coordinate
+            (``"crank.tip_y"`` [m]), an angle (``"lever.angle"``, ``"crank.tip_angle"`` [rad]) or a
+            spring or stop force (``"object.force"`` [N]).  Checked when the run starts.
+        """
+        if drive not in self.drives:
+            raise MechanismError(f"feedback: unknown drive {drive!r}{closest(str(drive), self.drives)} "
+                                 f"(drives: {', '.join(self.drives) or 'none'})")
+        if not isinstance(measurement, str) or not measurement:
+            raise MechanismError(f"feedback: measurement must be a result column name such as 'crank.tip_y', "
+                                 f"got {measurement!r}")
+        self.measurements[drive] = measurement
         return self
 
     # ------------------------------------------------------------------ queries
