@@ -18,7 +18,7 @@ about 20 µm for 1 mm of pivot height), so it cannot be identified from precisio
 branch of the cycle (function generation with prescribed timing: *where* P is at *which*
 voltage).  Hysteresis matters here: quasi-statically the rising and falling branch trace the
 same coupler curve, but at a given voltage the coupler point sits at different places on it
-(up to 1.7 mm apart on the default design).  The objective ``rms_rising`` is the RMS
+(2.7 mm apart at 500 V on the reference design).  The objective ``rms_rising`` is the RMS
 distance between the rising-branch coupler points at the precision voltages and the
 precision points; ``rms_both`` uses the falling branch at the same voltages as well.
 
@@ -337,12 +337,26 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     ax.set_xlabel(axis_label("x", "mm"))
     ax.set_ylabel(axis_label("y", "mm"))
     s = output.scalars
-    title = f"coupler point at the precision voltages (all with the Preisach drive)\nRMS distance {s['distance_rms'] * 1e6:.2g} µm"
+    title = f"coupler point at the precision voltages (all with the Preisach drive)\nRMS distance {s['distance_rms']:.2g} m"
     if "linear_design_distance_rms" in s:
-        title += f"; linear-drive design: {s['linear_design_distance_rms'] * 1e6:.3g} µm"
+        title += f"; designed with a linear drive: {s['linear_design_distance_rms'] * 1e3:.3g} mm"
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7)
     files.append(save_figure(fig, out_dir / f"{output.case}_paths.png"))
+
+    fig, (ax,) = new_figure(1, 1, width=6.4, height=4.0)
+    for label, (color, text) in _STYLES.items():
+        if f"{label}.rising_x" not in r.names:
+            continue
+        for branch, style in (("rising", "^-"), ("falling", "v--")):
+            d = np.hypot(r[f"{label}.{branch}_x"] - r["target_x"], r[f"{label}.{branch}_y"] - r["target_y"])
+            ax.plot(r["voltage"], d * 1e3, style, color=color, ms=5, mfc=color if branch == "rising" else "none",
+                    label=f"{text}: {branch}")
+    ax.set_xlabel(axis_label("precision voltage U", "V"))
+    ax.set_ylabel(axis_label("distance to the precision point", "mm"))
+    ax.set_title("all designs evaluated with the Preisach drive", fontsize=9)
+    ax.legend(fontsize=7)
+    files.append(save_figure(fig, out_dir / f"{output.case}_distances.png"))
 
     fig, (ax,) = new_figure(1, 1, width=6.4, height=4.2)
     for label, (color, text) in _STYLES.items():
@@ -350,11 +364,15 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
         if table is None:
             continue
         objective = "rms_both" if label == "both" else "rms_rising"
-        values = np.where(np.isfinite(table[objective]), table[objective], np.nan)
-        ax.semilogy(table["evaluation"], values, ".", color=color, ms=2, alpha=0.5)
-        ax.semilogy(table["evaluation"], np.fmin.accumulate(np.nan_to_num(values, nan=np.inf)), "-", color=color,
+        # each design once, in the order first evaluated (Nelder-Mead revisits stored designs)
+        designs = np.stack([table[name] for name in DESIGN], axis=1)
+        first = np.sort(np.unique(designs, axis=0, return_index=True)[1])
+        values = np.asarray(table[objective])[first]
+        count = np.arange(1, first.size + 1)
+        ax.semilogy(count, np.where(np.isfinite(values), values, np.nan), ".", color=color, ms=2, alpha=0.5)
+        ax.semilogy(count, np.fmin.accumulate(np.nan_to_num(values, nan=np.inf)), "-", color=color,
                     label=f"{text} ({objective}, best so far)")
-    ax.set_xlabel(axis_label("evaluation", "-"))
+    ax.set_xlabel(axis_label("designs evaluated", "-"))
     ax.set_ylabel(axis_label("RMS distance to the precision points", "m"))
     ax.legend(fontsize=7)
     files.append(save_figure(fig, out_dir / f"{output.case}_history.png"))
