@@ -45,12 +45,16 @@ B*; ``rigid_four_bar_error``, relative to the coupler point's travel).
 
 Outputs: the precision points and the three designs' coupler points at the precision
 voltages (CSV), the optimisation histories, the synthesised mechanism's path over a finer
-voltage cycle; plots of the precision points with the designs' rising and falling paths and
-of the optimisation history; a GIF of the synthesised mechanism over the cycle.
+voltage cycle; plots of the precision points with the designs' rising and falling points,
+of each design's distance to the points over the voltage, and of the optimisation history;
+a GIF of the synthesised mechanism over the cycle.  With an output directory the runs are
+stored in ``runs/compliant_four_bar_<hash>/`` (a store per version of the imported builder:
+the store's keys hash this file only), so a repeated synthesis replays them.
 """
 
 from __future__ import annotations
 
+import hashlib
 import importlib.util
 import math
 from pathlib import Path
@@ -105,7 +109,7 @@ PARAMETERS = [
     Parameter("reference_cells", 0, "-", "crank cells of the reference design's simulation; 0: n_cells"),
     Parameter("method", "differential_evolution", "-", "synthesise: optimiser (Nelder-Mead starts at the middle of the bounds)",
               choices=("differential_evolution", "nelder-mead")),
-    Parameter("maxiter", 15, "-", "synthesise: generations of differential evolution (Nelder-Mead: x 60 evaluations)"),
+    Parameter("maxiter", 15, "-", "synthesise: generations of differential evolution (Nelder-Mead: at most 60 x as many iterations)"),
     Parameter("popsize", 6, "-", "synthesise: population size per design variable"),
     Parameter("xatol", 1e-5, "-", "synthesise: Nelder-Mead tolerance, fraction of each range"),
     Parameter("workers", 2, "-", "synthesise: worker processes evaluating the population"),
@@ -212,7 +216,9 @@ def synthesise(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     voltages, up, down = cycle(p.n_steps, p.precision_voltages)
     targets = precision_points(p)
-    store = ctx.out_dir / "runs" if ctx.out_dir is not None else None
+    # the run store's keys hash this file only: keep the runs of each version of the imported builder apart
+    builder = hashlib.sha256(Path(FOUR_BAR.__file__).read_bytes()).hexdigest()[:12]
+    store = ctx.out_dir / "runs" / f"compliant_four_bar_{builder}" if ctx.out_dir is not None else None
     options = dict(method=p.method, maxiter=p.maxiter, popsize=p.popsize, xatol=p.xatol, workers=p.workers,
                    store=store, rerun_best=False)
     best = {"hysteresis": optimize(CASE, "rms_rising", BOUNDS, fixed=_fixed(p, targets), **options)}
