@@ -55,6 +55,8 @@ PARAMETERS = [
     Parameter("crank_length", 0.06, "m", "length of the crank bender"),
     Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*"),
     Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base"),
+    Parameter("coupler_point_x", 0.025, "m", "coupler point P from the coupler's hinge point B, along B -> C"),
+    Parameter("coupler_point_y", 0.02, "m", "coupler point P from the coupler's hinge point B, normal to B -> C (up)"),
     Parameter("flexure_length", 4e-3, "m", "length of each flexure hinge"),
     Parameter("flexure_thickness", 0.1e-3, "m", "thickness of the flexure strips (CFC)"),
     Parameter("n_steps", 40, "-", "static steps per voltage cycle"),
@@ -76,7 +78,7 @@ def build_mechanism(p: Parameters, strain_law, voltage=0.0) -> Mechanism:
     """
     # --- user code: building the mechanism takes the 18 lines below (counted by user_code_lines and the tests: < 30;
     # with its 3 import lines and the 2 Layer lines at the top of this file, 23) ---
-    L, b, lf, h = p.crank_length, p.coupler_length, p.flexure_length, p.rocker_pivot_height
+    L, b, lf, h, u, v = p.crank_length, p.coupler_length, p.flexure_length, p.rocker_pivot_height, p.coupler_point_x, p.coupler_point_y
     crank = Bender("crank", width=28e-3, passive=CFC, active=MFC, length=L, n_cells=p.n_cells,
                    drive=PiezoDrive(voltage, hysteresis=strain_law), angle=math.pi / 2, active_side="left")
 
@@ -85,8 +87,8 @@ def build_mechanism(p: Parameters, strain_law, voltage=0.0) -> Mechanism:
                        youngs_modulus=70e9, density=1550.0, gamma=0.5, k_theta=2.0)
 
     hinge_b = flexure("hinge_B", (0.0, L), (0.0, L + lf))
-    coupler = Link.from_outline("coupler", {"B": (0.0, L + lf), "C": (b, L + lf), "P": (0.5 * b, L + lf + 0.4 * b)},
-                                outline=[(0.0, L + lf), (b, L + lf), (0.5 * b, L + lf + 0.4 * b)],
+    coupler = Link.from_outline("coupler", {"B": (0.0, L + lf), "C": (b, L + lf), "P": (u, L + lf + v)},
+                                outline=[(0.0, L + lf), (b, L + lf), (u, L + lf + v)],
                                 density=1550.0, thickness=1e-3)
     hinge_c = flexure("hinge_C", (b, L + lf), (b, L))
     rocker = Link("rocker", {"C": (b, L), "D": (b, h + lf)}, mass=1550.0 * 1e-3 * 5e-3 * (L - h - lf),
