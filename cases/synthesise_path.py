@@ -103,7 +103,8 @@ PARAMETERS = [
     Parameter("precision_voltages", (-500.0, 0.0, 500.0, 1000.0, 1500.0), "V",
               "voltages of the precision points on the rising branch, within -500 ... 1500 V"),
     Parameter("precision_points", (), "m",
-              "x1,y1,x2,y2,...: the coupler point at the precision voltages; empty: from the reference design"),
+              "x1,y1,x2,y2,...: the coupler point at the precision voltages; empty (default, or --set precision_points=): "
+              "the reference design's rising branch"),
     Parameter("reference_rocker_pivot_height", 0.02, "m", "reference design generating the precision points"),
     Parameter("reference_coupler_point_x", 0.025, "m", "reference design generating the precision points"),
     Parameter("reference_coupler_point_y", 0.02, "m", "reference design generating the precision points"),
@@ -113,6 +114,7 @@ PARAMETERS = [
     Parameter("maxiter", 15, "-", "synthesise: generations of differential evolution (Nelder-Mead: at most 60 x as many iterations)"),
     Parameter("popsize", 6, "-", "synthesise: population size per design variable"),
     Parameter("xatol", 1e-5, "-", "synthesise: Nelder-Mead tolerance, fraction of each range"),
+    Parameter("fatol", 1e-6, "-", "synthesise: Nelder-Mead tolerance on the RMS distance, fraction of its value on the initial simplex"),
     Parameter("workers", 2, "-", "synthesise: worker processes evaluating the population"),
     Parameter("compare", True, "-", "synthesise: also the linear-drive design and the both-branch design"),
     Parameter("path_steps", 40, "-", "synthesise: static steps per cycle of the plotted paths and the GIF"),
@@ -220,7 +222,7 @@ def synthesise(p: Parameters, ctx: RunContext) -> CaseOutput:
     # the run store's keys hash this file only: keep the runs of each version of the imported builder apart
     builder = hashlib.sha256(Path(FOUR_BAR.__file__).read_bytes()).hexdigest()[:12]
     store = ctx.out_dir / "runs" / f"compliant_four_bar_{builder}" if ctx.out_dir is not None else None
-    options = dict(method=p.method, maxiter=p.maxiter, popsize=p.popsize, xatol=p.xatol, workers=p.workers,
+    options = dict(method=p.method, maxiter=p.maxiter, popsize=p.popsize, xatol=p.xatol, fatol=p.fatol, workers=p.workers,
                    store=store, rerun_best=False)
     best = {"hysteresis": optimize(CASE, "rms_rising", BOUNDS, fixed=_fixed(p, targets), **options)}
     ctx.progress(1, 3 if p.compare else 1)
@@ -314,6 +316,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             raise ValueError(f"{name} must be >= {low}, got {p[name]!r}")
     if not 0.0 < p.xatol < 1.0:
         raise ValueError(f"xatol must be in (0, 1) (a fraction of each range), got {p.xatol!r}")
+    if not 0.0 <= p.fatol < 1.0:
+        raise ValueError(f"fatol must be in [0, 1) (a fraction of the RMS distance on the initial simplex), got {p.fatol!r}")
     return synthesise(p, ctx)
 
 

@@ -140,7 +140,11 @@ class Parameter:
         Identifier used in ``--set NAME=VALUE`` and as ``p.name`` in the run function.
     default : float, int, bool, str or tuple of float
         Default value; its Python type fixes the parameter's type (``1.0`` is a float,
-        ``1`` an int, a tuple of numbers is a comma-separated list of floats).
+        ``1`` an int, a tuple of numbers is a comma-separated list of floats).  A list
+        parameter whose default is the empty tuple ``()`` also accepts an empty value
+        (``--set NAME=`` or ``()``), which then means the same as its default (the help
+        text says what, e.g. "empty: from the reference design"); any other list parameter
+        needs at least one number.
     unit : str
         SI unit of the value (``"-"`` if unit-free).
     help : str
@@ -194,7 +198,7 @@ class Parameter:
                 value = low in _TRUE
             elif self.kind == "floats":
                 value = tuple(float(v) for v in raw.split(",") if v.strip() != "")
-                if not value:
+                if not value and not self._empty_allowed():
                     raise ValueError
             else:
                 value = text
@@ -217,7 +221,7 @@ class Parameter:
         elif self.kind == "floats":
             try:
                 value = tuple(float(v) for v in value)
-                ok = all(math.isfinite(v) for v in value) and len(value) > 0
+                ok = all(math.isfinite(v) for v in value) and (len(value) > 0 or self._empty_allowed())
             except (TypeError, ValueError):
                 ok = False
         if not ok:
@@ -226,7 +230,12 @@ class Parameter:
             raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.choices))}, got {value!r}")
         return value
 
+    def _empty_allowed(self) -> bool:
+        return self.kind == "floats" and len(self.default) == 0
+
     def _kind_text(self) -> str:
+        if self._empty_allowed():
+            return f"comma-separated finite real numbers [{self.unit}], or empty"
         return {
             "float": f"a finite real number [{self.unit}]",
             "int": "an integer",

@@ -185,6 +185,16 @@ def test_parameter_types():
         p_bool.parse("maybe")
     p_list = Parameter("u", (0.0, 1.0), "V")
     assert p_list.parse("-500, 1500,0") == (-500.0, 1500.0, 0.0)
+    with pytest.raises(ValueError, match="u must be comma-separated finite real numbers"):
+        p_list.parse("")  # a list with a non-empty default needs at least one number
+    with pytest.raises(ValueError):
+        p_list.check(())
+    # a list whose default is empty accepts an explicit empty value (= its default), by text or value
+    p_optional = Parameter("points", (), "m", "empty: from the reference design")
+    assert p_optional.parse("") == () and p_optional.check(()) == () and p_optional.check([]) == ()
+    assert p_optional.parse("1e-3, 2e-3") == (1e-3, 2e-3)
+    with pytest.raises(ValueError, match=r"points must be comma-separated finite real numbers \[m\], or empty"):
+        p_optional.parse("1, nan")
     p_choice = Parameter("cell", "rigid", choices=("rigid", "six-bar"))
     with pytest.raises(ValueError, match="one of rigid, six-bar"):
         p_choice.parse("flexible")

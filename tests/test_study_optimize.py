@@ -93,6 +93,8 @@ def test_lbfgsb_with_finite_differences_and_a_callable_objective():
         ({"bounds": {"mode": (0, 1)}}, GridError, "must be float or int"),
         ({"bounds": {"n": (1, 3)}, "method": "nelder-mead"}, ValueError, "need method='differential_evolution'"),
         ({"bounds": {"x": (0, 1)}, "method": "newton"}, ValueError, "method must be one of"),
+        ({"bounds": {"x": (0, 1)}, "fatol": -1.0}, ValueError, "fatol must be a number in [0, inf)"),
+        ({"bounds": {"x": (0, 1)}, "xatol": 2.0}, ValueError, "xatol must be a number in [0, 1)"),
         ({"bounds": {"x": (0, 1)}, "constraints": {"y": (None, None)}}, ValueError, "give a lower or an upper limit"),
         ({"bounds": {"x": (0, 1)}, "constraints": {"f1": (1.0, None)}}, ValueError,
          "constraints: 'f1' is not a key scalar of case synthetic_study; its key scalars: y, z"),
@@ -102,6 +104,37 @@ def test_bad_optimisation_input(kwargs, error, message):
     with pytest.raises(error, match=None) as info:
         optimize(SYNTHETIC, "y", workers=1, **kwargs)
     assert message in str(info.value)
+
+
+def test_nelder_mead_stops_at_its_tolerances_on_a_smooth_problem():
+    """Nelder-Mead stops by its tolerances (xatol and the relative fatol), long before the cap.
+
+    y = x^2 + 2 on x in [-1, 3]: the cap is maxiter * n * 20 = 2000 evaluations; from the
+    middle the 1-D simplex needs about log2(4 / 4e-4) ~ 14 halvings after a few expansions,
+    so 100 evaluations is ample.  At the stop the best vertex is within a few xatol * range of
+    the minimum x = 0.  A kink |x - 0.7123| + 0.5 (whose values on the simplex only become
+    equal at machine precision) shows the function tolerance: with fatol = 0 it runs until the
+    simplex collapses to rounding, with the default 1e-4 (relative) it stops far sooner.
+    """
+    best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2}, workers=1,
+                    rerun_best=False)
+    assert best.scipy_result.status == 0  # "Optimization terminated successfully", not the cap (status 1/2)
+    assert best.evaluations < 100
+    assert abs(best.design["x"]) < 4 * 1e-4 * 4.0
+
+    def kink(scalars, values):
+        return abs(values["x"] - 0.7123) + 0.5
+
+    runs = {fatol: optimize(SYNTHETIC, kink, {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2}, workers=1,
+                            rerun_best=False, fatol=fatol) for fatol in (0.0, 1e-4)}
+    assert runs[1e-4].evaluations < 0.5 * runs[0.0].evaluations  # measured 24 against 104
+    assert abs(runs[1e-4].design["x"] - 0.7123) < 4 * 1e-4 * 4.0  # still within the x tolerance
+    # the polish after differential evolution stops too: DE (4 generations) + polish well under the polish's cap
+    de = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2}, workers=1, maxiter=4, popsize=4,
+                  rerun_best=False)
+    assert de.scipy_result.status == 0
+    assert de.evaluations < 4 * 5 * 4 + 100  # DE: at most (maxiter + 1) * popsize * n runs; polish < 100
+    assert abs(de.design["x"]) < 4 * 1e-4 * 4.0
 
 
 def test_unknown_objective_scalar():

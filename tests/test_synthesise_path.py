@@ -53,9 +53,10 @@ def test_reference_design_is_recovered_from_the_middle_of_the_bounds(case, synth
         assert abs(history[name][0] - case.resolve()[f"reference_{name}"]) >= 4.9e-3
     assert history["rms_rising"][0] > 5e-4
     # the precision points are the same model's output at the reference design, so the minimum is
-    # exactly that design; Nelder-Mead's tolerance is 1e-5 of each range (<= 0.6 µm)
+    # exactly that design; Nelder-Mead's tolerances are 1e-5 of each range (<= 0.6 µm) and 1e-6 of the
+    # ~1 mm RMS distance on the initial simplex (~1 nm): it stops there, not at its iteration cap
     assert s["design_error_max"] < 1e-6
-    assert s["distance_rms"] < 1e-9
+    assert s["distance_rms"] < 1e-8
     assert s["rocker_pivot_height_optimum"] == pytest.approx(0.02, abs=1e-6)
     assert s["coupler_point_x_optimum"] == pytest.approx(0.025, abs=1e-6)
     assert s["coupler_point_y_optimum"] == pytest.approx(0.02, abs=1e-6)
@@ -149,3 +150,14 @@ def test_differential_evolution_in_parallel_writes_plots_and_resumes(case, tmp_p
 def test_bad_input_is_refused_with_the_parameter_named(case, values, message):
     with pytest.raises(ValueError, match=message):
         case.run({"mode": "evaluate", **values}, plot=False)
+
+
+def test_explicit_empty_precision_points_mean_the_reference_design(case):
+    """``precision_points=()`` (or ``--set precision_points=``) is the default: the reference design's points."""
+    assert case.resolve({"precision_points": ()})["precision_points"] == ()
+    assert case.resolve({"precision_points": []})["precision_points"] == ()
+    values = {"mode": "evaluate", "n_cells": 2, "path_steps": 8, "animation": False}
+    default = case.run(values, plot=False).scalars
+    explicit = case.run({**values, "precision_points": ()}, plot=False).scalars
+    assert explicit == default
+    assert default["rms_rising"] == 0.0  # the reference design meets its own points exactly (same model)

@@ -100,6 +100,7 @@ def optimize(
     popsize: int = 15,
     tol: float = 1e-3,
     xatol: float = 1e-4,
+    fatol: float = 1e-4,
     polish: bool = True,
     workers: int | None = None,
     client: Any = None,
@@ -148,8 +149,13 @@ def optimize(
     maxiter, popsize, tol : int, int, float
         Differential evolution: generations, population size factor, relative tolerance.
         Local methods: ``maxiter`` is multiplied by the number of variables.
-    xatol : float
-        Nelder-Mead tolerance in normalised coordinates (default 1e-4 of each range).
+    xatol, fatol : float
+        Nelder-Mead stopping tolerances (local method and polish): it stops when every vertex
+        of the simplex lies within ``xatol`` of the best one in normalised coordinates
+        (default 1e-4 of each range) *and* their objective values differ by at most
+        ``fatol`` times the objective's scale, the largest finite ``|objective|`` on the
+        initial simplex (default 1e-4, relative).  ``fatol=0`` means "values equal", which
+        in practice runs to the iteration cap.
     polish : bool
         After differential evolution, refine the best design with Nelder-Mead on the float
         variables (integers fixed).
@@ -200,6 +206,9 @@ def optimize(
         lows.append(low)
         highs.append(high)
         kinds.append(parameter.kind)
+    for label, tol_value, high in (("xatol", xatol, 1.0), ("fatol", fatol, math.inf)):
+        if not (isinstance(tol_value, (int, float)) and not isinstance(tol_value, bool) and 0.0 <= tol_value < high):
+            raise ValueError(f"{label} must be a number in [0, {high:g}) (relative Nelder-Mead tolerance), got {tol_value!r}")
     if constraint_handling not in ("penalty", "scipy"):
         raise ValueError(f"constraint_handling must be 'penalty' or 'scipy', got {constraint_handling!r}")
     if constraint_handling == "scipy" and method != "differential_evolution":
@@ -226,7 +235,7 @@ def optimize(
             best_u = np.asarray(result.x, float)
             if polish and any(k == "float" for k in kinds):
                 problem.penalty = float(penalty)  # Nelder-Mead knows constraints only as penalties
-                result = _polish(so, problem, best_u, kinds, xatol, maxiter)
+                result = _polish(so, problem, best_u, kinds, xatol, fatol, maxiter)
                 best_u = np.asarray(result.x, float)
         else:
             start = np.array([
@@ -234,8 +243,10 @@ def optimize(
                 for nm, lo, hi in zip(names, lows, highs)
             ])
             if method == "nelder-mead":
+                simplex = _simplex(start)
                 result = so.minimize(problem, start, method="Nelder-Mead", bounds=[(0.0, 1.0)] * n,
-                                     options={"xatol": xatol, "fatol": 0.0, "maxiter": maxiter * n * 20, "initial_simplex": _simplex(start)})
+                                     options={"xatol": xatol, "fatol": _absolute_fatol(problem, simplex, fatol),
+                                              "maxiter": maxiter * n * 20, "initial_simplex": simplex})
             else:
                 result = so.minimize(problem, start, method="L-BFGS-B", bounds=[(0.0, 1.0)] * n,
                                      options={"maxiter": maxiter * n, "eps": 1e-6})
@@ -370,7 +381,28 @@ def _differential_evolution(so, problem: Problem, kinds, seed, maxiter, popsize,
     return result
 
 
-def _polish(so, problem: Problem, best_u: np.ndarray, kinds, xatol, maxiter):
+def _absolute_fatol(problem: Problem, simplex: np.ndarray, fatol: float, free=None, base=None) -> float:
+    """``fatol`` times the objective's scale on the initial simplex (run in parallel first).
+
+    scipy's Nelder-Mead takes an absolute function tolerance; the objective's units are the
+    case's, so the scale is the largest finite ``|objective|`` on the initial simplex (1 when
+    none is finite or all are 0).
+    """
+    us = []
+    for v in simplex:
+        if free is None:
+            us.append(np.asarray(v, float))
+        else:
+            u = base.copy()
+            u[free] = v
+            us.append(u)
+    problem.prefetch(us)
+    values = [abs(problem.raw_objective(problem.record(u))) for u in us]
+    finite = [v for v in values if math.isfinite(v) and v > 0.0]
+    return float(fatol) * (max(finite) if finite else 1.0)
+
+
+def _polish(so, problem: Problem, best_u: np.ndarray, kinds, xatol, fatol, maxiter):
     """Nelder-Mead on the float variables from ``best_u`` (integers fixed)."""
     free = np.array([k == "float" for k in kinds])
 
@@ -380,9 +412,10 @@ def _polish(so, problem: Problem, best_u: np.ndarray, kinds, xatol, maxiter):
         return problem(u)
 
     start = best_u[free]
+    simplex = _small_simplex(start)
     result = so.minimize(func, start, method="Nelder-Mead", bounds=[(0.0, 1.0)] * int(free.sum()),
-                         options={"xatol": xatol, "fatol": 0.0, "maxiter": maxiter * int(free.sum()) * 20,
-                                  "initial_simplex": _small_simplex(start)})
+                         options={"xatol": xatol, "fatol": _absolute_fatol(problem, simplex, fatol, free, best_u),
+                                  "maxiter": maxiter * int(free.sum()) * 20, "initial_simplex": simplex})
     u = best_u.copy()
     u[free] = result.x
     result.x = u
