@@ -35,19 +35,21 @@ import numpy as np
 from exudyn_atcm.parameter_sets import PAPER_LOOP
 from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
 
-from exudyn_atcm.actuator import BendingActuator
+from exudyn_atcm.actuator import CELL_TYPES, BendingActuator
 from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.materials import Layer
 from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plotting import animate_actuator, plot_result
+from exudyn_atcm.mechanism_plots import actuator_as_mechanism, animate_mechanism, plot_mechanism
+from exudyn_atcm.plotting import plot_time_series, plot_tip_vs_voltage
 from exudyn_atcm.signals import Triangle
 from exudyn_atcm.simulation import simulate
 
 PARAMETERS = [
     Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),
     Parameter("cycles", 2, "-", "number of input periods simulated"),
-    Parameter("cell", "six-bar", "-", "cell model", choices=("six-bar", "rigid")),
+    Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell)",
+              choices=CELL_TYPES),
     Parameter("n_cells", 3, "-", "number of cells"),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
@@ -160,10 +162,24 @@ def plot_stroke_vs_voltage(result, p: Parameters, path: Path) -> Path:
 
 
 def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
-    files = [Path(f) for f in plot_result(output.result, out_dir, prefix=f"{output.case}_")]
+    """Time series, loop, stroke against the paper, shape plot and GIF.
+
+    The shape plot (at the largest tip deflection, with the tip's path) and the GIF draw both
+    layers, the cell joints and the motor of every cell at true scale (stated in the title;
+    the layer offset e, a fraction of a millimetre, is enlarged as the legend says).
+    """
+    out_dir = Path(out_dir)
+    prefix = f"{out_dir / output.case}_"
+    files = [Path(plot_time_series(output.result, prefix + "time_series.png")),
+             Path(plot_tip_vs_voltage(output.result, prefix + "tip_vs_voltage.png"))]
+    mechanism, drawn = actuator_as_mechanism(build(p), output.result, name="actuator")
+    title = f"Fig. 12 actuator, {p.n_cells} {p.cell} cells"
+    row = int(np.argmax(np.abs(output.result["tip_y"])))
+    files.append(plot_mechanism(mechanism, drawn, prefix + "shapes.png", row=row, trace=("actuator.tip",),
+                                title=f"{title}, largest tip deflection"))
     files.append(plot_stroke_vs_voltage(output.result, p, Path(out_dir) / f"{output.case}_stroke_vs_paper.png"))
     if p.animation:
-        files.append(Path(animate_actuator(output.result, out_dir / f"{output.case}_animation.gif")))
+        files.append(animate_mechanism(mechanism, drawn, prefix + "animation.gif", trace=("actuator.tip",), title=title))
     return files
 
 

@@ -8,7 +8,9 @@ The same actuator (the paper's actuator by default: 3 cells of 29 mm, 28 mm wide
 * the static tip position over a voltage ramp 0 ... U (linear piezo law, Eq. 3) against the
   circular arc of beam theory (free curvature, Timoshenko's bimetal formula);
 * the tip compliance under a small tip force against ``L³/(3 EI)`` times the chain factor
-  ``1 + 1/(2N²)`` of a rigid chain (derived on the theory page of the documentation);
+  of the cell model (derived on the theory page of the documentation): ``1 + 1/(2N²)`` for
+  rigid cells, ``1 + (3/(4 rho_s) - 1/4)/N²`` for six-bar cells, ``1 - 1/(4N²)`` for linear
+  beam elements (``cell="beam"``) and 1 for cubic ANCF cable elements (``cell="ancf"``);
 * the first bending eigenfrequency against the Euler-Bernoulli ``f1``;
 * the large deflection under a tip force ``F = alpha EI/L²`` perpendicular to the undeformed
   axis (composite calibration, no voltage, a chain of ``elastica_cells`` rigid cells of the
@@ -26,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.actuator import BendingActuator
+from exudyn_atcm.actuator import CELL_TYPES, BendingActuator
 from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.hysteresis_plots import Curve, plot_loops
@@ -36,7 +38,8 @@ from exudyn_atcm.simulation import eigenfrequencies, solve_static
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "number of cells"),
-    Parameter("cell", "rigid", "-", "cell model", choices=("rigid", "six-bar")),
+    Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell)",
+              choices=CELL_TYPES),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
     Parameter("width", 28e-3, "m", "width b of both layers"),
     Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness"),
@@ -96,11 +99,12 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         unloaded = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(0.0), cell=p.cell, stiffness=model)
         loaded = solve_static(unloaded, voltage=0.0, tip_force=(0.0, p.tip_force))
         compliance = float(loaded["tip_y"][0]) / p.tip_force
-        factor = (
-            bt.rigid_chain_compliance_factor(p.n_cells)
-            if p.cell == "rigid"
-            else bt.six_bar_chain_compliance_factor(p.n_cells, unloaded.spring_share)
-        )
+        factor = {
+            "rigid": lambda: bt.rigid_chain_compliance_factor(p.n_cells),
+            "six-bar": lambda: bt.six_bar_chain_compliance_factor(p.n_cells, unloaded.spring_share),
+            "beam": lambda: bt.beam_element_compliance_factor(p.n_cells),
+            "ancf": lambda: 1.0,  # cubic elements: the cantilever's cubic deflection exactly
+        }[p.cell]()
         f1 = float(eigenfrequencies(unloaded, 1)[0])
         steps += 2
         scalars.update(

@@ -176,6 +176,18 @@ def six_bar_chain_compliance_factor(n_cells: int, spring_share: float) -> float:
     return 1.0 + (0.75 / spring_share - 0.25) / n_cells**2
 
 
+def beam_element_compliance_factor(n_elements: int) -> float:
+    """Compliance factor ``1 - 1/(4 N²)`` of N linear shear-rigid beam elements under a small tip force.
+
+    Two-node elements with one-point (mid-element) integration, as Exudyn's
+    ``ObjectBeamGeometricallyExact2D``: the rotation is linear in each element and the
+    deflection follows the element's mid rotation (trapezoidal rule over the node
+    rotations), so ``y = (F L³ / 3EI)(1 - 1/(4 N²))`` exactly (N = 1: ``F L³ / 4EI``).
+    Cubic (Hermite / ANCF cable) elements reproduce the cubic deflection exactly: factor 1.
+    """
+    return 1.0 - 1.0 / (4.0 * n_elements**2)
+
+
 def first_bending_frequency(bending_stiffness: float, mass_per_length: float, length: float) -> float:
     """First bending eigenfrequency of a clamped-free beam [Hz].
 

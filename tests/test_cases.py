@@ -136,6 +136,51 @@ def test_stiffness_comparison_against_model_md():
     assert s["compliance_composite"] == pytest.approx(17.055e-3 * (1 + 1 / 18), rel=2e-4)
 
 
+@pytest.mark.parametrize("cell, factor", [("beam", 1 - 1 / 36), ("ancf", 1.0)])
+def test_stiffness_comparison_with_beam_elements(cell, factor):
+    """cell="beam"/"ancf": the compliance reference is that of the element, not the six-bar chain's.
+
+    Three linear shear-rigid elements: L^3/(3EI) (1 - 1/(4 N^2)) exactly (trapezoidal rule over
+    the node rotations); cubic ANCF elements: the cubic deflection itself.  Tolerance 1e-4:
+    the elements' axis is stiff but not rigid in extension and shear (penalty of the element).
+    """
+    s = load_case(CASES / "stiffness_comparison.py").run({"n_voltages": 2, "cell": cell}).scalars
+    assert s["compliance_chain_theory_composite"] == pytest.approx(17.055e-3 * factor, rel=1e-4)
+    assert s["compliance_composite"] == pytest.approx(s["compliance_chain_theory_composite"], rel=1e-4)
+    assert s["tip_angle_composite"] == pytest.approx(4.13984 * 0.087, rel=1e-5)  # exact under actuation alone
+
+
+def test_fig12_case_draws_layers_joints_and_motors_with_the_scale(tmp_path, monkeypatch):
+    """The Fig. 12 shape plot and GIF are mechanism drawings: both layers, cell joints, motors, scale stated.
+
+    Short run (one 0.2 s period, beam cells: the drawing does not depend on the cell model).
+    """
+    from exudyn_atcm import mechanism_plots
+
+    case = load_case(CASES / "paper_bending_actuator.py")
+    figures = []
+    save = mechanism_plots.save_figure
+    monkeypatch.setattr(mechanism_plots, "save_figure", lambda fig, path: figures.append(fig) or save(fig, path))
+    out = case.run({"cell": "beam", "period": 0.2, "cycles": 1, "step": 1e-4}, out_dir=tmp_path, plot=True)
+    names = {f.name for f in out.files}
+    assert {"paper_bending_actuator_shapes.png", "paper_bending_actuator_animation.gif"} <= names
+    (ax,) = figures[0].axes
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "passive layer" in labels and "cell joints" in labels and "motor, drive actuator" in labels
+    assert any(label.startswith("active layer") for label in labels)
+    assert "(true scale)" in ax.get_title() and "3 beam cells" in ax.get_title()
+    assert ax.get_xlabel() == "x [mm]" and ax.get_ylabel() == "y [mm]"
+    # the drawn tip (passive layer's last point) is the simulated largest deflection; the polyline
+    # is built from the recorded cell angles (a beam element's: the mean of its node rotations, so
+    # its chord differs from the element's arc by O(rotation difference^2) ~ 1e-6 relative)
+    tip = max(line.get_ydata()[-1] for line in ax.get_lines() if line.get_label() == "passive layer")
+    assert tip == pytest.approx(1e3 * np.max(np.abs(out.result["tip_y"])), rel=1e-5)
+    from PIL import Image
+
+    with Image.open(tmp_path / "paper_bending_actuator_animation.gif") as gif:
+        assert gif.n_frames >= 30
+
+
 # ----------------------------------------------------------------------------- parameters
 def test_cli_run_with_set_overrides(tmp_path):
     proc = cli(["run", "paper_hysteresis_loop", "--set", "period=2", "--set", "cycles=1", "--out", "o", "--no-plot"], tmp_path)
