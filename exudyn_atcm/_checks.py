@@ -4,6 +4,7 @@ parameter, the value received and what is allowed."""
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -68,3 +69,25 @@ def same_length(names: tuple[str, ...], arrays: tuple[np.ndarray, ...]) -> None:
     if len(set(lengths)) > 1:
         described = ", ".join(f"{n} has {k}" for n, k in zip(names, lengths))
         raise ValueError(f"{', '.join(names)} must have the same length: {described}")
+
+
+#: Plausible magnitudes of geometric inputs (SI): ``(low, high, unit, likely mistake)``.  An A-TCM
+#: bender, flexure or link is millimetres to a metre long; outside this a unit slip is likely.
+PLAUSIBLE_GEOMETRY = {
+    "length": (1e-4, 2.0, "m", "a length in mm passed as metres"),
+    "position": (0.0, 10.0, "m", "a coordinate in mm passed as metres"),
+    "angle": (0.0, 2.0 * math.pi, "rad", "an angle in degrees passed as radians"),
+}
+
+
+def warn_implausible(name: str, value: float, kind: str, owner: str, *, stacklevel: int = 3) -> None:
+    """Warn (``RuntimeWarning``) when ``|value|`` lies outside :data:`PLAUSIBLE_GEOMETRY` ``[kind]``."""
+    low, high, unit, mistake = PLAUSIBLE_GEOMETRY[kind]
+    if not low <= abs(float(value)) <= high:
+        warnings.warn(
+            f"{owner}: {name} = {float(value)!r} {unit} is outside the plausible range "
+            f"{'|value| <= ' if low == 0.0 else f'{low:g} ... '}{high:g} {unit}; is it {mistake}? "
+            "All values are SI units",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )

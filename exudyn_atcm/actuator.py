@@ -18,7 +18,7 @@ from __future__ import annotations
 import numbers
 from typing import Any
 
-from ._checks import finite_float, positive_float, positive_int
+from ._checks import finite_float, positive_float, positive_int, warn_implausible
 from .drive import PiezoDrive
 from .laminate import STIFFNESS_MODELS, Laminate
 from .materials import Layer
@@ -114,6 +114,8 @@ class BendingActuator:
         self.n_cells = positive_int("n_cells", n_cells)
         self.cell_length = positive_float("cell_length", cell_length)
         self.width = positive_float("width", width)
+        warn_implausible("cell_length", self.cell_length, "length", "BendingActuator")
+        warn_implausible("width", self.width, "length", "BendingActuator")
         for name, layer in (("passive", passive), ("active", active)):
             if not isinstance(layer, Layer):
                 raise ValueError(f"{name} must be an exudyn_atcm Layer, got {layer!r}")

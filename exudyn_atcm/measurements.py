@@ -171,6 +171,14 @@ def _column(header: list[str] | None, choice: Any, default: int, parameter: str,
     return index
 
 
+#: Header units converted to SI by :func:`read_record` (``si=True``): unit -> (factor, SI unit).
+_SI_SCALE = {
+    "ms": (1e-3, "s"), "µs": (1e-6, "s"), "μs": (1e-6, "s"), "us": (1e-6, "s"),
+    "mV": (1e-3, "V"), "kV": (1e3, "V"),
+    "mm": (1e-3, "m"), "µm": (1e-6, "m"), "μm": (1e-6, "m"), "um": (1e-6, "m"), "nm": (1e-9, "m"),
+}
+
+
 def read_record(
     path: Union[str, Path],
     time: ColumnChoice | None = None,
@@ -179,6 +187,7 @@ def read_record(
     *,
     comment: str = "#",
     min_samples: int = 2,
+    si: bool = True,
 ) -> Record:
     """Read a measured (time, input, output) record from a text file.
 
@@ -200,6 +209,12 @@ def read_record(
         Comment prefix (default ``#``).
     min_samples : int, optional
         Fewest valid rows accepted (default 2).
+    si : bool, optional
+        Convert columns whose header unit is a decimal multiple of s, V or m (``ms``, ``µs``,
+        ``mV``, ``kV``, ``mm``, ``µm``/``um``, ``nm``) to SI, as the rest of the package
+        expects (``t_split`` in seconds, drives in volts, strains from metres); each
+        conversion is listed in ``Record.processing`` (default True).  ``False`` keeps the
+        file's numbers and units.
 
     Returns
     -------
@@ -279,6 +294,16 @@ def read_record(
             names[key], units[key] = key, ""
     if not units["time"]:
         units["time"] = "s"
+    if not isinstance(si, bool):
+        raise ValueError(f"si must be True or False, got {si!r}")
+    if si:
+        for c, key in enumerate(("time", "input", "output")):
+            factor_unit = _SI_SCALE.get(units[key])
+            if factor_unit is not None:
+                factor, base = factor_unit
+                data[:, c] *= factor
+                processing.append(f"{key} converted from {units[key]} to {base} (x {factor:g})")
+                units[key] = base
     return Record(data[:, 0], data[:, 1], data[:, 2], units=units, names=names,
                   processing=tuple(processing), source=str(path))
 

@@ -82,7 +82,21 @@ class Result(Mapping):
         try:
             return self._series[name]
         except KeyError:
-            raise KeyError(f"no series {name!r}; available: {', '.join(self._series)}") from None
+            raise self._missing(name) from None
+
+    def _missing(self, name: Any) -> KeyError:
+        """KeyError for an unknown series, with the closest name (a unit or component prefix is a common slip)."""
+        import difflib
+
+        text = str(name)
+        bare = text.split(" [", 1)[0].strip()
+        if bare != text and bare in self._series:  # "b.tip_y [m]" as in a CSV header
+            return KeyError(f"no series {name!r} (series names carry no unit: use {bare!r}, and "
+                            f"result.unit({bare!r}) for its unit); available: {', '.join(self._series)}")
+        guesses = [n for n in self._series if n.endswith("." + bare)]  # "tip_y" -> "b.tip_y"
+        guesses += [n for n in difflib.get_close_matches(bare, list(self._series), n=2, cutoff=0.75) if n not in guesses]
+        hint = f" (did you mean {' or '.join(repr(g) for g in guesses[:3])}?)" if guesses else ""
+        return KeyError(f"no series {name!r}{hint}; available: {', '.join(self._series)}")
 
     def __iter__(self) -> Iterator[str]:
         return iter(self._series)
@@ -104,7 +118,7 @@ class Result(Mapping):
     def unit(self, name: str) -> str:
         """Unit of series ``name`` (SI; ``"-"`` if unit-free)."""
         if name not in self._units:
-            raise KeyError(f"no series {name!r}; available: {', '.join(self._series)}")
+            raise self._missing(name)
         return self._units[name]
 
     @property

@@ -245,6 +245,12 @@ def test_fits_reject_too_few_levels(n):
         PrandtlIshlinskii.fit(GOOD_U, GOOD_Y, n)
 
 
+def test_fit_refuses_a_grid_too_large_for_memory():
+    """500 levels = 125250 relays: dense normal equations of 117 GiB; refused before allocating."""
+    with pytest.raises(ValueError, match=r"n_levels must be <= 100, got 500: 125250 relays .*\(117 GiB\)"):
+        DiscretePreisach.fit(GOOD_U, GOOD_Y, 500)
+
+
 def test_fit_rejects_bad_options():
     with pytest.raises(ValueError, match=r"smoothing must be a finite number >= 0, got -1"):
         DiscretePreisach.fit(GOOD_U, GOOD_Y, 4, smoothing=-1)

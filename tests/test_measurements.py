@@ -17,12 +17,32 @@ def write(tmp_path, text, name="rec.csv"):
 def test_header_units_comments_and_column_names(tmp_path):
     path = write(tmp_path, "# instrument X\n# more\ntime [s],voltage [V],disp [um],temp [C]\n"
                            "0.0,1.0,10.0,20\n0.1,2.0,11.0,20\n0.2,3.0,12.5,21\n")
-    rec = read_record(path, time="time", input="voltage [V]", output="disp")
+    rec = read_record(path, time="time", input="voltage [V]", output="disp", si=False)
     np.testing.assert_array_equal(rec.time, [0.0, 0.1, 0.2])
     np.testing.assert_array_equal(rec.input, [1.0, 2.0, 3.0])
     np.testing.assert_array_equal(rec.output, [10.0, 11.0, 12.5])
     assert rec.units == {"time": "s", "input": "V", "output": "um"}
     assert rec.label("output") == "disp [um]"
+    # default: a decimal multiple of s, V or m becomes SI, and the record says so
+    rec = read_record(path, time="time", input="voltage [V]", output="disp")
+    np.testing.assert_allclose(rec.output, [10e-6, 11e-6, 12.5e-6], rtol=1e-15)
+    assert rec.units == {"time": "s", "input": "V", "output": "m"}
+    assert rec.processing == ("output converted from um to m (x 1e-06)",)
+
+
+def test_millisecond_millivolt_micrometre_record_is_read_in_si(tmp_path):
+    """ms, mV and µm columns (an oscilloscope export): seconds, volts and metres, so t_split in s works."""
+    path = write(tmp_path, "time [ms],voltage [mV],displacement [µm]\n0,0,0\n500,150000,2.5\n1000,-50000,-1\n")
+    rec = read_record(path)
+    np.testing.assert_allclose(rec.time, [0.0, 0.5, 1.0], rtol=1e-15)
+    np.testing.assert_allclose(rec.input, [0.0, 150.0, -50.0], rtol=1e-15)
+    np.testing.assert_allclose(rec.output, [0.0, 2.5e-6, -1e-6], rtol=1e-15)
+    assert rec.units == {"time": "s", "input": "V", "output": "m"}
+    assert len(rec.processing) == 3
+    fit, held_out = rec.split(0.75)  # seconds: samples at 0 and 0.5 s fit, 1 s held out
+    assert fit.n_samples == 2 and held_out.n_samples == 1
+    with pytest.raises(ValueError, match="si must be True or False"):
+        read_record(path, si="yes")
 
 
 def test_blank_leading_column_and_indices_without_header(tmp_path):

@@ -64,6 +64,11 @@ def check_record(u: Any, y: Any, n_fit: int | None = None, *, min_samples: int =
     return u_a, y_a, n_fit
 
 
+#: Largest ``n_levels`` of a relay-grid fit: ``n (n + 1) / 2`` relays and dense normal equations
+#: of that size (100 levels: 5050 relays, about 1 GB of working memory and ~20 s).
+MAX_FIT_LEVELS = 100
+
+
 def _levels_int(name: str, value: Any, minimum: int = 2) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
@@ -234,6 +239,12 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     started = time.perf_counter()
     u_a, y_a, n_fit = check_record(u, y, n_fit)
     n_levels = _levels_int("n_levels", n_levels)
+    if n_levels > MAX_FIT_LEVELS:
+        relays = n_levels * (n_levels + 1) // 2
+        raise ValueError(
+            f"n_levels must be <= {MAX_FIT_LEVELS}, got {n_levels}: {relays} relays would need dense normal equations "
+            f"of {relays}x{relays} floats ({relays**2 * 8 / 2**30:.3g} GiB); 10 ... 40 levels resolve a measured loop "
+            "to about its noise level")
     smoothing = _nonnegative("smoothing", smoothing)
     if input_range is None:
         u_lo, u_hi = float(u_a[:n_fit].min()), float(u_a[:n_fit].max())

@@ -25,6 +25,9 @@ from .hooks import add_post_step, add_pre_step
 from .model import MechanismModel
 from .recording import make_result
 
+#: Key in ``mbs.variables``: the component names already added by :func:`add_to`.
+ADDED_VARIABLE = "exudyn_atcm.added_components"
+
 
 class MechanismHandle:
     """What :func:`exudyn_atcm.add_to` added: markers, bodies, sensors and the recorded run.
@@ -148,7 +151,18 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
         raise ValueError(f"add_to takes a Mechanism or a Bender, got {mechanism_or_bender!r}")
     if not isinstance(clamp_base, bool):
         raise ValueError(f"clamp_base must be True or False, got {clamp_base!r}")
+    if not isinstance(mbs, exu.MainSystem):
+        raise ValueError(f"mbs must be an exudyn MainSystem (SC.AddSystem()), got {type(mbs).__name__}")
     mechanism.check(grounded=False)
+    # a second add_to of the same component names would give two handles the same sensor and
+    # column names (and, for one Bender object, two copies at the same place)
+    added = mbs.variables.setdefault(ADDED_VARIABLE, [])
+    names = set(mechanism.components)
+    clash = sorted(names & set(added))
+    if clash:
+        raise MechanismError(
+            f"add_to: component(s) {clash} are already in this MainSystem (added by an earlier add_to); "
+            "give the second copy other names (e.g. Bender('b2', ...)), or add both in one Mechanism")
     model = add_mechanism(mbs, mechanism, free_end_bodies=True)
     sources = [InStepStrain(drive) for drive in model.sources]
     handle = MechanismHandle(mechanism, model, sources)
@@ -167,6 +181,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
 
     add_pre_step(mbs, pre_step)
     add_post_step(mbs, post_step)
+    added.extend(sorted(names))
     model.strains = np.zeros(n)
     for name, (key, local) in model.anchors.items():
         body = model.bodies[key]

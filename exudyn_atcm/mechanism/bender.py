@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_float, positive_int
+from .._checks import finite_float, positive_float, positive_int, warn_implausible
 from ..drive import PiezoDrive
 from ..laminate import STIFFNESS_MODELS, Laminate
 from ..materials import Layer
@@ -152,6 +152,13 @@ class Bender:
         self.active = active
         self.base_position = _pair("base", base)
         self.angle = finite_float("angle", angle)
+        owner = f"bender {name!r}"
+        warn_implausible("width", self.width, "length", owner)
+        for k, s in enumerate(segments):
+            warn_implausible("length" if len(segments) == 1 else f"segments[{k}].length", s.length, "length", owner)
+        for axis, value in zip("xy", self.base_position):
+            warn_implausible(f"base {axis}", value, "position", owner)
+        warn_implausible("angle", self.angle, "angle", owner)
         for pname, value, allowed in (("cell", cell, CELL_TYPES), ("stiffness", stiffness, STIFFNESS_MODELS),
                                       ("active_side", active_side, ACTIVE_SIDES)):
             if not isinstance(value, str) or value not in allowed:

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_float, positive_int
+from .._checks import finite_float, positive_float, positive_int, warn_implausible
 from ..laminate import Laminate
-from ..materials import Layer
+from ..materials import PLAUSIBLE_RANGES, Layer
 from .bender import DEFAULT_DAMPING_RATIO, Bender
 from .link import _xy
 from .points import MechanismError, PointRef, check_name, unknown_point
@@ -75,6 +76,18 @@ class Flexure:
         self.damping = float(damping)
         if self.length <= 0.0:
             raise MechanismError(f"flexure {name!r}: base and tip coincide ({self.base_position}); it needs a length")
+        owner = f"flexure {name!r}"
+        warn_implausible("length |tip - base|", self.length, "length", owner)
+        warn_implausible("width", self.width, "length", owner)
+        for pname, xy in (("base", self.base_position), ("tip", self.tip_position)):
+            for axis, value in zip("xy", xy):
+                warn_implausible(f"{pname} {axis}", value, "position", owner)
+        for pname in ("thickness", "youngs_modulus", "density"):
+            low, high, unit, mistake = PLAUSIBLE_RANGES[pname]
+            value = getattr(self, pname)
+            if not low <= value <= high:
+                warnings.warn(f"{owner}: {pname} = {value!r} {unit} is outside the plausible range {low:g} ... "
+                              f"{high:g} {unit}; is it {mistake}? All values are SI units", RuntimeWarning, stacklevel=2)
 
     @property
     def length(self) -> float:

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_float
+from .._checks import finite_float, positive_float, warn_implausible
 from .points import PointRef, check_name, unknown_point
 
 
@@ -52,6 +52,9 @@ class Link:
             check_name(f"point name of link {name!r}", k): _xy(f"points[{k!r}]", v) for k, v in points.items()}
         self.mass = positive_float("mass", mass)
         self.inertia = positive_float("inertia", inertia)
+        for pname, xy in self.points.items():
+            for axis, value in zip("xy", xy):
+                warn_implausible(f"point {pname} {axis}", value, "position", f"link {name!r}")
         if center_of_mass is None:
             c = np.mean(np.array(list(self.points.values())), axis=0)
             center_of_mass = (float(c[0]), float(c[1]))
