@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import abc
 import math
+import warnings
 from typing import Any, Callable, Union
 
 from ._checks import finite_float, positive_float
@@ -137,6 +138,9 @@ class PIDController(Controller):
         self.limited_samples = 0
         self.largest_excess = 0.0
         self._limited_sign = 0
+        self._last_t: float | None = None
+        self.late_samples = 0
+        self.largest_interval = 0.0
 
     def _unlimited(self, t: float) -> float:
         ff = 0.0 if self._feedforward is None else float(self._feedforward(t))
@@ -152,6 +156,19 @@ class PIDController(Controller):
         if t < self._next_sample - 1e-6 * self.sample_time:
             return
         y = finite_float("tip_deflection", tip_deflection)
+        if self._last_t is not None:
+            interval = t - self._last_t
+            self.largest_interval = max(self.largest_interval, interval)
+            if interval > 1.5 * self.sample_time:
+                self.late_samples += 1
+                if self.late_samples == 1:
+                    warnings.warn(
+                        f"PID sample_time = {self.sample_time:g} s, but consecutive samples came {interval:g} s apart "
+                        f"(at t = {t:g} s): the controller samples only at accepted solver steps, so its integral "
+                        f"and derivative (computed with sample_time) are off by that ratio. Use a sample_time that "
+                        f"is a multiple of the solver step (step <= {self.sample_time:g} s)",
+                        RuntimeWarning, stacklevel=2)
+        self._last_t = t
         error = float(self._setpoint(t)) - y
         # conditional integration: not while limited in the direction the error pushes
         if not (self._limited_sign > 0 and error > 0.0) and not (self._limited_sign < 0 and error < 0.0):
@@ -180,6 +197,8 @@ class PIDController(Controller):
             "limited_samples": self.limited_samples,
             "largest_excess [V]": self.largest_excess,
             "output_limits [V]": list(self.output_limits),
+            "late_samples": self.late_samples,
+            "largest_sample_interval [s]": self.largest_interval,
         }
 
     def __repr__(self) -> str:

@@ -102,3 +102,28 @@ def test_pid_arithmetic_by_hand():
     pid.observe(0.2, 1.2)
     assert pid.voltage_at(0.25) == -1.0
     assert pid.samples == 3 and pid.limited_samples == 2
+
+
+def test_sample_time_below_the_solver_step_warns():
+    """T_s = 1e-4 s with a 2e-4 s solver step: samples come every step, 2 T_s apart, while the
+    integral and derivative use T_s: their effective gains are off by 2 (warned, counted)."""
+    pid = PIDController(2e4, 2e6, sample_time=1e-4, setpoint=1e-3, output_limits=(-500.0, 1500.0))
+    act = actuator(PiezoDrive(pid, hysteresis=paper_strain_preisach()))
+    with pytest.warns(RuntimeWarning, match=r"PID sample_time = 0.0001 s, but consecutive samples came 0.0002 s apart"):
+        result = simulate(act, 0.01, step=2e-4)
+    info = result.info["controller"]
+    assert info["late_samples"] == info["samples"] - 1  # every interval after the first sample
+    assert info["largest_sample_interval [s]"] == pytest.approx(2e-4, rel=1e-9)
+
+
+def test_samples_on_time_are_quiet():
+    import warnings
+
+    pid = PIDController(2.0, sample_time=0.1, setpoint=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        for k in range(5):
+            pid.observe(0.1 * k, 0.0)
+    assert pid.late_samples == 0 and pid.largest_interval == pytest.approx(0.1)
+    with pytest.warns(RuntimeWarning, match="came 0.3 s apart"):
+        pid.observe(0.7, 0.0)  # a missed sample (0.5 and 0.6 never observed)

@@ -164,3 +164,26 @@ def test_cli_optimize(tmp_path, capsys):
     assert "NO DESIGN MEETS THE CONSTRAINTS" in capsys.readouterr().out
     assert main(["optimize", str(SYNTHETIC), "--objective", "y", "--bound", "x=0:1:3"]) == 2
     assert capsys.readouterr().err.strip() == "error: --bound x: expects NAME=LOW:HIGH, got 'x=0:1:3'"
+
+
+@pytest.mark.parametrize(
+    ("bound", "message"),
+    [
+        ("x=1:0", "error: --bound x: empty range '1:0' (START > STOP)"),
+        ("mode=0:1", "error: --bound mode: mode is a str parameter; design variables must be float or int "
+                     "(fix it with --set instead)"),
+        ("xx=0:1", "error: --bound: unknown parameter 'xx' for case synthetic_study; did you mean 'x'?"),
+    ],
+)
+def test_cli_bound_errors_name_the_bound_option(bound, message, capsys):
+    """Errors of --bound say --bound (they said --grid, an option optimize does not have)."""
+    from exudyn_atcm.cli import main
+
+    assert main(["optimize", str(SYNTHETIC), "--objective", "y", "--bound", bound]) == 2
+    assert capsys.readouterr().err.strip().startswith(message)
+
+
+def test_malformed_scheduler_address_names_the_parameter():
+    pytest.importorskip("dask.distributed")
+    with pytest.raises(ValueError, match=r"scheduler must be a Dask scheduler address such as 'tcp://HOST:8786', got 'foo'"):
+        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, scheduler="foo")

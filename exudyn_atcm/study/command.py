@@ -215,7 +215,7 @@ def _parse_constraint(text: str) -> tuple[str, tuple[float | None, float | None]
 
 def optimize_command(args: argparse.Namespace) -> int:
     """Run ``exudyn-atcm optimize``; returns the exit status."""
-    from .design import GridError, parse_grid_spec
+    from .design import GridError, _parameter, parse_grid_spec
     from .optimize import optimize
 
     debug = bool(getattr(args, "debug", False))
@@ -232,7 +232,13 @@ def optimize_command(args: argparse.Namespace) -> int:
             raise GridError("give at least one design variable: --bound NAME=LOW:HIGH")
         bounds = {}
         for text in args.bound:
-            name, values = parse_grid_spec(case, text, ranges=True)
+            name = text.partition("=")[0].strip()
+            if name and "=" in text:
+                kind = _parameter(case, name, "--bound").kind
+                if kind not in ("float", "int"):
+                    raise GridError(f"--bound {name}: {name} is a {kind} parameter; design variables must be float or int "
+                                    "(fix it with --set instead)")
+            name, values = parse_grid_spec(case, text, ranges=True, option="--bound")
             if not isinstance(values, tuple):
                 raise GridError(f"--bound {name}: expects NAME=LOW:HIGH, got {text!r}")
             if name in bounds:

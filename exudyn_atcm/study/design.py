@@ -195,7 +195,7 @@ def explicit_points(case: Case, points: Sequence[Mapping[str, Any]]) -> list[dic
     return [check_point(case, point) for point in points]
 
 
-def parse_grid_spec(case: Case, text: str, *, ranges: bool = False) -> tuple[str, list[Any] | tuple[float, float]]:
+def parse_grid_spec(case: Case, text: str, *, ranges: bool = False, option: str = "--grid") -> tuple[str, list[Any] | tuple[float, float]]:
     """Parse one ``--grid`` specification.
 
     Parameters
@@ -207,6 +207,8 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False) -> tuple[str
     ranges : bool
         With ``--samples``: ``start:stop`` of a float or int parameter is a range to sample
         from and is returned as ``(start, stop)``.
+    option : str
+        The command-line option named in the messages (``"--grid"`` or ``"--bound"``).
 
     Returns
     -------
@@ -222,54 +224,54 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False) -> tuple[str
     name, sep, spec = text.partition("=")
     name = name.strip()
     if not sep or not name:
-        raise GridError(f"--grid expects NAME=START:STOP:N or NAME=A,B,C, got {text!r}")
-    parameter = _parameter(case, name, "--grid")
+        raise GridError(f"{option} expects NAME=START:STOP:N or NAME=A,B,C, got {text!r}")
+    parameter = _parameter(case, name, option)
     spec = spec.strip()
     if not spec:
-        raise GridError(f"--grid {name}: no values given (empty range) in {text!r}")
+        raise GridError(f"{option} {name}: no values given (empty range) in {text!r}")
     if ":" in spec and parameter.kind in ("float", "int"):
         parts = [s.strip() for s in spec.split(":")]
         if len(parts) not in (2, 3) or any(not s for s in parts):
-            raise GridError(f"--grid {name}: a range is START:STOP:N (or START:STOP), got {spec!r}")
+            raise GridError(f"{option} {name}: a range is START:STOP:N (or START:STOP), got {spec!r}")
         try:
             start, stop = float(parts[0]), float(parts[1])
         except ValueError:
-            raise GridError(f"--grid {name}: START and STOP must be numbers, got {parts[0]!r} and {parts[1]!r}") from None
+            raise GridError(f"{option} {name}: START and STOP must be numbers, got {parts[0]!r} and {parts[1]!r}") from None
         if not (math.isfinite(start) and math.isfinite(stop)):
-            raise GridError(f"--grid {name}: START and STOP must be finite, got {spec!r}")
+            raise GridError(f"{option} {name}: START and STOP must be finite, got {spec!r}")
         if len(parts) == 2:
             if ranges:
                 if start > stop:
-                    raise GridError(f"--grid {name}: empty range {spec!r} (START > STOP)")
+                    raise GridError(f"{option} {name}: empty range {spec!r} (START > STOP)")
                 if parameter.kind == "int" and not (start.is_integer() and stop.is_integer()):
-                    raise GridError(f"--grid {name}: {name} is an integer parameter, got the range {spec!r}")
+                    raise GridError(f"{option} {name}: {name} is an integer parameter, got the range {spec!r}")
                 return name, (start, stop)
             if parameter.kind != "int":
-                raise GridError(f"--grid {name}: a float range needs the number of values, START:STOP:N, got {spec!r}")
+                raise GridError(f"{option} {name}: a float range needs the number of values, START:STOP:N, got {spec!r}")
             if not (start.is_integer() and stop.is_integer()):
-                raise GridError(f"--grid {name}: {name} is an integer parameter, got the range {spec!r}")
+                raise GridError(f"{option} {name}: {name} is an integer parameter, got the range {spec!r}")
             if start > stop:
-                raise GridError(f"--grid {name}: empty range {spec!r} (START > STOP)")
+                raise GridError(f"{option} {name}: empty range {spec!r} (START > STOP)")
             return name, list(range(int(start), int(stop) + 1))
         try:
             count = int(parts[2])
         except ValueError:
-            raise GridError(f"--grid {name}: N must be an integer >= 1, got {parts[2]!r}") from None
+            raise GridError(f"{option} {name}: N must be an integer >= 1, got {parts[2]!r}") from None
         if count < 1:
-            raise GridError(f"--grid {name}: N must be an integer >= 1, got {count}")
+            raise GridError(f"{option} {name}: N must be an integer >= 1, got {count}")
         if count == 1 and start != stop:
-            raise GridError(f"--grid {name}: N = 1 needs START == STOP, got {spec!r}")
+            raise GridError(f"{option} {name}: N = 1 needs START == STOP, got {spec!r}")
         values = np.linspace(start, stop, count)
         if parameter.kind == "int":
             if not np.allclose(values, np.round(values), rtol=0.0, atol=1e-9):
-                raise GridError(f"--grid {name}: {name} is an integer parameter but {spec!r} gives non-integer values {values.tolist()}")
+                raise GridError(f"{option} {name}: {name} is an integer parameter but {spec!r} gives non-integer values {values.tolist()}")
             return name, [int(round(v)) for v in values]
         return name, [float(v) for v in values]
     separator = ";" if parameter.kind == "floats" else ","
     items = [s.strip() for s in spec.split(separator)]
     if any(not s for s in items):
-        raise GridError(f"--grid {name}: empty item in the list {spec!r}")
+        raise GridError(f"{option} {name}: empty item in the list {spec!r}")
     try:
         return name, [parameter.parse(s) for s in items]
     except ValueError as exc:
-        raise GridError(f"--grid {name}: {exc}") from None
+        raise GridError(f"{option} {name}: {exc}") from None

@@ -363,6 +363,9 @@ class DaskEngine(SerialEngine):
                 self.client = Client(client, timeout="20s")
             except OSError as exc:
                 raise ValueError(f"scheduler: cannot connect to the Dask scheduler at {client!r}: {exc}") from None
+            except ValueError as exc:  # a malformed address (no port, unknown protocol)
+                raise ValueError(f"scheduler must be a Dask scheduler address such as 'tcp://HOST:8786', "
+                                 f"got {client!r} ({exc})") from None
             self._own = True
         elif isinstance(client, Client):
             self.client = client
