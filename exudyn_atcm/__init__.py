@@ -2,14 +2,25 @@
 
 >>> import exudyn_atcm as atcm
 >>> layer = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550)
+
+Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
+``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``), solving (``simulate``,
+``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``add_to``), results and files
+(``Result``, ``read_csv``, ``read_record``), closed loop (``PIDController``), the errors
+(``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
+``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
+else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.mechanism_plots``,
+``exudyn_atcm.feedforward``, ...): see the API reference.
 """
 
 from . import hysteresis, signals
 from ._version import __version__
 from .actuator import BendingActuator
+from .control import PIDController
 from .csv_io import read_csv
 from .drive import PiezoDrive
 from .materials import Layer
+from .measurements import read_record
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .result import Result
 from .run_checks import SimulationInterrupted
@@ -39,4 +50,6 @@ __all__ = [
     "SolverError",
     "SimulationInterrupted",
     "read_csv",
+    "read_record",
+    "PIDController",
 ]
