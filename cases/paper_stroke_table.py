@@ -85,7 +85,7 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     ax.set_xlabel(axis_label("time", "s"))
     ax.set_ylabel(axis_label("stroke", unit))
     ax.set_title("Displacement versus time points (Fig. 9)")
-    ax.legend(loc="upper right")
+    ax.legend(loc="lower center")
     table = save_figure(fig, out_dir / f"{output.case}_table.png")
     return [series, table]
 

@@ -205,9 +205,17 @@ def draw_mechanism(
         else:
             ax.plot(*(poly * _MM).T, color="#08519c", lw=4, solid_capstyle="round", zorder=2)
         if labels:
-            for pname, x in shape.link_points[name].items():
+            points = shape.link_points[name]
+            centre = np.mean(np.array(list(points.values())), axis=0)
+            for pname, x in points.items():
                 ax.plot(*(x * _MM), ".", color="#08519c", ms=4, zorder=6)
-                ax.annotate(f"{name}.{pname}", x * _MM, xytext=(3, 3), textcoords="offset points", fontsize=7)
+                # away from the link's centre, so the names of a link's points do not overlap
+                away = np.asarray(x, float) - centre
+                norm = float(np.hypot(*away))
+                dx, dy = (away / norm) if norm > 1e-12 * max(size, 1e-12) else (0.7071, 0.7071)
+                ax.annotate(f"{name}.{pname}", x * _MM, xytext=(6 * dx, 6 * dy), textcoords="offset points", fontsize=7,
+                            ha="left" if dx > 0.3 else "right" if dx < -0.3 else "center",
+                            va="bottom" if dy > 0.3 else "top" if dy < -0.3 else "center", zorder=7)
     for k, (name, line) in enumerate(shape.flexures.items()):
         ax.plot(*(line * _MM).T, color=_FLEXURE, lw=1.6, zorder=3, label="flexures" if k == 0 else None)
         if name in shape.pivots:
