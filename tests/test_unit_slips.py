@@ -75,3 +75,38 @@ def test_add_to_refuses_a_second_copy_and_a_non_system():
                        drive=PiezoDrive(1500.0), base=(0.0, 0.05)))  # another name is fine
     with pytest.raises(ValueError, match="mbs must be an exudyn MainSystem .*got SystemContainer"):
         add_to(sc, _bender())
+
+
+def _solve(mbs, t_end=0.1, steps=100):
+    settings = exu.SimulationSettings()
+    settings.timeIntegration.endTime = t_end
+    settings.timeIntegration.numberOfSteps = steps
+    settings.timeIntegration.verboseMode = 0
+    settings.solution.file.write = False
+    mbs.Assemble()
+    mbs.SolveDynamic(settings)
+
+
+@pytest.mark.parametrize("which", ["pre", "post"])
+def test_replacing_the_package_hooks_after_add_to_is_noticed(which):
+    """mbs.SetPre/PostStepUserFunction after add_to silently replaced the package's hooks (benders
+    not actuated, or memory never committed); now it warns once, naming the fix."""
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    handle = add_to(mbs, _bender())
+    getattr(mbs, f"Set{which.capitalize()}StepUserFunction")(lambda m, t: True)
+    with pytest.warns(RuntimeWarning, match=rf"add_to: the package's {which}-step hook is not running .*add_pre_step"):
+        _solve(mbs)
+    if which == "post":
+        with pytest.raises(ValueError, match="a later mbs.SetPostStepUserFunction replaced it"):
+            handle.result()
+
+
+def test_package_hooks_alone_are_quiet():
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    handle = add_to(mbs, _bender())
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        _solve(mbs)
+    assert handle.result().n_rows == 101  # t = 0 and every accepted step

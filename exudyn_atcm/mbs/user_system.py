@@ -9,6 +9,7 @@ sensors.  The drives' hysteresis runs in the step through :class:`~exudyn_atcm.m
 
 from __future__ import annotations
 
+import warnings
 from typing import Any, Union
 
 import exudyn as exu
@@ -96,7 +97,9 @@ class MechanismHandle:
         """The accepted steps recorded by the package's post-step hook, with the columns of
         :func:`exudyn_atcm.simulate` for mechanisms (``result.info`` is empty of solver statistics)."""
         if not self._rows:
-            raise ValueError("nothing recorded yet: solve the system (e.g. mbs.SolveDynamic) first")
+            raise ValueError("nothing recorded yet: solve the system (e.g. mbs.SolveDynamic) first; if you did, the "
+                             "package's post-step hook did not run: a later mbs.SetPostStepUserFunction replaced it "
+                             "(add your own functions with exudyn_atcm.mbs.add_post_step / add_pre_step instead)")
         self.model.resolve_indices()
         n = len(self._sources)
         times = np.array([r[0] for r in self._rows])
@@ -170,12 +173,35 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
     model.path_from, model.path_to = np.zeros(n), np.zeros(n)
     model.ramp_loads, model.load_factor = False, 1.0
 
+    # Exudyn keeps one pre-/post-step function per system: a later mbs.SetPreStepUserFunction or
+    # SetPostStepUserFunction silently replaces the package's hooks (no actuation, or a hysteresis
+    # memory never committed).  Count the calls of each and warn once when one of them stops.
+    calls = {"pre_since_post": 0, "post_without_pre": 0, "warned": False}
+
+    def _hooks_replaced(which: str, t: float) -> None:
+        if not calls["warned"]:
+            calls["warned"] = True
+            warnings.warn(
+                f"add_to: the package's {which}-step hook is not running (noticed at t = {t:g} s): "
+                f"mbs.Set{which.capitalize()}StepUserFunction was probably called after add_to and replaced it, so "
+                f"{'the benders are not actuated' if which == 'pre' else 'the hysteresis memory is never committed'}. "
+                "Add your own functions with exudyn_atcm.mbs.add_pre_step(mbs, f) / add_post_step(mbs, f) instead",
+                RuntimeWarning, stacklevel=2)
+
     def pre_step(mbs_, t: float) -> bool:
+        calls["pre_since_post"] += 1
+        if calls["pre_since_post"] > 50:  # a few repeats are step rejections; 50 without a post step is not
+            _hooks_replaced("post", t)
         model.time = t
         model.set_strains(np.array([s.trial(t) for s in sources]))
         return True
 
     def post_step(mbs_, t: float) -> bool:
+        if calls["pre_since_post"] == 0 and t > 0.0:
+            calls["post_without_pre"] += 1
+            if calls["post_without_pre"] > 1:  # the first post step (t = 0 initial state) may come alone
+                _hooks_replaced("pre", t)
+        calls["pre_since_post"] = 0
         handle._record(t, [s.commit(t) for s in sources])
         return True
 
