@@ -174,8 +174,10 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     axes[2].set_ylabel(axis_label("voltage", "V"))
     axes[2].set_xlabel(axis_label("time", "s"))
     axes[0].legend(loc="upper right", fontsize=7)
-    axes[1].legend(loc="upper right", fontsize=7)
     axes[1].set_yscale("symlog", linthresh=1e-2)
+    low, high = axes[1].get_ylim()
+    axes[1].set_ylim(low, max(high, 1e2))  # an empty band on top for the legend (errors stay below 10 mm)
+    axes[1].legend(loc="upper center", fontsize=7, ncol=2)
     axes[0].set_title("Tip tracking through the MFC hysteresis")
     return [save_figure(fig, out_dir / f"{output.case}.png")]
 
