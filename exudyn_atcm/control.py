@@ -77,7 +77,8 @@ class PIDController(Controller):
     Parameters
     ----------
     kp : float
-        Proportional gain [V/m].
+        Proportional gain [V/m].  The three gains share one sign (all ``>= 0`` when a
+        positive voltage raises the tip); all zero needs a ``feedforward``.
     ki : float, optional
         Integral gain [V/(m s)].
     kd : float, optional
@@ -113,6 +114,15 @@ class PIDController(Controller):
         self.kp = finite_float("kp", kp)
         self.ki = finite_float("ki", ki)
         self.kd = finite_float("kd", kd)
+        gains = (self.kp, self.ki, self.kd)
+        if any(g > 0 for g in gains) and any(g < 0 for g in gains):
+            raise ValueError(
+                f"kp, ki, kd must share one sign (all >= 0 when a positive voltage raises the tip, all <= 0 for a "
+                f"bender with active_side='left'); mixed signs make one term fight the others, got kp={kp!r}, "
+                f"ki={ki!r}, kd={kd!r}")
+        if not any(gains) and feedforward is None:
+            raise ValueError("kp, ki and kd are all 0 and there is no feedforward: the controller would hold 0 V; "
+                             "give a gain (e.g. kp [V/m]) or a feedforward program")
         self.sample_time = positive_float("sample_time", sample_time)
         self._setpoint = _time_function("setpoint", setpoint)
         self._feedforward = None if feedforward is None else _time_function("feedforward", feedforward)

@@ -78,6 +78,8 @@ def test_controller_needs_the_in_step_source():
         ({"kp": 1.0, "sample_time": 0.0, "setpoint": 0.0}, "sample_time must be > 0"),
         ({"kp": float("nan"), "sample_time": 1e-3, "setpoint": 0.0}, "kp must be a finite real number"),
         ({"kp": 1.0, "sample_time": 1e-3, "setpoint": 0.0, "output_limits": (1, 0)}, "output_limits must have high > low"),
+        ({"kp": 1.0, "ki": -5.0, "sample_time": 1e-3, "setpoint": 0.0}, r"kp, ki, kd must share one sign .*got kp=1.0, ki=-5.0, kd=0.0"),
+        ({"kp": 0.0, "sample_time": 1e-3, "setpoint": 0.0}, "all 0 and there is no feedforward"),
     ],
 )
 def test_pid_rejects_bad_settings(kwargs, pattern):
