@@ -61,6 +61,8 @@ MODELS = ("composite", "paper")
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.n_voltages < 2:
         raise ValueError(f"n_voltages must be >= 2, got {p.n_voltages}")
+    if p.elastica_cells < 1:  # checked before the runs, not after them
+        raise ValueError(f"elastica_cells must be >= 1, got {p.elastica_cells}")
     passive = Layer(p.h1, p.E1, p.rho1)
     active = Layer(p.h2, p.E2, p.rho2)
     length = p.n_cells * p.cell_length
@@ -123,8 +125,6 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             }
         )
     elastica_force = p.elastica_alpha * ei["composite"] / length**2
-    if p.elastica_cells < 1:
-        raise ValueError(f"elastica_cells must be >= 1, got {p.elastica_cells}")
     unloaded = BendingActuator(
         p.elastica_cells, length / p.elastica_cells, p.width, passive, active, PiezoDrive(0.0), cell="rigid"
     )
