@@ -19,7 +19,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from . import _mbs_builder as runs
+from .mbs import actuator_chains as runs
 from ._checks import finite_array, finite_float, positive_int
 from .mbs import builder as mb
 from .mbs import linear

@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from . import _mbs_builder as builder
+from .mbs import actuator_chains as builder
 from ._checks import finite_float, positive_int
 from .actuator import BendingActuator
 from .recording import RecordingSchedule

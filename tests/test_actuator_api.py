@@ -190,7 +190,7 @@ def test_dynamic_failure_raises_solver_error_with_time_and_advice():
 def test_static_failure_raises_solver_error_naming_the_attempts(monkeypatch):
     # both equilibrium strategies made to fail (Exudyn reporting non-convergence): the error
     # must name the load factor reached, both attempts and what to change
-    from exudyn_atcm import _mbs_builder as builder
+    from exudyn_atcm.mbs import actuator_chains as builder
 
     def static_fails(model, settings, strain_at_factor):
         raise builder.ExudynFailure("static Newton iteration did not converge", 0.4375)

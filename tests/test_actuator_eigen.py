@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from exudyn_atcm import _mbs_builder as builder
+from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import beam_theory as bt
-from exudyn_atcm._eigen import exudyn_eigenfrequencies
+from exudyn_atcm.mbs.eigen import exudyn_eigenfrequencies
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.simulation import _static_equilibrium, eigenfrequencies
 

@@ -19,7 +19,7 @@ import pytest
 import scipy.linalg
 
 import exudyn_atcm as atcm
-from exudyn_atcm import _mbs_builder as runs
+from exudyn_atcm.mbs import actuator_chains as runs
 from exudyn_atcm.mbs import StepHooks, add_post_step, add_pre_step
 from exudyn_atcm.signals import Triangle
 

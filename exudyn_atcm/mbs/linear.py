@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _mbs_builder as runs
+from . import actuator_chains as runs
 from .model import MechanismModel
 
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._mbs_builder import _NOVIS, BuiltModel, _add_ground
+from .actuator_chains import _NOVIS, BuiltModel, _add_ground
 
 
 class AncfModel(BuiltModel):

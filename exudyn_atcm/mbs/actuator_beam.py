@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._mbs_builder import _NOVIS, BuiltModel, _add_ground
+from .actuator_chains import _NOVIS, BuiltModel, _add_ground
 
 _BEAM_VIS = {'show': False, 'drawHeight': 0., 'color': [-1., -1., -1., -1.]}
 

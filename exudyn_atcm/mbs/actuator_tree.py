@@ -20,7 +20,7 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._mbs_builder import BuiltModel
+from .actuator_chains import BuiltModel
 
 
 class TreeModel(BuiltModel):

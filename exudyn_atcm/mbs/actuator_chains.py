@@ -55,7 +55,7 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._eigen import constrained_eigenfrequencies
+from .eigen import constrained_eigenfrequencies
 
 #: Default absolute Newton tolerance in SI units (EXUDYN_NOTES.md: 1e-10 fails from 10 cells).
 NEWTON_ABSOLUTE_TOLERANCE = 1e-8
@@ -215,13 +215,13 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     if actuator.cell == "six-bar":
         model = _build_six_bar(SC, mbs, actuator, stroke_path)
     elif actuator.cell == "beam":
-        from ._mbs_beam import build_beam  # noqa: PLC0415 - the beam module imports this one
+        from .actuator_beam import build_beam  # noqa: PLC0415 - the beam module imports this one
         model = build_beam(SC, mbs, actuator, stroke_path)
     elif actuator.cell == "ancf":
-        from ._mbs_ancf import build_ancf  # noqa: PLC0415 - the ANCF module imports this one
+        from .actuator_ancf import build_ancf  # noqa: PLC0415 - the ANCF module imports this one
         model = build_ancf(SC, mbs, actuator, stroke_path)
     elif RIGID_FORMULATION == "tree" and stroke_path == "prestep":
-        from ._mbs_tree import build_tree  # noqa: PLC0415 - the tree module imports this one
+        from .actuator_tree import build_tree  # noqa: PLC0415 - the tree module imports this one
         model = build_tree(SC, mbs, actuator, stroke_path)
     else:
         model = _build_rigid(SC, mbs, actuator, stroke_path)
