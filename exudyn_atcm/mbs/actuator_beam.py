@@ -28,7 +28,8 @@ from __future__ import annotations
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .actuator_chains import _NOVIS, BuiltModel, _add_ground
+from .actuator_items import NOVIS, add_ground
+from .actuator_model import BuiltModel
 
 _BEAM_VIS = {'show': False, 'drawHeight': 0., 'color': [-1., -1., -1., -1.]}
 
@@ -48,13 +49,13 @@ def build_beam(SC, mbs, act, stroke_path) -> BuiltModel:
     rho_i = (act.passive.density * w * h1**3 / 12.0
              + act.active.density * w * (h2**3 / 12.0 + h2 * e**2))
 
-    ground, gcoord = _add_ground(mbs)
+    ground, gcoord = add_ground(mbs)
     model = BuiltModel(SC=SC, mbs=mbs, cell="beam", n_cells=n, cell_length=lc)
-    nodes = [mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[j * lc, 0.0, 0.0], visualization=_NOVIS))
+    nodes = [mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[j * lc, 0.0, 0.0], visualization=NOVIS))
              for j in range(n + 1)]
     for k in range(3):  # clamp node 0
         mk = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=k))
-        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gcoord, mk], visualization=_NOVIS))
+        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gcoord, mk], visualization=NOVIS))
     for j in range(n):
         beam = mbs.AddObject(ii.ObjectBeamGeometricallyExact2D(
             nodeNumbers=[nodes[j], nodes[j + 1]], length=lc, massPerLength=mu, crossSectionInertia=rho_i,

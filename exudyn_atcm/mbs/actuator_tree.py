@@ -14,13 +14,11 @@ The tip (the last cell's end) is found by forward kinematics from the recorded j
 
 from __future__ import annotations
 
-import math
-
 import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .actuator_chains import BuiltModel
+from .actuator_model import BuiltModel
 
 
 class TreeModel(BuiltModel):

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import actuator_chains as runs
+from . import solver_runs as runs
 from .model import MechanismModel
 
 
@@ -46,11 +46,11 @@ class DofReport:
 
 def degrees_of_freedom(model: MechanismModel) -> DofReport:
     """The model's :class:`DofReport` in its current (assembled) state."""
-    runs._quiet()
+    runs.quiet_console()
     try:
         info = model.mbs.ComputeSystemDegreeOfFreedom(verbose=False)
     finally:
-        runs._loud()
+        runs.restore_console()
     return DofReport(int(info["degreeOfFreedom"]), int(info["nODE2"]), int(info["nAE"]),
                      int(info["redundantConstraints"]))
 
