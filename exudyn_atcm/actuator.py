@@ -2,7 +2,7 @@
 
 This module holds the geometry, the stiffness calibration, masses and damping of the
 actuator, as plain numbers.  The Exudyn model is built from them in
-:mod:`exudyn_atcm._mbs_builder`; the closed-form references the tests compare against are
+:mod:`exudyn_atcm.mbs.actuator_chains`; the closed-form references the tests compare against are
 in :mod:`exudyn_atcm.beam_theory`.
 
 Coordinates: ``x`` runs along the undeformed actuator from the clamp, ``y`` across it.

@@ -8,7 +8,7 @@ and committed only in the post-step hook, which Exudyn calls for accepted steps 
 that Exudyn rejects and repeats with a smaller step size therefore leaves no trace in the
 memory, and the recorded strain equals the operator applied offline to the recorded
 voltages (tested).  The strain is evaluated once per attempted step (cached by ``t``) and
-written into the model in a pre-step hook; see :mod:`exudyn_atcm._mbs_builder` for why this
+written into the model in a pre-step hook; see :mod:`exudyn_atcm.mbs.actuator_chains` for why this
 is the same as an offset user function.
 """
 
@@ -666,7 +666,7 @@ def eigenfrequencies(
     which Exudyn's ``ComputeODE2Eigenvalues`` leaves out: about a bent six-bar chain (joints
     carrying the layers' axial forces, ~50 N at 1500 V on the reference bender) or any chain
     under a tip load, Exudyn's routine gives wrong frequencies (-67 % at 4 cells, +151 % at
-    16 cells at 1500 V).  See :mod:`exudyn_atcm._eigen`.
+    16 cells at 1500 V).  See :mod:`exudyn_atcm.mbs.eigen`.
     """
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)

@@ -4,9 +4,9 @@ Mechanisms (:class:`~exudyn_atcm.mechanism.Mechanism`) are built into a ``MainSy
 :mod:`~exudyn_atcm.mbs.builder`, with step hooks shared with user code, read-outs and
 linearisation; the lone :class:`~exudyn_atcm.actuator.BendingActuator` is built by
 :mod:`~exudyn_atcm.mbs.actuator_chains` (rigid and six-bar chains) and its beam, ANCF and
-kinematic-tree cells.  The solver runs both paths share live in
-:mod:`~exudyn_atcm.mbs.actuator_chains`, the constrained eigenfrequencies in
-:mod:`~exudyn_atcm.mbs.eigen`.
+kinematic-tree cells.  Both paths share the solver settings
+(:mod:`~exudyn_atcm.mbs.solver_settings`), the solver runs (:mod:`~exudyn_atcm.mbs.solver_runs`)
+and the constrained eigenfrequencies (:mod:`~exudyn_atcm.mbs.eigen`).
 
 The public names below are loaded on first access (PEP 562), so that the solve layer can import
 the submodules it builds on without loading :mod:`~exudyn_atcm.mbs.user_system`, which itself

@@ -20,7 +20,7 @@ stiffness-proportional, ``beta`` times each stiffness, as in the other cells.
 
 The stiff axis limits the Newton residual that round-off allows (about ``eps EA L / L_c``);
 the absolute Newton tolerance is raised to ten times that where it is tighter (from about 50
-REF-A cells on).
+cells of the reference bender of the actuator docs on).
 """
 
 from __future__ import annotations
@@ -68,7 +68,7 @@ def build_beam(SC, mbs, act, stroke_path) -> BuiltModel:
             model.offset_factors.append(act.curvature_per_strain)
     model.offset_parameter = "referenceCurvature"
     # an axial force EA/L_c * du resolves positions only to round-off eps * L: its residual
-    # floor is ~eps (EA/L_c) L, 9e-9 N at 64 REF-A cells; 10x that is the smallest reachable
+    # floor is ~eps (EA/L_c) L, 9e-9 N at 64 cells of the reference bender; 10x that is the smallest reachable
     # Newton tolerance (moment residuals of that size move the tip by < 1e-8 rad)
     # the first residual of a static load step carries the stiff axis's forces: 1e-8 of it
     # left 8e-6 N m at the tip (8 cells, 1500 V and a tip load); 1e-10 reaches ~1e-9

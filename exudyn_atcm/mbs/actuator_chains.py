@@ -32,7 +32,7 @@ The stroke reaches the model in one of two ways, chosen by ``stroke_path``:
     A pre-step hook evaluates the strain once for the step's time ``t`` and writes it into
     the motor constraints' ``offset`` (six-bar) or, for the rigid cell, into one torque on
     the last body that equals the net effect of all joints' rest angles (see
-    ``_build_rigid``: the rest-angle moments cancel pairwise on every other body).
+    :func:`build_rigid`: the rest-angle moments cancel pairwise on every other body).
 ``"offsets"``
     As ``"prestep"``, but the rigid cell's rest angles are written into every torsion
     spring's ``offset`` (one call per joint and step).

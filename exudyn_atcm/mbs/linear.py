@@ -16,7 +16,7 @@ def eigenfrequencies(model: MechanismModel, n: int) -> np.ndarray:
     The tangent stiffness of the constrained system, including the geometric stiffness of the
     joints' internal forces (the Lagrange multipliers times the constraints' second
     derivatives), which Exudyn's ``ComputeODE2Eigenvalues`` leaves out; projected onto the
-    constraints' null space (:func:`exudyn_atcm._eigen.constrained_eigenfrequencies`).  The
+    constraints' null space (:func:`exudyn_atcm.mbs.eigen.constrained_eigenfrequencies`).  The
     drive torques and loads act as constant loads during the linearisation.
     """
     return runs.eigenfrequencies(model, n)
