@@ -13,7 +13,6 @@ The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
