@@ -48,9 +48,9 @@ from exudyn import itemInterface as ii
 from scipy.optimize import brentq
 from scipy.signal import lsim
 
-from exudyn_atcm import _mbs_builder as builder
+from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import beam_theory as bt
-from exudyn_atcm._eigen import constrained_eigenfrequencies
+from exudyn_atcm.mbs.eigen import constrained_eigenfrequencies
 from exudyn_atcm._version import __version__
 from exudyn_atcm.actuator import BendingActuator
 from exudyn_atcm.drive import PiezoDrive

@@ -2,7 +2,7 @@
 
 This module holds the geometry, the stiffness calibration, masses and damping of the
 actuator, as plain numbers.  The Exudyn model is built from them in
-:mod:`exudyn_atcm._mbs_builder`; the closed-form references the tests compare against are
+:mod:`exudyn_atcm.mbs.actuator_chains`; the closed-form references the tests compare against are
 in :mod:`exudyn_atcm.beam_theory`.
 
 Coordinates: ``x`` runs along the undeformed actuator from the clamp, ``y`` across it.
@@ -41,9 +41,9 @@ class BendingActuator:
     width : float
         Width ``b`` of both layers [m], > 0.
     passive : Layer
-        Passive layer (CFC), layer 1 in MODEL.md.
+        Passive layer (CFC), layer 1 (index 1 in the formulas).
     active : Layer
-        Active layer (MFC), layer 2 in MODEL.md.
+        Active layer (MFC), layer 2 (index 2 in the formulas).
     drive : PiezoDrive
         Voltage program and voltage-to-strain law of the active layer.
     cell : {"six-bar", "rigid", "beam", "ancf"}, optional
@@ -71,7 +71,7 @@ class BendingActuator:
     stiffness : {"composite", "paper"}, optional
         ``"composite"`` (default): torsion springs ``2 E_i I_i / L_j`` per layer joint and
         ``k1 = [a1 a2/(a1 + a2)] / L_j`` (``a_i = E_i b h_i``): reproduces the laminate's
-        bending stiffness and free curvature exactly (MODEL.md §3).
+        bending stiffness and free curvature exactly (lamination theory; Timoshenko 1925; see the theory page of the documentation).
         ``"paper"``: as printed, ``k1 = E2 b h2 / L_j`` (Eq. 4) with a rigid passive bar and
         the torsion springs ``2 E_i I_i / L_j`` (Eq. 5 with the text's doubling).
     damping : float, optional

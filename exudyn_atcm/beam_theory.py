@@ -3,7 +3,7 @@
 These functions are the independent references the validation tests compare the multibody
 model against.  They are plain formulas of classical beam theory (Euler-Bernoulli,
 perfectly bonded layers, small strains) and deliberately share no code with the model
-(:mod:`exudyn_atcm.actuator`, :mod:`exudyn_atcm._mbs_builder`).
+(:mod:`exudyn_atcm.actuator`, :mod:`exudyn_atcm.mbs.actuator_chains`).
 
 Layer 1 is the passive layer (CFC), layer 2 the active layer (MFC).  All quantities in SI
 units: m, N, Pa, kg/m³; strains are unit-free.

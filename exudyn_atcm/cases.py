@@ -398,9 +398,9 @@ def versions() -> dict[str, str]:
     import numpy
 
     try:
-        import exudyn
+        from .mbs.solver_runs import exudyn_version
 
-        exu = str(exudyn.__version__)
+        exu = exudyn_version()
     except Exception:  # pragma: no cover - exudyn is a dependency
         exu = "unavailable"
     return {

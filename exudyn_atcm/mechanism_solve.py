@@ -13,16 +13,16 @@ The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
 import numpy as np
 
-from . import _mbs_builder as runs
 from ._checks import finite_array, finite_float, positive_int
 from .mbs import builder as mb
 from .mbs import linear
+from .mbs import solver_runs as runs
+from .mbs import solver_settings
 from .mbs.recording import Rows, measurement_reader
 from .actuator import BendingActuator
 from .mechanism.assembly import Mechanism
@@ -111,7 +111,7 @@ def _equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, e
     rot, omega1 = _scales(mech, model, np.abs(end - start))
     if load_steps is None:
         load_steps = int(min(400, max(4, math.ceil(rot / 0.05))))
-    settings = runs.static_settings(load_steps)
+    settings = solver_settings.static_settings(load_steps)
     settings.staticSolver.useLoadFactor = from_reference
     try:
         runs.run_static(model, settings, lambda f: f)
@@ -135,7 +135,7 @@ def _equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, e
     runs.set_current_as_initial(model, zero_velocity=True)
     model.load_factor = 1.0
     model.set_path(end, end, ramp_loads=False)
-    polish = runs.static_settings(1)
+    polish = solver_settings.static_settings(1)
     polish.staticSolver.useLoadFactor = False
     try:
         runs.run_static(model, polish, lambda f: f)
@@ -144,7 +144,7 @@ def _equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, e
         pass
     tol = 1e-9 * mech.size
     if change <= tol:
-        model.mbs.systemData.SetODE2Coordinates(relaxed, configuration=runs.exu.ConfigurationType.Current)
+        runs.set_current_coordinates(model, relaxed)
         return "relaxation"
     raise SolverError(
         f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge: Exudyn's static solver stopped "
@@ -313,8 +313,8 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             raise
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
-    sim_settings = runs.dynamic_settings(t_end, grid.step)
-    runs.apply_user_settings(sim_settings, settings)
+    sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
+    solver_settings.apply_user_settings(sim_settings, settings)
     rows = Rows(model)
     clock = WallClock(progress, t_end) if progress is not None else None
     guard = InterruptGuard()

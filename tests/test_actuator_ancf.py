@@ -35,7 +35,7 @@ def composite_EI(g):
 def test_free_actuation_follows_the_arc(geometry, n_cells):
     # uniform moment EI kappa: the continuum bends into the arc of curvature kappa.  A cubic
     # element with reduced integration represents it to O((kappa L_c)^4): measured relative
-    # tip-angle error 8.3e-3 (kappa L_c)^4 at 1, 3 and 8 REF-A elements at 1500 V (1.4e-4,
+    # tip-angle error 8.3e-3 (kappa L_c)^4 at 1, 3 and 8 elements of the paper's actuator at 1500 V (1.4e-4,
     # 1.7e-6, 3.4e-8); bound 1.2e-2 (kappa L_c)^4 + 1e-9
     g = geometry
     voltage = 1500.0
@@ -68,7 +68,7 @@ def test_end_torque_equals_reference_curvature_in_every_element():
 def test_small_tip_force_compliance_is_the_beams(geometry, n_cells):
     # cubic Hermite elements contain the exact small-deflection cantilever: tip deflection
     # L^3 / 3EI plus the axial compliance's share (~1e-6) and the reduced integration's
-    # O(1/N^4) error (measured 2.7e-6 at 3 REF-A elements, 3.7e-5 at 2 GEO-C elements):
+    # O(1/N^4) error (measured 2.7e-6 at 3 elements of the paper's actuator, 3.7e-5 at 2 GEO-C elements):
     # tolerance 1e-3 / N^4 + 1e-5
     g = geometry
     act = g.actuator(PiezoDrive(0.0), n_cells=n_cells, cell="ancf")

@@ -190,16 +190,16 @@ def test_dynamic_failure_raises_solver_error_with_time_and_advice():
 def test_static_failure_raises_solver_error_naming_the_attempts(monkeypatch):
     # both equilibrium strategies made to fail (Exudyn reporting non-convergence): the error
     # must name the load factor reached, both attempts and what to change
-    from exudyn_atcm import _mbs_builder as builder
+    from exudyn_atcm.mbs import solver_runs
 
     def static_fails(model, settings, strain_at_factor):
-        raise builder.ExudynFailure("static Newton iteration did not converge", 0.4375)
+        raise solver_runs.ExudynFailure("static Newton iteration did not converge", 0.4375)
 
     def relaxation_fails(model, strain, omega1, damping_factor, **kwargs):
-        raise builder.ExudynFailure("dynamic relaxation did not converge", 0.8)
+        raise solver_runs.ExudynFailure("dynamic relaxation did not converge", 0.8)
 
-    monkeypatch.setattr(builder, "run_static", static_fails)
-    monkeypatch.setattr(builder, "run_relaxation", relaxation_fails)
+    monkeypatch.setattr(solver_runs, "run_static", static_fails)
+    monkeypatch.setattr(solver_runs, "run_relaxation", relaxation_fails)
     with pytest.raises(SolverError) as info:
         solve_static(ref_a(), load_steps=8)
     msg = str(info.value)

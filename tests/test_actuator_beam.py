@@ -52,7 +52,7 @@ def test_free_actuation_tip_angle_is_kappa_L_and_nodes_on_the_chain_polygon(geom
 
 def test_end_torque_equals_reference_curvature_in_every_element():
     # the default path (one end torque EI kappa) against Exudyn's prescribed reference curvature
-    # written into every element in each pre-step: the same equations (see _mbs_beam), identical
+    # written into every element in each pre-step: the same equations (see exudyn_atcm.mbs.actuator_beam), identical
     # runs up to round-off
     H1, H2 = paper_strain_preisach(), paper_strain_preisach()
     a = _simulate(fast_triangle_actuator("beam", H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from exudyn_atcm import _mbs_builder as builder
+from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import beam_theory as bt
-from exudyn_atcm._eigen import exudyn_eigenfrequencies
+from exudyn_atcm.mbs.eigen import exudyn_eigenfrequencies
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.simulation import _static_equilibrium, eigenfrequencies
 
@@ -55,7 +55,7 @@ def test_undeformed_frequencies_equal_exudyns_routine(cell):
 
 
 def test_exudyns_routine_is_wrong_about_a_bent_six_bar_chain_and_ours_is_not():
-    # the cause documented in exudyn_atcm._eigen: the joints of the bent six-bar chain carry the
+    # the cause documented in exudyn_atcm.mbs.eigen: the joints of the bent six-bar chain carry the
     # layers' axial forces (~50 N at 1500 V) whose geometric stiffness Exudyn's routine leaves out
     act = REF_A.actuator(PiezoDrive(1500.0), n_cells=4, cell="six-bar")
     model = builder.build(act)

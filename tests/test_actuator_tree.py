@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm import _mbs_builder as builder
+from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import beam_theory as bt
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.signals import Triangle

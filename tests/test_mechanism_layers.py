@@ -1,9 +1,9 @@
-"""Issue 7, layout: the mechanism description and its solve path hold no Exudyn code.
+"""Issue 7, layout: Exudyn is imported only in the multibody layer ``exudyn_atcm/mbs/``.
 
-Exudyn is imported and called only in the builder layer (``exudyn_atcm/mbs/`` and
-``exudyn_atcm/_mbs_builder.py``); the description (``exudyn_atcm/mechanism/``) and the solve
-module work through it.  Checked on the source text (imports) and by importing the
-description in a fresh interpreter without Exudyn on the path.
+Every other module of the package (the mechanism description ``exudyn_atcm/mechanism/``, the
+solve modules, results, I/O, cases) works through it.  Checked on the source text (imports,
+also inside functions) and by importing the description in a fresh interpreter without Exudyn
+on the path.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exudyn_atcm"
-IMPORT = re.compile(r"^\s*(import exudyn|from exudyn\b)", re.MULTILINE)
+IMPORT = re.compile(r"^\s*(import exudyn\b|from exudyn\b)", re.MULTILINE)
 
 
 def test_description_and_solve_modules_do_not_import_exudyn():
@@ -22,6 +22,17 @@ def test_description_and_solve_modules_do_not_import_exudyn():
                                                                 PACKAGE / "mechanism_run_checks.py", PACKAGE / "run_setup.py"]
     offenders = [f.name for f in files if IMPORT.search(f.read_text())]
     assert offenders == []
+
+
+def test_only_the_mbs_layer_imports_exudyn():
+    """No module outside ``exudyn_atcm/mbs/`` imports Exudyn (at module level or in a function)."""
+    outside = [f for f in sorted(PACKAGE.rglob("*.py")) if f.relative_to(PACKAGE).parts[0] != "mbs"]
+    assert len(outside) > 20  # the scan sees the package (guards against a wrong PACKAGE path)
+    offenders = [str(f.relative_to(PACKAGE)) for f in outside if IMPORT.search(f.read_text())]
+    assert offenders == []
+    # and the layer itself does import it (the pattern would find an import if there were one)
+    inside = sorted((PACKAGE / "mbs").glob("*.py"))
+    assert any(IMPORT.search(f.read_text()) for f in inside)
 
 
 def test_description_layer_imports_without_exudyn():

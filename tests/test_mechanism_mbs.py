@@ -19,7 +19,7 @@ import pytest
 import scipy.linalg
 
 import exudyn_atcm as atcm
-from exudyn_atcm import _mbs_builder as runs
+from exudyn_atcm.mbs import solver_settings
 from exudyn_atcm.mbs import StepHooks, add_post_step, add_pre_step
 from exudyn_atcm.signals import Triangle
 
@@ -47,7 +47,7 @@ def test_add_to_and_solve_dynamic_equal_the_package_simulate():
     SC, mbs = user_system()
     h = atcm.add_to(mbs, bender_with_lever())
     mbs.Assemble()
-    settings = runs.dynamic_settings(0.05, 1e-3)
+    settings = solver_settings.dynamic_settings(0.05, 1e-3)
     settings.solution.sensors.writePeriod = 1e-3
     mbs.SolveDynamic(settings)
     r = h.result()
@@ -111,7 +111,7 @@ def test_step_hooks_keep_an_earlier_user_function_and_run_all():
     assert isinstance(hooks, StepHooks)
     assert hooks.pre[0] is before and len(hooks.pre) == 3 and len(hooks.post) == 2
     mbs.Assemble()
-    mbs.SolveDynamic(runs.dynamic_settings(0.01, 1e-3))
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.01, 1e-3))
     assert seen["before"] == seen["pre"] == 10  # every attempted step (none rejected here)
     assert seen["post"] == 11  # every accepted step and t = 0
     assert h.result().n_rows == 11

@@ -6,7 +6,7 @@ the rest of this description is about rigid cells.
 Model (planar, SI units):
 
 * Every rigid cell of a bender is one body (both layers' mass, the node at the cell's end
-  joint, reference angle = the bender's direction), as in :mod:`exudyn_atcm._mbs_builder`.
+  joint, reference angle = the bender's direction), as in :mod:`exudyn_atcm.mbs.actuator_chains`.
   Neighbouring cells are joined by a revolute joint and a torsion spring ``2 EI/(L_j + L_{j+1})``
   (``EI/L_c`` for equal cells).
 * Rigid groups (see :mod:`exudyn_atcm.mbs.layout`) are one body each (summed mass,
@@ -20,10 +20,9 @@ Model (planar, SI units):
   The rest-angle moment ``k theta0(strains)`` is applied as a torque pair on the spring's two
   bodies; the pairs are summed per body and drive, giving one ``LoadTorqueVector`` per body
   whose net torque is not identically zero.  For a uniform cantilever that is one torque on
-  the last cell, exactly as in :mod:`exudyn_atcm._mbs_builder`.
+  the last cell, exactly as in :mod:`exudyn_atcm.mbs.actuator_chains`.
 
-With :mod:`exudyn_atcm._mbs_builder`, the :mod:`exudyn_atcm.mbs` package holds the package's
-only Exudyn calls.
+The :mod:`exudyn_atcm.mbs` package holds the package's only Exudyn calls.
 """
 
 from __future__ import annotations

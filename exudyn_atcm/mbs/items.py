@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .._mbs_builder import _NOVIS as NOVIS
+from .actuator_items import NOVIS
 from .model import Body
 
 

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _mbs_builder as runs
+from . import solver_runs as runs
 from .model import MechanismModel
 
 
@@ -16,7 +16,7 @@ def eigenfrequencies(model: MechanismModel, n: int) -> np.ndarray:
     The tangent stiffness of the constrained system, including the geometric stiffness of the
     joints' internal forces (the Lagrange multipliers times the constraints' second
     derivatives), which Exudyn's ``ComputeODE2Eigenvalues`` leaves out; projected onto the
-    constraints' null space (:func:`exudyn_atcm._eigen.constrained_eigenfrequencies`).  The
+    constraints' null space (:func:`exudyn_atcm.mbs.eigen.constrained_eigenfrequencies`).  The
     drive torques and loads act as constant loads during the linearisation.
     """
     return runs.eigenfrequencies(model, n)
@@ -46,11 +46,11 @@ class DofReport:
 
 def degrees_of_freedom(model: MechanismModel) -> DofReport:
     """The model's :class:`DofReport` in its current (assembled) state."""
-    runs._quiet()
+    runs.quiet_console()
     try:
         info = model.mbs.ComputeSystemDegreeOfFreedom(verbose=False)
     finally:
-        runs._loud()
+        runs.restore_console()
     return DofReport(int(info["degreeOfFreedom"]), int(info["nODE2"]), int(info["nAE"]),
                      int(info["redundantConstraints"]))
 

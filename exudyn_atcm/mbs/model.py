@@ -111,7 +111,7 @@ class MechanismModel:
     # (item, stiffness, damping parameter name) of every spring-damper, for the relaxation
     springs: list[tuple[int, float, str]] = field(default_factory=list)
     # smallest absolute Newton tolerance the model can reach; None: no static relative tolerance
-    # override (the attributes the shared solver runs of _mbs_builder read)
+    # override (the attributes the shared solver runs of mbs.solver_runs read)
     newton_tolerance_floor: float = 0.0
     static_relative_tolerance: float | None = None
     group_of_component: dict[str, str] = field(default_factory=dict)  # link / prbm segment -> body key

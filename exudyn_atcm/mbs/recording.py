@@ -15,7 +15,7 @@ from typing import Callable
 
 import numpy as np
 
-from .. import _mbs_builder as runs
+from . import solver_runs as runs
 from ..mechanism.link import Link
 from ..mechanism.points import MechanismError, closest
 from ..result import Result

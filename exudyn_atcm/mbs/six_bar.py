@@ -1,6 +1,6 @@
 """The paper's six-bar cell (its Fig. 2) inside a mechanism: a chain between two end bodies.
 
-Per cell ``j`` (as :mod:`exudyn_atcm._mbs_builder` builds a lone actuator): the passive bar,
+Per cell ``j`` (as :mod:`exudyn_atcm.mbs.actuator_chains` builds a lone actuator): the passive bar,
 the active layer as three bodies A1-A2-A3, revolute joints with torsion springs
 ``2 E_i I_i / L_c`` to the interfaces on both layers, the prismatic motor A1-A2 (its offset
 is the stroke ``strain * L_c``, written per step) and the prismatic joint A2-A3 with the axial

@@ -20,7 +20,7 @@ stiffness-proportional, ``beta`` times each stiffness, as in the other cells.
 
 The stiff axis limits the Newton residual that round-off allows (about ``eps EA L / L_c``);
 the absolute Newton tolerance is raised to ten times that where it is tighter (from about 50
-REF-A cells on).
+cells of the reference bender of the actuator docs on).
 """
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ from __future__ import annotations
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._mbs_builder import _NOVIS, BuiltModel, _add_ground
+from .actuator_items import NOVIS, add_ground
+from .actuator_model import BuiltModel
 
 _BEAM_VIS = {'show': False, 'drawHeight': 0., 'color': [-1., -1., -1., -1.]}
 
@@ -48,13 +49,13 @@ def build_beam(SC, mbs, act, stroke_path) -> BuiltModel:
     rho_i = (act.passive.density * w * h1**3 / 12.0
              + act.active.density * w * (h2**3 / 12.0 + h2 * e**2))
 
-    ground, gcoord = _add_ground(mbs)
+    ground, gcoord = add_ground(mbs)
     model = BuiltModel(SC=SC, mbs=mbs, cell="beam", n_cells=n, cell_length=lc)
-    nodes = [mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[j * lc, 0.0, 0.0], visualization=_NOVIS))
+    nodes = [mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[j * lc, 0.0, 0.0], visualization=NOVIS))
              for j in range(n + 1)]
     for k in range(3):  # clamp node 0
         mk = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=k))
-        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gcoord, mk], visualization=_NOVIS))
+        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gcoord, mk], visualization=NOVIS))
     for j in range(n):
         beam = mbs.AddObject(ii.ObjectBeamGeometricallyExact2D(
             nodeNumbers=[nodes[j], nodes[j + 1]], length=lc, massPerLength=mu, crossSectionInertia=rho_i,
@@ -67,7 +68,7 @@ def build_beam(SC, mbs, act, stroke_path) -> BuiltModel:
             model.offset_factors.append(act.curvature_per_strain)
     model.offset_parameter = "referenceCurvature"
     # an axial force EA/L_c * du resolves positions only to round-off eps * L: its residual
-    # floor is ~eps (EA/L_c) L, 9e-9 N at 64 REF-A cells; 10x that is the smallest reachable
+    # floor is ~eps (EA/L_c) L, 9e-9 N at 64 cells of the reference bender; 10x that is the smallest reachable
     # Newton tolerance (moment residuals of that size move the tip by < 1e-8 rad)
     # the first residual of a static load step carries the stiff axis's forces: 1e-8 of it
     # left 8e-6 N m at the tip (8 cells, 1500 V and a tip load); 1e-10 reaches ~1e-9

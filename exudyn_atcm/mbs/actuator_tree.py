@@ -1,6 +1,6 @@
 """Exudyn system of the ``"rigid"`` cell in minimal coordinates (``ObjectKinematicTree``).
 
-The chain of rigid cells of :func:`exudyn_atcm._mbs_builder._build_rigid` is a serial chain:
+The chain of rigid cells of :func:`exudyn_atcm.mbs.actuator_chains.build_rigid` is a serial chain:
 its ``N`` joint angles describe it completely.  Here it is one ``ObjectKinematicTree`` with a
 revolute joint per cell (joint 0 at the clamp), the cells' masses and inertias about their
 mass centres, and the torsion springs as the tree's joint P(D) control: joint torque
@@ -14,13 +14,11 @@ The tip (the last cell's end) is found by forward kinematics from the recorded j
 
 from __future__ import annotations
 
-import math
-
 import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._mbs_builder import BuiltModel
+from .actuator_model import BuiltModel
 
 
 class TreeModel(BuiltModel):

@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ._mbs_builder import _NOVIS, BuiltModel, _add_ground
+from .actuator_items import NOVIS, add_ground
+from .actuator_model import BuiltModel
 
 
 class AncfModel(BuiltModel):
@@ -68,13 +69,13 @@ def build_ancf(SC, mbs, act, stroke_path) -> AncfModel:
     EA = act.passive.axial_rigidity(w) + act.active.axial_rigidity(w)
     mu = act.mass_per_length
 
-    ground, gcoord = _add_ground(mbs)
+    ground, gcoord = add_ground(mbs)
     model = AncfModel(SC=SC, mbs=mbs, cell="ancf", n_cells=n, cell_length=lc)
-    nodes = [mbs.AddNode(ii.NodePoint2DSlope1(referenceCoordinates=[j * lc, 0.0, 1.0, 0.0], visualization=_NOVIS))
+    nodes = [mbs.AddNode(ii.NodePoint2DSlope1(referenceCoordinates=[j * lc, 0.0, 1.0, 0.0], visualization=NOVIS))
              for j in range(n + 1)]
     for k in (0, 1, 3):  # clamp: position and the slope's y component of node 0
         mk = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=k))
-        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gcoord, mk], visualization=_NOVIS))
+        mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[gcoord, mk], visualization=NOVIS))
     elements = []
     for j in range(n):
         el = mbs.AddObject(ii.ObjectANCFCable2D(

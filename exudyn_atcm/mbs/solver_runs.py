@@ -1,0 +1,258 @@
+"""Exudyn solver runs shared by the actuator and the mechanism paths.
+
+Static solve (:func:`run_static`), dynamic relaxation (:func:`run_relaxation`, the fallback
+when the static Newton iteration fails), time integration (:func:`run_dynamic`), state resets
+and eigenfrequencies about the current state.  A run works on any built model with the
+attributes of :class:`SolvableModel` (:class:`~exudyn_atcm.mbs.actuator_model.BuiltModel`,
+:class:`~exudyn_atcm.mbs.model.MechanismModel`); Exudyn's failures are raised as
+:class:`ExudynFailure` with the time or load factor reached.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable, Protocol
+
+import exudyn as exu
+import numpy as np
+
+from .eigen import constrained_eigenfrequencies
+from .solver_settings import dynamic_settings
+
+
+class SolvableModel(Protocol):
+    """What the runs read and call on a built model."""
+
+    mbs: Any
+    uf_strain: Any
+    springs: list
+    newton_tolerance_floor: float
+    static_relative_tolerance: float | None
+
+    def set_strain(self, strain: float) -> None: ...
+
+    def scale_loads(self, factor: float) -> None: ...
+
+    def coordinates(self) -> np.ndarray: ...
+
+
+class ExudynFailure(RuntimeError):
+    """Exudyn's solver stopped; carries the time / load factor reached."""
+
+    def __init__(self, message: str, time: float):
+        super().__init__(message)
+        self.time = time
+
+
+def quiet_console():
+    """Silence Exudyn's console output (solver messages) until :func:`restore_console`."""
+    exu.config.printToConsole = False
+
+
+def restore_console():
+    """Let Exudyn print to the console again."""
+    exu.config.printToConsole = True
+
+
+def _apply_tolerance_floor(model: SolvableModel, newton) -> None:
+    if newton.absoluteTolerance < model.newton_tolerance_floor:
+        newton.absoluteTolerance = model.newton_tolerance_floor
+
+
+def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float], float]) -> None:
+    """Solve statically; the strain follows the load factor ``f`` in [0, 1] via ``strain_at_factor``."""
+    mbs = model.mbs
+
+    def pre(mbs_, t):
+        model.set_strain(strain_at_factor(min(max(t, 0.0), 1.0)))
+        return True
+
+    _apply_tolerance_floor(model, settings.staticSolver.newton)
+    if model.static_relative_tolerance is not None:
+        settings.staticSolver.newton.relativeTolerance = model.static_relative_tolerance
+    mbs.SetPreStepUserFunction(pre)
+    model.set_strain(strain_at_factor(0.0))
+    saved_uf = model.uf_strain
+    model.uf_strain = lambda t: strain_at_factor(min(max(t, 0.0), 1.0))
+    solver = exu.MainSolverStatic()
+    quiet_console()
+    try:
+        ok = solver.SolveSystem(mbs, settings)
+    except Exception as exc:  # noqa: BLE001 - any Exudyn failure is reported with context
+        t = _solver_time(solver)
+        raise ExudynFailure(f"{type(exc).__name__}: {exc}", t) from exc
+    finally:
+        restore_console()
+        mbs.SetPreStepUserFunction(0)
+        model.uf_strain = saved_uf
+    if not ok:
+        raise ExudynFailure("static Newton iteration did not converge", _solver_time(solver))
+    # the static solver ends at load factor 1: make sure the final strain is exact
+    model.set_strain(strain_at_factor(1.0))
+
+
+def _solver_time(solver) -> float:
+    try:
+        return float(solver.it.currentTime)
+    except Exception:  # noqa: BLE001
+        return float("nan")
+
+
+def set_current_as_initial(model: SolvableModel, zero_velocity: bool = False) -> None:
+    mbs = model.mbs
+    state = mbs.systemData.GetSystemState()
+    mbs.systemData.SetSystemState(systemStateList=state, configuration=exu.ConfigurationType.Initial)
+    if zero_velocity:
+        n = len(mbs.systemData.GetODE2Coordinates_t())
+        zeros = np.zeros(n)
+        mbs.systemData.SetODE2Coordinates_t(zeros, configuration=exu.ConfigurationType.Initial)
+        mbs.systemData.SetODE2Coordinates_tt(zeros, configuration=exu.ConfigurationType.Initial)
+
+
+def reset_to_reference(model: SolvableModel) -> None:
+    """Put the undeformed state back as initial and current state."""
+    mbs = model.mbs
+    sd = mbs.systemData
+    n = len(sd.GetODE2Coordinates())
+    zeros = np.zeros(n)
+    for cfg in (exu.ConfigurationType.Initial, exu.ConfigurationType.Current):
+        sd.SetODE2Coordinates(zeros, configuration=cfg)
+        sd.SetODE2Coordinates_t(zeros, configuration=cfg)
+        sd.SetODE2Coordinates_tt(zeros, configuration=cfg)
+
+
+def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_factor: float,
+                   periods_ramp: float = 2.0, periods_total: float = 10.0,
+                   steps_per_period: int = 60) -> float:
+    """Static equilibrium by dynamic relaxation (fallback when the static Newton iteration fails).
+
+    Exudyn's static solver leaves out the constraint forces' derivative in its Jacobian
+    (measured: linear convergence whose rate tends to 1 under large tip forces).  The
+    implicit dynamic solver adds ``M/(beta h²)`` to the Jacobian, which keeps it contractive.
+    Strain and loads (``model.scale_loads``) are ramped smoothly over ``periods_ramp`` periods of the first mode,
+    with every spring damped at ``damping_factor * k`` (critical damping of the first mode for
+    ``2/omega1``), then held until ``periods_total``.  Returns the largest coordinate change
+    over the last period (a measure of the remaining motion).
+    """
+    mbs = model.mbs
+    period = 2.0 * math.pi / omega1
+    t_ramp = periods_ramp * period
+    t_end = periods_total * period
+    h = period / steps_per_period
+    tail = {"q": None, "t_mark": t_end - period, "change": 0.0}
+
+    def ramp(t):
+        x = min(max(t / t_ramp, 0.0), 1.0)
+        return x * x * (3.0 - 2.0 * x)
+
+    def pre(mbs_, t):
+        f = ramp(t)
+        model.set_strain(f * strain)
+        model.scale_loads(f)
+        return True
+
+    def post(mbs_, t):
+        if t >= tail["t_mark"]:
+            q = np.array(mbs_.systemData.GetODE2Coordinates(copy=False))
+            if tail["q"] is None:
+                tail["q"] = q
+            else:
+                tail["change"] = max(tail["change"], float(np.max(np.abs(q - tail["q"]))))
+        return True
+
+    saved = [(item, name, mbs.GetObjectParameter(item, name)) for item, _, name in model.springs]
+    for item, k, name in model.springs:
+        mbs.SetObjectParameter(item, name, damping_factor * k)
+    settings = dynamic_settings(t_end, h)
+    _apply_tolerance_floor(model, settings.timeIntegration.newton)
+    settings.timeIntegration.newton.useModifiedNewton = False
+    settings.timeIntegration.newton.maxIterations = 25
+    mbs.SetPreStepUserFunction(pre)
+    mbs.SetPostStepUserFunction(post)
+    solver = exu.MainSolverImplicitSecondOrder()
+    saved_uf = model.uf_strain
+    model.uf_strain = lambda t: ramp(t) * strain
+    quiet_console()
+    try:
+        ok = solver.SolveSystem(mbs, settings)
+    except Exception as exc:  # noqa: BLE001
+        raise ExudynFailure(f"{type(exc).__name__}: {exc}", _solver_time(solver) / t_end) from exc
+    finally:
+        restore_console()
+        mbs.SetPreStepUserFunction(0)
+        mbs.SetPostStepUserFunction(0)
+        model.uf_strain = saved_uf
+        for item, name, d in saved:
+            mbs.SetObjectParameter(item, name, d)
+        model.scale_loads(1.0)
+    if not ok:
+        raise ExudynFailure("dynamic relaxation did not converge", _solver_time(solver) / t_end)
+    model.set_strain(strain)
+    return tail["change"]
+
+
+def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None] | None,
+                post_step: Callable[[float], None]) -> dict:
+    """Integrate in time; ``pre_step(t)`` before each attempted step, ``post_step(t)`` after each accepted one.
+
+    A hook returning ``False`` stops the integration cleanly (Exudyn ends the run).
+
+    Returns solver statistics.
+    """
+    mbs = model.mbs
+    counts = {"attempts": 0}
+
+    if pre_step is not None:
+        def pre(mbs_, t):
+            counts["attempts"] += 1
+            return pre_step(t) is not False  # False: stop the run (e.g. Ctrl-C caught in the hook)
+    else:
+        def pre(mbs_, t):
+            counts["attempts"] += 1
+            return True
+
+    def post(mbs_, t):
+        return post_step(t) is not False
+
+    _apply_tolerance_floor(model, settings.timeIntegration.newton)
+    mbs.SetPreStepUserFunction(pre)
+    mbs.SetPostStepUserFunction(post)
+    solver = exu.MainSolverImplicitSecondOrder()
+    quiet_console()
+    try:
+        ok = solver.SolveSystem(mbs, settings)
+    except Exception as exc:  # noqa: BLE001
+        raise ExudynFailure(f"{type(exc).__name__}: {exc}", _solver_time(solver)) from exc
+    finally:
+        restore_console()
+        mbs.SetPreStepUserFunction(0)
+        mbs.SetPostStepUserFunction(0)
+    if not ok:
+        raise ExudynFailure("Newton iteration did not converge even at the minimum step size",
+                            _solver_time(solver))
+    it = solver.it
+    return {
+        "pre_step_calls": counts["attempts"],
+        "newton_steps": int(it.newtonStepsCount),
+        "rejected_steps": int(getattr(it, "rejectedModifiedNewtonSteps", 0)),
+        "discontinuous_iterations": int(it.discontinuousIterationsCount),
+    }
+
+
+def eigenfrequencies(model: SolvableModel, n: int) -> np.ndarray:
+    """Lowest ``n`` undamped eigenfrequencies [Hz] about the model's current (equilibrium) state.
+
+    Includes the constraint forces' geometric stiffness, which Exudyn's
+    ``ComputeODE2Eigenvalues`` leaves out (see :mod:`exudyn_atcm.mbs.eigen`).
+    """
+    return constrained_eigenfrequencies(model.mbs, n)
+
+
+def set_current_coordinates(model: SolvableModel, q: np.ndarray) -> None:
+    """Write the ODE2 coordinates ``q`` into the model's current state."""
+    model.mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Current)
+
+
+def exudyn_version() -> str:
+    """Version of the Exudyn library the runs use."""
+    return str(exu.__version__)
