@@ -3,7 +3,7 @@
 :func:`exudyn_atcm.simulate`, :func:`exudyn_atcm.solve_static` and
 :func:`exudyn_atcm.eigenfrequencies` hand a mechanism to this module; :func:`static_sweep`
 is its own.  The hysteresis of every drive is evaluated in the solver step exactly as for a
-lone actuator (:class:`exudyn_atcm.simulation.InStepStrain`: trial from the committed memory
+lone actuator (:class:`exudyn_atcm.strain_sources.InStepStrain`: trial from the committed memory
 in the pre-step hook, commit in the post-step hook of accepted steps only).
 
 The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
@@ -33,7 +33,10 @@ from .mechanism_run_checks import check_drive_ranges, check_steps, feedback_cont
 from .result import Result
 from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time
 from .run_setup import prepare_run, report_controller, run_info
-from .simulation import DEFAULT_STEP, InStepStrain, SolverError, _is_interrupt
+from .errors import SolverError
+from .run_checks import is_interrupt
+from .simulation import DEFAULT_STEP
+from .strain_sources import InStepStrain
 
 VoltageSpec = Any  # None | float | Mapping[str, float]
 
@@ -308,7 +311,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         except KeyboardInterrupt:
             raise SimulationInterrupted(0.0) from None
         except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
-            if _is_interrupt(exc.__cause__ or exc):
+            if is_interrupt(exc.__cause__ or exc):
                 raise SimulationInterrupted(0.0) from None
             raise
         runs.set_current_as_initial(model, zero_velocity=True)
@@ -360,7 +363,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     except runs.ExudynFailure as exc:
         if user_errors:
             raise user_errors[0] from None
-        if not _is_interrupt(exc):
+        if not is_interrupt(exc):
             last = pending[0][0] if pending else rows.last_time()
             raise SolverError(
                 f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "

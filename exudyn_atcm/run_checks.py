@@ -335,6 +335,12 @@ class SimulationInterrupted(KeyboardInterrupt):
         return str(self.args[0])
 
 
+def is_interrupt(exc: BaseException) -> bool:
+    """Whether an Exudyn failure was a ``KeyboardInterrupt`` raised inside a user function
+    (Exudyn reports it in the text of its own error)."""
+    return "KeyboardInterrupt" in str(exc)
+
+
 def _caused_by_interrupt(exc: BaseException) -> bool:
     """Whether ``KeyboardInterrupt`` is in the cause/context chain of ``exc``."""
     seen = set()

@@ -26,7 +26,9 @@ from ._checks import finite_float, positive_int
 from .actuator import BendingActuator
 from .recording import RecordingSchedule
 from .mechanism import Mechanism
+from .errors import SolverError
 from .result import Result
+from .strain_sources import InStepStrain, TableStrain
 from .run_setup import prepare_run, report_controller, run_info
 from .run_checks import (
     InterruptGuard,
@@ -34,6 +36,7 @@ from .run_checks import (
     WallClock,
     check_step_against_frequency,
     check_step_against_program,
+    is_interrupt,
     snap_time,
     warn_if_long,
 )
@@ -50,96 +53,6 @@ _STANDARD_UNITS = {
     "tip_y": "m",
     "tip_angle": "rad",
 }
-
-
-class SolverError(RuntimeError):
-    """The multibody solver failed; the message says where, what was tried and what to change."""
-
-
-# ------------------------------------------------------------------------------ strain sources
-
-class InStepStrain:
-    """Strain source with the hysteresis operator evaluated in the solver step.
-
-    ``trial(t)`` gives the strain for the step ending at ``t`` from the committed memory
-    (cached per ``t``, so one evaluation per attempted step); ``commit(t)`` accepts the step.
-    """
-
-    def __init__(self, drive) -> None:
-        self.drive = drive
-        self.hysteresis = drive.hysteresis
-        self._t = None
-        self._u = 0.0
-        self._strain = 0.0
-        self.evaluations = 0
-        #: lowest and highest committed voltage [V] (for the range check after the run)
-        self.u_low = math.inf
-        self.u_high = -math.inf
-        if self.hysteresis is not None:
-            self.hysteresis.reset()
-
-    def trial(self, t: float) -> float:
-        if t != self._t:
-            u = self.drive.voltage_at(t)
-            if self.hysteresis is None:
-                strain = self.drive.linear_strain(u)
-            else:
-                strain = float(self.hysteresis.evaluate(u))
-                self.evaluations += 1
-            self._t, self._u, self._strain = t, u, strain
-        return self._strain
-
-    def commit(self, t: float) -> tuple[float, float]:
-        # the voltage of the accepted step was computed for its trial (same t)
-        u = self._u if t == self._t else self.drive.voltage_at(t)
-        if u < self.u_low:
-            self.u_low = u
-        if u > self.u_high:
-            self.u_high = u
-        if self.hysteresis is None:
-            strain = self.drive.linear_strain(u)
-        else:
-            strain = float(self.hysteresis.commit(u))
-        # the next trial at this t (none in normal operation) must see the new memory
-        self._t = None
-        return u, strain
-
-
-class TableStrain:
-    """Strain from a precomputed table of (time, voltage, strain), linearly interpolated.
-
-    The paper's approach (its Fig. 9): the hysteresis is applied offline to the voltage
-    program on a time grid and the motor follows the table.  Used by the benchmarks.
-    """
-
-    def __init__(self, times: np.ndarray, voltages: np.ndarray, strains: np.ndarray) -> None:
-        self.times = np.asarray(times, dtype=float)
-        self.voltages = np.asarray(voltages, dtype=float)
-        self.strains = np.asarray(strains, dtype=float)
-        self._t = None
-        self._strain = 0.0
-        self.u_low = float(self.voltages.min()) if self.voltages.size else math.inf
-        self.u_high = float(self.voltages.max()) if self.voltages.size else -math.inf
-
-    @classmethod
-    def from_drive(cls, drive, t_end: float, step: float) -> "TableStrain":
-        n = int(math.ceil(t_end / step - 1e-9))
-        times = np.linspace(0.0, n * step, n + 1)
-        volts = np.array([drive.voltage_at(t) for t in times])
-        if drive.hysteresis is None:
-            strains = drive.linear_strain(volts)
-        else:
-            strains = drive.hysteresis.apply(volts)
-        return cls(times, volts, strains)
-
-    def trial(self, t: float) -> float:
-        if t != self._t:
-            self._t = t
-            self._strain = float(np.interp(t, self.times, self.strains))
-        return self._strain
-
-    def commit(self, t: float) -> tuple[float, float]:
-        return float(np.interp(t, self.times, self.voltages)), float(np.interp(t, self.times, self.strains))
 
 
 # ------------------------------------------------------------------------------ argument checks
@@ -319,7 +232,7 @@ def _static_equilibrium(actuator, model, strain: float, force: tuple[float, floa
         runs.run_static(model, solver_settings.static_settings(load_steps), lambda f: f * strain)
         return "static"
     except runs.ExudynFailure as exc:
-        if _is_interrupt(exc):
+        if is_interrupt(exc):
             raise SimulationInterrupted(0.0) from None
         first = exc
     runs.reset_to_reference(model)
@@ -529,11 +442,6 @@ def simulate(
                      progress=progress, record_every=record_every)
 
 
-def _is_interrupt(exc: BaseException) -> bool:
-    """Whether an Exudyn failure was a ``KeyboardInterrupt`` raised inside a user function."""
-    return "KeyboardInterrupt" in str(exc)
-
-
 def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
               progress=None, record_every=None) -> Result:
     t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
@@ -560,7 +468,7 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         try:
             _static_equilibrium(actuator, model, strain0, force, None, "initial state at t = 0")
         except SolverError as exc:
-            if _is_interrupt(exc.__cause__ or exc):
+            if is_interrupt(exc.__cause__ or exc):
                 raise SimulationInterrupted(0.0) from None
             raise
         runs.set_current_as_initial(model, zero_velocity=True)
@@ -579,7 +487,7 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
     try:
         stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(recorder.post_step))
     except runs.ExudynFailure as exc:
-        if not _is_interrupt(exc):
+        if not is_interrupt(exc):
             t_fail = exc.time
             last = recorder.last_time()
             raise SolverError(

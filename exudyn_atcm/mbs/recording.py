@@ -19,7 +19,7 @@ from . import solver_runs as runs
 from ..mechanism.link import Link
 from ..mechanism.points import MechanismError, closest
 from ..result import Result
-from ..simulation import SolverError
+from ..errors import SolverError
 from .model import MechanismModel
 
 

@@ -20,7 +20,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.points import MechanismError, PointRef, closest
 from ..result import Result
-from ..simulation import InStepStrain
+from ..strain_sources import InStepStrain
 from .builder import add_mechanism
 from .hooks import add_post_step, add_pre_step
 from .model import MechanismModel
