@@ -306,13 +306,15 @@ def optimize(
     return opt
 
 
-def _simplex(start: np.ndarray) -> np.ndarray:
-    """Initial Nelder-Mead simplex: 10 % of each range from the start, pointing inwards."""
+def _simplex(start: np.ndarray, fraction: float = 0.1) -> np.ndarray:
+    """Nelder-Mead simplex: ``fraction`` of each (unit) range from the start, pointing inwards.
+
+    The default 10 % starts a search; :func:`_small_simplex` (2 %) polishes a found point.
+    """
     n = start.size
     simplex = np.tile(start, (n + 1, 1))
     for i in range(n):
-        step = 0.1 if start[i] <= 0.9 else -0.1
-        simplex[i + 1, i] += step
+        simplex[i + 1, i] += fraction if start[i] <= 1.0 - fraction else -fraction
     return simplex
 
 
@@ -424,8 +426,4 @@ def _polish(so, problem: Problem, best_u: np.ndarray, kinds, xatol, fatol, maxit
 
 def _small_simplex(start: np.ndarray) -> np.ndarray:
     """A simplex of 2 % of each range around the start (a polish, not a new search)."""
-    n = start.size
-    simplex = np.tile(start, (n + 1, 1))
-    for i in range(n):
-        simplex[i + 1, i] += 0.02 if start[i] <= 0.98 else -0.02
-    return simplex
+    return _simplex(start, 0.02)
