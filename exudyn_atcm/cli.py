@@ -21,10 +21,10 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import traceback
 from collections.abc import Sequence
 
 from . import cases as _cases
+from ._cli_errors import report_error as _error
 
 __all__ = ["main", "build_parser"]
 
@@ -82,14 +82,6 @@ def _study_command(args: argparse.Namespace) -> int:
     from .study.command import optimize_command, sweep_command
 
     return sweep_command(args) if args.command == "sweep" else optimize_command(args)
-
-
-def _error(exc: BaseException | str, debug: bool, status: int) -> int:
-    if debug and isinstance(exc, BaseException):
-        traceback.print_exception(type(exc), exc, exc.__traceback__)
-    text = exc if isinstance(exc, str) else (" ".join(str(exc).split()) or type(exc).__name__)
-    print(f"error: {text}", file=sys.stderr)
-    return status
 
 
 def _list(cases_dir: str | None) -> int:

@@ -22,6 +22,7 @@ import sys
 import time
 from typing import IO
 
+from .._cli_errors import report_error as _error
 from ..cases import CaseError, load_case
 
 __all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
@@ -73,6 +74,24 @@ class RunProgressBar:
             self._drawn = False
 
 
+def _add_run_options(parser: argparse.ArgumentParser, out_default: str, scheduler_note: str = "") -> None:
+    """The options shared by ``sweep`` and ``optimize``: --set, --workers, --scheduler, --out, --store."""
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
+    parser.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS", help=f"Dask scheduler, e.g. tcp://HOST:8786{scheduler_note}")
+    parser.add_argument("--out", default=out_default, metavar="DIR", help=f"output directory (default: ./{out_default})")
+    parser.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
+
+
+def _check_engine_options(args: argparse.Namespace, debug: bool) -> int | None:
+    """Exit status 2 (with the error line) if --workers/--scheduler are invalid, else None."""
+    if args.workers is not None and args.workers < 1:
+        return _error(f"--workers must be an integer >= 1, got {args.workers}", debug, 2)
+    if args.workers is not None and args.scheduler is not None:
+        return _error("give either --workers (this machine) or --scheduler (a Dask cluster), not both", debug, 2)
+    return None
+
+
 def add_sweep_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
     """Add the ``sweep`` subcommand to ``sub``; returns its parser."""
     sweep = sub.add_parser(
@@ -90,24 +109,10 @@ def add_sweep_parser(sub: argparse._SubParsersAction, parents: list[argparse.Arg
                        help="draw N points in the START:STOP ranges of --grid (crossed with the lists)")
     sweep.add_argument("--sampling", choices=("lhs", "random"), default="lhs", help="sampler of --samples (default: lhs)")
     sweep.add_argument("--seed", type=int, default=0, help="seed of the sampler (default 0)")
-    sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
-    sweep.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
-    sweep.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://HOST:8786 (needs the [distributed] extra)")
-    sweep.add_argument("--out", default="out/sweep", metavar="DIR", help="output directory (default: ./out/sweep)")
-    sweep.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
+    _add_run_options(sweep, "out/sweep", scheduler_note=" (needs the [distributed] extra)")
     sweep.add_argument("--retry-failed", action="store_true", help="run again the points whose stored run failed")
     sweep.add_argument("--no-plot", action="store_true", help="do not write the plots")
     return sweep
-
-
-def _error(exc: BaseException | str, debug: bool, status: int) -> int:
-    if debug and isinstance(exc, BaseException):
-        import traceback
-
-        traceback.print_exception(type(exc), exc, exc.__traceback__)
-    text = exc if isinstance(exc, str) else (" ".join(str(exc).split()) or type(exc).__name__)
-    print(f"error: {text}", file=sys.stderr)
-    return status
 
 
 def sweep_command(args: argparse.Namespace) -> int:
@@ -117,10 +122,9 @@ def sweep_command(args: argparse.Namespace) -> int:
     from .sweep import run_study
 
     debug = bool(getattr(args, "debug", False))
-    if args.workers is not None and args.workers < 1:
-        return _error(f"--workers must be an integer >= 1, got {args.workers}", debug, 2)
-    if args.workers is not None and args.scheduler is not None:
-        return _error("give either --workers (this machine) or --scheduler (a Dask cluster), not both", debug, 2)
+    status = _check_engine_options(args, debug)
+    if status is not None:
+        return status
     if args.samples is not None and args.samples < 1:
         return _error(f"--samples must be an integer >= 1, got {args.samples}", debug, 2)
     try:
@@ -190,11 +194,7 @@ def add_optimize_parser(sub: argparse._SubParsersAction, parents: list[argparse.
     opt.add_argument("--maxiter", type=int, default=100, metavar="N", help="generations (differential evolution; default 100)")
     opt.add_argument("--popsize", type=int, default=15, metavar="N", help="population size per variable (default 15)")
     opt.add_argument("--seed", type=int, default=0, help="seed of differential evolution (default 0)")
-    opt.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
-    opt.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
-    opt.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://HOST:8786")
-    opt.add_argument("--out", default="out/optimize", metavar="DIR", help="output directory (default: ./out/optimize)")
-    opt.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
+    _add_run_options(opt, "out/optimize")
     opt.add_argument("--no-plot", action="store_true", help="do not write the best run's plots")
     return opt
 
@@ -219,10 +219,9 @@ def optimize_command(args: argparse.Namespace) -> int:
     from .optimize import optimize
 
     debug = bool(getattr(args, "debug", False))
-    if args.workers is not None and args.workers < 1:
-        return _error(f"--workers must be an integer >= 1, got {args.workers}", debug, 2)
-    if args.workers is not None and args.scheduler is not None:
-        return _error("give either --workers (this machine) or --scheduler (a Dask cluster), not both", debug, 2)
+    status = _check_engine_options(args, debug)
+    if status is not None:
+        return status
     for name in ("maxiter", "popsize"):
         if getattr(args, name) < 1:
             return _error(f"--{name} must be an integer >= 1, got {getattr(args, name)}", debug, 2)
