@@ -14,10 +14,11 @@ import pytest
 from exudyn_atcm import beam_theory as bt
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.simulation import _simulate, eigenfrequencies, simulate, solve_static
+from exudyn_atcm.simulation import eigenfrequencies, simulate, solve_static
 
 from _actuator_geometries import GEOMETRIES, REF_A
-from test_actuator_dynamics import LeakyOperator, fast_triangle_actuator
+from _actuator_runs import (LeakyOperator, check_end_torque_equals_prestep_path, check_in_step_hysteresis_equals_offline_replay,
+                            check_run_starts_in_static_equilibrium, fast_triangle_actuator)
 
 REJECTING = {"timeIntegration.newton.maxIterations": 2, "timeIntegration.newton.useModifiedNewton": False}
 
@@ -52,15 +53,10 @@ def test_free_actuation_follows_the_arc(geometry, n_cells):
 
 
 def test_end_torque_equals_reference_curvature_in_every_element():
-    H1, H2 = paper_strain_preisach(), paper_strain_preisach()
-    a = _simulate(fast_triangle_actuator("ancf", H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")
-    b = _simulate(fast_triangle_actuator("ancf", H2), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="offsets")
-    assert a.n_rows == b.n_rows == 501
     # the same equations up to the element's reduced quadrature of the reference-curvature
     # term, an O((kappa L_c)^4) difference like the arc error above: measured 5e-6 of the
     # largest value (3 cells, up to 1500 V) -> 2e-5
-    for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_1", "cell_angle_3"):
-        np.testing.assert_allclose(a[name], b[name], rtol=0, atol=2e-5 * np.max(np.abs(b[name])))
+    check_end_torque_equals_prestep_path("ancf", 2e-5)
 
 
 @pytest.mark.parametrize("geometry", GEOMETRIES, ids=lambda g: g.name)
@@ -108,11 +104,7 @@ def test_first_eigenfrequency_converges_from_above_at_fourth_order():
 
 
 def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
-    H = paper_strain_preisach()
-    r = simulate(fast_triangle_actuator("ancf", H), 0.1, step=2e-3, settings=REJECTING)
-    assert r.info["rejected_steps"] > 0
-    np.testing.assert_allclose(r["strain"], H.apply(r["voltage"]), rtol=0, atol=1e-15)
-    assert np.ptp(r["strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
+    check_in_step_hysteresis_equals_offline_replay("ancf", REJECTING)
     H2 = paper_strain_preisach()
     r2 = simulate(fast_triangle_actuator("ancf", LeakyOperator(H2)), 0.1, step=2e-3, settings=REJECTING)
     assert np.max(np.abs(r2["strain"] - H2.apply(r2["voltage"]))) > 1e-6
@@ -120,13 +112,7 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
 
 @pytest.mark.parametrize("n_cells", [1, 32])
 def test_run_starts_in_static_equilibrium(n_cells):
-    act = REF_A.actuator(PiezoDrive(1500.0), n_cells=n_cells, cell="ancf")
-    force = (0.0, -0.2)
-    r = simulate(act, 40 * 1e-4, step=1e-4, tip_force=force)
-    s = solve_static(act, tip_force=force)
-    assert r.n_rows == 41
-    for name, atol in (("tip_x", 1e-8), ("tip_y", 1e-8), ("tip_angle", 1e-7)):
-        np.testing.assert_allclose(r[name], s[name][0], rtol=0, atol=atol)
+    r, _ = check_run_starts_in_static_equilibrium("ancf", n_cells)
     assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
 
 

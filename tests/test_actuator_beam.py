@@ -13,10 +13,11 @@ import pytest
 from exudyn_atcm import beam_theory as bt
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.simulation import _simulate, eigenfrequencies, simulate, solve_static
+from exudyn_atcm.simulation import eigenfrequencies, simulate, solve_static
 
 from _actuator_geometries import GEOMETRIES, REF_A
-from test_actuator_dynamics import LeakyOperator, fast_triangle_actuator
+from _actuator_runs import (LeakyOperator, check_end_torque_equals_prestep_path, check_in_step_hysteresis_equals_offline_replay,
+                            check_run_starts_in_static_equilibrium, fast_triangle_actuator)
 
 # Newton limited to 2 full iterations: Exudyn rejects and repeats steps (measured 54 in 0.1 s)
 REJECTING = {"timeIntegration.newton.maxIterations": 2, "timeIntegration.newton.useModifiedNewton": False}
@@ -54,12 +55,7 @@ def test_end_torque_equals_reference_curvature_in_every_element():
     # the default path (one end torque EI kappa) against Exudyn's prescribed reference curvature
     # written into every element in each pre-step: the same equations (see exudyn_atcm.mbs.actuator_beam), identical
     # runs up to round-off
-    H1, H2 = paper_strain_preisach(), paper_strain_preisach()
-    a = _simulate(fast_triangle_actuator("beam", H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")
-    b = _simulate(fast_triangle_actuator("beam", H2), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="offsets")
-    assert a.n_rows == b.n_rows == 501
-    for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_1", "cell_angle_3"):
-        np.testing.assert_allclose(a[name], b[name], rtol=0, atol=1e-9 * np.max(np.abs(b[name])))
+    check_end_torque_equals_prestep_path("beam", 1e-9)
 
 
 @pytest.mark.parametrize("geometry", GEOMETRIES, ids=lambda g: g.name)
@@ -130,12 +126,8 @@ def test_bent_beam_f1_changes_at_second_order():
 
 
 def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
-    H = paper_strain_preisach()
-    r = simulate(fast_triangle_actuator("beam", H), 0.1, step=2e-3, settings=REJECTING)
-    assert r.info["rejected_steps"] > 0
+    r = check_in_step_hysteresis_equals_offline_replay("beam", REJECTING)
     assert np.diff(r["time"]).min() < 2e-3 * 0.75
-    np.testing.assert_allclose(r["strain"], H.apply(r["voltage"]), rtol=0, atol=1e-15)
-    assert np.ptp(r["strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
     # negative control: committing inside trials drifts once steps are repeated
     H2 = paper_strain_preisach()
     r2 = simulate(fast_triangle_actuator("beam", LeakyOperator(H2)), 0.1, step=2e-3, settings=REJECTING)
@@ -144,13 +136,7 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
 
 @pytest.mark.parametrize("n_cells", [1, 64])
 def test_run_starts_in_static_equilibrium(n_cells):
-    act = REF_A.actuator(PiezoDrive(1500.0), n_cells=n_cells, cell="beam")
-    force = (0.0, -0.2)
-    r = simulate(act, 40 * 1e-4, step=1e-4, tip_force=force)
-    s = solve_static(act, tip_force=force)
-    assert r.n_rows == 41
-    for name, atol in (("tip_x", 1e-8), ("tip_y", 1e-8), ("tip_angle", 1e-7)):
-        np.testing.assert_allclose(r[name], s[name][0], rtol=0, atol=atol)
+    r, _ = check_run_starts_in_static_equilibrium("beam", n_cells)
     assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
 
 

@@ -16,9 +16,11 @@ from exudyn_atcm.actuator import BendingActuator
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.parameter_sets import paper_strain_preisach
 from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import _simulate, simulate, solve_static
+from exudyn_atcm.simulation import _simulate, simulate
 
 from _actuator_geometries import REF_A
+from _actuator_runs import (LeakyOperator, check_end_torque_equals_prestep_path, check_in_step_hysteresis_equals_offline_replay,
+                            check_run_starts_in_static_equilibrium, fast_triangle_actuator)
 
 CELLS = ("rigid", "six-bar")
 
@@ -30,49 +32,14 @@ REJECTING = {
 }
 
 
-def fast_triangle_actuator(cell, hysteresis):
-    # the paper's actuator, a 20 Hz triangle over the paper's full range: fast enough to need Newton work
-    return REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=hysteresis), cell=cell)
-
-
-class LeakyOperator:
-    """A deliberately wrong integration of the operator: commits on every trial evaluation."""
-
-    def __init__(self, inner):
-        self.inner = inner
-
-    def evaluate(self, u):
-        return self.inner.commit(u)
-
-    def commit(self, u):
-        return self.inner.commit(u)
-
-    def reset(self):
-        self.inner.reset()
-
-    def apply(self, u_series):
-        return self.inner.apply(u_series)
-
-    def checkpoint(self):
-        return self.inner.checkpoint()
-
-    def restore(self, snapshot):
-        self.inner.restore(snapshot)
-
-
 # ----------------------------------------------------------------------------- part 2
 
 @pytest.mark.parametrize("cell", CELLS)
 def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps(cell):
-    H = paper_strain_preisach()
-    r = simulate(fast_triangle_actuator(cell, H), 0.1, step=2e-3, settings=REJECTING[cell])
-    # rejections really happened: attempts exceed accepted steps, and the step was cut
-    assert r.info["rejected_steps"] > 0
+    # rejections really happened (attempts exceed accepted steps, and the step was cut), the strain
+    # is the offline replay, and the run covered the whole loop, so the comparison is not trivial
+    r = check_in_step_hysteresis_equals_offline_replay(cell, REJECTING[cell])
     assert np.diff(r["time"]).min() < 2e-3 * 0.75
-    offline = H.apply(r["voltage"])
-    np.testing.assert_allclose(r["strain"], offline, rtol=0, atol=1e-15)
-    # the run covered the whole loop, so the comparison is not trivial
-    assert np.ptp(r["strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
     np.testing.assert_allclose(r["stroke"], r["strain"] * REF_A.cell_length, rtol=1e-15)
 
 
@@ -104,12 +71,7 @@ def test_prestep_path_equals_user_function_path(cell, path_a, path_b):
 def test_rigid_end_torque_equals_rest_angles():
     # the rigid cell's default path applies the rest angles' net moment as one end torque;
     # algebraically identical, numerically equal up to round-off in the spring sums
-    H1, H2 = paper_strain_preisach(), paper_strain_preisach()
-    a = _simulate(fast_triangle_actuator("rigid", H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")
-    b = _simulate(fast_triangle_actuator("rigid", H2), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="offsets")
-    assert a.n_rows == b.n_rows == 501
-    for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_1", "cell_angle_3"):
-        np.testing.assert_allclose(a[name], b[name], rtol=0, atol=1e-10 * np.max(np.abs(b[name])))
+    check_end_torque_equals_prestep_path("rigid", 1e-10)
 
 
 def test_operator_evaluated_once_per_attempted_step():
@@ -138,13 +100,7 @@ def test_run_starts_in_static_equilibrium_for_1_to_64_cells(cell, n_cells):
     # constant voltage and a tip force: the run starts from the static equilibrium, so
     # nothing moves.  Both solves stop at Newton residuals ~1e-8 (N, N m); over joint springs
     # of EI/L_c >= 0.15 N m/rad summed along up to 64 joints that allows ~1e-7 rad / 1e-8 m
-    act = REF_A.actuator(PiezoDrive(1500.0), n_cells=n_cells, cell=cell)
-    force = (0.0, -0.2)
-    r = simulate(act, 40 * 1e-4, step=1e-4, tip_force=force)
-    s = solve_static(act, tip_force=force)
-    assert r.n_rows == 41
-    for name, atol in (("tip_x", 1e-8), ("tip_y", 1e-8), ("tip_angle", 1e-7)):
-        np.testing.assert_allclose(r[name], s[name][0], rtol=0, atol=atol)
+    _, s = check_run_starts_in_static_equilibrium(cell, n_cells)
     # and the equilibrium is the one of beam theory within the chain factors (linear superposition:
     # actuation arc plus the tip-force deflection of a cantilever, 2.4 mm: a few-% effect)
     kappa = bt.free_curvature(REF_A.E1, REF_A.h1, REF_A.E2, REF_A.h2, REF_A.width, bt.piezo_strain(1500.0))
