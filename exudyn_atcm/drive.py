@@ -21,6 +21,14 @@ MFC_P1_RATED_RANGE = (-500.0, 1500.0)
 #: about 1.4e-3 at 1500 V, piezo ceramics about 2e-3): most likely a unit mistake.
 PLAUSIBLE_STRAIN = 1e-2
 
+#: A voltage program whose peak ``|U|`` stays below this fraction of the largest magnitude of
+#: the rated range (3 V for the MFC P1's -500 ... +1500 V) is most likely written in kV: a
+#: program in kV peaks at 1/1000 of its meaning, at most 1.5 V within the MFC's rating.
+#: The threshold leaves a factor 2 above that and a factor 5 below the smallest deliberate
+#: small-signal program of the package (a 1 % triangle, -5 ... 15 V); at 3 V the MFC's free
+#: strain is about 3e-6, 0.2 % of its full stroke.
+KV_SUSPECT_FRACTION = 2e-3
+
 
 def _is_controller(value: Any) -> bool:
     """A controller of :mod:`exudyn_atcm.control`'s protocol (duck-typed)."""
@@ -56,7 +64,9 @@ class PiezoDrive:
     rated_range : (float, float) or None, optional
         Rated voltage range of the MFC [V]; default ``(-500, 1500)``, the MFC P1 type.
         Voltages outside it, or outside the operator's ``input_range`` (where its output
-        saturates), give one ``RuntimeWarning`` per run.  ``None``: no rating check.
+        saturates), give one ``RuntimeWarning`` per run; so does a non-zero program whose
+        peak ``|U|`` stays below :data:`KV_SUSPECT_FRACTION` of the rating's largest magnitude
+        (3 V for the default: a program written in kV).  ``None``: no rating check.
 
     Notes
     -----
@@ -152,7 +162,9 @@ class PiezoDrive:
         Outside the hysteresis operator's ``input_range`` its output saturates (5000 V gives
         the 1500 V answer); outside :attr:`rated_range` the MFC is driven beyond its rating.
         One ``RuntimeWarning`` lists each range and how far the voltages go beyond it; ``what``
-        (e.g. ``"drive 'crank'"``) names the drive in it.
+        (e.g. ``"drive 'crank'"``) names the drive in it.  A second ``RuntimeWarning`` is given
+        when a non-zero program peaks below :data:`KV_SUSPECT_FRACTION` of the rating's largest
+        magnitude (below 3 V for the MFC P1: most likely written in kV).
         """
         problems = []
         op_range = getattr(self.hysteresis, "input_range", None) if self.hysteresis is not None else None
@@ -174,6 +186,30 @@ class PiezoDrive:
             warnings.warn(
                 (f"{what}: " if what else "") + f"the voltage program spans {u_low:g} ... {u_high:g} V: "
                 + "; ".join(problems),
+                RuntimeWarning,
+                stacklevel=stacklevel,
+            )
+        self._check_tiny_program(u_low, u_high, what, stacklevel + 1)
+
+    def _check_tiny_program(self, u_low: float, u_high: float, what: str | None, stacklevel: int) -> None:
+        """Warn when a non-zero program peaks below :data:`KV_SUSPECT_FRACTION` of the rating (kV?).
+
+        Not for a drive set by a controller (its voltage is computed, not written by the user)
+        nor without a rated range; a program that is zero throughout stays silent.
+        """
+        if self.rated_range is None or self.controller is not None:
+            return
+        peak = max(abs(u_low), abs(u_high))
+        rated = max(abs(self.rated_range[0]), abs(self.rated_range[1]))
+        limit = KV_SUSPECT_FRACTION * rated
+        if 0.0 < peak < limit:
+            warnings.warn(
+                (f"{what}: " if what else "")
+                + f"the voltage program peaks at |U| = {peak:.4g} V, below {limit:.3g} V "
+                f"({100 * KV_SUSPECT_FRACTION:g} % of the largest rated voltage; rated range "
+                f"{self.rated_range[0]:g} ... {self.rated_range[1]:g} V), so its response is about "
+                f"{peak / rated:.2g} of that at the rating. The drive takes volts: if the program is in kV, "
+                "multiply it by 1000",
                 RuntimeWarning,
                 stacklevel=stacklevel,
             )

@@ -23,7 +23,7 @@ from .mbs import builder as mb
 from .mbs import linear
 from .mbs import solver_runs as runs
 from .mbs import solver_settings
-from .mbs.recording import Rows, measurement_reader
+from .mbs.recording import Rows, measurement_reader, restore_start_of_step
 from .actuator import BendingActuator
 from .mechanism.assembly import Mechanism
 from .mechanism.bender import Bender
@@ -321,8 +321,10 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     rows = Rows(model)
     clock = WallClock(progress, t_end) if progress is not None else None
     guard = InterruptGuard()
+    # the last accepted step when the schedule skipped it: (t, volts, strains, Exudyn's post-step
+    # count then); its state is read once after the run (close_record), not copied every step
     pending: list[Any] = []
-    counts = {"accepted": 0}
+    counts = {"accepted": 0, "post_calls": 0}
     # extremes over every accepted step (the record may be thinned), for the range checks
     n_src = len(sources)
     extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
@@ -347,19 +349,44 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         np.maximum(extremes[1], volts, out=extremes[1])
         np.minimum(extremes[2], strains, out=extremes[2])
         np.maximum(extremes[3], strains, out=extremes[3])
-        pending.clear()
         if schedule.take(t):
             rows.add(t, volts, strains)
+            pending.clear()
         else:
-            pending.append(rows.snapshot(t, volts, strains))
+            pending[:] = [(t, volts, strains, counts["post_calls"])]
         for controller, read in observers:
             controller.observe(t, read(strains))
         if clock is not None:
             clock(t)
 
-    stats = None
+    guarded_post = guard.wrap(post_step)
+
+    def counted_post(t: float) -> bool:
+        counts["post_calls"] += 1  # every step Exudyn accepted, also one the guard no longer passes on
+        return guarded_post(t)
+
+    def close_record(aborted: bool) -> None:
+        """Add the last accepted step if the schedule skipped it, reading its state now.
+
+        After a normal end or a post-step hook returning False, Exudyn's current state is the
+        last accepted step's.  After an interrupt caught in the pre-step hook Exudyn completes
+        one more step that was not accepted here, and after an exception in a user function
+        (``aborted``) the current state can be a Newton iterate: in both cases the state at
+        the start of Exudyn's last step is the last accepted one (verified with Exudyn 1.13 in
+        tests/test_mechanism_recording.py).
+        """
+        if not pending:
+            return
+        t, volts, strains, calls = pending.pop()
+        if aborted or counts["post_calls"] == calls + 1:
+            restore_start_of_step(model)
+        elif counts["post_calls"] != calls:  # not expected: Exudyn stops after at most one more step
+            return
+        rows.add(t, volts, strains)
+
+    stats, aborted = None, False
     try:
-        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(post_step))
+        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), counted_post)
     except runs.ExudynFailure as exc:
         if user_errors:
             raise user_errors[0] from None
@@ -372,9 +399,8 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
                 f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
                 f"{exc}. Try a smaller step, a slower voltage program, more cells, or check that the mechanism is "
                 "not locked (mechanism.degrees_of_freedom()).") from exc
-        guard.interrupted = True
-    for snapshot in pending:  # the last accepted step closes the record
-        rows.add_snapshot(snapshot)
+        guard.interrupted = aborted = True
+    close_record(aborted)
     accepted = max(counts["accepted"] - 1, 0)
     info = run_info(grid, accepted, schedule, stats,
                     hysteresis_evaluations=sum(s.evaluations for s in sources))

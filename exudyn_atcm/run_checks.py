@@ -35,6 +35,11 @@ samples it exactly at every corner, and its input is the program itself
 (:func:`corners_on_grid`; e.g. a feedforward program tabulated at a controller's sample time
 that is a multiple of the step, whose inverse-hysteresis jumps at reversals last one sample).
 
+The other way round, a program whose shortest feature lasts more than
+:data:`SLOW_PROGRAM_FACTOR` = 100 times the run gives a warning: the run then sees at most 1 %
+of a ramp's swing (2 % of a triangle's amplitude), which is what a period or ramp time written in
+milliseconds against a run in seconds does (``Triangle(500, 1000, 500)`` for 500 ms, run 2 s).
+
 Against the first eigenfrequency ``f1``: generalized-alpha (spectral radius 0.8) damps a mode
 resolved by few steps per period and lengthens its period, so vibrations of the first bending
 mode are lost.  Below :data:`MIN_STEPS_PER_MODE_PERIOD` = 10 steps per ``1/f1`` a warning
@@ -56,6 +61,7 @@ __all__ = [
     "MIN_STEPS_PER_FEATURE",
     "COMFORTABLE_STEPS_PER_FEATURE",
     "MIN_STEPS_PER_MODE_PERIOD",
+    "SLOW_PROGRAM_FACTOR",
     "LONG_RUN_SECONDS",
     "COST_PER_STEP",
     "TimeGrid",
@@ -75,6 +81,9 @@ __all__ = [
 MIN_STEPS_PER_FEATURE = 4
 #: Fewer steps per feature than this give a warning (see module notes).
 COMFORTABLE_STEPS_PER_FEATURE = 20
+#: A program whose shortest feature (before ``t_end``) lasts more than this many runs gives a
+#: warning (see module notes).
+SLOW_PROGRAM_FACTOR = 100.0
 #: Fewer steps per period of the first eigenfrequency than this give a warning.
 MIN_STEPS_PER_MODE_PERIOD = 10
 #: A run predicted to take longer than this [s] of wall time is announced with a warning.
@@ -184,16 +193,32 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
     ValueError
         With fewer than :data:`MIN_STEPS_PER_FEATURE` steps per feature: says what the step
         would do and which step is needed.
+
+    Warns
+    -----
+    RuntimeWarning
+        With fewer than :data:`COMFORTABLE_STEPS_PER_FEATURE` steps per feature, and when the
+        shortest feature lasts more than :data:`SLOW_PROGRAM_FACTOR` times ``t_end`` (a period
+        or ramp time in milliseconds?).
     """
     shortest = getattr(program, "shortest_feature", None)
     if not callable(shortest):
         return
-    if corners_on_grid(program, step, t_end):
-        return  # sampled exactly at every corner and linear between: nothing to miss
     feature = shortest(t_end)
     if feature is None:
         return
     duration, description = feature
+    if duration > SLOW_PROGRAM_FACTOR * t_end:
+        warnings.warn(
+            f"{what} hardly changes during the run: its shortest feature, {description}, lasts "
+            f"{duration:.6g} s, {duration / t_end:.3g} times t_end = {t_end:.6g} s, so the run covers at most "
+            f"{100.0 * t_end / duration:.2g} % of it. Times are in seconds: if the program's times or period are "
+            "in milliseconds, divide them by 1000",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+    if corners_on_grid(program, step, t_end):
+        return  # sampled exactly at every corner and linear between: nothing to miss
     per_feature = duration / step
     if per_feature < MIN_STEPS_PER_FEATURE:
         raise ValueError(

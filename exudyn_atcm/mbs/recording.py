@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from typing import Callable
 
+import exudyn as exu
 import numpy as np
 
 from . import solver_runs as runs
@@ -35,22 +36,12 @@ class Rows:
         self.forces: list[list[float]] = []
 
     def add(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
-        """Record the model's current state at time ``t`` [s]."""
-        self.add_snapshot(self.snapshot(t, volts, strains))
-
-    def snapshot(self, t: float, volts: np.ndarray, strains: np.ndarray) -> tuple:
-        """The model's current state at ``t`` [s], copied, for a later :meth:`add_snapshot`."""
-        return (t, np.array(volts, dtype=float), np.array(strains, dtype=float), np.array(self.model.coordinates()),
-                self.model.connector_forces())
-
-    def add_snapshot(self, snapshot: tuple) -> None:
-        """Record a state taken with :meth:`snapshot` (e.g. the last step of a thinned record)."""
-        t, volts, strains, q, forces = snapshot
+        """Record the model's current state (coordinates copied, spring and stop forces) at time ``t`` [s]."""
         self.times.append(t)
-        self.volts.append(volts)
-        self.strains.append(strains)
-        self.q.append(q)
-        self.forces.append(forces)
+        self.volts.append(np.array(volts, dtype=float))
+        self.strains.append(np.array(strains, dtype=float))
+        self.q.append(np.array(self.model.coordinates()))
+        self.forces.append(self.model.connector_forces())
 
     def last_time(self) -> float:
         return self.times[-1] if self.times else 0.0
@@ -60,6 +51,21 @@ class Rows:
         return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
                            np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
                            np.array(self.forces).reshape(len(self.times), -1), info, base=base)
+
+
+def restore_start_of_step(model: MechanismModel) -> None:
+    """Make the state at the start of the last computed step the model's current state.
+
+    Exudyn keeps the state at the start of every step (``ConfigurationType.StartOfStep``):
+    the last step it accepted before the one it computed last.  When a run stops because
+    a pre-step hook returned ``False``, Exudyn still completes that step and calls the
+    post-step hook; a caller that did not accept it (an interrupt caught by
+    :class:`~exudyn_atcm.run_checks.InterruptGuard`) closes its record with this state
+    (measured with Exudyn 1.13; see ``tests/test_mechanism_recording.py``).
+    """
+    data = model.mbs.systemData
+    state = data.GetSystemState(configuration=exu.ConfigurationType.StartOfStep)
+    data.SetSystemState(systemStateList=state, configuration=exu.ConfigurationType.Current)
 
 
 def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarray], float]:
