@@ -422,7 +422,9 @@ def simulate(
     RuntimeWarning
         A step that resolves the voltage program or the first bending mode only coarsely, a
         step that does not divide ``t_end``, a run predicted to take long, voltages outside
-        the hysteresis operator's input range or the MFC's rating, implausible strains.
+        the hysteresis operator's input range or the MFC's rating, a non-zero program that
+        peaks below 0.2 % of the rating (3 V: written in kV?), a program whose shortest
+        feature lasts more than 100 runs (a period in ms?), implausible strains.
 
     Notes
     -----

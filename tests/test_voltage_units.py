@@ -131,3 +131,11 @@ def test_a_run_over_part_of_a_period_stays_silent():
     # a quarter period (1 ms step, 0.05 s run, period 0.2 s): a deliberate rising ramp
     _, messages = _run_quietly(simulate, actuator(Triangle(500.0, 1000.0, 0.2)), 0.05, step=1e-3)
     assert not [m for m in messages if "hardly changes" in m]
+
+
+def test_mechanism_period_in_ms_names_the_drive():
+    a = Bender("a", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3,
+               drive=PiezoDrive(Triangle(500.0, 1000.0, 500.0)))
+    mech = Mechanism("one").add(a).ground(a.base)
+    with pytest.warns(RuntimeWarning, match=r"the voltage program of drive 'a' hardly changes during the run"):
+        simulate(mech, 0.2, step=1e-3)
