@@ -16,7 +16,7 @@ from ..laminate import STIFFNESS_MODELS, Laminate
 from ..materials import Layer
 from .points import PointRef, check_name, unknown_point
 
-CELL_TYPES = ("rigid", "six-bar")
+CELL_TYPES = ("rigid", "six-bar", "beam")
 ACTIVE_SIDES = ("right", "left")
 #: Default modal damping ratio of the first bending mode [-] (as for ``BendingActuator``).
 DEFAULT_DAMPING_RATIO = 0.02
