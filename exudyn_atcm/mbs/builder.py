@@ -90,7 +90,7 @@ class _Builder:
             if bender.cell == "six-bar" and bender.active is None:
                 raise MechanismError(
                     f"bender {bender.name!r}: the six-bar cell models two layers; a passive strip (active=None) "
-                    "needs cell='rigid'")
+                    "needs cell='rigid' or cell='beam'")
         if self.ground_item is None:
             self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
                                                                             'graphicsData': []}))
