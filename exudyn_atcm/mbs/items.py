@@ -16,7 +16,8 @@ def _at_node(body: Body, local) -> bool:
     """True for a beam node (markers at the node itself; refuses a point elsewhere)."""
     if not body.node_only:
         return False
-    if math.hypot(float(local[0]), float(local[1])) > 1e-9 * (1.0 + math.hypot(*body.reference[:2])):
+    # points joined to a node coincide with it to the assembly check's 1e-9 of the mechanism size
+    if math.hypot(float(local[0]), float(local[1])) > 1e-6 * (1.0 + math.hypot(*body.reference[:2])):
         raise ValueError(f"internal: a marker at {tuple(local)} off the beam node {body.key!r}; "
                          "beam nodes carry points only at the node")
     return True

@@ -45,12 +45,18 @@ class MechanismHandle:
         [m] of every named point, ``"{link}.angle"`` -> rotation [rad] of every link's body.
         Read them with ``mbs.GetSensorStoredData(number)`` after a run (their write period
         is ``simulationSettings.solution.sensors.writePeriod``).
+    newton_tolerance_floor : float
+        Smallest absolute Newton tolerance [N, N m] the added items can reach: the stiff axis of
+        beam cells (``cell="beam"``) leaves a round-off residual of about ``eps (a1 + a2) L/L_c``;
+        set ``simulationSettings.timeIntegration.newton.absoluteTolerance`` (and the static
+        solver's) to at least this value, or Newton may fail to converge (0 without beam cells).
     """
 
     def __init__(self, mechanism: Mechanism, model: MechanismModel, sources: list) -> None:
         self.mechanism = mechanism
         self.model = model
         self.sensors: dict[str, int] = {}
+        self.newton_tolerance_floor = float(model.newton_tolerance_floor)
         self._sources = sources
         self._rows: list[tuple] = []
 
