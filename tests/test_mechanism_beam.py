@@ -399,11 +399,22 @@ def test_add_to_a_lone_beam_bender_gives_node_markers_for_user_joints():
     ground = mbs.AddObject(exu.itemInterface.ObjectGround())
     mg = mbs.AddMarker(exu.itemInterface.MarkerBodyPosition(bodyNumber=ground, localPosition=[0.03, 0.0, 0.0]))
     mbs.AddObject(exu.itemInterface.ObjectJointRevolute2D(markerNumbers=[mg, h.position_marker(b.tip)]))
-    h.marker(b.tip)  # a rigid marker exists too
-    assert h.body(b.tip) >= 0 and "b.tip" in h.sensors
+    assert mbs.GetMarker(h.marker(b.tip))["markerType"] == "NodeRigid"
+    assert mbs.GetMarker(h.position_marker("b.tip"))["markerType"] == "NodePosition"
+    # the body carrying the tip: the last beam element, whose second node sits at (0.03, 0)
+    element = mbs.GetObject(h.body(b.tip))
+    assert element["objectType"] == "BeamGeometricallyExact2D" and element["Vshow"]
+    assert mbs.GetNode(element["nodeNumbers"][1])["referenceCoordinates"][0] == pytest.approx(0.03)
+    assert "b.tip" in h.sensors and "b.base" not in h.sensors  # the clamped base is on the ground: no sensor
     mbs.Assemble()
     info = mbs.ComputeSystemDegreeOfFreedom(verbose=False)
     assert info["degreeOfFreedom"] == 3 * 5 - 3 - 2  # 5 nodes; clamp 3, pin 2
+    # clamp_base=False: the base node is free (no interface body, no clamp)
+    SC2 = exu.SystemContainer()
+    mbs2 = SC2.AddSystem()
+    atcm.add_to(mbs2, b, clamp_base=False)
+    mbs2.Assemble()
+    assert mbs2.ComputeSystemDegreeOfFreedom(verbose=False)["degreeOfFreedom"] == 3 * 5
 
 
 # ----------------------------------------------------------------------------- drawing
