@@ -19,7 +19,8 @@ both relative to the largest translation, and the largest coupler rotation.  A r
 chain reproduces the S up to the polygon factor ``1 + (kappa L_c)²/24`` on the end position
 (cell length ``L_c``): on the axial coordinate ``x ~ L`` that is ``L (kappa L_c)²/24``, a few
 1e-5 of the translation at the defaults; ``translation_error_chain_polygon`` compares with the
-polygon itself.
+polygon itself.  With ``cell="beam"`` the beam elements' nodes lie on the same polygon (each
+element's chord has length ``L_c`` at its mean node rotation), so the same two references hold.
 """
 
 from __future__ import annotations
