@@ -442,8 +442,15 @@ def test_unknown_cell_is_refused_with_the_allowed_ones():
         beam().__class__("x", width=W, passive=CFC, active=MFC, length=0.03, n_cells=2, cell="ancf")
 
 
+def test_static_sweep_refuses_an_actuator_cell_without_a_mechanism_model():
+    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0), cell="ancf")
+    with pytest.raises(ValueError, match=r"cells are \('rigid', 'six-bar', 'beam'\); got an actuator with "
+                                         r"cell='ancf'. Use one of those cells, or solve_static per voltage"):
+        static_sweep(act, [0.0, 100.0])
+
+
 def test_bad_case_cell_is_refused(guide_case):
-    with pytest.raises(ValueError, match="cell"):
+    with pytest.raises(ValueError, match="cell must be one of rigid, six-bar, beam, got 'beams'"):
         guide_case.run({"cell": "beams"})
 
 
