@@ -82,6 +82,7 @@ def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
         model.bodies[key] = Body(key, node, -1, np.array([pos[0], pos[1], bender.angle], dtype=float),
                                  node_only=True)
         keys.append(key)
+    items = []
     for j, lc in enumerate(lengths):
         a, b = model.bodies[keys[j]], model.bodies[keys[j + 1]]
         item = mbs.AddObject(ii.ObjectBeamGeometricallyExact2D(
@@ -91,9 +92,9 @@ def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
             referenceCurvature=0.0,
             visualization={'show': True, 'drawHeight': float(thick), 'color': _BEAM_COLOR}))
         model.springs.append((item, ei, "bendingDamping"))
-        for body in (a, b):
-            if isinstance(body.item, int) and body.item < 0:
-                body.item = item
+        items.append(item)
+    for i, key in enumerate(keys):  # a node's "body": the element ending there (the first for the base)
+        model.bodies[key].item = items[max(i - 1, 0)]
     model.cells[bender.name] = keys
     model.beam_benders.add(bender.name)
     # an axial force EA/L_c du resolves positions only to round-off eps L: its residual floor is
