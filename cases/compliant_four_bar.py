@@ -51,7 +51,8 @@ from exudyn_atcm.signals import Triangle
 from exudyn_atcm import simulate, static_sweep
 
 PARAMETERS = [
-    Parameter("n_cells", 8, "-", "rigid cells of the crank bender"),
+    Parameter("n_cells", 8, "-", "cells of the crank bender"),
+    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=("rigid", "six-bar", "beam")),
     Parameter("crank_length", 0.06, "m", "length of the crank bender"),
     Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*"),
     Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base"),
@@ -80,7 +81,7 @@ def build_mechanism(p: Parameters, strain_law, voltage=0.0) -> Mechanism:
     # with its 3 import lines and the 2 Layer lines at the top of this file, 23) ---
     L, b, lf, h, u, v = p.crank_length, p.coupler_length, p.flexure_length, p.rocker_pivot_height, p.coupler_point_x, p.coupler_point_y
     crank = Bender("crank", width=28e-3, passive=CFC, active=MFC, length=L, n_cells=p.n_cells,
-                   drive=PiezoDrive(voltage, hysteresis=strain_law), angle=math.pi / 2, active_side="left")
+                   drive=PiezoDrive(voltage, hysteresis=strain_law), angle=math.pi / 2, active_side="left", cell=p.cell)
 
     def flexure(name, base, tip):  # Howell's small-length flexural pivot: pivot mid-way, K = EI/l
         return Flexure(name, base=base, tip=tip, width=10e-3, thickness=p.flexure_thickness,

@@ -19,7 +19,8 @@ both relative to the largest translation, and the largest coupler rotation.  A r
 chain reproduces the S up to the polygon factor ``1 + (kappa L_c)²/24`` on the end position
 (cell length ``L_c``): on the axial coordinate ``x ~ L`` that is ``L (kappa L_c)²/24``, a few
 1e-5 of the translation at the defaults; ``translation_error_chain_polygon`` compares with the
-polygon itself.
+polygon itself.  With ``cell="beam"`` the beam elements' nodes lie on the same polygon (each
+element's chord has length ``L_c`` at its mean node rotation), so the same two references hold.
 """
 
 from __future__ import annotations
@@ -37,7 +38,8 @@ from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
 from exudyn_atcm import static_sweep
 
 PARAMETERS = [
-    Parameter("n_cells", 8, "-", "rigid cells per segment (two segments per bender)"),
+    Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)"),
+    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam")),
     Parameter("length", 0.06, "m", "bender length L (two segments of L/2)"),
     Parameter("width", 10e-3, "m", "bender width"),
     Parameter("spacing", 0.02, "m", "distance between the two benders"),
@@ -58,7 +60,8 @@ def build_mechanism(p: Parameters) -> Mechanism:
     mech = Mechanism("parallel_guide")
     for name, y in (("lower", 0.0), ("upper", h)):
         segments = [Segment(L / 2, p.n_cells, PiezoDrive(0.0)), Segment(L / 2, p.n_cells, PiezoDrive(0.0))]
-        mech.add(Bender(name, width=p.width, passive=CFC, active=MFC, segments=segments, base=(0.0, y)))
+        mech.add(Bender(name, width=p.width, passive=CFC, active=MFC, segments=segments, base=(0.0, y),
+                          cell=p.cell))
         mech.ground(f"{name}.base")
     coupler = Link("coupler", {"A": (L, 0.0), "B": (L, h), "P": (L + 0.01, h / 2)}, mass=2e-3, inertia=2e-3 * h * h / 12)
     mech.add(coupler).weld("lower.tip", coupler.point("A")).weld("upper.tip", coupler.point("B"))

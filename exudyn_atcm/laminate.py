@@ -95,6 +95,27 @@ class Laminate:
             mass = mass + self.active.mass_per_length(self.width)
         return mass
 
+    @property
+    def axial_rigidity(self) -> float:
+        """Summed axial rigidity ``a1 + a2`` of the layers [N] (the beam cells' practically inextensible axis)."""
+        a = self.passive.axial_rigidity(self.width)
+        if self.active is not None:
+            a = a + self.active.axial_rigidity(self.width)
+        return a
+
+    @property
+    def rotary_inertia_per_length(self) -> float:
+        """Rotary inertia per unit length about the passive layer's mid-plane [kg m].
+
+        ``b (rho1 h1³/12 + rho2 (h2³/12 + h2 e²))``: each layer about its own mid-plane, the
+        active layer shifted by ``e`` (the beam cells' cross-section inertia).
+        """
+        rho_i = self.passive.density * self.width * self.passive.thickness**3 / 12.0
+        if self.active is not None:
+            h2, e = self.active.thickness, self.layer_offset
+            rho_i = rho_i + self.active.density * self.width * (h2**3 / 12.0 + h2 * e**2)
+        return rho_i
+
     def first_frequency(self, length: float) -> float:
         """First bending frequency [Hz] of a clamped-free beam of this laminate and ``length`` [m]."""
         return _BETA1_L**2 / (2.0 * math.pi * length**2) * math.sqrt(self.bending_stiffness / self.mass_per_length)

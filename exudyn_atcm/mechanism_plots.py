@@ -3,7 +3,7 @@
 What is drawn, for every recorded instant (row) of a mechanism :class:`~exudyn_atcm.Result`:
 
 * **benders**: the passive layer's mid-plane as the polyline of the cells (from the recorded
-  base point and cell angles), the cell joints as dots, and the active (MFC) layer as a
+  base point and cell angles), the cell joints (beam cells: the nodes) as dots, and the active (MFC) layer as a
   second polyline offset by the layer distance ``e`` to the MFC side; the driven cells'
   active layer carries a motor mark, coloured per drive and named in the legend;
 * **links**: a filled polygon through their named points (ordered around their centroid);
@@ -184,9 +184,13 @@ def draw_mechanism(
     drive_colors: dict[str, str] = {}
     layer_label = f"active layer (offset e drawn ×{offset_scale:.3g})" if offset_scale != 1.0 else "active layer"
     first = True
+    labelled: set[str] = set()
     for b in shape.benders:
         ax.plot(*(b.passive * _MM).T, color=_PASSIVE, lw=2.2, zorder=3, label="passive layer" if first else None)
-        ax.plot(*(b.passive * _MM).T, "o", color=_PASSIVE, ms=2.5, zorder=4, label="cell joints" if first else None)
+        joints = "beam nodes" if getattr(mechanism.components.get(b.name), "cell", "") == "beam" else "cell joints"
+        ax.plot(*(b.passive * _MM).T, "o", color=_PASSIVE, ms=2.5, zorder=4,
+                label=joints if joints not in labelled else None)
+        labelled.add(joints)
         if b.active is not None:
             seg = b.active
             path = np.vstack([seg[:, 0], seg[-1:, 1]])

@@ -78,7 +78,8 @@ def cost_parts(mech: Mechanism) -> tuple[str, int]:
     """Cell type and number of rigid parts for :func:`~exudyn_atcm.run_checks.warn_if_long`.
 
     The cells of every bender and ``"cells"`` flexure, two segments per pseudo-rigid-body
-    flexure and one body per link; the cell type is ``"six-bar"`` if any bender uses it.
+    flexure and one body per link; the cell type is ``"six-bar"`` if any bender uses it (beam
+    cells count as rigid ones: a beam element costs about a rigid cell per step).
     """
     cell, count = "rigid", 0
     for comp in mech.components.values():

@@ -2,7 +2,9 @@
 
 From a :class:`~exudyn_atcm.mechanism.Mechanism` and a :class:`~exudyn_atcm.Result` of it:
 each bender's passive-layer polyline (from the recorded base point and the absolute cell
-angles ``{bender}.cell_angle_{j}``), its active-layer segments offset by the layer distance
+angles ``{bender}.cell_angle_{j}``; for beam cells these are the mean rotations of each
+element's two nodes, the direction of its chord, so the polyline runs through the nodes to the
+axis's strain, ~1e-7), its active-layer segments offset by the layer distance
 ``e`` to the MFC side with the drive of every cell, the links' polygons through their named
 points, the pseudo-rigid-body flexures' two segments and pivot (from ``{flexure}.base_angle``),
 and the springs' end points.  Displacements can be magnified; magnified bender rotations are

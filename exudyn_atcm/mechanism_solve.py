@@ -26,6 +26,7 @@ from .mbs import solver_settings
 from .mbs.recording import Rows, measurement_reader, restore_start_of_step
 from .actuator import BendingActuator
 from .mechanism.assembly import Mechanism
+from .mechanism.bender import CELL_TYPES as BENDER_CELLS
 from .mechanism.bender import Bender
 from .mechanism.flexure import Flexure
 from .mechanism.points import MechanismError, closest
@@ -176,7 +177,19 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
 
 def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float] = (0.0, 0.0)) -> Mechanism:
     """A :class:`BendingActuator` as a one-bender mechanism named ``"actuator"``: base welded to the
-    ground at the origin, along +x, the dead ``tip_force`` [N] at the tip (the same model)."""
+    ground at the origin, along +x, the dead ``tip_force`` [N] at the tip (the same model).
+
+    Raises
+    ------
+    ValueError
+        For an actuator cell that a mechanism bender does not model (allowed: the bender's
+        ``CELL_TYPES``).
+    """
+    if actuator.cell not in BENDER_CELLS:
+        raise ValueError(
+            f"static_sweep runs a BendingActuator as a one-bender mechanism, whose cells are {BENDER_CELLS}; "
+            f"got an actuator with cell={actuator.cell!r}. Use one of those cells, or solve_static per voltage "
+            "(no hysteresis path)")
     bender = Bender("actuator", width=actuator.width, passive=actuator.passive, active=actuator.active,
                     length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive, cell=actuator.cell,
                     stiffness=actuator.stiffness, damping=actuator.damping)

@@ -1,8 +1,9 @@
 """The Exudyn layer: the only part of the package that imports and calls Exudyn.
 
 Mechanisms (:class:`~exudyn_atcm.mechanism.Mechanism`) are built into a ``MainSystem`` by
-:mod:`~exudyn_atcm.mbs.builder`, with step hooks shared with user code, read-outs and
-linearisation; the lone :class:`~exudyn_atcm.actuator.BendingActuator` is built by
+:mod:`~exudyn_atcm.mbs.builder` (six-bar chains in :mod:`~exudyn_atcm.mbs.six_bar`, beam
+chains in :mod:`~exudyn_atcm.mbs.beam_chain`), with step hooks shared with user code, read-outs
+and linearisation; the lone :class:`~exudyn_atcm.actuator.BendingActuator` is built by
 :mod:`~exudyn_atcm.mbs.actuator_chains` (rigid and six-bar chains) and its beam, ANCF and
 kinematic-tree cells.  Both paths share the solver settings
 (:mod:`~exudyn_atcm.mbs.solver_settings`), the solver runs (:mod:`~exudyn_atcm.mbs.solver_runs`)

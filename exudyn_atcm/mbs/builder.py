@@ -1,7 +1,8 @@
 """Adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
 
 Six-bar benders are chains between real interface bodies (:mod:`exudyn_atcm.mbs.six_bar`);
-the rest of this description is about rigid cells.
+beam benders are chains of beam elements whose end nodes join the groups
+(:mod:`exudyn_atcm.mbs.beam_chain`); the rest of this description is about rigid cells.
 
 Model (planar, SI units):
 
@@ -44,10 +45,12 @@ from .items import NOVIS as _NOVIS
 from .items import add_body as _add_body
 from .items import local_point
 from .items import position_marker as _marker_position
+from .items import rigid_marker as _rigid_marker
 from .items import rotation_marker as _rot_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
 from .loads import add_loads
 from .six_bar import add_six_bar_chain, six_bar_end_mass
+from .beam_chain import actuation_torques, add_beam_chain, beam_end_key, weld_node
 
 _CELL_COLOR = [0.2, 0.45, 0.8, 1.0]
 _LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
@@ -75,6 +78,7 @@ class _Builder:
         self.model.sources = sources
         self.n_sources = len(sources)
         self._theta: dict[str, tuple] = {}
+        self._clamped: set[str] = set()  # beam nodes clamped to the ground (no actuation torque)
 
     def zeros(self) -> np.ndarray:
         return np.zeros(self.n_sources)
@@ -86,7 +90,7 @@ class _Builder:
             if bender.cell == "six-bar" and bender.active is None:
                 raise MechanismError(
                     f"bender {bender.name!r}: the six-bar cell models two layers; a passive strip (active=None) "
-                    "needs cell='rigid'")
+                    "needs cell='rigid' or cell='beam'")
         if self.ground_item is None:
             self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
                                                                             'graphicsData': []}))
@@ -94,10 +98,15 @@ class _Builder:
         self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
         six_bar = {b.name for b in mech.benders if b.cell == "six-bar"}
-        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar)
+        beam = {b.name for b in mech.benders if b.cell == "beam"}
+        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar, beam)
         self._group_bodies()
         for bender in mech.benders:
             self._bender_cells(bender)
+        for key, g in self.groups.items():
+            if g.kind == "beam-node":  # the group's body is the first beam end's node
+                name, _, end = next(p for p in g.interfaces if p.partition("#")[0] in beam).partition("#")
+                model.bodies[key] = model.bodies[beam_end_key(mech.components[name], end)]
         self._anchor_points()
         self._end_hinges()
         for j in mech.joints:
@@ -127,7 +136,7 @@ class _Builder:
             if g.kind == "ground":
                 model.bodies[key] = model.bodies[GROUND]
                 continue
-            if g.kind == "virtual":
+            if g.kind in ("virtual", "beam-node"):
                 continue
             if len(g.parts) == 1 and g.interfaces:
                 model.bodies[key] = self._interface_body(key, g.parts[0])
@@ -218,6 +227,9 @@ class _Builder:
         if bender.cell == "six-bar":
             ends = [model.bodies[self.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
             model.cells[bender.name] = add_six_bar_chain(mbs, model, bender, *ends, self.gcoord)
+            return
+        if bender.cell == "beam":
+            add_beam_chain(mbs, model, bender)
             return
         lam = bender.laminate
         ei, c, side = lam.bending_stiffness, lam.curvature_per_strain, bender.curvature_sign
@@ -316,6 +328,15 @@ class _Builder:
                 if bender.cell == "six-bar":  # the chain ends on the group's body itself
                     model.ends[label] = EndReadout("body", body=g.key)
                     continue
+                if bender.cell == "beam":  # the end node, welded to its group's body unless it is that body
+                    key = beam_end_key(bender, end)
+                    node, body = model.bodies[key], model.bodies[g.key]
+                    if body is not node:
+                        weld_node(self.mbs, node, body, self.gcoord)
+                        if body.node is None:
+                            self._clamped.add(key)
+                    model.ends[label] = EndReadout("body", body=key)
+                    continue
                 el, cell, _ = self.end_element(bender.name, end)
                 if g.kind != "virtual":
                     a, b = (cell, g.key) if end == "tip" else (g.key, cell)
@@ -402,8 +423,7 @@ class _Builder:
         ax, ay = j.axis
         axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
         normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
-        ma = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body_a.item, localPosition=[la[0], la[1], 0.0]))
-        mb = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body_b.item, localPosition=[lb[0], lb[1], 0.0]))
+        ma, mb = _rigid_marker(mbs, body_a, la), _rigid_marker(mbs, body_b, lb)
         mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
                                                 constrainRotation=True, visualization=_NOVIS))
         if j.stiffness > 0.0 or j.damping > 0.0:
@@ -444,12 +464,17 @@ class _Builder:
             if np.any(h.moment != 0.0):
                 per_body[h.b] = per_body.get(h.b, self.zeros()) + h.moment
                 per_body[h.a] = per_body.get(h.a, self.zeros()) - h.moment
+        for bender in self.mech.benders:
+            if bender.cell == "beam":  # the segments' end torques EI kappa on the beam nodes
+                for key, coef in actuation_torques(model, bender, self.zeros).items():
+                    if key not in self._clamped:
+                        per_body[key] = per_body.get(key, self.zeros()) + coef
         scale = max((float(np.max(np.abs(v))) for v in per_body.values()), default=0.0)
         for key, coef in per_body.items():
             body = model.bodies[key]
             if body.node is None or float(np.max(np.abs(coef))) <= 1e-12 * scale:
                 continue  # ground, or moments that cancel (inner cells of one drive)
-            marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
+            marker = _rigid_marker(mbs, body, (0.0, 0.0))
             load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
             model.torque_loads.append((load, coef))
 

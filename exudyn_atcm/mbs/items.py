@@ -12,9 +12,29 @@ from .actuator_items import NOVIS
 from .model import Body
 
 
+def _at_node(body: Body, local) -> bool:
+    """True for a beam node (markers at the node itself; refuses a point elsewhere)."""
+    if not body.node_only:
+        return False
+    # points joined to a node coincide with it to the assembly check's 1e-9 of the mechanism size
+    if math.hypot(float(local[0]), float(local[1])) > 1e-6 * (1.0 + math.hypot(*body.reference[:2])):
+        raise ValueError(f"internal: a marker at {tuple(local)} off the beam node {body.key!r}; "
+                         "beam nodes carry points only at the node")
+    return True
+
+
 def position_marker(mbs, body: Body, local) -> int:
-    """A ``MarkerBodyPosition`` at ``local`` [m] in ``body``'s frame."""
+    """A ``MarkerBodyPosition`` at ``local`` [m] in ``body``'s frame (a ``MarkerNodePosition`` at a beam node)."""
+    if _at_node(body, local):
+        return mbs.AddMarker(ii.MarkerNodePosition(nodeNumber=body.node))
     return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0]))
+
+
+def rigid_marker(mbs, body: Body, local) -> int:
+    """A ``MarkerBodyRigid`` at ``local`` [m] in ``body``'s frame (a ``MarkerNodeRigid`` at a beam node)."""
+    if _at_node(body, local):
+        return mbs.AddMarker(ii.MarkerNodeRigid(nodeNumber=body.node))
+    return mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0]))
 
 
 def rotation_marker(mbs, body: Body, ground_coordinate: int) -> int:

@@ -13,6 +13,8 @@ is exact:
   their end springs in series (for one laminate and cell length this is exactly the inner
   joint of one longer bender).
 
+A group of bender ends holding a beam bender's end node (cell ``"beam"``) has that node as its
+body, without a mass of its own (a slider needs a real body: then an interface body).
 Any other interface group (and, on request, a free end) becomes a small interface body (the laminate over a length
 ``min(h1 + h2, L_c/10)`` per interface, as the six-bar cell's interface elements).
 """
@@ -23,7 +25,7 @@ from dataclasses import dataclass, field
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
-from ..mechanism.connections import Pin, Weld
+from ..mechanism.connections import Pin, Slider, Weld
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, PointRef
@@ -61,12 +63,16 @@ class Group:
 
 
 def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
-                 six_bar: frozenset[str] | set[str] = frozenset()) -> tuple[dict[str, Group], dict[str, str]]:
+                 six_bar: frozenset[str] | set[str] = frozenset(),
+                 beam: frozenset[str] | set[str] = frozenset()) -> tuple[dict[str, Group], dict[str, str]]:
     """Groups by key and the group key of every part.
 
     ``free_end_bodies=True`` gives free bender ends an interface body too (so that a user's
     joints can attach to them; see :func:`exudyn_atcm.add_to`).  The ends of the benders named
-    in ``six_bar`` are real interface bodies of the six-bar chain, never virtual.
+    in ``six_bar`` are real interface bodies of the six-bar chain, never virtual.  The ends of
+    the benders named in ``beam`` are beam nodes: a group of bender ends holding one is a
+    ``"beam-node"`` group whose body is that node (a slider needs a real body: then an
+    interface body, the node welded to it).
     """
     parts = [GROUND]
     for comp in mech.components.values():
@@ -110,6 +116,8 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
             g.kind = "ground"
         elif others or any(p.partition("#")[0] in six_bar for p in ifaces):
             g.kind = "body"
+        elif any(p.partition("#")[0] in beam for p in ifaces):
+            g.kind = "interface-body" if any(isinstance(j, Slider) for j in g.joints) else "beam-node"
         elif (len(ifaces) == 1 and not g.joints and not free_end_bodies) or \
                 (len(ifaces) == 1 and len(g.joints) == 1 and isinstance(g.joints[0], Pin)) or \
                 (len(ifaces) == 2 and not g.joints):

@@ -9,7 +9,7 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.points import GROUND
-from .items import NOVIS, position_marker
+from .items import NOVIS, position_marker, rigid_marker
 from .model import LoadRecord, MechanismModel
 
 
@@ -28,8 +28,7 @@ def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
                           RuntimeWarning, stacklevel=4)
             continue
         if f.follower:  # a body-fixed load needs the marker's orientation
-            marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item,
-                                                      localPosition=[float(local[0]), float(local[1]), 0.0]))
+            marker = rigid_marker(mbs, body, local)
         else:
             marker = position_marker(mbs, body, local)
         load = mbs.AddLoad(ii.LoadForceVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0], bodyFixed=f.follower))
@@ -43,7 +42,7 @@ def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
             warnings.warn(f"torque {t.name!r} acts on {t.component!r}, which is welded to the ground: no effect",
                           RuntimeWarning, stacklevel=4)
             continue
-        marker = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[0.0, 0.0, 0.0]))
+        marker = rigid_marker(mbs, body, (0.0, 0.0))
         load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
         model.loads.append(LoadRecord(load, "torque", t.torque, name=t.name))
     for s in mech.springs:

@@ -19,7 +19,11 @@ from ..mechanism.assembly import Mechanism
 
 @dataclass
 class Body:
-    """A body of the built model (``node is None`` for the ground)."""
+    """A body of the built model (``node is None`` for the ground).
+
+    ``node_only``: a beam bender's node (:mod:`exudyn_atcm.mbs.beam_chain`); its markers are node
+    markers at the node itself, and ``item`` is the number of a beam element attached to it.
+    """
 
     key: str
     node: int | None
@@ -27,6 +31,7 @@ class Body:
     reference: np.ndarray          # x, y, angle of the node in the reference pose
     rot_marker: Any = None
     ode2: int = -1                 # first ODE2 index (set after Assemble)
+    node_only: bool = False
 
 
 @dataclass
@@ -108,6 +113,8 @@ class MechanismModel:
     spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
     ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
     cells: dict[str, list[str]] = field(default_factory=dict)   # bender -> its cell body keys
+    # beam benders: cells[name] holds the N + 1 node keys; a cell's angle is the mean of its nodes'
+    beam_benders: set[str] = field(default_factory=set)
     # (item, stiffness, damping parameter name) of every spring-damper, for the relaxation
     springs: list[tuple[int, float, str]] = field(default_factory=list)
     # smallest absolute Newton tolerance the model can reach; None: no static relative tolerance

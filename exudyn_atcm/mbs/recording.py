@@ -146,6 +146,8 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
             base = angle + model.end_rotation(poses, strains, f"{c}.base")
             tip = angle + model.end_rotation(poses, strains, f"{c}.tip")
             cells = [angle + model.rotation(poses, key) for key in model.cells[c]]
+            if c in model.beam_benders:  # a beam cell's angle: the mean of its two nodes' rotations
+                cells = [0.5 * (a + b) for a, b in zip(cells[:-1], cells[1:])]
         else:  # pseudo-rigid-body flexure
             angle = comp.angle
             cells = [angle + model.rotation(poses, model.group_of_component[f"{c}#{end}"]) for end in ("base", "tip")]

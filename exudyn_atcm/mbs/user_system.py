@@ -23,6 +23,7 @@ from ..result import Result
 from ..strain_sources import InStepStrain
 from .builder import add_mechanism
 from .hooks import add_post_step, add_pre_step
+from .items import position_marker, rigid_marker
 from .model import MechanismModel
 from .recording import make_result
 
@@ -44,12 +45,18 @@ class MechanismHandle:
         [m] of every named point, ``"{link}.angle"`` -> rotation [rad] of every link's body.
         Read them with ``mbs.GetSensorStoredData(number)`` after a run (their write period
         is ``simulationSettings.solution.sensors.writePeriod``).
+    newton_tolerance_floor : float
+        Smallest absolute Newton tolerance [N, N m] the added items can reach: the stiff axis of
+        beam cells (``cell="beam"``) leaves a round-off residual of about ``eps (a1 + a2) L/L_c``;
+        set ``simulationSettings.timeIntegration.newton.absoluteTolerance`` (and the static
+        solver's) to at least this value, or Newton may fail to converge (0 without beam cells).
     """
 
     def __init__(self, mechanism: Mechanism, model: MechanismModel, sources: list) -> None:
         self.mechanism = mechanism
         self.model = model
         self.sensors: dict[str, int] = {}
+        self.newton_tolerance_floor = float(model.newton_tolerance_floor)
         self._sources = sources
         self._rows: list[tuple] = []
 
@@ -64,20 +71,24 @@ class MechanismHandle:
 
         At a bender end that is joined to nothing inside the mechanism, this is the end's
         interface body; the marker's frame is the body's frame (global axes in the reference pose
-        for links and interface bodies, the bender's axis for cells).
+        for links and interface bodies, the bender's axis for cells).  At the end of a beam bender
+        (``cell="beam"``) joined to no link, it is a ``MarkerNodeRigid`` of the end node (the
+        bender's axis).
         """
         body, local = self._anchor(point)
-        return self.model.mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item,
-                                                           localPosition=[float(local[0]), float(local[1]), 0.0]))
+        return rigid_marker(self.model.mbs, body, local)
 
     def position_marker(self, point: PointRef | str) -> int:
-        """A new ``MarkerBodyPosition`` at ``point`` (for springs, forces, position joints)."""
+        """A new ``MarkerBodyPosition`` at ``point`` (for springs, forces, position joints); a
+        ``MarkerNodePosition`` at a beam bender's end node."""
         body, local = self._anchor(point)
-        return self.model.mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body.item,
-                                                              localPosition=[float(local[0]), float(local[1]), 0.0]))
+        return position_marker(self.model.mbs, body, local)
 
     def body(self, component_or_point: PointRef | str) -> int:
-        """Exudyn object number of the body that carries a point (``"comp.point"``) or a link (``"comp"``)."""
+        """Exudyn object number of the body that carries a point (``"comp.point"``) or a link (``"comp"``).
+
+        At a beam bender's end node: the beam element attached to it.
+        """
         name = str(component_or_point)
         if "." in name or isinstance(component_or_point, PointRef):
             return int(self._anchor(component_or_point)[0].item)
@@ -212,6 +223,10 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
     for name, (key, local) in model.anchors.items():
         body = model.bodies[key]
         if body.node is None:
+            continue
+        if body.node_only:  # a beam bender's end node
+            handle.sensors[name] = mbs.AddSensor(ii.SensorNode(
+                nodeNumber=body.node, outputVariableType=exu.OutputVariableType.Position, storeInternal=True))
             continue
         handle.sensors[name] = mbs.AddSensor(ii.SensorBody(
             bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0],

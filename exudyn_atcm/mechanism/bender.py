@@ -16,7 +16,7 @@ from ..laminate import STIFFNESS_MODELS, Laminate
 from ..materials import Layer
 from .points import PointRef, check_name, unknown_point
 
-CELL_TYPES = ("rigid", "six-bar")
+CELL_TYPES = ("rigid", "six-bar", "beam")
 ACTIVE_SIDES = ("right", "left")
 #: Default modal damping ratio of the first bending mode [-] (as for ``BendingActuator``).
 DEFAULT_DAMPING_RATIO = 0.02
@@ -83,9 +83,14 @@ class Bender:
         Base point in the reference pose [m] (default the origin).
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
-    cell : {"rigid", "six-bar"}, optional
+    cell : {"rigid", "six-bar", "beam"}, optional
         Cell model (see :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; the
-        six-bar cell needs an active layer.
+        six-bar cell needs an active layer.  ``"beam"``: one geometrically exact beam element
+        per cell (the actuator's beam cell): bending stiffness ``EI``, a practically
+        inextensible axis, each segment's free curvature as end torques ``EI kappa`` on its end
+        nodes; the ends are real nodes (no interface mass).  It converges at second order like
+        the rigid chain but its first frequency needs about half the cells for equal accuracy
+        (see the cells section of the mechanisms page of the docs).
     stiffness : {"composite", "paper"}, optional
         Layer coupling, as for :class:`~exudyn_atcm.BendingActuator`.
     active_side : {"right", "left"}, optional
@@ -99,7 +104,7 @@ class Bender:
     Notes
     -----
     Points: ``"base"`` and ``"tip"`` (``bender.base``, ``bender.tip``), on the passive
-    layer's mid-plane at the ends.  Drive names: the bender's name for a one-segment bender,
+    layer's mid-plane at the ends (beam cells: the end nodes).  Drive names: the bender's name for a one-segment bender,
     ``f"{name}.{k}"`` (``k = 1, 2, ...``) per segment otherwise.
     """
 
