@@ -95,6 +95,20 @@ class Laminate:
             mass = mass + self.active.mass_per_length(self.width)
         return mass
 
+    @property
+    def rotary_inertia_per_length(self) -> float:
+        """Rotary inertia per length about the passive layer's mid-plane [kg m].
+
+        ``b rho1 h1³/12 + b rho2 (h2³/12 + h2 e²)``: each layer as a thin strip, the active
+        layer's mid-plane at distance ``e`` (the beam and ritz cells' reference line).
+        """
+        w, h1 = self.width, self.passive.thickness
+        inertia = self.passive.density * w * h1**3 / 12.0
+        if self.active is not None:
+            h2, e = self.active.thickness, self.layer_offset
+            inertia += self.active.density * w * (h2**3 / 12.0 + h2 * e**2)
+        return inertia
+
     def first_frequency(self, length: float) -> float:
         """First bending frequency [Hz] of a clamped-free beam of this laminate and ``length`` [m]."""
         return _BETA1_L**2 / (2.0 * math.pi * length**2) * math.sqrt(self.bending_stiffness / self.mass_per_length)

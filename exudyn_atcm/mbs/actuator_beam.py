@@ -40,14 +40,12 @@ def build_beam(SC, mbs, act, stroke_path) -> BuiltModel:
         raise ValueError(f"stroke_path must be 'prestep' or 'offsets' for the beam cell, got {stroke_path!r}")
     n, lc = act.n_cells, act.cell_length
     beta = act.stiffness_damping_factor
-    w, e = act.width, act.layer_offset
+    w = act.width
     EI = act.bending_stiffness
     EA = act.passive.axial_rigidity(w) + act.active.axial_rigidity(w)
     mu = act.mass_per_length
-    h1, h2 = act.passive.thickness, act.active.thickness
     # rotary inertia per length about the passive mid-plane (active layer at y = -e)
-    rho_i = (act.passive.density * w * h1**3 / 12.0
-             + act.active.density * w * (h2**3 / 12.0 + h2 * e**2))
+    rho_i = act.laminate.rotary_inertia_per_length
 
     ground, gcoord = add_ground(mbs)
     model = BuiltModel(SC=SC, mbs=mbs, cell="beam", n_cells=n, cell_length=lc)
