@@ -48,7 +48,8 @@ from exudyn_atcm.simulation import simulate
 PARAMETERS = [
     Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),
     Parameter("cycles", 2, "-", "number of input periods simulated"),
-    Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell)",
+    Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
+              "ritz: n_cells assumed modes of the whole bender)",
               choices=CELL_TYPES),
     Parameter("n_cells", 3, "-", "number of cells"),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),

@@ -197,3 +197,176 @@ def test_dynamic_rotation_warning():
         assert rb.warn_large_dynamic_rotation(quasi + 0.01, strain, cps, L) == pytest.approx(0.01)
     with pytest.warns(RuntimeWarning, match="cell='beam'"):
         assert rb.warn_large_dynamic_rotation(quasi + [0.0, 0.2, -0.1], strain, cps, L) == pytest.approx(0.2)
+
+
+# ----------------------------------------------------------------------------- Exudyn model
+
+from exudyn_atcm.drive import PiezoDrive  # noqa: E402
+from exudyn_atcm.parameter_sets import paper_strain_preisach  # noqa: E402
+from exudyn_atcm.signals import PiecewiseLinear, Triangle  # noqa: E402
+from exudyn_atcm.simulation import _simulate, eigenfrequencies, simulate, solve_static  # noqa: E402
+
+from _actuator_geometries import GEOMETRIES, REF_A  # noqa: E402
+from _actuator_runs import (LeakyOperator, check_in_step_hysteresis_equals_offline_replay,  # noqa: E402
+                            check_run_starts_in_static_equilibrium, fast_triangle_actuator)
+
+#: Settings that make Exudyn reject and repeat steps of the linear ritz system: the default
+#: Newton settings converge in one iteration, so the step-rejecting settings of the other cells
+#: (two full Newton iterations) reject nothing here.  Three modified-Newton iterations to an
+#: absolute tolerance of 1e-12 fail on the steps after a mass-matrix update (stale Jacobian),
+#: which Exudyn repeats with halved steps (measured: 56 of 604 attempts rejected).
+REJECTING = {"timeIntegration.newton.maxIterations": 3, "timeIntegration.newton.absoluteTolerance": 1e-12}
+
+
+def _composite_kappa(g, strain):
+    return bt.free_curvature(g.E1, g.h1, g.E2, g.h2, g.width, strain)
+
+
+@pytest.mark.parametrize("geometry", GEOMETRIES, ids=lambda g: g.name)
+@pytest.mark.parametrize("n_cells", [1, 3, 8])
+@pytest.mark.parametrize("voltage", [1500.0, -500.0])
+def test_static_actuation_is_the_exact_arc(geometry, n_cells, voltage):
+    # the static solution q = (kappa L, 0, ...) is the arc theta = kappa s for any n; the static
+    # Newton iteration is run to round-off (measured <= 3e-16 of L and of kappa L)
+    g = geometry
+    act = g.actuator(PiezoDrive(voltage), n_cells=n_cells, cell="ritz")
+    r = solve_static(act)
+    kappa = _composite_kappa(g, bt.piezo_strain(voltage))
+    x, y = bt.arc_point(kappa, g.length)
+    assert r["tip_angle"][0] == pytest.approx(kappa * g.length, rel=1e-14)
+    assert r["tip_x"][0] == pytest.approx(float(x), abs=1e-14 * g.length)
+    assert r["tip_y"][0] == pytest.approx(float(y), abs=1e-14 * g.length)
+    angles = np.array([r[f"cell_angle_{j + 1}"][0] for j in range(n_cells)])
+    np.testing.assert_allclose(angles, (np.arange(n_cells) + 0.5) * kappa * act.cell_length, rtol=1e-13)
+
+
+def test_straight_f1_is_the_beams_and_exudyns_eigen_path_sees_the_ritz_matrices():
+    g = REF_A
+    mu = bt.mass_per_length(g.rho1, g.h1, g.rho2, g.h2, g.width)
+    EI = bt.composite_bending_stiffness(g.E1, g.h1, g.E2, g.h2, g.width)
+    f1 = bt.first_bending_frequency(EI, mu, g.length)
+    act = g.actuator(PiezoDrive(0.0), n_cells=4, cell="ritz")
+    f = eigenfrequencies(act, 2)
+    # Ritz error at n = 4 (+1.5e-6) plus the rotary inertia's -2.3e-5 (Rayleigh, test above): 5e-5
+    assert f[0] == pytest.approx(f1, rel=5e-5)
+    # the package's eigen path (numerical tangent of Exudyn's residual) against scipy on (K, M(0))
+    K = rb.stiffness_matrix(4, g.length, EI)
+    M = rb.mass_matrix(4, g.length, mu, act.laminate.rotary_inertia_per_length)
+    np.testing.assert_allclose(f, np.sqrt(eigh(K, M, eigvals_only=True)[:2]) / (2 * math.pi), rtol=1e-9)
+
+
+def test_bent_f1_agrees_with_the_converged_beam_elements():
+    # f1 about the static state at 1500 V (kappa L = 0.36 rad) against the linear beam elements,
+    # extrapolated (Richardson, second order) from 32 and 64 elements: the extrapolations from
+    # 16/32 and 32/64 agree to 1e-6 of f1, so the reference is converged to ~1e-6.  The ritz
+    # model's own error at n = 6 (Ritz 8e-11 of f1 in the straight state) is that of the mass
+    # linearisation and of the beam elements' finite axial and shear stiffness: measured 6e-6;
+    # tolerance 2e-5.  Without the curvature-dependent mass it would be -0.27 %.
+    f = {n: eigenfrequencies(REF_A.actuator(PiezoDrive(0.0), n_cells=n, cell="beam"), 1, voltage=1500.0)[0]
+         for n in (16, 32, 64)}
+    reference = (4 * f[64] - f[32]) / 3
+    assert reference == pytest.approx((4 * f[32] - f[16]) / 3, rel=5e-6)
+    act = REF_A.actuator(PiezoDrive(0.0), n_cells=6, cell="ritz")
+    f_ritz = eigenfrequencies(act, 1, voltage=1500.0)[0]
+    assert f_ritz == pytest.approx(reference, rel=2e-5)
+    assert abs(f_ritz / eigenfrequencies(act, 1)[0] - 1) > 2e-3  # the bent state is visibly different
+    # n = 3 within its Ritz error (measured +3.2e-4)
+    f3 = eigenfrequencies(REF_A.actuator(PiezoDrive(0.0), n_cells=3, cell="ritz"), 1, voltage=1500.0)[0]
+    assert 0.0 < f3 / reference - 1 < 5e-4
+
+
+def test_modal_reference_is_static_for_slow_moments():
+    # the reference itself: a moment rising 100x slower than the first mode, from rest with zero
+    # slope, gives the static tip rotation M L / EI (the mode-acceleration form's static part) to
+    # the dynamic lag 2 zeta (f / f1) = 4e-4 and the start transient (f / f1)^2 = 1e-4 of the
+    # amplitude: tolerance 1e-3
+    f1 = bt.first_bending_frequency(EI, MU, L)
+    times = np.linspace(0.0, 50.0 / f1, 4001)
+    moments = 1e-3 * 0.5 * (1.0 - np.cos(2 * math.pi * f1 / 100.0 * times))
+    beta = 2 * 0.02 / (2 * math.pi * f1)
+    theta = bt.end_moment_tip_rotation(EI, MU, L, beta, times, moments)
+    np.testing.assert_allclose(theta, moments * L / EI, rtol=0, atol=1e-3 * 1e-3 * L / EI)
+    assert np.max(np.abs(theta - moments * L / EI)) > 1e-5 * 1e-3 * L / EI  # it is a dynamic solution
+
+
+def test_small_triangle_follows_the_modal_solution():
+    # 1 % of the paper's amplitude (linear drive, small deflections) against the 30-mode solution
+    # of the Euler-Bernoulli cantilever under the end moment EI kappa(t).  Measured 5.9e-5 of the
+    # largest angle at n = 4 (the generalized-alpha step's floor, shared with the beam and ANCF
+    # elements at h = 1e-4, plus the rotary inertia the closed form leaves out), 1.2e-4 at n = 3:
+    # tolerances 1.5e-4 and 3e-4
+    for n, tol in ((4, 1.5e-4), (3, 3e-4)):
+        act = REF_A.actuator(PiezoDrive(Triangle(5.0, 10.0, 0.5)), n_cells=n, cell="ritz")
+        r = simulate(act, 0.5)
+        moments = act.bending_stiffness * act.curvature_per_strain * r["strain"]
+        ref = bt.end_moment_tip_rotation(act.bending_stiffness, act.mass_per_length, act.length,
+                                         act.stiffness_damping_factor, r["time"], moments)
+        assert np.max(np.abs(r["tip_angle"] - ref)) <= tol * np.max(np.abs(ref))
+
+
+def test_papers_run_agrees_with_32_beam_elements():
+    # the paper's drive (triangle -500 ... 1500 V, 1 s, Preisach operator in the step) on the paper's
+    # actuator: ritz (n = 4) against 32 geometrically exact elements.  Measured differences: tip
+    # angle 1.9e-5 of its largest value, tip x and y 3.0e-5 of the largest deflection (4.7e-7 m),
+    # the size of the 32 elements' own dynamic error (5e-5 of the tip angle on the small triangle);
+    # the mass matrix follows kappa to 0.005 rad (without it the angle would differ by 2e-4 rad).
+    # Tolerance 1e-4.
+    runs = {}
+    for cell, n in (("ritz", 4), ("beam", 32)):
+        drive = PiezoDrive(Triangle(500.0, 1000.0, 1.0), hysteresis=paper_strain_preisach())
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", RuntimeWarning)  # in particular no dynamic-rotation warning
+            runs[cell] = simulate(REF_A.actuator(drive, n_cells=n, cell=cell), 1.0)
+    a, b = runs["ritz"], runs["beam"]
+    assert a.n_rows == b.n_rows == 10001
+    np.testing.assert_array_equal(a["strain"], b["strain"])
+    deflection = np.max(np.abs(b["tip_y"]))
+    for name, scale in (("tip_x", deflection), ("tip_y", deflection), ("tip_angle", np.max(np.abs(b["tip_angle"])))):
+        assert np.max(np.abs(a[name] - b[name])) <= 1e-4 * scale, name
+
+
+def test_fast_voltage_step_warns_about_the_dynamic_rotation_and_a_slow_ramp_does_not():
+    # 0 -> 1500 V in 1 ms (a step for the 36 Hz bender): the tip overshoots the arc by ~0.28 rad,
+    # far beyond the linearisation about the quasi-static arc; over 50 ms the deviation is 0.02 rad
+    act = REF_A.actuator(PiezoDrive(PiecewiseLinear([0.0, 1e-3], [0.0, 1500.0])), n_cells=4, cell="ritz")
+    with pytest.warns(RuntimeWarning, match=r"deviates by up to 0\.2\d* rad.*cell='beam'"):
+        simulate(act, 0.1)
+    act = REF_A.actuator(PiezoDrive(PiecewiseLinear([0.0, 0.05], [0.0, 1500.0])), n_cells=4, cell="ritz")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        r = simulate(act, 0.1)
+    delta = rb.dynamic_rotation(r["tip_angle"], r["strain"], act.curvature_per_strain, act.length)
+    assert 0.005 < delta < rb.DYNAMIC_ROTATION_LIMIT
+
+
+@pytest.mark.parametrize("call", ["solve_static", "simulate", "eigenfrequencies"])
+def test_tip_force_is_refused(call):
+    act = REF_A.actuator(PiezoDrive(500.0), n_cells=3, cell="ritz")
+    run = {"solve_static": lambda: solve_static(act, tip_force=(0.0, -0.2)),
+           "simulate": lambda: simulate(act, 1e-3, tip_force=(0.0, -0.2)),
+           "eigenfrequencies": lambda: eigenfrequencies(act, 1, tip_force=(0.0, -0.2))}[call]
+    with pytest.raises(ValueError, match=r"tip_force must be \(0, 0\) for cell='ritz', got \(0\.0, -0\.2\).*'beam'"):
+        run()
+
+
+@pytest.mark.parametrize("path", ["offsets", "user_function"])
+def test_other_stroke_paths_are_refused(path):
+    act = fast_triangle_actuator("ritz", None)
+    with pytest.raises(ValueError, match=f"stroke_path must be 'prestep' for the ritz cell.*{path}"):
+        _simulate(act, 1e-3, 1e-4, (0.0, 0.0), None, stroke_path=path)
+
+
+def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
+    with warnings.catch_warnings():
+        # the 20 Hz triangle excites the 36 Hz bender: the dynamic-rotation warning is expected
+        warnings.simplefilter("ignore", RuntimeWarning)
+        check_in_step_hysteresis_equals_offline_replay("ritz", REJECTING)
+        H2 = paper_strain_preisach()
+        r2 = simulate(fast_triangle_actuator("ritz", LeakyOperator(H2)), 0.1, step=2e-3, settings=REJECTING)
+    assert np.max(np.abs(r2["strain"] - H2.apply(r2["voltage"]))) > 1e-6
+
+
+@pytest.mark.parametrize("n_cells", [1, 8])
+def test_run_starts_in_static_equilibrium(n_cells):
+    r, _ = check_run_starts_in_static_equilibrium("ritz", n_cells, force=(0.0, 0.0))
+    assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
