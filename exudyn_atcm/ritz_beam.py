@@ -113,7 +113,10 @@ def rotation_shapes(n: int, xi) -> np.ndarray:
 
 
 def integrated_shapes(n: int, xi) -> np.ndarray:
-    """``W_i(xi) = int_0^xi phi_i`` [-], shape ``(len(xi), n)``: the lateral displacement shapes of the straight beam."""
+    """``W_i(xi) = int_0^xi phi_i`` [-], shape ``(len(xi), n)``.
+
+    ``L W_i`` are the lateral displacement shapes of the straight beam.
+    """
     return _evaluate(_coefficients(n)[1], np.atleast_1d(xi))
 
 

@@ -3,9 +3,10 @@
 :func:`build` adds the chain of cells, the clamp and the tip load to a new ``MainSystem`` and
 returns its :class:`~exudyn_atcm.mbs.actuator_model.BuiltModel`.  This module builds the
 ``"six-bar"`` and ``"rigid"`` cells and dispatches the others (:mod:`~exudyn_atcm.mbs.actuator_beam`,
-:mod:`~exudyn_atcm.mbs.actuator_ancf`, :mod:`~exudyn_atcm.mbs.actuator_ritz` (no tip load), and :mod:`~exudyn_atcm.mbs.actuator_tree` for the rigid
-chain in minimal coordinates); the solver runs are in :mod:`~exudyn_atcm.mbs.solver_runs`.  It
-holds no physics constants of its own (those come from the actuator) and no file formats.
+:mod:`~exudyn_atcm.mbs.actuator_ancf`, :mod:`~exudyn_atcm.mbs.actuator_ritz` (no tip load), and
+:mod:`~exudyn_atcm.mbs.actuator_tree` for the rigid chain in minimal coordinates); the solver
+runs are in :mod:`~exudyn_atcm.mbs.solver_runs`.  It holds no physics constants of its own (those
+come from the actuator) and no file formats.
 
 Model layout (planar, SI units; see :mod:`exudyn_atcm.actuator` for the coordinates):
 
