@@ -240,6 +240,25 @@ def test_static_actuation_is_the_exact_arc(geometry, n_cells, voltage):
     np.testing.assert_allclose(angles, (np.arange(n_cells) + 0.5) * kappa * act.cell_length, rtol=1e-13)
 
 
+def test_one_mode_is_exact_for_a_long_bender_without_the_coarse_cell_warning():
+    # 300 mm of the paper's laminate at 1500 V: kappa L = 1.24 rad.  A chain of one rigid cell
+    # warns (one cell turning by more than 0.5 rad is a coarse chain); n = 1 assumed mode is the
+    # exact arc, so the ritz columns (segments of one rotation field) are not checked for it
+    g = REF_A
+    kappa = _composite_kappa(g, bt.piezo_strain(1500.0))
+    act = g.actuator(PiezoDrive(1500.0), n_cells=1, cell="ritz")
+    act = type(act)(1, 0.3, act.width, act.passive, act.active, act.drive, cell="ritz")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        r = solve_static(act)
+    assert r["tip_angle"][0] == pytest.approx(kappa * 0.3, rel=1e-14)
+    x, y = bt.arc_point(kappa, 0.3)
+    assert (r["tip_x"][0], r["tip_y"][0]) == pytest.approx((float(x), float(y)), abs=1e-14 * 0.3)
+    rigid = type(act)(1, 0.3, act.width, act.passive, act.active, act.drive, cell="rigid")
+    with pytest.warns(RuntimeWarning, match="coarse discretisation"):
+        solve_static(rigid)
+
+
 def test_straight_f1_is_the_beams_and_exudyns_eigen_path_sees_the_ritz_matrices():
     g = REF_A
     mu = bt.mass_per_length(g.rho1, g.h1, g.rho2, g.h2, g.width)
@@ -376,3 +395,41 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
 def test_run_starts_in_static_equilibrium(n_cells):
     r, _ = check_run_starts_in_static_equilibrium("ritz", n_cells, force=(0.0, 0.0))
     assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
+
+
+# ----------------------------------------------------------------------------- cases and mechanisms
+
+def test_fig12_case_runs_with_ritz_from_the_command_line(tmp_path):
+    # --set cell=ritz: 4 modes of the 87 mm bender, one 1 s period of the paper's triangle.  The
+    # tip follows the arc of each row's free strain up to the dynamic part excited by the
+    # triangle's corners (measured 1.2 % of the largest deflection; the 36 Hz bender is driven at
+    # 1 Hz): within 2 %
+    from _cli_helpers import cli
+    from exudyn_atcm.csv_io import read_csv
+
+    proc = cli(["run", "paper_bending_actuator", "--set", "cell=ritz", "--set", "n_cells=4", "--set",
+                "cell_length=0.02175", "--set", "cycles=1", "--set", "animation=false", "--set", "record_every=0",
+                "--out", "out"], tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    data = read_csv(tmp_path / "out" / "paper_bending_actuator.csv")
+    assert [c for c in data.names if c.startswith("cell_angle_")] == [f"cell_angle_{j}" for j in (1, 2, 3, 4)]
+    g = REF_A
+    y_arc = np.array([float(bt.arc_point(_composite_kappa(g, s), g.length)[1]) if s != 0.0 else 0.0
+                      for s in data["strain"]])
+    assert np.max(np.abs(data["tip_y"] - y_arc)) <= 2e-2 * np.max(np.abs(y_arc))
+
+
+def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
+    from exudyn_atcm.cases import CaseError, load_case
+    from exudyn_atcm.materials import Layer
+    from exudyn_atcm.mechanism import Bender
+
+    from _cli_helpers import CASES
+
+    # the stiffness comparison loads the tip (compliance run): ritz is not among its choices
+    with pytest.raises((CaseError, ValueError), match="cell must be one of six-bar, rigid, beam, ancf, got 'ritz'"):
+        load_case(CASES / "stiffness_comparison.py").run({"cell": "ritz", "n_voltages": 2})
+    # a mechanism's bender is a chain of rigid or six-bar cells
+    with pytest.raises(ValueError, match=r"cell must be one of \('rigid', 'six-bar'\), got 'ritz'"):
+        Bender("b", width=1e-2, passive=Layer(0.2e-3, 70e9, 1550.0), active=Layer(0.3e-3, 30.336e9, 5440.0),
+               length=0.03, n_cells=2, drive=PiezoDrive(0.0), cell="ritz")
