@@ -49,7 +49,7 @@ def main() -> None:
     args = parser.parse_args()
     rows = []
     for n in args.cells:
-        for cell in ("rigid", "six-bar"):
+        for cell in ("rigid", "six-bar", "ritz"):
             act = actuator(n, cell)
             start = time.perf_counter()
             result = simulate(act, args.t_sim, step=STEP, record_every=10)
@@ -68,7 +68,7 @@ def main() -> None:
         print(f"| {r['cell']} | {r['n_cells']} | {r['steps']} | {r['wall [s]']:.3f} | {r['cost per step [us]']:.1f} | "
               f"{r['cost per cell-step [us]']:.1f} | {r['estimate / measured']:.2f} |")
     fits = {}
-    for cell in ("rigid", "six-bar"):
+    for cell in ("rigid", "six-bar", "ritz"):
         mine = [r for r in rows if r["cell"] == cell]
         a = np.array([[1.0, r["n_cells"], r["n_cells"] ** 2] for r in mine])
         b = np.array([r["cost per step [us]"] for r in mine])

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.actuator import CELL_TYPES, BendingActuator
+from exudyn_atcm.actuator import TIP_LOAD_CELLS, BendingActuator
 from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.drive import PiezoDrive
 from exudyn_atcm.hysteresis_plots import Curve, plot_loops
@@ -38,8 +38,8 @@ from exudyn_atcm.simulation import eigenfrequencies, solve_static
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "number of cells"),
-    Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell)",
-              choices=CELL_TYPES),
+    Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
+              "not ritz, which refuses the tip force of the compliance run)", choices=TIP_LOAD_CELLS),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
     Parameter("width", 28e-3, "m", "width b of both layers"),
     Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness"),

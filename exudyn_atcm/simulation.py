@@ -20,6 +20,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from . import ritz_beam
 from .mbs import actuator_chains, solver_settings
 from .mbs import solver_runs as runs
 from ._checks import finite_float, positive_int
@@ -38,6 +39,7 @@ from .run_checks import (
     check_step_against_program,
     is_interrupt,
     snap_time,
+    snap_times,
     warn_if_long,
 )
 
@@ -92,7 +94,8 @@ class _Recorder:
 
     Every accepted step is committed; :class:`~exudyn_atcm.recording.RecordingSchedule`
     decides which are stored (the last accepted step always is).  Recorded times are put on
-    the step grid where they are within round-off of it (:func:`~exudyn_atcm.run_checks.snap_time`).
+    the step grid where they are within round-off of it (:func:`~exudyn_atcm.run_checks.snap_time`,
+    applied to the whole record when the result is made).
     """
 
     def __init__(self, model, source, progress=None, t_end: float = 1.0, step: float | None = None,
@@ -102,6 +105,9 @@ class _Recorder:
         # closed loop: the drive's controller observes every accepted step's tip deflection
         self.controller = getattr(getattr(source, "drive", None), "controller", None)
         self.index = model.record_indices
+        index = self.index
+        # q[record_indices] after every accepted step; a model may offer a quicker read
+        self._read = getattr(model, "recorded_coordinates", None) or (lambda: model.coordinates()[index])
         self.scalars: list[tuple] = []
         self.states: list[np.ndarray] = []
         self.progress = WallClock(progress, t_end) if progress is not None else None
@@ -116,24 +122,31 @@ class _Recorder:
         self.strain_high = -math.inf
 
     def post_step(self, t: float) -> None:
+        # hot path (every accepted step): recorded times are put on the grid once, vectorised,
+        # when the result is made (_snap); the schedule's own tolerance absorbs the round-off
         u, strain = self.source.commit(t)
         self.accepted += 1
-        self.strain_low = min(self.strain_low, strain)
-        self.strain_high = max(self.strain_high, strain)
+        if strain < self.strain_low:
+            self.strain_low = strain
+        if strain > self.strain_high:
+            self.strain_high = strain
         self._last_t = t
-        if self.step is not None:
-            t = snap_time(t, self.step)
         if self.schedule is None or self.schedule.take(t):
             self.scalars.append((t, u, strain))
-            self.states.append(self.model.coordinates()[self.index])
+            self.states.append(self._read())
             self._pending = None
         else:
-            self._pending = (t, u, strain, self.model.coordinates()[self.index])
-        if self.controller is not None:
-            # closed loop: the controller observes the accepted step's tip deflection
-            self.controller.observe(t, self.model.read_state(self.model.coordinates(), strain)[1])
-        if self.progress is not None:
-            self.progress(t)
+            self._pending = (t, u, strain, self._read())
+        if self.controller is not None or self.progress is not None:
+            t = self._snap(t)
+            if self.controller is not None:
+                # closed loop: the controller observes the accepted step's tip deflection
+                self.controller.observe(t, self.model.read_state(self.model.coordinates(), strain)[1])
+            if self.progress is not None:
+                self.progress(t)
+
+    def _snap(self, t: float) -> float:
+        return snap_time(t, self.step) if self.step is not None else t
 
     def close(self) -> None:
         """Add the last accepted step if the schedule skipped it."""
@@ -150,12 +163,14 @@ class _Recorder:
     def last_time(self) -> float:
         """Time [s] of the last accepted step (0 before the first)."""
         if self._pending is not None:
-            return self._pending[0]
-        return self.scalars[-1][0] if self.scalars else 0.0
+            return self._snap(self._pending[0])
+        return self._snap(self.scalars[-1][0]) if self.scalars else 0.0
 
     def result(self, actuator: BendingActuator, info: dict) -> Result:
         self.close()
         scalars = np.array(self.scalars, dtype=float).reshape(-1, 3)
+        if self.step is not None:
+            scalars[:, 0] = snap_times(scalars[:, 0], self.step)
         states = np.array(self.states, dtype=float).reshape(len(self.states), self.index.size)
         x, y, a, angles = self.model.states_from_records(states, scalars[:, 2])
         rows = np.column_stack([scalars, x, y, a])
@@ -197,7 +212,9 @@ MAX_CELL_ROTATION = 0.5
 
 def _warn_coarse_cells(actuator: BendingActuator, angles: np.ndarray) -> None:
     """Warn when a cell turns by more than :data:`MAX_CELL_ROTATION` (coarse discretisation)."""
-    if angles.size == 0:
+    if angles.size == 0 or actuator.cell == "ritz":
+        # the ritz model's columns are segments of one continuous rotation field, not cells
+        # of a chain: its statics are exact at any n (docs: actuator page)
         return
     # passive bar j sits at the mean of its interfaces: the first bar turns half a cell
     padded = np.concatenate([-angles[:, :1], angles], axis=1)
@@ -476,6 +493,7 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         runs.set_current_as_initial(model, zero_velocity=True)
 
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
+    model.adjust_settings(sim_settings)
     solver_settings.apply_user_settings(sim_settings, settings)
     recorder = _Recorder(model, source, progress, t_end, step=grid.step, schedule=schedule)
     guard = InterruptGuard()
@@ -520,6 +538,9 @@ def _simulate(actuator, t_end, step, tip_force, settings, source=None, stroke_pa
         partial = recorder.result(actuator, info) if recorder.n_rows or recorder._pending else None
         raise SimulationInterrupted(t_stop, partial)
     result = recorder.result(actuator, info)
+    if actuator.cell == "ritz":
+        ritz_beam.warn_large_dynamic_rotation(result["tip_angle"], result["strain"], actuator.curvature_per_strain,
+                                              actuator.length, stacklevel=4)  # the caller of simulate
     if recorder.strain_low <= recorder.strain_high:
         actuator.drive.check_strain(recorder.strain_low, recorder.strain_high)
     return result
@@ -592,4 +613,5 @@ def eigenfrequencies(
     if strain != 0.0 or force != (0.0, 0.0):
         _static_equilibrium(actuator, model, strain, force, None,
                             f"voltage {volts!r} V, tip force {force} N, for eigenfrequencies")
+    model.before_linearisation(strain)
     return runs.eigenfrequencies(model, n)

@@ -1,4 +1,4 @@
-"""Runs and checks shared by the actuator tests of every cell (rigid, six-bar, beam, ancf).
+"""Runs and checks shared by the actuator tests of every cell (rigid, six-bar, beam, ancf, ritz).
 
 Each check asserts against an independent reference: the hysteresis operator applied offline
 to the recorded voltages, the static solve of the same actuator, or the other stroke path.
@@ -61,14 +61,13 @@ def check_in_step_hysteresis_equals_offline_replay(cell, settings):
     return r
 
 
-def check_run_starts_in_static_equilibrium(cell, n_cells):
-    """Constant 1500 V and a tip force (0, -0.2) N: a 40-step run stays at the static solve.
+def check_run_starts_in_static_equilibrium(cell, n_cells, force=(0.0, -0.2)):
+    """Constant 1500 V and a tip force (default (0, -0.2) N): a 40-step run stays at the static solve.
 
     Asserts 41 rows and tip x, y within 1e-8 m and tip angle within 1e-7 rad of the static
     solution at every row.  Returns ``(run, static)``.
     """
     act = REF_A.actuator(PiezoDrive(1500.0), n_cells=n_cells, cell=cell)
-    force = (0.0, -0.2)
     r = simulate(act, 40 * 1e-4, step=1e-4, tip_force=force)
     s = solve_static(act, tip_force=force)
     assert r.n_rows == 41

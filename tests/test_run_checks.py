@@ -20,7 +20,7 @@ from exudyn_atcm.materials import Layer
 from exudyn_atcm.parameter_sets import paper_stroke_preisach, paper_strain_preisach
 from exudyn_atcm.progress import ProgressBar, report_task, reporting
 from exudyn_atcm.recording import recording_schedule
-from exudyn_atcm.run_checks import SimulationInterrupted, WallClock, snap_time, time_grid
+from exudyn_atcm.run_checks import SimulationInterrupted, WallClock, snap_time, snap_times, time_grid
 from exudyn_atcm.signals import Constant, PiecewiseLinear, Sine, Steps, Triangle
 from exudyn_atcm.simulation import simulate, solve_static
 
@@ -115,6 +115,18 @@ def test_time_grid_and_snapping():
     # accumulated round-off snaps to the grid point and prints short; off-grid times stay
     assert repr(snap_time(1.9998999999997962, 1e-4)) == "1.9999"
     assert snap_time(0.00015, 1e-4) == 0.00015
+
+
+@pytest.mark.parametrize("step", [1e-4, 2e-3, 1.0 / 3.0, 0.15, 7.3e-4, 3e-6, 0.25])
+def test_vectorised_snapping_equals_the_scalar_one(step):
+    # the recorder snaps a whole record at once: the values must be snap_time's, element by
+    # element, for solver times (accumulated sums), perturbed grid times and off-grid times
+    rng = np.random.default_rng(7)
+    k = np.arange(0, 30001)
+    for times in (np.cumsum(np.full(k.size, step)) - step, k * step * (1 + rng.normal(0, 1e-13, k.size)),
+                  rng.uniform(0.0, 5e4 * step, 3000), np.array([0.0, step, -step, 1e6 * step])):
+        expected = np.array([snap_time(float(t), step) for t in times])
+        np.testing.assert_array_equal(snap_times(times, step), expected)
 
 
 # ----------------------------------------------------------------------------- 3. voltage ranges

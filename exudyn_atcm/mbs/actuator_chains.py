@@ -3,9 +3,10 @@
 :func:`build` adds the chain of cells, the clamp and the tip load to a new ``MainSystem`` and
 returns its :class:`~exudyn_atcm.mbs.actuator_model.BuiltModel`.  This module builds the
 ``"six-bar"`` and ``"rigid"`` cells and dispatches the others (:mod:`~exudyn_atcm.mbs.actuator_beam`,
-:mod:`~exudyn_atcm.mbs.actuator_ancf`, and :mod:`~exudyn_atcm.mbs.actuator_tree` for the rigid
-chain in minimal coordinates); the solver runs are in :mod:`~exudyn_atcm.mbs.solver_runs`.  It
-holds no physics constants of its own (those come from the actuator) and no file formats.
+:mod:`~exudyn_atcm.mbs.actuator_ancf`, :mod:`~exudyn_atcm.mbs.actuator_ritz` (no tip load), and
+:mod:`~exudyn_atcm.mbs.actuator_tree` for the rigid chain in minimal coordinates); the solver
+runs are in :mod:`~exudyn_atcm.mbs.solver_runs`.  It holds no physics constants of its own (those
+come from the actuator) and no file formats.
 
 Model layout (planar, SI units; see :mod:`exudyn_atcm.actuator` for the coordinates):
 
@@ -57,6 +58,7 @@ from .actuator_ancf import build_ancf
 from .actuator_beam import build_beam
 from .actuator_items import NOVIS, add_ground, hinge_with_spring, position_marker, rigid_body_2d, rotation_marker
 from .actuator_model import BuiltModel
+from .actuator_ritz import build_ritz
 from .actuator_tree import build_tree
 
 #: How ``cell="rigid"`` is built with the default stroke path: ``"tree"`` (minimal coordinates,
@@ -84,15 +86,18 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
         model = build_beam(SC, mbs, actuator, stroke_path)
     elif actuator.cell == "ancf":
         model = build_ancf(SC, mbs, actuator, stroke_path)
+    elif actuator.cell == "ritz":
+        model = build_ritz(SC, mbs, actuator, stroke_path, tip_force)
     elif RIGID_FORMULATION == "tree" and stroke_path == "prestep":
         model = build_tree(SC, mbs, actuator, stroke_path)
     else:
         model = build_rigid(SC, mbs, actuator, stroke_path)
     model.uf_strain = _zero
-    fx, fy = float(tip_force[0]), float(tip_force[1])
-    model.tip_load = mbs.AddLoad(ii.LoadForceVector(markerNumber=model._tip_marker,
-                                                    loadVector=[fx, fy, 0.0], bodyFixed=False))
-    model.tip_force = (fx, fy)
+    if actuator.cell != "ritz":  # the ritz model has no tip point to load (it refuses tip loads)
+        fx, fy = float(tip_force[0]), float(tip_force[1])
+        model.tip_load = mbs.AddLoad(ii.LoadForceVector(markerNumber=model._tip_marker,
+                                                        loadVector=[fx, fy, 0.0], bodyFixed=False))
+        model.tip_force = (fx, fy)
     for i in range(mbs.systemData.NumberOfObjects()):
         if mbs.GetObject(i)["objectType"] == "ConnectorCoordinateSpringDamper":
             model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness")), "damping"))

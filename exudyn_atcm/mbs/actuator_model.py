@@ -3,9 +3,9 @@
 :class:`BuiltModel` holds the ``SystemContainer`` and ``MainSystem`` built by
 :func:`exudyn_atcm.mbs.actuator_chains.build`, the items through which the stroke enters each
 solver step, and the ODE2 indices from which the tip pose and the cells' angles are read
-(SI units: m, rad).  The beam, ANCF and kinematic-tree cells subclass it
+(SI units: m, rad).  The beam, ANCF, assumed-modes and kinematic-tree cells subclass it
 (:mod:`~exudyn_atcm.mbs.actuator_beam`, :mod:`~exudyn_atcm.mbs.actuator_ancf`,
-:mod:`~exudyn_atcm.mbs.actuator_tree`).
+:mod:`~exudyn_atcm.mbs.actuator_ritz`, :mod:`~exudyn_atcm.mbs.actuator_tree`).
 """
 
 from __future__ import annotations
@@ -52,6 +52,9 @@ class BuiltModel:
     # relative Newton tolerance of the static solves, if the default (1e-8 of the first
     # residual of a load step) stops too early for this model
     static_relative_tolerance: float | None = None
+    # absolute Newton tolerance of the static solves [N, N m], if the default is too loose for
+    # this model (a linear model solved to round-off)
+    static_absolute_tolerance: float | None = None
     tip_force: tuple = (0.0, 0.0)
 
     # rigid cell, pre-step path: the rest angles' net effect, one torque on the last body
@@ -65,6 +68,12 @@ class BuiltModel:
             mbs.SetObjectParameter(item, self.offset_parameter, factor * strain)
         if self.torque_load is not None:
             mbs.SetLoadParameter(self.torque_load, "loadVector", [0.0, 0.0, self.torque_per_strain * strain])
+
+    def adjust_settings(self, settings) -> None:
+        """Model-specific changes to the dynamic solver settings (before the user's); none by default."""
+
+    def before_linearisation(self, strain: float) -> None:
+        """Prepare the eigenvalue analysis about the static state at ``strain``; nothing by default."""
 
     def scale_loads(self, factor: float) -> None:
         """Set the tip load to ``factor`` times the tip force (load ramps of the relaxation)."""

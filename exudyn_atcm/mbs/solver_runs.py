@@ -70,6 +70,8 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
     _apply_tolerance_floor(model, settings.staticSolver.newton)
     if model.static_relative_tolerance is not None:
         settings.staticSolver.newton.relativeTolerance = model.static_relative_tolerance
+    if getattr(model, "static_absolute_tolerance", None) is not None:
+        settings.staticSolver.newton.absoluteTolerance = model.static_absolute_tolerance
     mbs.SetPreStepUserFunction(pre)
     model.set_strain(strain_at_factor(0.0))
     saved_uf = model.uf_strain
