@@ -429,7 +429,7 @@ def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
     # the stiffness comparison loads the tip (compliance run): ritz is not among its choices
     with pytest.raises((CaseError, ValueError), match="cell must be one of six-bar, rigid, beam, ancf, got 'ritz'"):
         load_case(CASES / "stiffness_comparison.py").run({"cell": "ritz", "n_voltages": 2})
-    # a mechanism's bender is a chain of rigid or six-bar cells
-    with pytest.raises(ValueError, match=r"cell must be one of \('rigid', 'six-bar'\), got 'ritz'"):
+    # a mechanism's bender is a chain of rigid, six-bar or beam cells (no ritz: its joints load the tip)
+    with pytest.raises(ValueError, match=r"cell must be one of \('rigid', 'six-bar', 'beam'\), got 'ritz'"):
         Bender("b", width=1e-2, passive=Layer(0.2e-3, 70e9, 1550.0), active=Layer(0.3e-3, 30.336e9, 5440.0),
                length=0.03, n_cells=2, drive=PiezoDrive(0.0), cell="ritz")
