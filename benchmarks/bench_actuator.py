@@ -30,12 +30,12 @@ import time
 import exudyn
 
 from exudyn_atcm._version import __version__
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import DEFAULT_STEP, InStepStrain, TableStrain, _simulate
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import DEFAULT_STEP, InStepStrain, TableStrain, run_actuator
 
 CELL_COUNTS = (5, 10, 20, 40)
 CELLS = ("six-bar", "rigid")
@@ -63,7 +63,7 @@ def run(n_cells: int, cell: str, t_sim: float, source: str) -> tuple[float, int]
     else:
         strain_source = InStepStrain(act.drive)
     start = time.perf_counter()
-    result = _simulate(act, t_sim, DEFAULT_STEP, (0.0, 0.0), None, source=strain_source)
+    result = run_actuator(act, t_sim, DEFAULT_STEP, (0.0, 0.0), None, source=strain_source)
     wall = time.perf_counter() - start
     return wall, int(result.info["accepted_steps"])
 

@@ -49,15 +49,15 @@ import numpy as np
 from exudyn import itemInterface as ii
 
 from exudyn_atcm.mbs import actuator_chains as builder
-from exudyn_atcm import beam_theory as bt
+from exudyn_atcm.theory import beam as bt
 from exudyn_atcm.mbs.eigen import constrained_eigenfrequencies
 from exudyn_atcm._version import __version__
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import InStepStrain, _simulate, eigenfrequencies
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import InStepStrain, run_actuator, eigenfrequencies
 
 LENGTH, WIDTH = 87e-3, 28e-3
 CFC, MFC = Layer(0.2e-3, 70e9, 1550.0), Layer(0.3e-3, 30.336e9, 5440.0)
@@ -107,7 +107,7 @@ def small_drive() -> PiezoDrive:
 def modal_tip_angle(act: BendingActuator, times: np.ndarray, moments: np.ndarray, n_modes: int = 30) -> np.ndarray:
     """Tip rotation [rad] of the Euler-Bernoulli cantilever under the end moment ``moments(times)``.
 
-    :func:`exudyn_atcm.beam_theory.end_moment_tip_rotation` (30 modes, mode-acceleration form,
+    :func:`exudyn_atcm.theory.beam.end_moment_tip_rotation` (30 modes, mode-acceleration form,
     stiffness-proportional damping as in the models), starting at rest in the static state of M(0).
     """
     return bt.end_moment_tip_rotation(act.bending_stiffness, act.mass_per_length, act.length,
@@ -214,14 +214,14 @@ def measure(name: str, n: int) -> dict:
                 ge_by_hand(n, paper_drive(), PERIOD)
                 wall = min(wall, time.perf_counter() - start)
         else:
-            r = _simulate(act_small, PERIOD, STEP, (0.0, 0.0), None)
+            r = run_actuator(act_small, PERIOD, STEP, (0.0, 0.0), None)
             times, angles = r["time"], r["tip_angle"]
             builder_f1 = eigenfrequencies(act_small, 1)[0]
             bent_f1 = eigenfrequencies(act_small, 1, voltage=BENT_VOLTAGE)[0]
             wall = math.inf
             for _ in range(REPEATS):
                 start = time.perf_counter()
-                _simulate(actuator(n, cell, paper_drive()), PERIOD, STEP, (0.0, 0.0), None)
+                run_actuator(actuator(n, cell, paper_drive()), PERIOD, STEP, (0.0, 0.0), None)
                 wall = min(wall, time.perf_counter() - start)
     finally:
         builder.RIGID_FORMULATION = "bodies"

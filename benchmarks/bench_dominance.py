@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import __version__
-from exudyn_atcm._atomic import write_json
+from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm.hysteresis import DiscretePreisach
 from exudyn_atcm.hysteresis._dominance import DominanceSums
 

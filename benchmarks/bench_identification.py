@@ -28,9 +28,9 @@ import numpy as np
 import scipy
 
 from exudyn_atcm import __version__
-from exudyn_atcm._atomic import write_json
+from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm.hysteresis import DiscretePreisach, EverettPreisach, PrandtlIshlinskii
-from exudyn_atcm.reference_record import REFERENCE, reference_samples
+from exudyn_atcm.hysteresis.reference_record import REFERENCE, reference_samples
 
 NOISE = REFERENCE["noise [m]"]
 

@@ -44,12 +44,12 @@ from pathlib import Path
 import exudyn
 import numpy as np
 
-from exudyn_atcm._atomic import write_json
+from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm._version import __version__
-from exudyn_atcm.cases import find_case
+from exudyn_atcm.casework.case import find_case
 from exudyn_atcm.mechanism import Bender
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
 from exudyn_atcm import simulate
 
 CASES = Path(__file__).resolve().parents[1] / "cases"

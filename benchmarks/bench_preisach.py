@@ -41,9 +41,9 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import __version__
-from exudyn_atcm._atomic import write_json
+from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm.hysteresis import DiscretePreisach
-from exudyn_atcm.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 
 
 class RelayArray:

@@ -1,6 +1,6 @@
 """Cost per cell and step of the time integration, the basis of the long-run warning (issue 9).
 
-:func:`exudyn_atcm.run_checks.estimate_run_time` predicts the wall time of a run as steps x a
+:func:`exudyn_atcm.solve.run_checks.estimate_run_time` predicts the wall time of a run as steps x a
 cost per step ``a + b n + c n^2`` for the cell type and ``n`` cells (``run_checks.COST_PER_STEP``).
 This script measures that cost on the bender of the paper's actuator (87 mm, paper laminate, the paper's Preisach
 loop in the step, triangle of 0.5 s, step 1e-4 s) for both cell types at several cell counts,
@@ -23,15 +23,15 @@ import time
 import exudyn
 
 from exudyn_atcm._version import __version__
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_strain_preisach
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 import numpy as np
 
-from exudyn_atcm.run_checks import COST_PER_STEP, estimate_run_time
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import simulate
+from exudyn_atcm.solve.run_checks import COST_PER_STEP, estimate_run_time
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import simulate
 
 STEP = 1e-4
 

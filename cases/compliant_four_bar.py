@@ -16,7 +16,7 @@ quasi-statically (each step continues from the previous state and hysteresis mem
 
 Reference: the rigid four-bar through the flexures' characteristic pivots (B*, C*, D*).
 For the simulated crank-tip pivot B* the rigid four-bar's loop closure (circle intersection,
-:mod:`exudyn_atcm.four_bar`) gives the rocker joint and the coupler point; the key scalar
+:mod:`exudyn_atcm.theory.four_bar`) gives the rocker joint and the coupler point; the key scalar
 ``reference_error`` is the largest distance between simulated and reference coupler point,
 relative to the coupler point's travel.  The hysteresis path error is the largest distance
 between the two runs' coupler points at the same voltage; the loop width the largest distance
@@ -40,14 +40,14 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.four_bar import RigidFourBar
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.theory.four_bar import RigidFourBar
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.mechanism import Bender, Flexure, Link, Mechanism
-from exudyn_atcm.mechanism_plots import animate_mechanism, plot_mechanism
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
+from exudyn_atcm.model.signals import Triangle
 from exudyn_atcm import simulate, static_sweep
 
 PARAMETERS = [

@@ -2,7 +2,7 @@
 
 The record (by default ``cases/data/preisach_record.csv``: the synthetic record of a known
 non-uniform Preisach model with major and minor loops plus 0.4 µm noise, see its header) is
-read with :func:`exudyn_atcm.measurements.read_record` and split by time: the part before
+read with :func:`exudyn_atcm.io.measurements.read_record` and split by time: the part before
 ``split_fraction`` of the duration is fitted, the rest is held out and predicted (the model
 runs over the whole record, so the held-out part starts from the memory the fitted part left).
 
@@ -26,14 +26,14 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm._atomic import write_json
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.io.atomic import write_json
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
 from exudyn_atcm.hysteresis.fit_report import make_report
-from exudyn_atcm.identification_plots import plot_fit
-from exudyn_atcm.measurements import preprocess, read_record
-from exudyn_atcm.reference_record import REFERENCE
-from exudyn_atcm.result import Result
+from exudyn_atcm.plots.identification import plot_fit
+from exudyn_atcm.io.measurements import preprocess, read_record
+from exudyn_atcm.hysteresis.reference_record import REFERENCE
+from exudyn_atcm.io.result import Result
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 

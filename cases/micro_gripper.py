@@ -43,12 +43,12 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.mechanism import Bender, Link, Mechanism
-from exudyn_atcm.mechanism_plots import animate_mechanism, plot_mechanism
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
+from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
 from exudyn_atcm import static_sweep
 
 PARAMETERS = [

@@ -38,18 +38,18 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.parameter_sets import PAPER_LOOP
-from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
+from exudyn_atcm.model.parameter_sets import PAPER_LOOP
+from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
 
-from exudyn_atcm.actuator import CELL_TYPES, BendingActuator
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.mechanism_plots import actuator_as_mechanism, animate_mechanism, plot_mechanism
-from exudyn_atcm.plotting import plot_time_series, plot_tip_vs_voltage
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import simulate
+from exudyn_atcm.mechanism.actuator import CELL_TYPES, BendingActuator
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.plots.mechanism import actuator_as_mechanism, animate_mechanism, plot_mechanism
+from exudyn_atcm.plots.result import plot_time_series, plot_tip_vs_voltage
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import simulate
 
 PARAMETERS = [
     Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),

@@ -19,12 +19,12 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.hysteresis_plots import plot_time_series
-from exudyn_atcm.parameter_sets import PAPER_D33, PAPER_ELECTRODE_SPACING, PAPER_LOOP, paper_stroke_preisach
-from exudyn_atcm.plot_style import axis_label, display_scale, new_figure, save_figure
-from exudyn_atcm.result import Result
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.plots.hysteresis import plot_time_series
+from exudyn_atcm.model.parameter_sets import PAPER_D33, PAPER_ELECTRODE_SPACING, PAPER_LOOP, paper_stroke_preisach
+from exudyn_atcm.plots.style import axis_label, display_scale, new_figure, save_figure
+from exudyn_atcm.io.result import Result
+from exudyn_atcm.model.signals import Triangle
 
 PARAMETERS = [
     Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),

@@ -27,14 +27,14 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.actuator import TIP_LOAD_CELLS, BendingActuator
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.hysteresis_plots import Curve, plot_loops
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.result import Result
-from exudyn_atcm.simulation import eigenfrequencies, solve_static
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.mechanism.actuator import TIP_LOAD_CELLS, BendingActuator
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.plots.hysteresis import Curve, plot_loops
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.io.result import Result
+from exudyn_atcm.solve import eigenfrequencies, solve_static
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "number of cells"),

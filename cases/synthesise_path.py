@@ -41,7 +41,7 @@ coupler points of a reference design at known dimensions (``reference_*``, the
 ``compliant_four_bar`` defaults) and the same crank discretisation: the optimum must recover
 those dimensions (key scalars ``*_error``) and reach the points (``distance_rms``).  The
 synthesised mechanism is also checked against the rigid four-bar through its characteristic
-pivots (:mod:`exudyn_atcm.four_bar`, circle intersection for the simulated crank-tip pivot
+pivots (:mod:`exudyn_atcm.theory.four_bar`, circle intersection for the simulated crank-tip pivot
 B*; ``rigid_four_bar_error``, relative to the coupler point's travel).
 
 Outputs: the precision points and the three designs' coupler points at the precision
@@ -63,9 +63,9 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Result, static_sweep
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.mechanism_plots import animate_mechanism
-from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.plots.mechanism import animate_mechanism
+from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
 
 
 def _four_bar_module():

@@ -2,7 +2,7 @@
 
 The paper's actuator (three 29 mm cells, CFC on MFC) is driven through a hysteresis operator
 that plays the real MFC: the known non-uniform Preisach model behind the shipped record
-(``exudyn_atcm.reference_record.reference_preisach``, as free strain of a 29 mm cell).  The
+(``exudyn_atcm.hysteresis.reference_record.reference_preisach``, as free strain of a 29 mm cell).  The
 compensation does not know it: it uses the Preisach model *identified* from the noisy record
 ``cases/data/preisach_record.csv`` (:meth:`EverettPreisach.fit`, ``n_levels`` grid), as a
 designer would.  The wanted tip deflection is a slow two-tone wave (a major swing with minor
@@ -29,18 +29,18 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.control import PIDController
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.feedforward import feedforward_program, linear_program
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.model.control import PIDController
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.hysteresis.feedforward import feedforward_program, linear_program
 from exudyn_atcm.hysteresis import EverettPreisach
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.measurements import read_record
-from exudyn_atcm.plot_style import axis_label, new_figure, save_figure
-from exudyn_atcm.reference_record import reference_preisach
-from exudyn_atcm.result import Result
-from exudyn_atcm.simulation import simulate
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.io.measurements import read_record
+from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
+from exudyn_atcm.hysteresis.reference_record import reference_preisach
+from exudyn_atcm.io.result import Result
+from exudyn_atcm.solve import simulate
 
 RECORD = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 CELL_LENGTH = 29e-3  # m, the cell of the record's stroke

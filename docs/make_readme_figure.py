@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 
 import exudyn_atcm as atcm
-from exudyn_atcm.cell_drawing import save_cell_drawing
-from exudyn_atcm.parameter_sets import paper_strain_preisach, paper_stroke_preisach
-from exudyn_atcm.plot_style import new_figure, save_figure
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.plots.cells import save_cell_drawing
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach, paper_stroke_preisach
+from exudyn_atcm.plots.style import new_figure, save_figure
+from exudyn_atcm.model.signals import Triangle
 
 
 def main() -> Path:

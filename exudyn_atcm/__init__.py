@@ -9,23 +9,24 @@ Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``Bendi
 (``Result``, ``read_csv``, ``read_record``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
 ``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
-else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.mechanism_plots``,
-``exudyn_atcm.feedforward``, ...): see the API reference.
+else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
+``exudyn_atcm.hysteresis.feedforward``, ...): see the API reference.
 """
 
-from . import hysteresis, signals
+from . import deprecated_paths, hysteresis
+from .model import signals
 from ._version import __version__
-from .actuator import BendingActuator
-from .control import PIDController
-from .csv_io import read_csv
-from .drive import PiezoDrive
-from .materials import Layer
-from .measurements import read_record
+from .mechanism.actuator import BendingActuator
+from .model.control import PIDController
+from .io.result import read_csv
+from .model.drive import PiezoDrive
+from .model.materials import Layer
+from .io.measurements import read_record
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
-from .result import Result
-from .run_checks import SimulationInterrupted
-from .simulation import SolverError, eigenfrequencies, simulate, solve_static
-from .mechanism_solve import static_sweep
+from .io.result import Result
+from .solve import SimulationInterrupted
+from .solve import SolverError, eigenfrequencies, simulate, solve_static
+from .solve import static_sweep
 from .mbs import add_to
 
 __all__ = [
@@ -53,3 +54,15 @@ __all__ = [
     "read_record",
     "PIDController",
 ]
+
+
+deprecated_paths.install()
+
+
+def __getattr__(name: str):
+    """Old module paths (``exudyn_atcm.simulation``, ...) as attributes, with their warning."""
+    if name in deprecated_paths.MOVED:
+        import importlib  # noqa: PLC0415 - only for the deprecated paths
+
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

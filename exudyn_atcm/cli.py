@@ -23,8 +23,8 @@ import os
 import sys
 from collections.abc import Sequence
 
-from . import cases as _cases
-from ._cli_errors import report_error as _error
+from .casework import case as _cases
+from .casework.error_report import report_error as _error
 
 __all__ = ["main", "build_parser"]
 
@@ -104,7 +104,7 @@ def _list(cases_dir: str | None) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from .regression import run_suite
+    from .casework.regression import run_suite
 
     if args.update_references and not (args.reason and args.reason.strip()):
         return _error("--update-references needs --reason TEXT (why the references change; it is recorded)", args.debug, 2)

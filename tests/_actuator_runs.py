@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import _simulate, simulate, solve_static
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import run_actuator, simulate, solve_static
 
 from _actuator_geometries import REF_A
 
@@ -83,8 +83,8 @@ def check_end_torque_equals_prestep_path(cell, rel_atol):
     ``rel_atol`` times the largest absolute value of each column.
     """
     H1, H2 = paper_strain_preisach(), paper_strain_preisach()
-    a = _simulate(fast_triangle_actuator(cell, H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")
-    b = _simulate(fast_triangle_actuator(cell, H2), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="offsets")
+    a = run_actuator(fast_triangle_actuator(cell, H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")
+    b = run_actuator(fast_triangle_actuator(cell, H2), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="offsets")
     assert a.n_rows == b.n_rows == 501
     for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_1", "cell_angle_3"):
         np.testing.assert_allclose(a[name], b[name], rtol=0, atol=rel_atol * np.max(np.abs(b[name])))

@@ -1,6 +1,6 @@
 """The ``cell="ancf"`` discretisation (issue 9, part 4): ANCF cable elements (cubic Hermite).
 
-Validated like the other cells against beam theory (``exudyn_atcm.beam_theory``: Timoshenko's
+Validated like the other cells against beam theory (``exudyn_atcm.theory.beam``: Timoshenko's
 bimetal curvature and arc, the cantilever's tip compliance, Bisshopp & Drucker's elastica, the
 clamped-free beam's f1) and against the hysteresis operator applied offline.  Cubic elements
 converge at higher order than the linear ones: the bounds below scale with 1/N^4.
@@ -11,10 +11,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.simulation import eigenfrequencies, simulate, solve_static
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.solve import eigenfrequencies, simulate, solve_static
 
 from _actuator_geometries import GEOMETRIES, REF_A
 from _actuator_runs import (LeakyOperator, check_end_torque_equals_prestep_path, check_in_step_hysteresis_equals_offline_replay,

@@ -10,11 +10,11 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.simulation import SolverError, eigenfrequencies, simulate, solve_static
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.solve import SolverError, eigenfrequencies, simulate, solve_static
 
 from _actuator_geometries import REF_A
 

@@ -1,6 +1,6 @@
 """The third discretisation, ``cell="beam"`` (issue 9, part 4): geometrically exact beam elements.
 
-Validated like the six-bar and rigid cells: against beam theory (``exudyn_atcm.beam_theory``:
+Validated like the six-bar and rigid cells: against beam theory (``exudyn_atcm.theory.beam``:
 Timoshenko's bimetal curvature, the cantilever's tip compliance, Bisshopp & Drucker's elastica,
 the clamped-free beam's f1) and against the hysteresis operator applied offline.
 """
@@ -10,10 +10,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.simulation import eigenfrequencies, simulate, solve_static
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.solve import eigenfrequencies, simulate, solve_static
 
 from _actuator_geometries import GEOMETRIES, REF_A
 from _actuator_runs import (LeakyOperator, check_end_torque_equals_prestep_path, check_in_step_hysteresis_equals_offline_replay,
@@ -144,7 +144,7 @@ def test_beam_and_rigid_chain_agree_in_a_slow_dynamic_run():
     # a 2 Hz voltage triangle (f1 = 36 Hz: quasi-static up to the 2 % viscous lag), 16 cells:
     # both discretisations follow the same arc; they differ by their O(1/N^2) dynamic errors
     # and the rigid chain's mass-centre offset (~0.2 %), so 1 % of the tip-y range
-    from exudyn_atcm.signals import Triangle
+    from exudyn_atcm.model.signals import Triangle
     runs = {}
     for cell in ("beam", "rigid"):
         act = REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.5)), n_cells=16, cell=cell)

@@ -11,12 +11,12 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import _simulate, simulate
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import run_actuator, simulate
 
 from _actuator_geometries import REF_A
 from _actuator_runs import (LeakyOperator, check_end_torque_equals_prestep_path, check_in_step_hysteresis_equals_offline_replay,
@@ -60,8 +60,8 @@ def test_prestep_path_equals_user_function_path(cell, path_a, path_b):
     # user functions are the same numbers in every Newton iteration (same t, same memory):
     # identical runs, including which steps Exudyn rejects
     H1, H2 = paper_strain_preisach(), paper_strain_preisach()
-    a = _simulate(fast_triangle_actuator(cell, H1), 0.1, 2e-3, (0.0, 0.0), REJECTING[cell], stroke_path=path_a)
-    b = _simulate(fast_triangle_actuator(cell, H2), 0.1, 2e-3, (0.0, 0.0), REJECTING[cell], stroke_path=path_b)
+    a = run_actuator(fast_triangle_actuator(cell, H1), 0.1, 2e-3, (0.0, 0.0), REJECTING[cell], stroke_path=path_a)
+    b = run_actuator(fast_triangle_actuator(cell, H2), 0.1, 2e-3, (0.0, 0.0), REJECTING[cell], stroke_path=path_b)
     assert a.info["rejected_steps"] > 0
     assert a.n_rows == b.n_rows
     for name in ("time", "voltage", "strain", "tip_x", "tip_y", "tip_angle"):

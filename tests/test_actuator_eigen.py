@@ -15,10 +15,10 @@ import pytest
 from scipy.integrate import quad
 
 from exudyn_atcm.mbs import actuator_chains as builder
-from exudyn_atcm import beam_theory as bt
+from exudyn_atcm.theory import beam as bt
 from exudyn_atcm.mbs.eigen import exudyn_eigenfrequencies
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.simulation import _static_equilibrium, eigenfrequencies
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.solve import static_equilibrium, eigenfrequencies
 
 from _actuator_geometries import REF_A
 
@@ -59,7 +59,7 @@ def test_exudyns_routine_is_wrong_about_a_bent_six_bar_chain_and_ours_is_not():
     # layers' axial forces (~50 N at 1500 V) whose geometric stiffness Exudyn's routine leaves out
     act = REF_A.actuator(PiezoDrive(1500.0), n_cells=4, cell="six-bar")
     model = builder.build(act)
-    _static_equilibrium(act, model, act.drive.static_strain(1500.0), (0.0, 0.0), None, "test")
+    static_equilibrium(act, model, act.drive.static_strain(1500.0), (0.0, 0.0), None, "test")
     lam = np.asarray(model.mbs.systemData.GetAECoordinates())
     assert np.max(np.abs(lam)) > 10.0  # newtons: the constraint forces are large
     exudyn_f1 = exudyn_eigenfrequencies(model.mbs, 1)[0]

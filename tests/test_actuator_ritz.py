@@ -1,6 +1,6 @@
 """The ``cell="ritz"`` discretisation (issue 9, part 4): assumed modes of the rotation field.
 
-Pure-numpy physics (:mod:`exudyn_atcm.ritz_beam`) against independent constructions: the
+Pure-numpy physics (:mod:`exudyn_atcm.theory.ritz_beam`) against independent constructions: the
 shifted Legendre polynomials of scipy, the Euler-Bernoulli assumed-modes mass built from the
 lateral displacement shapes, the nested-integral definition of the bent mass matrix, the
 clamped-free beam's eigenfrequencies (roots of ``1 + cos cosh = 0``) with Rayleigh's
@@ -20,8 +20,8 @@ from numpy.polynomial import legendre
 from scipy.linalg import eigh
 from scipy.special import sh_legendre
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm import ritz_beam as rb
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.theory import ritz_beam as rb
 
 EI, MU, L = 0.0493, 0.2, 0.087  # N m^2, kg/m, m: the order of the paper's actuator
 RHO_I = 1.5e-8  # kg m
@@ -201,10 +201,10 @@ def test_dynamic_rotation_warning():
 
 # ----------------------------------------------------------------------------- Exudyn model
 
-from exudyn_atcm.drive import PiezoDrive  # noqa: E402
-from exudyn_atcm.parameter_sets import paper_strain_preisach  # noqa: E402
-from exudyn_atcm.signals import PiecewiseLinear, Triangle  # noqa: E402
-from exudyn_atcm.simulation import _simulate, eigenfrequencies, simulate, solve_static  # noqa: E402
+from exudyn_atcm.model.drive import PiezoDrive  # noqa: E402
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach  # noqa: E402
+from exudyn_atcm.model.signals import PiecewiseLinear, Triangle  # noqa: E402
+from exudyn_atcm.solve import run_actuator, eigenfrequencies, simulate, solve_static  # noqa: E402
 
 from _actuator_geometries import GEOMETRIES, REF_A  # noqa: E402
 from _actuator_runs import (LeakyOperator, check_in_step_hysteresis_equals_offline_replay,  # noqa: E402
@@ -378,7 +378,7 @@ def test_tip_force_is_refused(call):
 def test_other_stroke_paths_are_refused(path):
     act = fast_triangle_actuator("ritz", None)
     with pytest.raises(ValueError, match=f"stroke_path must be 'prestep' for the ritz cell.*{path}"):
-        _simulate(act, 1e-3, 1e-4, (0.0, 0.0), None, stroke_path=path)
+        run_actuator(act, 1e-3, 1e-4, (0.0, 0.0), None, stroke_path=path)
 
 
 def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
@@ -405,7 +405,7 @@ def test_fig12_case_runs_with_ritz_from_the_command_line(tmp_path):
     # triangle's corners (measured 1.2 % of the largest deflection; the 36 Hz bender is driven at
     # 1 Hz): within 2 %
     from _cli_helpers import cli
-    from exudyn_atcm.csv_io import read_csv
+    from exudyn_atcm.io import read_csv
 
     proc = cli(["run", "paper_bending_actuator", "--set", "cell=ritz", "--set", "n_cells=4", "--set",
                 "cell_length=0.02175", "--set", "cycles=1", "--set", "animation=false", "--set", "record_every=0",
@@ -420,8 +420,8 @@ def test_fig12_case_runs_with_ritz_from_the_command_line(tmp_path):
 
 
 def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
-    from exudyn_atcm.cases import CaseError, load_case
-    from exudyn_atcm.materials import Layer
+    from exudyn_atcm.casework.case import CaseError, load_case
+    from exudyn_atcm.model.materials import Layer
     from exudyn_atcm.mechanism import Bender
 
     from _cli_helpers import CASES
@@ -430,6 +430,7 @@ def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
     with pytest.raises((CaseError, ValueError), match="cell must be one of six-bar, rigid, beam, ancf, got 'ritz'"):
         load_case(CASES / "stiffness_comparison.py").run({"cell": "ritz", "n_voltages": 2})
     # a mechanism's bender is a chain of rigid, six-bar or beam cells (no ritz: its joints load the tip)
-    with pytest.raises(ValueError, match=r"cell must be one of \('rigid', 'six-bar', 'beam'\), got 'ritz'"):
+    with pytest.raises(ValueError, match=r"cell='ritz' cannot be a mechanism's bender: the ritz cell is built for "
+                                         r"the lone actuator only"):
         Bender("b", width=1e-2, passive=Layer(0.2e-3, 70e9, 1550.0), active=Layer(0.3e-3, 30.336e9, 5440.0),
                length=0.03, n_cells=2, drive=PiezoDrive(0.0), cell="ritz")

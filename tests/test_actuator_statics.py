@@ -1,6 +1,6 @@
 """Issue 3, part 4 (statics and eigenfrequencies): the multibody model against beam theory.
 
-References are the closed-form formulas of docs/theory.rst (``exudyn_atcm.beam_theory``) on
+References are the closed-form formulas of docs/theory.rst (``exudyn_atcm.theory.beam``) on
 the paper's actuator and two other geometries; each tolerance says what makes the comparison approximate.
 """
 
@@ -11,11 +11,11 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.simulation import eigenfrequencies, solve_static
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.solve import eigenfrequencies, solve_static
 
 from _actuator_geometries import GEOMETRIES, REF_A
 

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from exudyn_atcm.mbs import actuator_chains as builder
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import eigenfrequencies, simulate, solve_static
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import eigenfrequencies, simulate, solve_static
 
 from _actuator_geometries import REF_A
 

@@ -5,8 +5,8 @@ import os
 import numpy as np
 import pytest
 
-from exudyn_atcm.plotting import animate_actuator, chain_shape
-from exudyn_atcm.result import Result
+from exudyn_atcm.plots.result import animate_actuator, chain_shape
+from exudyn_atcm.io.result import Result
 
 
 def bent_result():

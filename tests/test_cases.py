@@ -11,8 +11,8 @@ import exudyn
 import numpy as np
 import pytest
 
-from exudyn_atcm.cases import Case, CaseError, CaseOutput, Parameter, case_dirs, find_case, load_case
-from exudyn_atcm.csv_io import read_csv
+from exudyn_atcm.casework.case import Case, CaseError, CaseOutput, Parameter, case_dirs, find_case, load_case
+from exudyn_atcm.io import read_csv
 
 from _cli_helpers import CASES, cli, run
 
@@ -125,7 +125,7 @@ def test_discrete_preisach_identifies_relays_by_eq12():
 
 
 def test_stiffness_comparison_against_model_md():
-    pytest.importorskip("exudyn_atcm.actuator")
+    pytest.importorskip("exudyn_atcm.mechanism.actuator")
     out = load_case(CASES / "stiffness_comparison.py").run({"n_voltages": 2})
     s = out.scalars
     assert s["EI_theory_composite"] == pytest.approx(1.28699e-2, rel=1e-5)  # the paper's actuator, docs/theory.rst
@@ -155,7 +155,7 @@ def test_fig12_case_draws_layers_joints_and_motors_with_the_scale(tmp_path, monk
 
     Short run (one 0.2 s period, beam cells: the drawing does not depend on the cell model).
     """
-    from exudyn_atcm import mechanism_plots
+    from exudyn_atcm.plots import mechanism as mechanism_plots
 
     case = load_case(CASES / "paper_bending_actuator.py")
     figures = []
@@ -311,17 +311,17 @@ def test_load_case_refuses_a_file_without_case(tmp_path):
         load_case(plain)
     assert not marker.exists(), "a plain script must not be executed"
     wrong = tmp_path / "wrong.py"
-    wrong.write_text("import exudyn_atcm.cases\nCASE = 1\n")
+    wrong.write_text("import exudyn_atcm.casework.case\nCASE = 1\n")
     with pytest.raises(CaseError, match="defines no CASE"):
         load_case(wrong)
     broken = tmp_path / "broken.py"
-    broken.write_text("from exudyn_atcm.cases import Case\nimport no_such_module_xyz\nCASE = None\n")
+    broken.write_text("from exudyn_atcm.casework.case import Case\nimport no_such_module_xyz\nCASE = None\n")
     with pytest.raises(CaseError, match="import failed"):
         load_case(broken)
 
 
 def test_case_output_scalars_and_units():
-    from exudyn_atcm.result import Result
+    from exudyn_atcm.io.result import Result
 
     r = Result({"time": [0.0, 1.0]}, {"time": "s"})
     out = CaseOutput(r, {"a": 1, "b": (2.5, "m")})

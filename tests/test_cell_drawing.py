@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from exudyn_atcm import beam_theory
-from exudyn_atcm.cell_drawing import cell_figure, height_exaggeration, paper_actuator, save_cell_drawing
+from exudyn_atcm.theory import beam as beam_theory
+from exudyn_atcm.plots.cells import cell_figure, height_exaggeration, paper_actuator, save_cell_drawing
 
 PNG = b"\x89PNG\r\n\x1a\n"
 

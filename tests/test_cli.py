@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from exudyn_atcm.cli import main
-from exudyn_atcm.progress import ProgressBar
+from exudyn_atcm.io.progress import ProgressBar
 
 from _cli_helpers import CASES, cli
 
@@ -157,7 +157,7 @@ def test_cases_are_shipped_with_the_package(tmp_path):
 
 
 def test_list_with_no_cases_fails(monkeypatch, capsys):
-    import exudyn_atcm.cases as cases
+    import exudyn_atcm.casework.case as cases
 
     monkeypatch.setattr(cases, "list_cases", lambda cases_dir=None: [])
     assert main(["list"]) == 1
@@ -192,13 +192,13 @@ def test_output_directory_that_cannot_be_made_is_named(tmp_path):
 
 
 INTERRUPTING_CASE = '''"""A case whose voltage program is interrupted (Ctrl-C) at t = 0.02 s."""
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.cases import Case, CaseOutput, Parameter
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
-from exudyn_atcm.simulation import simulate
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.solve import simulate
 
 PARAMETERS = [Parameter("stop", 0.02, "s", "time of the Ctrl-C")]
 
@@ -225,7 +225,7 @@ if __name__ == "__main__":
 
 
 def test_ctrl_c_in_a_run_writes_partial_results_and_exits_130(tmp_path):
-    from exudyn_atcm.csv_io import read_csv
+    from exudyn_atcm.io import read_csv
 
     case = tmp_path / "interrupting.py"
     case.write_text(INTERRUPTING_CASE)

@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.control import PIDController
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.simulation import TableStrain, _simulate, simulate
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.control import PIDController
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.solve import TableStrain, run_actuator, simulate
 
 
 def actuator(drive):
@@ -69,7 +69,7 @@ def test_controller_needs_the_in_step_source():
     act = actuator(PiezoDrive(pid))
     table = TableStrain(np.array([0.0, 1.0]), np.zeros(2), np.zeros(2))
     with pytest.raises(ValueError, match="needs the in-step strain source, got TableStrain"):
-        _simulate(act, 0.1, 1e-3, (0.0, 0.0), None, source=table)
+        run_actuator(act, 0.1, 1e-3, (0.0, 0.0), None, source=table)
 
 
 @pytest.mark.parametrize(

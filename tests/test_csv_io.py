@@ -1,12 +1,12 @@
-"""exudyn_atcm.csv_io.read_csv: round trip of Result.to_csv, header format, malformed files."""
+"""exudyn_atcm.read_csv: round trip of Result.to_csv, header format, malformed files."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from exudyn_atcm.csv_io import read_csv, read_csv_header
-from exudyn_atcm.result import Result
+from exudyn_atcm.io import read_csv, read_csv_header
+from exudyn_atcm.io.result import Result
 
 
 def _result() -> Result:

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from exudyn_atcm.hysteresis import ContinuousPreisach
-from exudyn_atcm.parameter_sets import paper_strain_preisach, paper_stroke_preisach
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach, paper_stroke_preisach
+from exudyn_atcm.model.signals import Triangle
 
 UM = 1e-6
 

@@ -9,9 +9,9 @@ import json
 import numpy as np
 import pytest
 
-from exudyn_atcm.cases import load_case
-from exudyn_atcm.measurements import read_record
-from exudyn_atcm.reference_record import REFERENCE, reference_samples
+from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.io.measurements import read_record
+from exudyn_atcm.hysteresis.reference_record import REFERENCE, reference_samples
 
 from _cli_helpers import CASES, run
 

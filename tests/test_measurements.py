@@ -1,11 +1,11 @@
-"""Reading, splitting and preprocessing measured records (exudyn_atcm.measurements)."""
+"""Reading, splitting and preprocessing measured records (exudyn_atcm.io.measurements)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from exudyn_atcm.measurements import Record, preprocess, read_record
+from exudyn_atcm.io.measurements import Record, preprocess, read_record
 
 
 def write(tmp_path, text, name="rec.csv"):

@@ -27,14 +27,15 @@ import numpy as np
 import pytest
 
 import exudyn_atcm as atcm
+from exudyn_atcm.plots.mechanism import plot_mechanism
 from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment,
                          eigenfrequencies, simulate, solve_static, static_sweep)
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.cases import load_case
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.casework.case import load_case
 from exudyn_atcm.mbs import solver_settings
-from exudyn_atcm.mechanism_shapes import mechanism_shape
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.plots.mechanism_shapes import mechanism_shape
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from test_mechanism_solve import four_bar, rigid_coupler_point  # noqa: E402  (the rigid-cell tests' mechanism)
@@ -433,21 +434,23 @@ def test_shape_of_a_beam_bender_runs_through_its_nodes(tmp_path):
     # chords differ from L_c by the shear strain F/(a1 + a2) ~ 9e-8: 8e-9 m at the tip
     gap = 0.02 * 0.087 / b.laminate.axial_rigidity
     np.testing.assert_allclose(bs.passive[-1], [r["b.tip_x"][0], r["b.tip_y"][0]], rtol=0, atol=1.5 * gap)
-    path = atcm.mechanism_plots.plot_mechanism(m, r, tmp_path / "beam.png")
+    path = plot_mechanism(m, r, tmp_path / "beam.png")
     assert path.stat().st_size > 1000
 
 
 # ----------------------------------------------------------------------------- refused input
 
 def test_unknown_cell_is_refused_with_the_allowed_ones():
-    with pytest.raises(ValueError, match=r"cell must be one of \('rigid', 'six-bar', 'beam'\), got 'ancf'"):
+    with pytest.raises(ValueError, match=r"cell='ancf' cannot be a mechanism's bender: the ancf cell is built for "
+                                         r"the lone actuator only .*use cell='beam'"):
         beam().__class__("x", width=W, passive=CFC, active=MFC, length=0.03, n_cells=2, cell="ancf")
 
 
 def test_static_sweep_refuses_an_actuator_cell_without_a_mechanism_model():
     act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0), cell="ancf")
-    with pytest.raises(ValueError, match=r"cells are \('rigid', 'six-bar', 'beam'\); got an actuator with "
-                                         r"cell='ancf'. Use one of those cells, or solve_static per voltage"):
+    with pytest.raises(ValueError, match=r"cells are \('six-bar', 'rigid', 'beam'\); got an actuator with "
+                                         r"cell='ancf' \(the ancf cell is built for the lone actuator only.*\)\. Use "
+                                         r"one of those cells, or solve_static per voltage"):
         static_sweep(act, [0.0, 100.0])
 
 

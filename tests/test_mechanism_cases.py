@@ -10,9 +10,9 @@ import warnings
 
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.cases import load_case
-from exudyn_atcm.parameter_sets import PAPER_LOOP
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.model.parameter_sets import PAPER_LOOP
 
 from _cli_helpers import CASES, run
 

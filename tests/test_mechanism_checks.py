@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment, solve_static
-from exudyn_atcm.actuator import BendingActuator
-from exudyn_atcm.parameter_sets import paper_strain_preisach
+from exudyn_atcm.mechanism.actuator import BendingActuator
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.mechanism import PointRef
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)

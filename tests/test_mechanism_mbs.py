@@ -21,7 +21,7 @@ import scipy.linalg
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import solver_settings
 from exudyn_atcm.mbs import StepHooks, add_post_step, add_pre_step
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.model.signals import Triangle
 
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
 MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)

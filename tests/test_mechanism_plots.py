@@ -9,7 +9,7 @@ import pytest
 
 from exudyn_atcm import Layer, PiezoDrive, Result
 from exudyn_atcm.mechanism import Bender, Flexure, Link, Mechanism
-from exudyn_atcm.mechanism_plots import (
+from exudyn_atcm.plots.mechanism import (
     actuator_as_mechanism,
     animate_mechanism,
     mechanism_shape,

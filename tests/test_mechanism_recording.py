@@ -2,7 +2,7 @@
 
 The mechanism path does not copy the state (coordinates, spring and stop forces) on every step
 that ``record_every`` skips; it reads the last accepted step's state after the solve
-(:func:`exudyn_atcm.mechanism_solve.simulate`).  That is right only where Exudyn leaves that
+(:func:`exudyn_atcm.solve.mechanism_solve.simulate`).  That is right only where Exudyn leaves that
 state behind, so the first tests measure what Exudyn 1.13 leaves after each way a run can
 end, against the coordinates copied in the post-step hook of the last accepted step:
 
@@ -30,9 +30,9 @@ from exudyn_atcm.mbs import loads as mbs_loads
 from exudyn_atcm.mbs import solver_runs as runs
 from exudyn_atcm.mbs import solver_settings
 from exudyn_atcm.mbs.recording import restore_start_of_step
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.run_checks import SimulationInterrupted
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.solve.run_checks import SimulationInterrupted
+from exudyn_atcm.model.signals import Triangle
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)
 MFC = Layer(0.3e-3, 30.336e9, 5440.0)

@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm import beam_theory as bt
-from exudyn_atcm.four_bar import (
+from exudyn_atcm.theory import beam as bt
+from exudyn_atcm.theory.four_bar import (
     RigidFourBar,
     branch_of,
     circle_intersection,

@@ -3,7 +3,7 @@
 References: the clamped-free Euler-Bernoulli beam (beta1 L = 1.8751, Timoshenko 1925) with the
 two-layer section's bending stiffness about its neutral axis, the MFC P1 rating
 (-500 ... +1500 V), the step grid ``t_end / ceil(t_end / step)``, the measured cost constants
-of :data:`exudyn_atcm.run_checks.COST_PER_STEP`, and the uninterrupted / every-step run for the
+of :data:`exudyn_atcm.solve.run_checks.COST_PER_STEP`, and the uninterrupted / every-step run for the
 interrupted / thinned one.
 """
 
@@ -16,11 +16,11 @@ import numpy as np
 import pytest
 
 from exudyn_atcm import Bender, Layer, Link, Mechanism, MechanismError, PiezoDrive, simulate
-from exudyn_atcm import run_checks
-from exudyn_atcm.control import Controller, PIDController
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.run_checks import SimulationInterrupted
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.solve import run_checks
+from exudyn_atcm.model.control import Controller, PIDController
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.solve.run_checks import SimulationInterrupted
+from exudyn_atcm.model.signals import Triangle
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)
 MFC = Layer(0.3e-3, 30.336e9, 5440.0)

@@ -15,8 +15,8 @@ import pytest
 from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, PiezoDrive, Segment, eigenfrequencies, simulate,
                          solve_static, static_sweep)
 from exudyn_atcm import read_csv as atcm_read_csv
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import Triangle
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)
 MFC = Layer(0.3e-3, 30.336e9, 5440.0)
@@ -290,7 +290,7 @@ def test_static_sweep_of_a_bending_actuator_keeps_its_columns(cell):
 
 def test_actuator_plots_refuse_a_mechanism_result_with_the_alternative(tmp_path):
     r = solve_static(cantilever(bender()))
-    with pytest.raises(ValueError, match="for a mechanism use exudyn_atcm.mechanism_plots.plot_mechanism"):
+    with pytest.raises(ValueError, match="for a mechanism use exudyn_atcm.plots.mechanism.plot_mechanism"):
         r.plot(tmp_path)
 
 

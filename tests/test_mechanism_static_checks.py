@@ -11,7 +11,7 @@ import warnings
 import pytest
 
 from exudyn_atcm import Bender, Layer, Mechanism, PiezoDrive, eigenfrequencies, solve_static, static_sweep
-from exudyn_atcm.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)
 MFC = Layer(0.3e-3, 30.336e9, 5440.0)

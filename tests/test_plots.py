@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm.hysteresis_plots import Curve, plot_loops, plot_relays, plot_time_series
-from exudyn_atcm.plot_style import axis_label, display_scale, new_figure, save_figure
-from exudyn_atcm.result import Result
+from exudyn_atcm.plots.hysteresis import Curve, plot_loops, plot_relays, plot_time_series
+from exudyn_atcm.plots.style import axis_label, display_scale, new_figure, save_figure
+from exudyn_atcm.io.result import Result
 
 PNG = b"\x89PNG\r\n\x1a\n"
 

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from exudyn_atcm import PiezoDrive
-from exudyn_atcm.parameter_sets import paper_strain_preisach
-from exudyn_atcm.signals import PiecewiseLinear
-from exudyn_atcm.simulation import simulate
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import PiecewiseLinear
+from exudyn_atcm.solve import simulate
 
 from _actuator_geometries import REF_A
 

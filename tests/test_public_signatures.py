@@ -15,7 +15,7 @@ from exudyn_atcm import hysteresis
 
 API_RST = Path(__file__).resolve().parents[1] / "docs" / "api.rst"
 #: Public modules whose ``__all__`` is plumbing of the command line or the optimiser, not user API.
-INTERNAL = {"exudyn_atcm.cli", "exudyn_atcm.study.command", "exudyn_atcm.study.problem"}
+INTERNAL = {"exudyn_atcm.cli", "exudyn_atcm.casework.error_report", "exudyn_atcm.study.command", "exudyn_atcm.study.problem"}
 #: Names exported for the package's own modules (workers, progress plumbing; the mechanism's DOF
 #: count is documented as Mechanism.degrees_of_freedom).
 INTERNAL_NAMES = {"exudyn_atcm.study.design.check_point", "exudyn_atcm.study.engines.CaseSpec",
@@ -117,4 +117,4 @@ def test_top_level_all_is_consistent():
     for name in ("Bender", "Segment", "Link", "Flexure", "Mechanism", "MechanismError", "add_to", "static_sweep",
                  "simulate", "solve_static", "eigenfrequencies", "SimulationInterrupted", "read_record", "PIDController"):
         assert name in exudyn_atcm.__all__, name
-    assert exudyn_atcm.PIDController is importlib.import_module("exudyn_atcm.control").PIDController
+    assert exudyn_atcm.PIDController is importlib.import_module("exudyn_atcm.model.control").PIDController

@@ -10,9 +10,9 @@ import time
 import exudyn
 import pytest
 
-from exudyn_atcm.csv_io import read_csv
-from exudyn_atcm.regression import load_suite, run_suite
-from exudyn_atcm.result import Result
+from exudyn_atcm.io import read_csv
+from exudyn_atcm.casework.regression import load_suite, run_suite
+from exudyn_atcm.io.result import Result
 
 from _cli_helpers import CASES, REPO, cli
 

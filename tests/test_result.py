@@ -11,10 +11,10 @@ import pytest
 
 import exudyn
 from exudyn_atcm._version import __version__
-from exudyn_atcm.csv_io import read_csv
-from exudyn_atcm.drive import PiezoDrive
-from exudyn_atcm.result import Result
-from exudyn_atcm.simulation import simulate
+from exudyn_atcm.io import read_csv
+from exudyn_atcm.model.drive import PiezoDrive
+from exudyn_atcm.io.result import Result
+from exudyn_atcm.solve import simulate
 
 from _actuator_geometries import REF_A
 
@@ -102,7 +102,7 @@ def test_pandas_reads_the_csv(tmp_path):
 def test_to_csv_is_atomic(tmp_path, monkeypatch):
     import errno
 
-    import exudyn_atcm._atomic as atomic
+    import exudyn_atcm.io.atomic as atomic
 
     path = tmp_path / "out.csv"
     path.write_text("old content\n")
@@ -155,7 +155,7 @@ def test_write_error_messages_name_target_and_reason(tmp_path, monkeypatch):
     import errno
     import tempfile
 
-    import exudyn_atcm._atomic as atomic
+    import exudyn_atcm.io.atomic as atomic
 
     def refuse(*args, **kwargs):
         raise OSError(errno.EROFS, "Read-only file system", str(tmp_path / ".tmp_abc123.csv"))

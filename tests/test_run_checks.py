@@ -13,16 +13,16 @@ import warnings
 import numpy as np
 import pytest
 
-from exudyn_atcm import run_checks
-from exudyn_atcm.drive import PiezoDrive
+from exudyn_atcm.solve import run_checks
+from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, PrandtlIshlinskii
-from exudyn_atcm.materials import Layer
-from exudyn_atcm.parameter_sets import paper_stroke_preisach, paper_strain_preisach
-from exudyn_atcm.progress import ProgressBar, report_task, reporting
-from exudyn_atcm.recording import recording_schedule
-from exudyn_atcm.run_checks import SimulationInterrupted, WallClock, snap_time, snap_times, time_grid
-from exudyn_atcm.signals import Constant, PiecewiseLinear, Sine, Steps, Triangle
-from exudyn_atcm.simulation import simulate, solve_static
+from exudyn_atcm.model.materials import Layer
+from exudyn_atcm.model.parameter_sets import paper_stroke_preisach, paper_strain_preisach
+from exudyn_atcm.io.progress import ProgressBar, report_task, reporting
+from exudyn_atcm.model.recording import recording_schedule
+from exudyn_atcm.solve.run_checks import SimulationInterrupted, WallClock, snap_time, snap_times, time_grid
+from exudyn_atcm.model.signals import Constant, PiecewiseLinear, Sine, Steps, Triangle
+from exudyn_atcm.solve import simulate, solve_static
 
 from _actuator_geometries import REF_A
 from _cli_helpers import CASES
@@ -33,7 +33,7 @@ def _messages(record) -> list[str]:
 
 
 def _fig12_case():
-    from exudyn_atcm.cases import load_case
+    from exudyn_atcm.casework.case import load_case
 
     return load_case(CASES / "paper_bending_actuator.py")
 
@@ -99,7 +99,7 @@ def test_step_that_does_not_divide_the_run_is_recorded_and_warned():
 
 def test_case_csv_states_the_step_used(tmp_path):
     # period 20 s: 0.3 s steps resolve the 10 s ramps; 20 / 0.3 = 66.7 -> 67 steps of 20/67 s
-    from exudyn_atcm.csv_io import read_csv
+    from exudyn_atcm.io import read_csv
 
     with pytest.warns(RuntimeWarning, match="does not divide"):
         _fig12_case().run({"step": 0.3, "period": 20.0, "cycles": 1}, out_dir=tmp_path, plot=False)
@@ -249,7 +249,7 @@ def test_interrupt_from_the_voltage_program():
 
 
 def test_interrupted_case_writes_partial_files(tmp_path):
-    from exudyn_atcm.csv_io import read_csv
+    from exudyn_atcm.io import read_csv
 
     with pytest.raises(SimulationInterrupted):
         _fig12_case().run({"period": 0.1, "cycles": 1}, out_dir=tmp_path, progress=_interrupt_after(0.03))
@@ -275,7 +275,7 @@ def test_interrupt_guard_stops_without_raising_through_the_solver():
 # ----------------------------------------------------------------------------- 10. progress
 def test_progress_bar_shows_eta_and_tasks(monkeypatch):
     clock = iter([100.0, 110.0, 111.0, 112.0])
-    monkeypatch.setattr("exudyn_atcm.progress.time.perf_counter", lambda: next(clock))
+    monkeypatch.setattr("exudyn_atcm.io.progress.time.perf_counter", lambda: next(clock))
     stream = io.StringIO()
     bar = ProgressBar(stream, delay=0.0, force=True)  # starts at 100 s
     bar(0.5, 2.0)  # 10 s elapsed for a quarter: 30 s to go
@@ -289,7 +289,7 @@ def test_progress_bar_shows_eta_and_tasks(monkeypatch):
 def test_progress_is_reported_by_wall_time_when_simulated_time_crawls(monkeypatch):
     calls = []
     clock = iter(np.arange(0.0, 100.0, 1.0))  # one second of wall time per step
-    monkeypatch.setattr("exudyn_atcm.run_checks.time.perf_counter", lambda: float(next(clock)))
+    monkeypatch.setattr("exudyn_atcm.solve.run_checks.time.perf_counter", lambda: float(next(clock)))
     tick = WallClock(lambda t, t_end: calls.append(t), t_end=1e9)
     for k in range(1, 6):
         tick(k * 1e-4)  # far below 1 % of t_end
@@ -297,7 +297,7 @@ def test_progress_is_reported_by_wall_time_when_simulated_time_crawls(monkeypatc
 
 
 def test_plots_and_gif_report_progress(tmp_path):
-    from exudyn_atcm.plotting import animate_actuator, plot_result
+    from exudyn_atcm.plots.result import animate_actuator, plot_result
 
     act = REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.01), hysteresis=paper_strain_preisach()), cell="rigid")
     r = simulate(act, 0.01, step=1e-4)

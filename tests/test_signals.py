@@ -1,11 +1,11 @@
-"""Voltage programs of exudyn_atcm.signals."""
+"""Voltage programs of exudyn_atcm.model.signals."""
 
 import math
 
 import numpy as np
 import pytest
 
-from exudyn_atcm.signals import Constant, CsvSignal, PiecewiseLinear, Sine, Steps, Triangle
+from exudyn_atcm.model.signals import Constant, CsvSignal, PiecewiseLinear, Sine, Steps, Triangle
 
 
 def eq_11(t, u_med, u_amp, period):

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from exudyn_atcm import Bender, BendingActuator, Layer, Mechanism, PiezoDrive, simulate, solve_static, static_sweep
-from exudyn_atcm.drive import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE
-from exudyn_atcm.run_checks import SLOW_PROGRAM_FACTOR
-from exudyn_atcm.signals import Constant, PiecewiseLinear, Sine, Triangle
+from exudyn_atcm.model.drive import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE
+from exudyn_atcm.solve.run_checks import SLOW_PROGRAM_FACTOR
+from exudyn_atcm.model.signals import Constant, PiecewiseLinear, Sine, Triangle
 
 from _cli_helpers import cli
 

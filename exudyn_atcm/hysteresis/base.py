@@ -32,7 +32,7 @@ class HysteresisOperator(abc.ABC):
     """
 
     #: What the output is: ``"strain"`` [-], ``"stroke"`` [m], ... or ``None`` when not stated.
-    #: The parameter sets state it; :class:`~exudyn_atcm.drive.PiezoDrive` accepts ``"strain"``
+    #: The parameter sets state it; :class:`~exudyn_atcm.model.drive.PiezoDrive` accepts ``"strain"``
     #: or ``None`` only.  Set it with :meth:`with_output_quantity`.
     output_quantity: str | None = None
 

@@ -225,7 +225,7 @@ class DiscretePreisach(StaircasePreisach):
         on the Cholesky factor of the normal equations.  Any input history identifies the
         density where the history explores the Preisach plane: major loops only the
         neighbourhood of the boundary, minor loops and first-order reversal curves (see
-        :class:`exudyn_atcm.signals.ForcProgram`) the interior; so a model fitted on records
+        :class:`exudyn_atcm.model.signals.ForcProgram`) the interior; so a model fitted on records
         with minor loops predicts minor loops whose outputs change right after a reversal
         (sloped), unlike the equal-gain construction of :meth:`from_loop`.
 

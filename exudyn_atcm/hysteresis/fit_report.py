@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .._atomic import write_json
+from ..io.atomic import write_json
 
 __all__ = ["FitReport", "error_measures", "make_report"]
 

@@ -75,7 +75,7 @@ def _levels_int(name: str, value: Any, minimum: int = 2) -> int:
     return int(value)
 
 
-def _nonnegative(name: str, value: Any) -> float:
+def nonnegative_float(name: str, value: Any) -> float:
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -245,7 +245,7 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             f"n_levels must be <= {MAX_FIT_LEVELS}, got {n_levels}: {relays} relays would need dense normal equations "
             f"of {relays}x{relays} floats ({relays**2 * 8 / 2**30:.3g} GiB); 10 ... 40 levels resolve a measured loop "
             "to about its noise level")
-    smoothing = _nonnegative("smoothing", smoothing)
+    smoothing = nonnegative_float("smoothing", smoothing)
     if input_range is None:
         u_lo, u_hi = float(u_a[:n_fit].min()), float(u_a[:n_fit].max())
     else:

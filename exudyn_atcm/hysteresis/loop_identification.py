@@ -15,7 +15,7 @@ import numpy as np
 
 from .._checks import finite_array, positive_int, same_length
 from .fit_report import make_report
-from .identification import _nonnegative
+from .identification import nonnegative_float
 
 def isotonic(values: np.ndarray) -> np.ndarray:
     """Least-squares non-decreasing fit of ``values`` (pool-adjacent-violators algorithm)."""
@@ -107,8 +107,8 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     y_a = finite_array("y", y, min_length=2)
     same_length(("u", "y"), (u_a, y_a))
     n = positive_int("n", n)
-    reversal_tolerance = _nonnegative("reversal_tolerance", reversal_tolerance)
-    coverage = _nonnegative("coverage", coverage)
+    reversal_tolerance = nonnegative_float("reversal_tolerance", reversal_tolerance)
+    coverage = nonnegative_float("coverage", coverage)
     if coverage > 1.0:
         raise ValueError(f"coverage must lie in [0, 1], got {coverage!r}")
     span = float(np.ptp(u_a))

@@ -1,4 +1,4 @@
-"""Builds the Exudyn multibody system of a :class:`~exudyn_atcm.actuator.BendingActuator`.
+"""Builds the Exudyn multibody system of a :class:`~exudyn_atcm.mechanism.actuator.BendingActuator`.
 
 :func:`build` adds the chain of cells, the clamp and the tip load to a new ``MainSystem`` and
 returns its :class:`~exudyn_atcm.mbs.actuator_model.BuiltModel`.  This module builds the
@@ -8,7 +8,7 @@ returns its :class:`~exudyn_atcm.mbs.actuator_model.BuiltModel`.  This module bu
 runs are in :mod:`~exudyn_atcm.mbs.solver_runs`.  It holds no physics constants of its own (those
 come from the actuator) and no file formats.
 
-Model layout (planar, SI units; see :mod:`exudyn_atcm.actuator` for the coordinates):
+Model layout (planar, SI units; see :mod:`exudyn_atcm.mechanism.actuator` for the coordinates):
 
 ``"six-bar"`` cell j (``x_j = j L_c``), the paper's six-bar cell:
     interface element I_j at ``(x_j, 0)`` (reference point on the passive layer, upper point
@@ -54,12 +54,14 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
+from ..cells import AncfCell, BeamCell, RigidCell, RitzCell, SixBarCell
 from .actuator_ancf import build_ancf
 from .actuator_beam import build_beam
 from .actuator_items import NOVIS, add_ground, hinge_with_spring, position_marker, rigid_body_2d, rotation_marker
 from .actuator_model import BuiltModel
 from .actuator_ritz import build_ritz
 from .actuator_tree import build_tree
+from .cells import add_actuator_cells
 
 #: How ``cell="rigid"`` is built with the default stroke path: ``"tree"`` (minimal coordinates,
 #: one ``ObjectKinematicTree``) or ``"bodies"`` (rigid bodies, revolute joints, springs).
@@ -80,20 +82,9 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
         raise ValueError(f"stroke_path must be 'prestep', 'offsets' or 'user_function', got {stroke_path!r}")
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    if actuator.cell == "six-bar":
-        model = build_six_bar(SC, mbs, actuator, stroke_path)
-    elif actuator.cell == "beam":
-        model = build_beam(SC, mbs, actuator, stroke_path)
-    elif actuator.cell == "ancf":
-        model = build_ancf(SC, mbs, actuator, stroke_path)
-    elif actuator.cell == "ritz":
-        model = build_ritz(SC, mbs, actuator, stroke_path, tip_force)
-    elif RIGID_FORMULATION == "tree" and stroke_path == "prestep":
-        model = build_tree(SC, mbs, actuator, stroke_path)
-    else:
-        model = build_rigid(SC, mbs, actuator, stroke_path)
+    model = add_actuator_cells(actuator.cell, SC, mbs, actuator, stroke_path, tip_force)
     model.uf_strain = _zero
-    if actuator.cell != "ritz":  # the ritz model has no tip point to load (it refuses tip loads)
+    if actuator.cell.carries_tip_load:  # a model without a tip point to load refuses tip loads itself
         fx, fy = float(tip_force[0]), float(tip_force[1])
         model.tip_load = mbs.AddLoad(ii.LoadForceVector(markerNumber=model._tip_marker,
                                                         loadVector=[fx, fy, 0.0], bodyFixed=False))
@@ -271,3 +262,31 @@ def _finish_indices(model: BuiltModel) -> None:
     tip = mbs.GetNodeODE2Index(model._tip_node)
     model.tip_indices = np.array([tip, tip + 1, tip + 2])
     model.cell_angle_indices = np.array([mbs.GetNodeODE2Index(nd) + 2 for nd in model._cell_nodes])
+
+
+# ------------------------------------------------------------------------------ cell kinds
+@add_actuator_cells.register
+def _six_bar(cell: SixBarCell, SC, mbs, actuator, stroke_path, tip_force) -> BuiltModel:
+    return build_six_bar(SC, mbs, actuator, stroke_path)
+
+
+@add_actuator_cells.register
+def _rigid(cell: RigidCell, SC, mbs, actuator, stroke_path, tip_force) -> BuiltModel:
+    if RIGID_FORMULATION == "tree" and stroke_path == "prestep":
+        return build_tree(SC, mbs, actuator, stroke_path)
+    return build_rigid(SC, mbs, actuator, stroke_path)
+
+
+@add_actuator_cells.register
+def _beam(cell: BeamCell, SC, mbs, actuator, stroke_path, tip_force) -> BuiltModel:
+    return build_beam(SC, mbs, actuator, stroke_path)
+
+
+@add_actuator_cells.register
+def _ancf(cell: AncfCell, SC, mbs, actuator, stroke_path, tip_force) -> BuiltModel:
+    return build_ancf(SC, mbs, actuator, stroke_path)
+
+
+@add_actuator_cells.register
+def _ritz(cell: RitzCell, SC, mbs, actuator, stroke_path, tip_force) -> BuiltModel:
+    return build_ritz(SC, mbs, actuator, stroke_path, tip_force)

@@ -1,4 +1,4 @@
-"""The handles of a built :class:`~exudyn_atcm.actuator.BendingActuator` system and its read-out.
+"""The handles of a built :class:`~exudyn_atcm.mechanism.actuator.BendingActuator` system and its read-out.
 
 :class:`BuiltModel` holds the ``SystemContainer`` and ``MainSystem`` built by
 :func:`exudyn_atcm.mbs.actuator_chains.build`, the items through which the stroke enters each

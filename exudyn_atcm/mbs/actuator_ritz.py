@@ -1,7 +1,7 @@
 """Exudyn system of the ``"ritz"`` cell: assumed modes of the rotation field (Rayleigh-Ritz).
 
 The whole bender is one ``ObjectGenericODE2`` on one ``NodeGenericODE2`` with ``n`` coordinates
-``q_i`` [rad], the amplitudes of the rotation shapes of :mod:`exudyn_atcm.ritz_beam` (``n`` =
+``q_i`` [rad], the amplitudes of the rotation shapes of :mod:`exudyn_atcm.theory.ritz_beam` (``n`` =
 ``act.n_cells``).  Its matrices are dense numpy arrays: the diagonal bending stiffness ``K``,
 the damping ``beta K`` (stiffness-proportional, as in the other cells) and the mass matrix
 ``M(kappa)`` linearised about the quasi-static arc of the current free curvature.  The free
@@ -17,7 +17,7 @@ does.  Eigenfrequencies use ``M`` at the exact free curvature of the static stat
 (:meth:`RitzModel.before_linearisation`).
 
 Tip loads are refused: they would need the load's geometric stiffness, which the model leaves
-out (see :mod:`exudyn_atcm.ritz_beam`).
+out (see :mod:`exudyn_atcm.theory.ritz_beam`).
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .. import ritz_beam
-from ..actuator import TIP_LOAD_CELLS
+from ..theory import ritz_beam
+from ..mechanism.actuator import TIP_LOAD_CELLS
 from .actuator_model import BuiltModel
 
 #: Grid spacing [rad] of ``kappa L`` at which the mass matrix is re-evaluated.  The first

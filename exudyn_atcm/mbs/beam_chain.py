@@ -3,7 +3,7 @@
 One ``ObjectBeamGeometricallyExact2D`` element per cell (Simo-Reissner beam, linear
 interpolation of position and rotation between two ``NodeRigidBody2D`` nodes) along the
 passive layer's mid-plane, with the laminate's numbers of
-:class:`~exudyn_atcm.laminate.Laminate` exactly as the lone actuator's beam cell
+:class:`~exudyn_atcm.model.laminate.Laminate` exactly as the lone actuator's beam cell
 (:mod:`exudyn_atcm.mbs.actuator_beam`): bending stiffness ``EI``, axial and shear stiffness
 ``a1 + a2`` (a practically inextensible, shear-rigid axis: the closed forms are
 Euler-Bernoulli's), mass per length, rotary inertia about the passive mid-plane, and
@@ -37,7 +37,9 @@ import math
 import numpy as np
 from exudyn import itemInterface as ii
 
+from ..cells import BeamCell
 from ..mechanism.bender import Bender
+from .cells import add_mechanism_bender
 from .items import NOVIS, position_marker, rotation_marker
 from .model import Body, MechanismModel
 
@@ -141,3 +143,8 @@ def weld_node(mbs, node: Body, body: Body, ground_coordinate: int) -> None:
     mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[rotation_marker(mbs, body, ground_coordinate),
                                                               rotation_marker(mbs, node, ground_coordinate)],
                                                visualization=NOVIS))
+
+
+@add_mechanism_bender.register
+def _beam(cell: BeamCell, builder, bender: Bender) -> None:
+    add_beam_chain(builder.mbs, builder.model, bender)

@@ -35,7 +35,7 @@ import numpy as np
 from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
-from ..mechanism.bender import Bender
+from ..mechanism.bender import PASSIVE_STRIP_CELLS, Bender
 from ..mechanism.connections import Pin, Slider, joint_label
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
@@ -49,10 +49,12 @@ from .items import rigid_marker as _rigid_marker
 from .items import rotation_marker as _rot_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
 from .loads import add_loads
-from .six_bar import add_six_bar_chain, six_bar_end_mass
-from .beam_chain import actuation_torques, add_beam_chain, beam_end_key, weld_node
+from ..cells import END_CHAIN, END_NODE
+from . import rigid_chain  # noqa: F401 - registers the rigid cell's realisation
+from .cells import add_mechanism_bender
+from .six_bar import six_bar_end_mass
+from .beam_chain import actuation_torques, beam_end_key, weld_node
 
-_CELL_COLOR = [0.2, 0.45, 0.8, 1.0]
 _LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
 _FLEX_COLOR = [0.85, 0.55, 0.15, 1.0]
 
@@ -77,7 +79,8 @@ class _Builder:
                 sources.append(drive)
         self.model.sources = sources
         self.n_sources = len(sources)
-        self._theta: dict[str, tuple] = {}
+        #: per rigid-cell bender: (theta(j), moment_full(j), EI, beta, cell lengths), for its end springs
+        self.cell_rotations: dict[str, tuple] = {}
         self._clamped: set[str] = set()  # beam nodes clamped to the ground (no actuation torque)
 
     def zeros(self) -> np.ndarray:
@@ -87,18 +90,18 @@ class _Builder:
     def build(self) -> MechanismModel:
         mbs, mech, model = self.mbs, self.mech, self.model
         for bender in mech.benders:
-            if bender.cell == "six-bar" and bender.active is None:
+            if bender.cell.needs_active_layer and bender.active is None:
                 raise MechanismError(
-                    f"bender {bender.name!r}: the six-bar cell models two layers; a passive strip (active=None) "
-                    "needs cell='rigid' or cell='beam'")
+                    f"bender {bender.name!r}: the {bender.cell.name} cell models two layers; a passive strip "
+                    f"(active=None) needs {' or '.join(f'cell={n!r}' for n in PASSIVE_STRIP_CELLS)}")
         if self.ground_item is None:
             self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
                                                                             'graphicsData': []}))
         gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
         self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
-        six_bar = {b.name for b in mech.benders if b.cell == "six-bar"}
-        beam = {b.name for b in mech.benders if b.cell == "beam"}
+        six_bar = {b.name for b in mech.benders if b.cell.end_kind == END_CHAIN}
+        beam = {b.name for b in mech.benders if b.cell.end_kind == END_NODE}
         self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar, beam)
         self._group_bodies()
         for bender in mech.benders:
@@ -165,7 +168,7 @@ class _Builder:
         if isinstance(comp, Flexure) and comp.model == "prbm":
             return [comp.segment_masses()[0 if end == "base" else 1]]
         bender = comp if isinstance(comp, Bender) else comp.as_bender()
-        if bender.cell == "six-bar":
+        if bender.cell.end_kind == END_CHAIN:
             m, j, center, _ = six_bar_end_mass(bender, end)
             return [(m, j, center)]
         # a rigid-cell end's interface body: the laminate over s = min(h1 + h2, L_c/10)
@@ -178,7 +181,7 @@ class _Builder:
 
     def _is_six_bar(self, part: str) -> bool:
         comp = self.mech.components[part.partition("#")[0]]
-        return isinstance(comp, Bender) and comp.cell == "six-bar"
+        return isinstance(comp, Bender) and comp.cell.end_kind == END_CHAIN
 
     def _interface_body(self, key: str, part: str) -> Body:
         """A bender end's own interface body: node at the end point, the bender's reference angle."""
@@ -186,7 +189,7 @@ class _Builder:
         comp = self.mech.components[name]
         bender = comp if isinstance(comp, Bender) else comp.as_bender()
         point = bender.points[end]
-        if bender.cell == "six-bar":
+        if bender.cell.end_kind == END_CHAIN:
             m, j, _, offset = six_bar_end_mass(bender, end)
             com = (0.0, -bender.curvature_sign * offset)
         else:
@@ -223,69 +226,12 @@ class _Builder:
 
     # ---------------------------------------------------------------- benders
     def _bender_cells(self, bender: Bender) -> None:
-        mbs, model = self.mbs, self.model
-        if bender.cell == "six-bar":
-            ends = [model.bodies[self.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
-            model.cells[bender.name] = add_six_bar_chain(mbs, model, bender, *ends, self.gcoord)
-            return
-        if bender.cell == "beam":
-            add_beam_chain(mbs, model, bender)
-            return
-        lam = bender.laminate
-        ei, c, side = lam.bending_stiffness, lam.curvature_per_strain, bender.curvature_sign
-        beta = bender.stiffness_damping_factor
-        lengths = bender.cell_lengths
-        seg_of = bender.cell_segments
-        d = bender.direction
-        x0 = np.array(bender.base_position)
-        thick = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
-        keys, s = [], 0.0
-        for j, lc in enumerate(lengths):
-            s += lc
-            m, com_offset, j_com = lam.rigid_cell(lc)
-            # active layer on the right of base->tip = local -y
-            com = (-0.5 * lc, -side * com_offset)
-            gfx = [exu.graphics.Brick(centerPoint=[-0.5 * lc, -side * 0.5 * (thick - lam.passive.thickness), 0.0],
-                                      size=[lc, thick, 0.2 * lc], color=_CELL_COLOR)]
-            key = f"{bender.name}/cell{j + 1}"
-            model.bodies[key] = _add_body(mbs, key, x0 + s * d, bender.angle, m, j_com, com, gfx)
-            keys.append(key)
-        model.cells[bender.name] = keys
-
-        def theta(j: int) -> np.ndarray:
-            """Free rotation of half cell j per unit strain of each source [rad]."""
-            out = self.zeros()
-            drive = bender.segments[seg_of[j]].drive
-            if drive is not None:
-                out[model.drive_source[bender.drive_name(int(seg_of[j]))]] = 0.5 * side * c * lengths[j]
-            return out
-
-        def moment_full(j: int) -> np.ndarray:
-            """EI kappa per unit strain: the rest moment of a joint standing for two halves of one drive."""
-            out = self.zeros()
-            drive = bender.segments[seg_of[j]].drive
-            if drive is not None:
-                out[model.drive_source[bender.drive_name(int(seg_of[j]))]] = side * ei * c
-            return out
-
-        self._theta[bender.name] = (theta, moment_full, ei, beta, lengths)
-        # inner joints
-        for j in range(len(lengths) - 1):
-            k = 2.0 * ei / (lengths[j] + lengths[j + 1])
-            if seg_of[j] == seg_of[j + 1]:
-                k = ei / lengths[j] if lengths[j] == lengths[j + 1] else k
-                moment = moment_full(j)
-            else:
-                moment = k * (theta(j) + theta(j + 1))
-            el = Element(k, beta * k, theta(j) + theta(j + 1), moment)
-            left = model.bodies[keys[j]]
-            right = model.bodies[keys[j + 1]]
-            self._revolute(left, (0.0, 0.0), right, (-lengths[j + 1], 0.0))
-            model.hinges.append(Hinge(keys[j], keys[j + 1], [el]))
+        """The bender's cells, as its cell kind's registered realisation adds them (:mod:`~exudyn_atcm.mbs.cells`)."""
+        add_mechanism_bender(bender.cell, self, bender)
 
     def end_element(self, bender_name: str, end: str) -> tuple[Element, str, tuple[float, float]]:
         """The end spring of a bender end: element, end cell key, the end point in the cell's frame."""
-        theta, moment_full, ei, beta, lengths = self._theta[bender_name]
+        theta, moment_full, ei, beta, lengths = self.cell_rotations[bender_name]
         j = 0 if end == "base" else len(lengths) - 1
         k = 2.0 * ei / lengths[j]
         el = Element(k, beta * k, theta(j), moment_full(j))
@@ -293,7 +239,8 @@ class _Builder:
         local = (-lengths[j], 0.0) if end == "base" else (0.0, 0.0)
         return el, cell, local
 
-    def _revolute(self, a: Body, la, b: Body, lb) -> None:
+    def revolute(self, a: Body, la, b: Body, lb) -> None:
+        """A revolute joint between point ``la`` of ``a`` and ``lb`` of ``b`` (body frames)."""
         self.mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[_marker_position(self.mbs, a, la),
                                                                    _marker_position(self.mbs, b, lb)],
                                                     visualization=_NOVIS))
@@ -325,10 +272,10 @@ class _Builder:
                 part = f"{bender.name}#{end}"
                 g = self.groups[self.group_of[part]]
                 label = f"{bender.name}.{end}"
-                if bender.cell == "six-bar":  # the chain ends on the group's body itself
+                if bender.cell.end_kind == END_CHAIN:  # the chain ends on the group's body itself
                     model.ends[label] = EndReadout("body", body=g.key)
                     continue
-                if bender.cell == "beam":  # the end node, welded to its group's body unless it is that body
+                if bender.cell.end_kind == END_NODE:  # the end node, welded to its group's body unless it is that body
                     key = beam_end_key(bender, end)
                     node, body = model.bodies[key], model.bodies[g.key]
                     if body is not node:
@@ -379,7 +326,7 @@ class _Builder:
 
     def _hinge_at(self, a: str, b: str, elements: list[Element], position) -> int:
         body_a, body_b = self.model.bodies[a], self.model.bodies[b]
-        self._revolute(body_a, local_point(body_a, position), body_b, local_point(body_b, position))
+        self.revolute(body_a, local_point(body_a, position), body_b, local_point(body_b, position))
         self.model.hinges.append(Hinge(a, b, elements))
         return len(self.model.hinges) - 1
 
@@ -465,7 +412,7 @@ class _Builder:
                 per_body[h.b] = per_body.get(h.b, self.zeros()) + h.moment
                 per_body[h.a] = per_body.get(h.a, self.zeros()) - h.moment
         for bender in self.mech.benders:
-            if bender.cell == "beam":  # the segments' end torques EI kappa on the beam nodes
+            if bender.cell.end_kind == END_NODE:  # the segments' end torques EI kappa on the beam nodes
                 for key, coef in actuation_torques(model, bender, self.zeros).items():
                     if key not in self._clamped:
                         per_body[key] = per_body.get(key, self.zeros()) + coef

@@ -19,7 +19,7 @@ import numpy as np
 from . import solver_runs as runs
 from ..mechanism.link import Link
 from ..mechanism.points import MechanismError, closest
-from ..result import Result
+from ..io.result import Result
 from ..errors import SolverError
 from .model import MechanismModel
 
@@ -60,7 +60,7 @@ def restore_start_of_step(model: MechanismModel) -> None:
     the last step it accepted before the one it computed last.  When a run stops because
     a pre-step hook returned ``False``, Exudyn still completes that step and calls the
     post-step hook; a caller that did not accept it (an interrupt caught by
-    :class:`~exudyn_atcm.run_checks.InterruptGuard`) closes its record with this state
+    :class:`~exudyn_atcm.solve.run_checks.InterruptGuard`) closes its record with this state
     (measured with Exudyn 1.13; see ``tests/test_mechanism_recording.py``).
     """
     data = model.mbs.systemData

@@ -20,7 +20,9 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
+from ..cells import SixBarCell
 from ..mechanism.bender import Bender
+from .cells import add_mechanism_bender
 from .items import NOVIS, add_body, local_point, position_marker, rotation_marker
 from .model import Body, MechanismModel
 
@@ -139,3 +141,11 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         model.springs.append((spring, k1, "damping"))
         prev_lower, prev_upper, prev_rot = lower, upper_m, rot
     return bars
+
+
+@add_mechanism_bender.register
+def _six_bar(cell: SixBarCell, builder, bender: Bender) -> None:
+    """A six-bar chain between the bodies of the groups its two ends belong to."""
+    model = builder.model
+    ends = [model.bodies[builder.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
+    model.cells[bender.name] = add_six_bar_chain(builder.mbs, model, bender, *ends, builder.gcoord)

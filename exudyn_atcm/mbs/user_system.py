@@ -19,8 +19,8 @@ from exudyn import itemInterface as ii
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.points import MechanismError, PointRef, closest
-from ..result import Result
-from ..strain_sources import InStepStrain
+from ..io.result import Result
+from ..model.strain_sources import InStepStrain
 from .builder import add_mechanism
 from .hooks import add_post_step, add_pre_step
 from .items import position_marker, rigid_marker

@@ -12,6 +12,7 @@ from .bender import Bender
 from .connections import Force, Joint, Pin, Slider, Spring, Stop, Torque, Weld, joint_label
 from .flexure import Flexure
 from .link import Link
+from .realisation import count_degrees_of_freedom
 from .points import GROUND, MechanismError, PointRef, check_name, closest
 
 Component = Union[Bender, Link, Flexure]
@@ -257,7 +258,7 @@ class Mechanism:
     def feedback(self, drive: str, measurement: str) -> "Mechanism":
         """Declare what the controller of ``drive`` observes: a result column of the mechanism.
 
-        A drive whose voltage is a controller (:mod:`exudyn_atcm.control`) needs one; after
+        A drive whose voltage is a controller (:mod:`exudyn_atcm.model.control`) needs one; after
         every accepted step of :func:`exudyn_atcm.simulate` the controller's
         ``observe(t, value)`` receives the column's value in SI units.
 
@@ -345,10 +346,7 @@ class Mechanism:
             ``dof``, ``coordinates``, ``constraints`` and ``redundant`` (dependent constraints,
             e.g. of an over-constrained loop).
         """
-        from ..mbs.linear import degrees_of_freedom  # noqa: PLC0415 - the Exudyn layer builds on this one
-        from ..mbs.builder import build  # noqa: PLC0415
-
-        return degrees_of_freedom(build(self))
+        return count_degrees_of_freedom(self)
 
     # ------------------------------------------------------------------ checks
     def check(self, *, grounded: bool = True) -> None:

@@ -10,13 +10,17 @@ from typing import Any
 
 import numpy as np
 
+from ..cells import CELL_KINDS, CellKind, cell_kind
 from .._checks import finite_float, positive_float, positive_int, warn_implausible
-from ..drive import PiezoDrive
-from ..laminate import STIFFNESS_MODELS, Laminate
-from ..materials import Layer
+from ..model.drive import PiezoDrive
+from ..model.laminate import STIFFNESS_MODELS, Laminate
+from ..model.materials import Layer
 from .points import PointRef, check_name, unknown_point
 
-CELL_TYPES = ("rigid", "six-bar", "beam")
+#: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
+CELL_TYPES = tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
+#: Names of those that can also make a passive strip (``active=None``).
+PASSIVE_STRIP_CELLS = tuple(name for name in CELL_TYPES if not CELL_KINDS[name].needs_active_layer)
 ACTIVE_SIDES = ("right", "left")
 #: Default modal damping ratio of the first bending mode [-] (as for ``BendingActuator``).
 DEFAULT_DAMPING_RATIO = 0.02
@@ -83,8 +87,10 @@ class Bender:
         Base point in the reference pose [m] (default the origin).
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
-    cell : {"rigid", "six-bar", "beam"}, optional
-        Cell model (see :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; the
+    cell : {"rigid", "six-bar", "beam"} or CellKind, optional
+        Cell model by name or as a :class:`~exudyn_atcm.cells.CellKind` (see
+        :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; a kind that cannot join a
+        mechanism (``"ancf"``, ``"ritz"``) is refused with its own reason; the
         six-bar cell needs an active layer.  ``"beam"``: one geometrically exact beam element
         per cell (the actuator's beam cell): bending stiffness ``EI``, a practically
         inextensible axis, each segment's free curvature as end torques ``EI kappa`` on its end
@@ -121,7 +127,7 @@ class Bender:
         segments: Sequence[Segment] | None = None,
         base: tuple[float, float] = (0.0, 0.0),
         angle: float = 0.0,
-        cell: str = "rigid",
+        cell: str | CellKind = "rigid",
         stiffness: str = "composite",
         active_side: str = "right",
         damping: float = DEFAULT_DAMPING_RATIO,
@@ -164,7 +170,12 @@ class Bender:
         for axis, value in zip("xy", self.base_position):
             warn_implausible(f"base {axis}", value, "position", owner)
         warn_implausible("angle", self.angle, "angle", owner)
-        for pname, value, allowed in (("cell", cell, CELL_TYPES), ("stiffness", stiffness, STIFFNESS_MODELS),
+        cell = cell_kind(cell)
+        refusal = cell.mechanism_refusal()
+        if refusal is not None:
+            raise ValueError(f"cell={cell.name!r} cannot be a mechanism's bender: {refusal} "
+                             f"(the package's cells that can: {CELL_TYPES})")
+        for pname, value, allowed in (("stiffness", stiffness, STIFFNESS_MODELS),
                                       ("active_side", active_side, ACTIVE_SIDES)):
             if not isinstance(value, str) or value not in allowed:
                 raise ValueError(f"{pname} must be one of {allowed}, got {value!r}")
@@ -257,7 +268,7 @@ class Bender:
         p = self.name
         out: dict[str, Any] = {
             f"{p}.type": "Bender",
-            f"{p}.cell": self.cell,
+            f"{p}.cell": self.cell.name,
             f"{p}.stiffness": self.stiffness,
             f"{p}.active_side": self.active_side,
             f"{p}.base [m]": self.base_position,

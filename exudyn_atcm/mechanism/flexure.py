@@ -10,10 +10,10 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_float, positive_float, positive_int, warn_implausible
-from ..laminate import Laminate
-from ..materials import PLAUSIBLE_RANGES, Layer
+from ..model.laminate import Laminate
+from ..model.materials import PLAUSIBLE_RANGES, Layer
 from .bender import DEFAULT_DAMPING_RATIO, Bender
-from .link import _xy
+from .link import point_pair
 from .points import MechanismError, PointRef, check_name, unknown_point
 
 FLEXURE_MODELS = ("prbm", "cells")
@@ -57,8 +57,8 @@ class Flexure:
                  thickness: float, youngs_modulus: float, density: float, model: str = "prbm", n_cells: int = 4,
                  gamma: float = 0.8517, k_theta: float = 2.65, damping: float = DEFAULT_DAMPING_RATIO) -> None:
         self.name = check_name("Flexure name", name)
-        self.base_position = _xy("base", base)
-        self.tip_position = _xy("tip", tip)
+        self.base_position = point_pair("base", base)
+        self.tip_position = point_pair("tip", tip)
         self.width = positive_float("width", width)
         self.thickness = positive_float("thickness", thickness)
         self.youngs_modulus = positive_float("youngs_modulus", youngs_modulus)

@@ -11,7 +11,7 @@ from .._checks import finite_float, positive_float, warn_implausible
 from .points import PointRef, check_name, unknown_point
 
 
-def _xy(name: str, value: Any) -> tuple[float, float]:
+def point_pair(name: str, value: Any) -> tuple[float, float]:
     try:
         x, y = value
     except (TypeError, ValueError):
@@ -49,7 +49,7 @@ class Link:
         if not isinstance(points, Mapping) or not points:
             raise ValueError(f"points of link {name!r} must be a non-empty mapping name -> (x, y) [m], got {points!r}")
         self.points: dict[str, tuple[float, float]] = {
-            check_name(f"point name of link {name!r}", k): _xy(f"points[{k!r}]", v) for k, v in points.items()}
+            check_name(f"point name of link {name!r}", k): point_pair(f"points[{k!r}]", v) for k, v in points.items()}
         self.mass = positive_float("mass", mass)
         self.inertia = positive_float("inertia", inertia)
         for pname, xy in self.points.items():
@@ -58,7 +58,7 @@ class Link:
         if center_of_mass is None:
             c = np.mean(np.array(list(self.points.values())), axis=0)
             center_of_mass = (float(c[0]), float(c[1]))
-        self.center_of_mass = _xy("center_of_mass", center_of_mass)
+        self.center_of_mass = point_pair("center_of_mass", center_of_mass)
 
     @classmethod
     def from_outline(cls, name: str, points: Mapping[str, tuple[float, float]], outline: Sequence[tuple[float, float]],
@@ -78,7 +78,7 @@ class Link:
         """
         density = positive_float("density", density)
         thickness = positive_float("thickness", thickness)
-        vertices = np.array([_xy(f"outline[{k}]", v) for k, v in enumerate(outline)], dtype=float) \
+        vertices = np.array([point_pair(f"outline[{k}]", v) for k, v in enumerate(outline)], dtype=float) \
             if isinstance(outline, Sequence) or isinstance(outline, np.ndarray) else None
         if vertices is None or len(vertices) < 3:
             raise ValueError(f"outline of link {name!r} must be a sequence of >= 3 vertices (x, y) [m], got {outline!r}")

@@ -22,8 +22,8 @@ import sys
 import time
 from typing import IO
 
-from .._cli_errors import report_error as _error
-from ..cases import CaseError, load_case
+from ..casework.error_report import report_error as _error
+from ..casework.case import CaseError, load_case
 
 __all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
 
@@ -215,7 +215,7 @@ def _parse_constraint(text: str) -> tuple[str, tuple[float | None, float | None]
 
 def optimize_command(args: argparse.Namespace) -> int:
     """Run ``exudyn-atcm optimize``; returns the exit status."""
-    from .design import GridError, _parameter, parse_grid_spec
+    from .design import GridError, case_parameter, parse_grid_spec
     from .optimize import optimize
 
     debug = bool(getattr(args, "debug", False))
@@ -233,7 +233,7 @@ def optimize_command(args: argparse.Namespace) -> int:
         for text in args.bound:
             name = text.partition("=")[0].strip()
             if name and "=" in text:
-                kind = _parameter(case, name, "--bound").kind
+                kind = case_parameter(case, name, "--bound").kind
                 if kind not in ("float", "int"):
                     raise GridError(f"--bound {name}: {name} is a {kind} parameter; design variables must be float or int "
                                     "(fix it with --set instead)")

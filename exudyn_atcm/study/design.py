@@ -1,7 +1,7 @@
 """The points of a study: full grids, random or Latin-hypercube samples, explicit lists.
 
 Every function here returns a list of ``{name: value}`` dictionaries with values already
-checked against the case's declared :class:`~exudyn_atcm.cases.Parameter` (type, choices),
+checked against the case's declared :class:`~exudyn_atcm.casework.case.Parameter` (type, choices),
 in a fixed order: a full grid varies its *last* named parameter fastest (like nested
 ``for`` loops written in the order given), samples come in the order the generator draws
 them.  The order is the study's run order and the row order of its table, whatever engine
@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from ..cases import Case, CaseError, Parameter
+from ..casework.case import Case, CaseError, Parameter
 
 __all__ = [
     "GridError",
@@ -48,7 +48,7 @@ def _declared(case: Case) -> dict[str, Parameter]:
     return {p.name: p for p in case.parameters}
 
 
-def _parameter(case: Case, name: str, what: str = "grid") -> Parameter:
+def case_parameter(case: Case, name: str, what: str = "grid") -> Parameter:
     declared = _declared(case)
     if name in declared:
         return declared[name]
@@ -81,7 +81,7 @@ def check_point(case: Case, point: Mapping[str, Any]) -> dict[str, Any]:
     """
     if not isinstance(point, Mapping):
         raise GridError(f"a point must be a mapping of parameter names to values, got {point!r}")
-    return {name: _check_value(_parameter(case, name, "point"), value, case) for name, value in point.items()}
+    return {name: _check_value(case_parameter(case, name, "point"), value, case) for name, value in point.items()}
 
 
 def full_grid(case: Case, grid: Mapping[str, Iterable[Any]]) -> list[dict[str, Any]]:
@@ -104,7 +104,7 @@ def full_grid(case: Case, grid: Mapping[str, Iterable[Any]]) -> list[dict[str, A
     names: list[str] = []
     axes: list[list[Any]] = []
     for name, values in grid.items():
-        parameter = _parameter(case, name)
+        parameter = case_parameter(case, name)
         if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
             raise GridError(f"grid: values of {name!r} must be a list or array of values, got {values!r}")
         checked = [_check_value(parameter, v, case) for v in (np.asarray(values).tolist() if isinstance(values, np.ndarray) else values)]
@@ -152,7 +152,7 @@ def sample_points(
     if not bounds:
         raise GridError("samples: bounds must name at least one parameter")
     names = list(bounds)
-    params = [_parameter(case, name, "samples") for name in names]
+    params = [case_parameter(case, name, "samples") for name in names]
     lows, highs = [], []
     for parameter in params:
         if parameter.kind not in ("float", "int"):
@@ -225,7 +225,7 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False, option: str 
     name = name.strip()
     if not sep or not name:
         raise GridError(f"{option} expects NAME=START:STOP:N or NAME=A,B,C, got {text!r}")
-    parameter = _parameter(case, name, option)
+    parameter = case_parameter(case, name, option)
     spec = spec.strip()
     if not spec:
         raise GridError(f"{option} {name}: no values given (empty range) in {text!r}")

@@ -24,9 +24,9 @@ from typing import Any
 
 import numpy as np
 
-from .._atomic import write_json
-from ..cases import Case, CaseOutput, load_case
-from .design import GridError, _parameter, check_point
+from ..io.atomic import write_json
+from ..casework.case import Case, CaseOutput, load_case
+from .design import GridError, case_parameter, check_point
 from .engines import make_engine
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
 from .store import RunStore
@@ -193,7 +193,7 @@ def optimize(
         raise GridError("bounds must map at least one design variable to (low, high)")
     names, lows, highs, kinds = [], [], [], []
     for name, pair in bounds.items():
-        parameter = _parameter(case, name, "bounds")
+        parameter = case_parameter(case, name, "bounds")
         if parameter.kind not in ("float", "int"):
             raise GridError(f"bounds: {name!r} is a {parameter.kind} parameter; design variables must be float or int")
         try:

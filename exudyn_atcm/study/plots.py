@@ -1,7 +1,7 @@
 """Plots of a study table: a scalar against one parameter, and a heat map over two.
 
 Both take the table returned by :func:`~exudyn_atcm.study.sweep` (DataFrame or structured
-array) and write a PNG atomically through :mod:`exudyn_atcm.plot_style`.  Failed runs
+array) and write a PNG atomically through :mod:`exudyn_atcm.plots.style`.  Failed runs
 (NaN scalars) are left out of lines and shown as blank cells in heat maps.  When further
 parameters vary, only the rows at the first value of each of them are plotted (the title
 says which).
@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..plot_style import axis_label, display_scale, new_figure, save_figure
+from ..plots.style import axis_label, display_scale, new_figure, save_figure
 from .table import column, unit_of
 
 __all__ = ["plot_scalar", "plot_heatmap", "plot_study"]

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..cases import Case
+from ..casework.case import Case
 from .sweep import run_study
 from .table import Column
 

@@ -18,7 +18,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .._atomic import write_json
+from ..io.atomic import write_json
 from .._version import __version__
 
 __all__ = ["RunStore", "run_key", "case_fingerprint"]

@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from .._atomic import write_text
-from ..cases import Case
+from ..io.atomic import write_text
+from ..casework.case import Case
 
 __all__ = ["Column", "table_columns", "to_table", "write_table_csv", "column", "unit_of"]
 

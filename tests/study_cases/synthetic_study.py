@@ -15,8 +15,8 @@ import time
 import uuid
 from pathlib import Path
 
-from exudyn_atcm.cases import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.result import Result
+from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.io.result import Result
 
 PARAMETERS = [
     Parameter("x", 1.0, "m", "input x"),

@@ -1,0 +1,460 @@
+"""The regression benchmark suite: run case scripts, compare with stored and analytic references.
+
+A suite is a directory (``benchmarks/regression/`` in the source checkout)::
+
+    suite.json                 the benchmark list (cases, fixed parameters, tolerances)
+    references/<id>.csv        reference time series of benchmark <id> (Result CSV)
+    references/<id>.json       reference scalars, wall time, steps and provenance history
+    references/HISTORY.md      one line per reference change: date, versions, platform, reason
+
+Each benchmark in ``suite.json`` runs one case with fixed parameters and checks
+
+* ``channels``: whole time series; the new series is interpolated linearly onto the
+  reference's base (``"base"``, default ``time``) and its RMS and maximum error are compared
+  with that channel's own absolute tolerances ``{"rms": ..., "max": ...}`` (in the channel's
+  SI unit);
+* ``scalars``: key scalars of the case, each either against an ``"analytic"`` value (from
+  the paper or a closed form of the theory page, with its ``"source"``; never from the code's output) or against
+  the stored reference, with tolerance ``"abs"`` and/or ``"rel"`` (passes if the error is
+  within either).
+
+Speed (wall time against the reference's) is reported separately and never fails the
+verdict.  References are only written by :func:`run_suite` with ``update=True`` and a reason
+(``exudyn-atcm bench --update-references --reason TEXT``); analytic references are never
+written.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+import os
+import platform
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..io.atomic import write_json, write_text
+from .case import find_case, load_case, versions
+from ..io.result import read_csv
+from ..io.result import Result
+
+__all__ = ["MetricRow", "SuiteReport", "default_suite_dir", "load_suite", "run_suite", "ENV_SUITE"]
+
+#: Environment variable naming the suite directory.
+ENV_SUITE = "EXUDYN_ATCM_BENCH"
+
+
+def default_suite_dir() -> Path:
+    """``$EXUDYN_ATCM_BENCH``, else ``./benchmarks/regression`` of the current directory, else
+    ``benchmarks/regression`` of the source checkout beside the package.
+
+    Raises
+    ------
+    ValueError
+        If none of these exists.
+    """
+    env = os.environ.get(ENV_SUITE)
+    if env:
+        return Path(env)
+    candidates = [Path.cwd() / "benchmarks" / "regression", Path(__file__).resolve().parents[2] / "benchmarks" / "regression"]
+    for candidate in candidates:
+        if (candidate / "suite.json").is_file():
+            return candidate
+    raise ValueError(
+        "suite: no regression suite found; looked for suite.json in "
+        + ", ".join(str(c) for c in candidates)
+        + f"; run from the source checkout, pass --suite DIR or set {ENV_SUITE}"
+    )
+
+
+@dataclass
+class MetricRow:
+    """One row of the report: a metric of one benchmark."""
+
+    case: str
+    metric: str
+    kind: str  # "analytic", "stored", "series rms", "series max", "run"
+    unit: str
+    reference: float
+    value: float
+    abs_error: float
+    rel_error: float
+    tolerance: str
+    passed: bool
+    wall_time: float
+    steps: int | None
+    note: str = ""
+
+
+@dataclass
+class SuiteReport:
+    """The outcome of a suite run."""
+
+    rows: list[MetricRow] = field(default_factory=list)
+    speed: list[dict[str, Any]] = field(default_factory=list)
+    skipped: list[dict[str, str]] = field(default_factory=list)
+    updated: list[str] = field(default_factory=list)
+    files: list[Path] = field(default_factory=list)
+    wall_time: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        """True if every accuracy metric passed (speed is not part of the verdict)."""
+        return all(r.passed for r in self.rows)
+
+    def table(self) -> str:
+        """The accuracy and speed tables as Markdown."""
+        head = "| case | metric | unit | reference | value | abs error | rel error | tolerance | pass | wall time [s] | steps |"
+        lines = [head, "|" + "---|" * 11]
+        for r in self.rows:
+            lines.append(
+                f"| {r.case} | {r.metric} | {r.unit} | {_fmt(r.reference)} | {_fmt(r.value)} | {_fmt(r.abs_error)} | "
+                f"{_fmt(r.rel_error)} | {r.tolerance} | {'pass' if r.passed else '**FAIL**'} | {r.wall_time:.3f} | "
+                f"{'' if r.steps is None else r.steps} |"
+                + (f" {r.note}" if r.note and not r.passed else "")
+            )
+        lines += ["", "Speed (informative; never fails the verdict):", ""]
+        lines += ["| case | wall time [s] | reference wall time [s] | ratio | steps |", "|---|---|---|---|---|"]
+        for s in self.speed:
+            lines.append(
+                f"| {s['case']} | {s['wall_time']:.3f} | {_fmt(s['reference_wall_time'])} | {_fmt(s['ratio'])} | {s['steps']} |"
+            )
+        if self.skipped:
+            lines += ["", "Skipped: " + "; ".join(f"{s['case']} ({s['reason']})" for s in self.skipped)]
+        n_fail = sum(not r.passed for r in self.rows)
+        lines += ["", f"Verdict: {'PASS' if self.passed else 'FAIL'} ({len(self.rows) - n_fail}/{len(self.rows)} metrics passed)"]
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form of the report."""
+        return {
+            "passed": self.passed,
+            "date": _now(),
+            "versions": versions(),
+            "platform": platform.platform(),
+            "wall_time [s]": self.wall_time,
+            "rows": [asdict(r) for r in self.rows],
+            "speed": self.speed,
+            "skipped": self.skipped,
+            "updated_references": self.updated,
+        }
+
+
+def _fmt(x: Any) -> str:
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    if isinstance(x, (int, float)):
+        return f"{x:.7g}"
+    return str(x)
+
+
+def _now() -> str:
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+# ----------------------------------------------------------------------------- suite file
+_BENCH_KEYS = {"id", "case", "parameters", "quick", "channels", "scalars", "enabled", "note", "base"}
+_SCALAR_KEYS = {"name", "scalar", "analytic", "source", "abs", "rel"}
+
+
+def load_suite(suite_dir: str | os.PathLike) -> dict[str, Any]:
+    """Read and check ``suite.json``.
+
+    Raises
+    ------
+    ValueError
+        For a missing file, invalid JSON or an entry with unknown keys, a missing case or
+        scalar name, or a tolerance that is not a number >= 0.
+    """
+    path = Path(suite_dir) / "suite.json"
+    try:
+        suite = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise ValueError(f"{path}: no suite file (suite_dir must hold suite.json)") from None
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path}, line {exc.lineno}: invalid JSON: {exc.msg}") from None
+    ids = set()
+    for i, bench in enumerate(suite.get("benchmarks", [])):
+        where = f"{path}: benchmarks[{i}]"
+        unknown = set(bench) - _BENCH_KEYS
+        if unknown:
+            raise ValueError(f"{where}: unknown keys {sorted(unknown)}; allowed: {sorted(_BENCH_KEYS)}")
+        for key in ("id", "case"):
+            if not isinstance(bench.get(key), str):
+                raise ValueError(f"{where}: {key!r} must be a string, got {bench.get(key)!r}")
+        if bench["id"] in ids:
+            raise ValueError(f"{where}: duplicate id {bench['id']!r}")
+        ids.add(bench["id"])
+        for channel, tol in bench.get("channels", {}).items():
+            for key in ("rms", "max"):
+                if not isinstance(tol.get(key), (int, float)) or tol[key] < 0:
+                    raise ValueError(f"{where}: channels[{channel!r}][{key!r}] must be a number >= 0, got {tol.get(key)!r}")
+        for j, metric in enumerate(bench.get("scalars", [])):
+            unknown = set(metric) - _SCALAR_KEYS
+            if unknown:
+                raise ValueError(f"{where}: scalars[{j}]: unknown keys {sorted(unknown)}; allowed: {sorted(_SCALAR_KEYS)}")
+            if not isinstance(metric.get("scalar"), str):
+                raise ValueError(f"{where}: scalars[{j}]: 'scalar' must name a key scalar of the case")
+            if "abs" not in metric and "rel" not in metric:
+                raise ValueError(f"{where}: scalars[{j}] ({metric['scalar']}): give a tolerance 'abs' and/or 'rel'")
+            if "analytic" in metric and "source" not in metric:
+                raise ValueError(f"{where}: scalars[{j}] ({metric['scalar']}): an analytic value needs its 'source'")
+    return suite
+
+
+# ----------------------------------------------------------------------------- running
+def run_suite(
+    suite_dir: str | os.PathLike | None = None,
+    out_dir: str | os.PathLike = "out/bench",
+    *,
+    quick: bool = False,
+    update: bool = False,
+    reason: str | None = None,
+    plots: bool = True,
+    only: Sequence[str] | None = None,
+    echo: Any = None,
+) -> SuiteReport:
+    """Run the suite, compare, write ``report.md``, ``report.json`` and the channel plots.
+
+    Parameters
+    ----------
+    suite_dir : str or os.PathLike, optional
+        Suite directory (default :func:`default_suite_dir`).
+    out_dir : str or os.PathLike
+        Report directory (created); each benchmark's case output goes to ``out_dir/<id>/``.
+    quick : bool
+        Only the benchmarks marked ``"quick": true``.
+    update : bool
+        Rewrite the stored references of the benchmarks run (needs ``reason``).
+    reason : str, optional
+        Why the references change; recorded in each reference's history and HISTORY.md.
+    plots : bool
+        Write a plot of each channel against its reference.
+    only : sequence of str, optional
+        Run only the benchmarks with these ids (for example to update one reference).
+    echo : callable, optional
+        ``echo(text)`` for progress lines (e.g. ``print``).
+
+    Returns
+    -------
+    SuiteReport
+        ``report.passed`` is the accuracy verdict.
+
+    Raises
+    ------
+    ValueError
+        For ``update`` without a non-empty ``reason``, or a malformed suite.
+    """
+    if update and (not reason or not reason.strip()):
+        raise ValueError("reason must be a non-empty text when updating references, got " + repr(reason))
+    suite_path = Path(suite_dir) if suite_dir is not None else default_suite_dir()
+    suite = load_suite(suite_path)
+    if only is not None:
+        known = [b["id"] for b in suite.get("benchmarks", [])]
+        unknown = [b for b in only if b not in known]
+        if unknown:
+            raise ValueError(f"only: unknown benchmark id(s) {', '.join(unknown)}; the suite has {', '.join(known)}")
+    ref_dir = suite_path / "references"
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    cases_dir = (suite_path / suite["cases_dir"]).resolve() if suite.get("cases_dir") else None
+    say = echo or (lambda text: None)
+    report = SuiteReport()
+    start_all = time.perf_counter()
+    for bench in suite.get("benchmarks", []):
+        bid = bench["id"]
+        if only is not None and bid not in only:
+            continue
+        if not bench.get("enabled", True):
+            report.skipped.append({"case": bid, "reason": bench.get("note", "disabled")})
+            continue
+        if quick and not bench.get("quick", False):
+            report.skipped.append({"case": bid, "reason": "not in --quick"})
+            continue
+        say(f"running {bid} ({bench['case']}) ...")
+        try:
+            case = load_case(find_case(bench["case"], cases_dir))
+            output = case.run(bench.get("parameters", {}), out_dir=out / bid, plot=False)
+        except Exception as exc:  # noqa: BLE001 - a failing case is a failed metric
+            message = " ".join(str(exc).split())
+            report.rows.append(MetricRow(bid, "run", "run", "-", math.nan, math.nan, math.nan, math.nan, "runs", False, math.nan, None, f"{type(exc).__name__}: {message}"))
+            say(f"  FAILED to run: {type(exc).__name__}: {message}")
+            continue
+        if update:
+            _write_reference(ref_dir, bid, bench, output, reason or "")
+            report.updated.append(bid)
+        reference = _read_reference(ref_dir, bid)
+        rows = _compare(bench, output, reference, out / "plots" if plots else None, report.files)
+        report.rows.extend(rows)
+        ref_wall = reference["meta"].get("wall_time [s]") if reference else None
+        report.speed.append(
+            {
+                "case": bid,
+                "wall_time": output.wall_time,
+                "reference_wall_time": ref_wall,
+                "ratio": output.wall_time / ref_wall if ref_wall else None,
+                "steps": output.steps,
+            }
+        )
+        n_bad = sum(not r.passed for r in rows)
+        say(f"  {len(rows) - n_bad}/{len(rows)} metrics passed in {output.wall_time:.2f} s")
+    report.wall_time = time.perf_counter() - start_all
+    report.files.append(write_text(out / "report.md", "# Regression benchmark report\n\n" + report.table() + "\n"))
+    report.files.append(write_json(out / "report.json", report.to_dict()))
+    return report
+
+
+def _read_reference(ref_dir: Path, bid: str) -> dict[str, Any] | None:
+    meta_path = ref_dir / f"{bid}.json"
+    csv_path = ref_dir / f"{bid}.csv"
+    if not meta_path.is_file():
+        return None
+    meta = json.loads(meta_path.read_text(encoding="utf-8"))
+    series = read_csv(csv_path) if csv_path.is_file() else None
+    return {"meta": meta, "series": series}
+
+
+def _write_reference(ref_dir: Path, bid: str, bench: dict[str, Any], output: Any, reason: str) -> None:
+    ref_dir.mkdir(parents=True, exist_ok=True)
+    meta_path = ref_dir / f"{bid}.json"
+    previous = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
+    vers = versions()
+    entry = {"date": _now(), "reason": reason.strip(), **vers, "platform": platform.platform()}
+    meta = {
+        "id": bid,
+        "case": bench["case"],
+        "parameters": {n: _plain(output.parameters[n]) for n in output.parameters},
+        "scalars": {n: {"value": v, "unit": output.scalar_units[n]} for n, v in output.scalars.items()},
+        "wall_time [s]": output.wall_time,
+        "steps": output.steps,
+        "provenance": entry,
+        "history": previous.get("history", []) + [entry],
+    }
+    # only the series the benchmark compares (its base and channels): a scalars-only benchmark
+    # stores no CSV, so the references stay small
+    csv_path = ref_dir / f"{bid}.csv"
+    channels = list(bench.get("channels", {}))
+    if channels:
+        base = bench.get("base", "time")
+        names = [n for n in [base, *channels] if n in output.result]
+        series = Result({n: output.result[n] for n in names}, {n: output.result.unit(n) for n in names},
+                        parameters={"benchmark": bid, "case": bench["case"], "reason": reason.strip()},
+                        info={"exudyn_version": vers["exudyn"], "date": entry["date"]})
+        series.to_csv(csv_path)
+    elif csv_path.is_file():
+        csv_path.unlink()
+    write_json(meta_path, meta)
+    history = ref_dir / "HISTORY.md"
+    old = history.read_text(encoding="utf-8") if history.is_file() else (
+        "# Reference history\n\nOne line per change of a stored reference (written by "
+        "`exudyn-atcm bench --update-references --reason TEXT`).\n\n"
+        "| date | benchmark | exudyn_atcm | exudyn | python | platform | reason |\n|---|---|---|---|---|---|---|\n"
+    )
+    line = f"| {entry['date']} | {bid} | {vers['exudyn_atcm']} | {vers['exudyn']} | {vers['python']} | {entry['platform']} | {entry['reason']} |\n"
+    write_text(history, old + line)
+
+
+def _plain(value: Any) -> Any:
+    return list(value) if isinstance(value, tuple) else value
+
+
+def _tolerance_text(metric: dict[str, Any]) -> str:
+    parts = []
+    if "abs" in metric:
+        parts.append(f"abs {metric['abs']:g}")
+    if "rel" in metric:
+        parts.append(f"rel {metric['rel']:g}")
+    return " or ".join(parts)
+
+
+def _compare(bench: dict[str, Any], output: Any, reference: dict[str, Any] | None, plot_dir: Path | None, files: list[Path]) -> list[MetricRow]:
+    bid = bench["id"]
+    wall, steps = output.wall_time, output.steps
+    rows: list[MetricRow] = []
+    no_ref = "no stored reference: run exudyn-atcm bench --update-references --reason TEXT"
+
+    for metric in bench.get("scalars", []):
+        scalar = metric["scalar"]
+        name = metric.get("name", scalar)
+        unit = output.scalar_units.get(scalar, "-")
+        tol = _tolerance_text(metric)
+        if scalar not in output.scalars:
+            rows.append(MetricRow(bid, name, "analytic" if "analytic" in metric else "stored", unit, math.nan, math.nan, math.nan, math.nan, tol, False, wall, steps, f"the case reports no scalar {scalar!r}; it has {sorted(output.scalars)}"))
+            continue
+        value = output.scalars[scalar]
+        if "analytic" in metric:
+            ref, kind, note = float(metric["analytic"]), "analytic", metric["source"]
+        else:
+            stored = (reference or {}).get("meta", {}).get("scalars", {}).get(scalar)
+            if stored is None:
+                rows.append(MetricRow(bid, name, "stored", unit, math.nan, value, math.nan, math.nan, tol, False, wall, steps, no_ref))
+                continue
+            ref, kind, note = float(stored["value"]), "stored", ""
+        err = abs(value - ref)
+        rel = err / abs(ref) if ref != 0.0 else (0.0 if err == 0.0 else math.inf)
+        allowed = max(metric.get("abs", 0.0), metric.get("rel", 0.0) * abs(ref))
+        rows.append(MetricRow(bid, name, kind, unit, ref, value, err, rel, tol, bool(err <= allowed), wall, steps, note))
+
+    channels = bench.get("channels", {})
+    if channels:
+        series = (reference or {}).get("series")
+        base = bench.get("base", "time")
+        for channel, tol in channels.items():
+            unit = output.result.unit(channel) if channel in output.result else "-"
+            tol_rms, tol_max = f"abs {tol['rms']:g}", f"abs {tol['max']:g}"
+            if series is None or channel not in series or base not in series:
+                for kind, t in (("series rms", tol_rms), ("series max", tol_max)):
+                    rows.append(MetricRow(bid, f"{channel} ({kind.split()[1]})", kind, unit, math.nan, math.nan, math.nan, math.nan, t, False, wall, steps, no_ref))
+                continue
+            if channel not in output.result or base not in output.result:
+                for kind, t in (("series rms", tol_rms), ("series max", tol_max)):
+                    rows.append(MetricRow(bid, f"{channel} ({kind.split()[1]})", kind, unit, math.nan, math.nan, math.nan, math.nan, t, False, wall, steps, f"the case output has no series {channel!r} or {base!r}"))
+                continue
+            x_ref, y_ref = series[base], series[channel]
+            x_new, y_new = output.result[base], output.result[channel]
+            note = ""
+            span = max(abs(x_ref[-1] - x_ref[0]), 1e-300)
+            covered = x_new.size > 0 and x_new[0] <= x_ref[0] + 1e-9 * span and x_new[-1] >= x_ref[-1] - 1e-9 * span
+            if not covered or np.any(np.diff(x_new) < 0):
+                note = f"the new {base} does not cover the reference range [{x_ref[0]:g}, {x_ref[-1]:g}] in increasing order"
+                y_interp = np.full_like(y_ref, np.nan)
+            else:
+                y_interp = np.interp(x_ref, x_new, y_new)
+            error = y_interp - y_ref
+            rms_err = float(np.sqrt(np.mean(error**2))) if error.size else 0.0
+            max_err = float(np.max(np.abs(error))) if error.size else 0.0
+            ref_rms = float(np.sqrt(np.mean(y_ref**2))) if y_ref.size else 0.0
+            ref_max = float(np.max(np.abs(y_ref))) if y_ref.size else 0.0
+            new_rms = float(np.sqrt(np.mean(y_new**2))) if y_new.size else 0.0
+            new_max = float(np.max(np.abs(y_new))) if y_new.size else 0.0
+            ok_rms = bool(np.isfinite(rms_err) and rms_err <= tol["rms"])
+            ok_max = bool(np.isfinite(max_err) and max_err <= tol["max"])
+            rows.append(MetricRow(bid, f"{channel} (rms)", "series rms", unit, ref_rms, new_rms, rms_err, rms_err / ref_rms if ref_rms else math.nan, tol_rms, ok_rms, wall, steps, note))
+            rows.append(MetricRow(bid, f"{channel} (max)", "series max", unit, ref_max, new_max, max_err, max_err / ref_max if ref_max else math.nan, tol_max, ok_max, wall, steps, note))
+            if plot_dir is not None:
+                files.append(_plot_channel(plot_dir / f"{bid}_{channel}.png", bid, base, series.unit(base), channel, unit, x_ref, y_ref, x_new, y_new, error, ok_rms and ok_max))
+    return rows
+
+
+def _plot_channel(path: Path, bid: str, base: str, base_unit: str, channel: str, unit: str, x_ref, y_ref, x_new, y_new, error, ok: bool) -> Path:
+    from ..plots.style import axis_label, display_scale, new_figure, save_figure
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig, (ax, ax_err) = new_figure(2, sharex=True, height=4.8)
+    factor, shown = display_scale(np.concatenate([y_ref, y_new]), unit)
+    ax.plot(x_ref, factor * y_ref, color="0.3", linewidth=3.0, alpha=0.5, label="reference")
+    ax.plot(x_new, factor * y_new, label="this run")
+    ax.set_ylabel(axis_label(channel, shown))
+    ax.legend(loc="best")
+    ax.set_title(f"{bid}: {channel} against its reference ({'pass' if ok else 'FAIL'})")
+    e_factor, e_unit = display_scale(error, unit)
+    ax_err.plot(x_ref, e_factor * error)
+    ax_err.set_ylabel(axis_label("error", e_unit))
+    ax_err.set_xlabel(axis_label(base, base_unit))
+    return save_figure(fig, path)
+

@@ -1,0 +1,103 @@
+"""The cell kind: what a discretisation of a bender is, independent of how Exudyn realises it.
+
+A :class:`CellKind` holds everything about one kind of cell that the description, the run
+checks and the plots need: its name, whether it can carry a tip load, join a mechanism or
+model a passive strip, how a bender made of it ends (where joints attach), its measured
+run cost and its known limits.  How it adds itself to an Exudyn system lives in the Exudyn
+layer (:mod:`exudyn_atcm.mbs`), registered per class, so that a subclass of a cell kind
+(outside the package, too) is realised like its parent unless it registers its own.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE"]
+
+#: The bender's end is an interface body of its own (rigid cells).
+END_BODY = "body"
+#: The bender's chain ends on the body of the group it joins (six-bar cells: real interface bodies).
+END_CHAIN = "chain"
+#: The bender's end is a node of the discretisation (beam elements): welded to what it joins.
+END_NODE = "node"
+
+
+class CellKind:
+    """One kind of cell (discretisation) of a bender.
+
+    Subclass it (or an existing kind) to define a new kind; class attributes describe it.
+    Instances compare equal to their :attr:`name` (``cell == "rigid"``) so that code written
+    for the string names keeps working, and are hashable by name.
+
+    Attributes
+    ----------
+    name : str
+        The name accepted as ``cell=...`` and written into results' parameters.
+    summary : str
+        One line for listings and error messages.
+    carries_tip_load : bool
+        A lone actuator made of it accepts ``tip_force``.
+    needs_active_layer : bool
+        It models both layers as separate bodies (a passive strip cannot be made of it).
+    chain_of_cells : bool
+        The ``cell_angle_j`` columns are rotations of cells of a chain: a warning is issued when
+        one turns by more than 0.5 rad against its neighbour (coarse discretisation).
+    end_kind : str
+        How a bender's end joins other parts in a mechanism: :data:`END_BODY`,
+        :data:`END_CHAIN` or :data:`END_NODE`.
+    joint_label : str
+        What the points between cells are called in drawings.
+    cost_per_step : tuple of float or None
+        ``(a, b, c)`` [s]: measured wall time per accepted step ``a + b n + c n^2`` for ``n`` cells
+        (``None``: not measured; no run-time estimate).
+    limits : str
+        Known limits, stated in the documentation.
+    """
+
+    name: ClassVar[str] = ""
+    summary: ClassVar[str] = ""
+    carries_tip_load: ClassVar[bool] = True
+    needs_active_layer: ClassVar[bool] = False
+    chain_of_cells: ClassVar[bool] = True
+    end_kind: ClassVar[str] = END_BODY
+    joint_label: ClassVar[str] = "cell joints"
+    cost_per_step: ClassVar[tuple[float, float, float] | None] = None
+    limits: ClassVar[str] = ""
+
+    def mechanism_refusal(self) -> str | None:
+        """Why a bender of this kind cannot be part of a :class:`~exudyn_atcm.Mechanism` (``None``: it can)."""
+        return None
+
+    def tip_load_refusal(self) -> str | None:
+        """Why a lone actuator of this kind refuses a tip load (``None``: it carries one)."""
+        if self.carries_tip_load:
+            return None
+        return f"the {self.name} cell does not carry tip loads"
+
+    def check_run(self, result: Any, actuator: Any, stacklevel: int = 2) -> None:
+        """Checks of a finished run of a lone actuator made of this kind (warnings); none by default."""
+
+    def estimate_step_cost(self, n_cells: int) -> float | None:
+        """Measured wall time per accepted step [s] for ``n_cells`` cells, or ``None`` if not measured."""
+        if self.cost_per_step is None:
+            return None
+        a, b, c = self.cost_per_step
+        return a + n_cells * (b + c * n_cells)
+
+    # --------------------------------------------------------------- identity by name
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, CellKind):
+            return type(self) is type(other) and self.name == other.name
+        if isinstance(other, str):
+            return self.name == other
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self.name)
+
+    def __str__(self) -> str:
+        return self.name
+
+    def __repr__(self) -> str:
+        # the name, as before cells were objects: messages and parameter listings stay the same
+        return repr(self.name)

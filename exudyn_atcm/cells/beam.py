@@ -1,0 +1,26 @@
+"""``cell="beam"``: one geometrically exact beam element per cell (``ObjectBeamGeometricallyExact2D``)."""
+
+from __future__ import annotations
+
+from .base import END_NODE, CellKind
+
+__all__ = ["BeamCell"]
+
+
+class BeamCell(CellKind):
+    """One geometrically exact (Simo-Reissner) beam element per cell on the passive layer's mid-plane.
+
+    The laminate's ``EI``, mass and rotary inertia, a practically inextensible, shear-rigid
+    axis; the free curvature enters as end torques ``EI kappa``.  Exact under actuation alone
+    at any element count; tip compliance factor ``1 - 1/(4 N^2)``, f1 from above.
+    ``cell_angle_j`` is the mean of the element's two node rotations.
+    """
+
+    name = "beam"
+    summary = "one geometrically exact beam element per cell"
+    end_kind = END_NODE
+    joint_label = "beam nodes"
+    # a beam element costs about a rigid cell per step (bench_mechanisms.py)
+    cost_per_step = (20e-6, 1e-6, 0.12e-6)
+    limits = ("Newton's absolute tolerance must be at least the model's floor (MechanismHandle."
+              "newton_tolerance_floor) in a user's own solve")

@@ -1,0 +1,43 @@
+"""``cell="ritz"``: assumed modes of the whole bender's rotation field (Rayleigh-Ritz)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..theory import ritz_beam
+from .base import CellKind
+
+__all__ = ["RitzCell"]
+
+
+class RitzCell(CellKind):
+    """The bender as ``n`` assumed modes of its rotation field (:mod:`exudyn_atcm.theory.ritz_beam`).
+
+    ``n_cells`` is the number of modes; ``cell_angle_j`` is the mean rotation of the ``j``-th of
+    ``n`` equal segments of one continuous field (not cells of a chain).  The static shape under
+    actuation is the exact arc for any ``n``; the dynamics are linearised about the quasi-static
+    arc of the current free curvature.  Tip loads are refused (the model leaves out a load's
+    geometric stiffness).
+    """
+
+    name = "ritz"
+    summary = "assumed modes of the rotation field (one dense system)"
+    carries_tip_load = False
+    chain_of_cells = False
+    # bench_run_cost.py: 8.6, 12.6 and 26 µs per step at 3, 10 and 40 modes
+    cost_per_step = (9e-6, 0.5e-6, 0.0)
+    limits = ("dynamics linearised about the quasi-static arc (a warning above 0.05 rad of dynamic tip "
+              "rotation); no tip loads; lone actuators only")
+
+    def check_run(self, result: Any, actuator: Any, stacklevel: int = 2) -> None:
+        """Warn when the dynamic tip rotation leaves the quasi-static arc by more than 0.05 rad."""
+        ritz_beam.warn_large_dynamic_rotation(result["tip_angle"], result["strain"], actuator.curvature_per_strain,
+                                              actuator.length, stacklevel=stacklevel + 1)
+
+    def tip_load_refusal(self) -> str | None:
+        return ("the ritz cell refuses tip loads (the model leaves out a load's geometric stiffness); "
+                "use cell='beam' or cell='ancf' for them")
+
+    def mechanism_refusal(self) -> str | None:
+        return ("the ritz cell is built for the lone actuator only (no end connections or loads yet); "
+                "use cell='rigid' or cell='beam' in a mechanism")

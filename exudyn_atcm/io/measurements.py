@@ -1,0 +1,429 @@
+"""Measured input-output records (time, input, output) read from text files, split and preprocessed.
+
+A *record* is what a designer measures on an actuator: the time [s], the input (usually the
+voltage [V]) and the output (a displacement [m] or strain [-]) sampled together.
+:func:`read_record` reads one from a CSV or whitespace-separated text file; :meth:`Record.split`
+divides it by time into a part to fit a model on and a held-out part to check the prediction;
+:func:`preprocess` removes an output offset and a linear drift, trims a settling start and
+decimates, each step optional and written into :attr:`Record.processing`.
+
+Nothing is dropped silently: rows holding a NaN (or an empty cell) in a selected column are
+dropped and counted in a ``RuntimeWarning``; a cell that is not a number is an error naming
+the line.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Union
+
+import numpy as np
+
+from .._checks import finite_float, positive_int
+
+__all__ = ["Record", "read_record", "preprocess"]
+
+ColumnChoice = Union[str, int]
+_UNIT = re.compile(r"^(.*?)\s*\[([^\]]*)\]\s*$")
+_MISSING = {"", "nan", "NaN", "NAN", "na", "NA", "n/a", "N/A"}
+
+
+@dataclass(frozen=True)
+class Record:
+    """A measured record: three equally long 1-D arrays and their units.
+
+    Attributes
+    ----------
+    time : numpy.ndarray
+        Sample times [s], strictly increasing.
+    input, output : numpy.ndarray
+        Input (e.g. voltage [V]) and output (e.g. displacement [m]) samples.
+    units : dict
+        Units of ``"time"``, ``"input"``, ``"output"`` (``""`` where the file gave none).
+    names : dict
+        Column names of ``"time"``, ``"input"``, ``"output"`` in the file (without units).
+    processing : tuple of str
+        Every change made since the file was read (dropped rows, offset, drift, trim,
+        decimation, split), in order, with the amounts.
+    source : str
+        Where the record came from (file path).
+    """
+
+    time: np.ndarray
+    input: np.ndarray
+    output: np.ndarray
+    units: dict = field(default_factory=lambda: {"time": "s", "input": "", "output": ""})
+    names: dict = field(default_factory=lambda: {"time": "time", "input": "input", "output": "output"})
+    processing: tuple = ()
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.time, dtype=float)
+        u = np.asarray(self.input, dtype=float)
+        y = np.asarray(self.output, dtype=float)
+        if not (t.ndim == u.ndim == y.ndim == 1) or not (t.size == u.size == y.size):
+            raise ValueError(
+                f"time, input and output must be 1-D arrays of one length, got sizes {t.size}, {u.size}, {y.size}"
+            )
+        if t.size >= 2 and np.any(np.diff(t) <= 0.0):
+            i = int(np.argmax(np.diff(t) <= 0.0)) + 1
+            raise ValueError(
+                f"time must be strictly increasing, got time[{i}] = {float(t[i])!r} s after {float(t[i - 1])!r} s"
+                + (f" in {self.source}" if self.source else "")
+            )
+        object.__setattr__(self, "time", t)
+        object.__setattr__(self, "input", u)
+        object.__setattr__(self, "output", y)
+
+    @property
+    def n_samples(self) -> int:
+        """Number of samples."""
+        return int(self.time.size)
+
+    def __len__(self) -> int:
+        return self.n_samples
+
+    def split_index(self, t_split: float) -> int:
+        """Index of the first sample at or after ``t_split`` [s] (the start of the held-out part)."""
+        t_split = finite_float("t_split", t_split)
+        if not self.time[0] < t_split <= self.time[-1]:
+            raise ValueError(
+                f"t_split must lie in ({float(self.time[0])!r}, {float(self.time[-1])!r}] s (inside the record), "
+                f"got {t_split!r}"
+            )
+        return int(np.searchsorted(self.time, t_split, side="left"))
+
+    def split(self, t_split: float) -> tuple["Record", "Record"]:
+        """The part before ``t_split`` [s] (to fit on) and the part from ``t_split`` on (held out).
+
+        A hysteresis model's prediction of the held-out part depends on the memory built by the
+        first part: run the model over the whole record and compare on the held-out samples
+        (the fits of :mod:`exudyn_atcm.hysteresis.identification` take ``n_fit`` for this).
+        """
+        k = self.split_index(t_split)
+        note = f"split at t = {t_split:g} s: samples [0, {k}) and [{k}, {self.n_samples})"
+        first = self._take(slice(0, k), note + ", this is the first part")
+        second = self._take(slice(k, None), note + ", this is the second part")
+        return first, second
+
+    def _take(self, index: Any, note: str) -> "Record":
+        return replace(
+            self, time=self.time[index], input=self.input[index], output=self.output[index],
+            processing=self.processing + (note,),
+        )
+
+    def label(self, which: str) -> str:
+        """``"name [unit]"`` of ``"time"``, ``"input"`` or ``"output"``."""
+        unit = self.units.get(which, "")
+        return f"{self.names[which]} [{unit}]" if unit else self.names[which]
+
+
+# ------------------------------------------------------------------------------ reading
+
+def _split_name(text: str) -> tuple[str, str]:
+    match = _UNIT.match(text)
+    if match:
+        return match.group(1).strip(), match.group(2).strip()
+    return text.strip(), ""
+
+
+def _cells(line: str) -> list[str]:
+    for sep in (",", ";", "\t"):
+        if sep in line:
+            return [c.strip() for c in line.split(sep)]
+    return line.split()
+
+
+def _is_number(cell: str) -> bool:
+    if cell in _MISSING:
+        return True
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def _column(header: list[str] | None, choice: Any, default: int, parameter: str, path: Path, n_columns: int) -> int:
+    if choice is None:
+        index = default
+    elif isinstance(choice, str):
+        names = header or []
+        full = [h.lower() for h in names]
+        bare = [_split_name(h)[0].lower() for h in names]
+        key = choice.strip().lower()
+        if key in full:
+            index = full.index(key)
+        elif key in bare:
+            index = bare.index(key)
+        else:
+            raise ValueError(f"{parameter} = {choice!r} is not a column of {path}; columns: {names!r}")
+    elif isinstance(choice, (int, np.integer)) and not isinstance(choice, bool) and choice >= 0:
+        index = int(choice)
+    else:
+        raise ValueError(f"{parameter} must be a column name or an index >= 0, got {choice!r}")
+    if index >= n_columns:
+        raise ValueError(f"{parameter} = {choice!r}: {path} has only {n_columns} column(s)")
+    return index
+
+
+#: Header units converted to SI by :func:`read_record` (``si=True``): unit -> (factor, SI unit).
+_SI_SCALE = {
+    "ms": (1e-3, "s"), "µs": (1e-6, "s"), "μs": (1e-6, "s"), "us": (1e-6, "s"),
+    "mV": (1e-3, "V"), "kV": (1e3, "V"),
+    "mm": (1e-3, "m"), "µm": (1e-6, "m"), "μm": (1e-6, "m"), "um": (1e-6, "m"), "nm": (1e-9, "m"),
+}
+
+
+def read_record(
+    path: Union[str, Path],
+    time: ColumnChoice | None = None,
+    input: ColumnChoice | None = None,  # noqa: A002 - the record's input column
+    output: ColumnChoice | None = None,
+    *,
+    comment: str = "#",
+    min_samples: int = 2,
+    si: bool = True,
+) -> Record:
+    """Read a measured (time, input, output) record from a text file.
+
+    The file holds one sample per line, the cells separated by commas, semicolons, tabs or
+    blanks.  Lines starting with ``comment`` are skipped, as are blank lines.  The first other
+    line is a header if any of its cells is not a number; a header cell ``name [unit]`` gives
+    the unit.  A blank leading column (lines starting with the separator, as some instruments
+    write) is ignored.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    time, input, output : str or int, optional
+        Column names (full header text such as ``"voltage [V]"`` or the name alone,
+        case-insensitive) or zero-based indices counted after a dropped blank leading column.
+        Defaults: columns 0, 1 and 2.
+    comment : str, optional
+        Comment prefix (default ``#``).
+    min_samples : int, optional
+        Fewest valid rows accepted (default 2).
+    si : bool, optional
+        Convert columns whose header unit is a decimal multiple of s, V or m (``ms``, ``µs``,
+        ``mV``, ``kV``, ``mm``, ``µm``/``um``, ``nm``) to SI, as the rest of the package
+        expects (``t_split`` in seconds, drives in volts, strains from metres); each
+        conversion is listed in ``Record.processing`` (default True).  ``False`` keeps the
+        file's numbers and units.
+
+    Returns
+    -------
+    Record
+        With ``units`` from the header (``"s"`` assumed for time when the header has none).
+
+    Raises
+    ------
+    ValueError
+        If the file is missing, a selected cell is not a number (the line is named), fewer than
+        ``min_samples`` valid rows remain, or the times are not strictly increasing.
+
+    Warns
+    -----
+    RuntimeWarning
+        When rows holding NaN or empty cells in a selected column are dropped (with their count
+        and the first line numbers).
+    """
+    path = Path(path)
+    min_samples = positive_int("min_samples", min_samples)
+    if not path.is_file():
+        raise ValueError(f"path must be an existing text file, got {str(path)!r}")
+    header: list[str] | None = None
+    rows: list[tuple[int, list[str]]] = []
+    with path.open(encoding="utf-8-sig") as handle:
+        for number, line in enumerate(handle, start=1):
+            text = line.strip()
+            if not text or text.startswith(comment):
+                continue
+            cells = _cells(line.rstrip("\r\n"))
+            if header is None and not rows and not all(_is_number(c) for c in cells if c):
+                header = cells
+                continue
+            rows.append((number, cells))
+    if not rows:
+        raise ValueError(f"{path}: no data rows")
+    # a blank leading column: empty in the header (if any) and in every row
+    if all(cells and cells[0] == "" for _, cells in rows) and (header is None or header[0] == ""):
+        rows = [(n, cells[1:]) for n, cells in rows]
+        header = header[1:] if header is not None else None
+    n_columns = max(len(cells) for _, cells in rows)
+    indices = {
+        "time": _column(header, time, 0, "time", path, n_columns),
+        "input": _column(header, input, 1, "input", path, n_columns),
+        "output": _column(header, output, 2, "output", path, n_columns),
+    }
+    data = np.empty((len(rows), 3))
+    for r, (number, cells) in enumerate(rows):
+        for c, key in enumerate(("time", "input", "output")):
+            k = indices[key]
+            cell = cells[k] if k < len(cells) else ""
+            if cell in _MISSING:
+                data[r, c] = math.nan
+                continue
+            try:
+                data[r, c] = float(cell)
+            except ValueError:
+                raise ValueError(f"{path}: line {number}, column {k} ({key}) must be a number, got {cell!r}") from None
+    bad = ~np.all(np.isfinite(data), axis=1)
+    processing: list[str] = []
+    if bad.any():
+        lines = [rows[i][0] for i in np.flatnonzero(bad)[:5]]
+        message = (
+            f"{path}: dropped {int(bad.sum())} of {len(rows)} rows with NaN, infinite or empty cells in the "
+            f"time/input/output columns (first at lines {lines})"
+        )
+        warnings.warn(message, RuntimeWarning, stacklevel=2)
+        processing.append(f"dropped {int(bad.sum())} rows with non-finite values")
+        data = data[~bad]
+    if data.shape[0] < min_samples:
+        raise ValueError(f"{path}: {data.shape[0]} valid rows, at least min_samples = {min_samples} are needed")
+    names, units = {}, {}
+    for key, k in indices.items():
+        if header is not None and k < len(header):
+            names[key], units[key] = _split_name(header[k])
+        else:
+            names[key], units[key] = key, ""
+    if not units["time"]:
+        units["time"] = "s"
+    if not isinstance(si, bool):
+        raise ValueError(f"si must be True or False, got {si!r}")
+    if si:
+        for c, key in enumerate(("time", "input", "output")):
+            factor_unit = _SI_SCALE.get(units[key])
+            if factor_unit is not None:
+                factor, base = factor_unit
+                data[:, c] *= factor
+                processing.append(f"{key} converted from {units[key]} to {base} (x {factor:g})")
+                units[key] = base
+    return Record(data[:, 0], data[:, 1], data[:, 2], units=units, names=names,
+                  processing=tuple(processing), source=str(path))
+
+
+# ------------------------------------------------------------------------------ preprocessing
+
+def preprocess(
+    record: Record,
+    *,
+    offset_samples: int | None = None,
+    drift: bool = False,
+    trim_start: float = 0.0,
+    decimate: int = 1,
+) -> Record:
+    """Optional corrections for measured records, each written into ``processing``.
+
+    Applied in this order:
+
+    1. ``trim_start``: drop the samples before ``time[0] + trim_start`` [s] (a settling start).
+    2. ``drift``: remove a linear drift of the output, the straight line fitted (least squares)
+       through the output at the input's local minima.  At those instants a periodic input is
+       in the same state every cycle, so a rate-independent output would repeat: what changes
+       is drift.  Needs at least two minima.
+    3. ``offset_samples``: subtract the mean output of the first ``offset_samples`` samples
+       (the sensor's zero before the excitation).
+    4. ``decimate``: replace each block of ``decimate`` samples by its mean (time, input and
+       output alike; averaging rather than picking lowers the noise; a trailing partial block
+       is dropped and said).
+
+    Parameters
+    ----------
+    record : Record
+        The record.
+    offset_samples : int, optional
+        Number of leading samples whose mean output is the offset; ``None`` keeps the offset.
+    drift : bool, optional
+        Remove the linear output drift (default ``False``).
+    trim_start : float, optional
+        Settling time trimmed from the start [s], ``>= 0``.
+    decimate : int, optional
+        Block length of the decimation, ``>= 1`` (1: none).
+
+    Returns
+    -------
+    Record
+        A new record; the original is unchanged.
+    """
+    if not isinstance(record, Record):
+        raise ValueError(f"record must be a Record (see read_record), got {type(record).__name__}")
+    trim_start = finite_float("trim_start", trim_start)
+    if trim_start < 0.0:
+        raise ValueError(f"trim_start must be >= 0 s, got {trim_start!r}")
+    decimate = positive_int("decimate", decimate)
+    t, u, y = record.time, record.input, record.output
+    notes = list(record.processing)
+    unit = record.units.get("output", "")
+    if trim_start > 0.0:
+        keep = t >= t[0] + trim_start
+        if keep.sum() < 2:
+            raise ValueError(f"trim_start = {trim_start!r} s leaves fewer than 2 samples of the record")
+        notes.append(f"trimmed {int((~keep).sum())} samples of the first {trim_start:g} s (settling)")
+        t, u, y = t[keep], u[keep], y[keep]
+    if drift:
+        minima = _local_minima(u)
+        if minima.size < 2:
+            raise ValueError(
+                f"drift=True needs at least 2 local minima of the input to estimate a drift, found {minima.size}"
+            )
+        slope, _ = np.polyfit(t[minima], y[minima], 1)
+        y = y - slope * (t - t[0])
+        notes.append(
+            f"removed a linear output drift of {slope:.6g} {unit}/s (fitted through the output at "
+            f"{minima.size} input minima)"
+        )
+    if offset_samples is not None:
+        n = positive_int("offset_samples", offset_samples)
+        if n > y.size:
+            raise ValueError(f"offset_samples must be <= the number of samples ({y.size}), got {n}")
+        offset = float(np.mean(y[:n]))
+        y = y - offset
+        notes.append(f"removed an output offset of {offset:.6g} {unit} (mean of the first {n} samples)")
+    if decimate > 1:
+        blocks = t.size // decimate
+        if blocks < 2:
+            raise ValueError(f"decimate = {decimate} leaves fewer than 2 samples of {t.size}")
+        rest = t.size - blocks * decimate
+        cut = blocks * decimate
+
+        def mean(a: np.ndarray) -> np.ndarray:
+            return a[:cut].reshape(blocks, decimate).mean(axis=1)
+
+        t, u, y = mean(t), mean(u), mean(y)
+        notes.append(
+            f"decimated by {decimate} (block means)" + (f", dropped the last {rest} samples (partial block)" if rest else "")
+        )
+    return replace(record, time=t, input=u, output=y, processing=tuple(notes))
+
+
+def _local_minima(u: np.ndarray) -> np.ndarray:
+    """Indices of the input's cycle minima: the lowest sample of every falling-then-rising stretch.
+
+    Reversals smaller than 5 % of the input range are ignored (noise).
+    """
+    tolerance = 0.05 * float(np.ptp(u)) if u.size else 0.0
+    minima = []
+    low_index = 0
+    falling = True
+    high = low = float(u[0])
+    for i, v in enumerate(u.tolist()):
+        if falling:
+            if v < low:
+                low, low_index = v, i
+            elif v > low + tolerance:
+                minima.append(low_index)
+                falling, high = False, v
+        else:
+            if v > high:
+                high = v
+            elif v < high - tolerance:
+                falling, low, low_index = True, v, i
+    if falling and low_index not in minima and low_index != 0:
+        minima.append(low_index)
+    return np.asarray(minima, dtype=int)

@@ -1,0 +1,246 @@
+"""Simulation results: named, unit-tagged series, CSV export.
+
+:class:`Result` knows nothing about Exudyn; it holds numpy arrays, their units and the
+parameters of the run.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import numpy as np
+
+from .atomic import write_atomic
+from .csv_files import read_table
+from .._version import __version__
+
+
+class Result(Mapping):
+    """Named time series of one simulation, each with its unit.
+
+    Parameters
+    ----------
+    series : mapping of str to array_like
+        Series in output order, each 1-D and of the same length (one value per recorded
+        instant).  Names must not contain commas or brackets.
+    units : mapping of str to str
+        Unit of every series (SI; ``"-"`` for unit-free quantities).
+    parameters : mapping, optional
+        Parameters of the run (names may carry units in brackets); written to CSV headers.
+    info : mapping, optional
+        Run statistics and versions (e.g. ``exudyn_version``, ``rejected_steps``).
+
+    Examples
+    --------
+    >>> r = Result({"time": [0.0, 0.1], "tip_y": [0.0, 1e-3]}, {"time": "s", "tip_y": "m"})
+    >>> r["tip_y"]
+    array([0.   , 0.001])
+    >>> r.unit("tip_y")
+    'm'
+
+    Notes
+    -----
+    The standard series of :func:`exudyn_atcm.solve.simulation.simulate` are ``time`` [s],
+    ``voltage`` [V], ``strain`` [-] (free strain of the active layer), ``stroke`` [m] (motor
+    stroke of one cell), ``tip_x``, ``tip_y`` [m] and ``tip_angle`` [rad] of the tip (the
+    passive-layer point of the last interface), then ``cell_angle_1`` ... ``cell_angle_N``
+    [rad] (rotation of each cell's passive layer).
+    """
+
+    def __init__(
+        self,
+        series: Mapping[str, Any],
+        units: Mapping[str, str],
+        parameters: Mapping[str, Any] | None = None,
+        info: Mapping[str, Any] | None = None,
+    ) -> None:
+        data: dict[str, np.ndarray] = {}
+        length = None
+        for name, values in series.items():
+            if not isinstance(name, str) or not name or any(c in name for c in ",[]\n#"):
+                raise ValueError(f"series names must be non-empty strings without ',', '[', ']', '#', got {name!r}")
+            array = np.asarray(values, dtype=float)
+            if array.ndim != 1:
+                raise ValueError(f"series {name!r} must be 1-D, got shape {array.shape}")
+            if length is None:
+                length = array.size
+            elif array.size != length:
+                raise ValueError(f"series {name!r} has {array.size} values, the others {length}")
+            array.setflags(write=False)
+            data[name] = array
+        missing = [n for n in data if n not in units]
+        if missing:
+            raise ValueError(f"units missing for series {missing}")
+        self._series = data
+        self._units = {n: str(units[n]) for n in data}
+        self.parameters: dict[str, Any] = dict(parameters or {})
+        self.info: dict[str, Any] = dict(info or {})
+
+    # Mapping interface ---------------------------------------------------------------
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self._series[name]
+        except KeyError:
+            raise self._missing(name) from None
+
+    def _missing(self, name: Any) -> KeyError:
+        """KeyError for an unknown series, with the closest name (a unit or component prefix is a common slip)."""
+        import difflib
+
+        text = str(name)
+        bare = text.split(" [", 1)[0].strip()
+        if bare != text and bare in self._series:  # "b.tip_y [m]" as in a CSV header
+            return KeyError(f"no series {name!r} (series names carry no unit: use {bare!r}, and "
+                            f"result.unit({bare!r}) for its unit); available: {', '.join(self._series)}")
+        guesses = [n for n in self._series if n.endswith("." + bare)]  # "tip_y" -> "b.tip_y"
+        guesses += [n for n in difflib.get_close_matches(bare, list(self._series), n=2, cutoff=0.75) if n not in guesses]
+        hint = f" (did you mean {' or '.join(repr(g) for g in guesses[:3])}?)" if guesses else ""
+        return KeyError(f"no series {name!r}{hint}; available: {', '.join(self._series)}")
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._series)
+
+    def __len__(self) -> int:
+        return len(self._series)
+
+    @property
+    def names(self) -> list[str]:
+        """Series names in output order."""
+        return list(self._series)
+
+    @property
+    def n_rows(self) -> int:
+        """Number of recorded instants."""
+        first = next(iter(self._series.values()), None)
+        return 0 if first is None else int(first.size)
+
+    def unit(self, name: str) -> str:
+        """Unit of series ``name`` (SI; ``"-"`` if unit-free)."""
+        if name not in self._units:
+            raise self._missing(name)
+        return self._units[name]
+
+    @property
+    def units(self) -> dict[str, str]:
+        """Units of all series."""
+        return dict(self._units)
+
+    def column_header(self) -> str:
+        """The CSV header row, ``name [unit],...``."""
+        return ",".join(f"{n} [{self._units[n]}]" for n in self._series)
+
+    def header_comment_lines(self) -> list[str]:
+        """The ``#`` comment lines written before the header row."""
+        lines = [f"# exudyn_atcm {__version__}"]
+        exu_version = self.info.get("exudyn_version")
+        lines.append(f"# exudyn {exu_version if exu_version is not None else 'unknown'}")
+        for key, value in self.parameters.items():
+            text = str(value).replace("\n", " ")
+            lines.append(f"# {key}: {text}")
+        for key, value in self.info.items():
+            if key == "exudyn_version":
+                continue
+            lines.append(f"# info.{key}: {str(value).replace(chr(10), ' ')}")
+        return lines
+
+    def to_csv(self, path: str | os.PathLike) -> None:
+        """Write all series to a CSV file, atomically.
+
+        The file starts with ``#`` comment lines (package and Exudyn versions, parameters,
+        run information, and ``# data_rows: N``, the number of data rows, which
+        :func:`~exudyn_atcm.read_csv` checks), then the header row
+        ``time [s],voltage [V],...``, then one row per recorded instant.  Each number is
+        written as the shortest text that reads back to the same float (``1.9999``, not
+        ``1.9998999999999999``).  The file is written to a temporary file in the target
+        directory and renamed over ``path``, so readers never see a partial file.
+
+        Read it back with :meth:`from_csv`, ``pandas.read_csv(path, comment="#")``, or
+        ``numpy.loadtxt(path, delimiter=",", skiprows=k)`` with ``k`` the number of ``#`` lines
+        plus one (numpy's ``skiprows`` counts comment lines too; ``len(header_comment_lines()) + 2``
+        with the ``data_rows`` line).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Target file; missing parent directories are created.
+
+        Raises
+        ------
+        exudyn_atcm.io.atomic.WriteError
+            (an ``OSError``) if the file cannot be written, naming the file and the reason.
+        """
+        columns = [self._series[n].tolist() for n in self._series]
+
+        def write(handle) -> None:
+            for line in self.header_comment_lines():
+                handle.write(line + "\n")
+            handle.write(f"# data_rows: {self.n_rows}\n")
+            handle.write(self.column_header() + "\n")
+            if columns:
+                fmt = float.__repr__
+                handle.writelines(",".join(map(fmt, row)) + "\n" for row in zip(*columns))
+
+        write_atomic(path, write, make_dirs=True)
+
+    @classmethod
+    def from_csv(cls, path: str | os.PathLike) -> "Result":
+        """Read a file written by :meth:`to_csv`; the same as :func:`exudyn_atcm.read_csv`."""
+        return read_csv(path)
+
+    def to_pandas(self):
+        """The series as a ``pandas.DataFrame`` with ``name [unit]`` columns (needs pandas)."""
+        import pandas as pd  # optional dependency
+
+        return pd.DataFrame({f"{n} [{self._units[n]}]": self._series[n] for n in self._series})
+
+    def plot(self, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
+        """Write the standard PNG plots to ``out_dir``; see :func:`exudyn_atcm.plots.result.plot_result`."""
+        from ..plots.result import plot_result
+
+        return plot_result(self, out_dir, prefix=prefix)
+
+    def __repr__(self) -> str:
+        return f"Result({self.n_rows} rows: {', '.join(self.names[:8])}{', ...' if len(self) > 8 else ''})"
+
+
+def read_csv(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Result:
+    """Read a CSV file written by :meth:`Result.to_csv` (or by hand in the same format).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    allow_nonfinite : bool, optional
+        Accept ``nan``, ``inf`` and numbers too large for a float (``1e400``); by default
+        they are refused (a simulation result never holds them, so they mean a damaged or
+        hand-edited file).
+
+    Returns
+    -------
+    Result
+        Series with their units; ``parameters`` from the ``# key: value`` lines, ``info``
+        from the ``# info.key: value`` lines plus ``exudyn_version`` when the file names one.
+        Version and parameter lines are parsed as Python literals where possible.
+
+    Raises
+    ------
+    ValueError
+        Naming the file, the line and the fault: missing file, no header row, a header
+        column without ``[unit]``, duplicate names, a row with the wrong number of cells,
+        a cell that is not a number, a non-finite number (unless ``allow_nonfinite``), or a
+        number of data rows different from the file's ``# data_rows: N`` line (a file cut
+        off at a row boundary).
+
+    Examples
+    --------
+    >>> import tempfile, os
+        >>> r = Result({"time": [0.0, 0.5], "stroke": [0.0, 4e-5]}, {"time": "s", "stroke": "m"})
+    >>> path = os.path.join(tempfile.mkdtemp(), "r.csv")
+    >>> r.to_csv(path)
+    >>> read_csv(path).unit("stroke")
+    'm'
+    """
+    table = read_table(path, allow_nonfinite=allow_nonfinite)
+    return Result(table.series, table.units, parameters=table.parameters, info=table.info)

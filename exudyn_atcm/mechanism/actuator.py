@@ -1,0 +1,282 @@
+"""The piezo bending actuator: a chain of simulation cells (paper Figs. 2, 3, 11).
+
+This module holds the geometry, the stiffness calibration, masses and damping of the
+actuator, as plain numbers.  The Exudyn model is built from them in
+:mod:`exudyn_atcm.mbs.actuator_chains`; the closed-form references the tests compare against are
+in :mod:`exudyn_atcm.theory.beam`.
+
+Coordinates: ``x`` runs along the undeformed actuator from the clamp, ``y`` across it.
+The passive layer's mid-plane lies on ``y = 0``; the active layer's mid-plane lies at
+``y = -e`` with ``e = (h_passive + h_active)/2``, so a positive free strain of the active
+layer bends the actuator towards ``+y``.  **The tip** is the passive-layer point of the last
+interface element, ``(L, 0)`` in the undeformed state; the tip angle is the rotation of that
+interface element (positive counter-clockwise).
+"""
+
+from __future__ import annotations
+
+import numbers
+from typing import Any
+
+from ..cells import CELL_KINDS, CellKind, cell_kind
+from .._checks import finite_float, positive_float, positive_int, warn_implausible
+from ..model.drive import PiezoDrive
+from ..model.laminate import STIFFNESS_MODELS, Laminate
+from ..model.materials import Layer
+
+#: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
+CELL_TYPES = tuple(CELL_KINDS)
+#: The cells that carry a tip load (``tip_force``); ``"ritz"`` refuses one.
+TIP_LOAD_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)
+
+#: Default modal damping ratio of the first bending mode (stiffness-proportional damping).
+DEFAULT_DAMPING_RATIO = 0.02
+
+
+class BendingActuator:
+    """Two-layer piezo bending actuator as a chain of ``n_cells`` simulation cells.
+
+    Parameters
+    ----------
+    n_cells : int
+        Number of cells ``N >= 1``, linked base-to-end; the first interface is clamped.
+    cell_length : float
+        Length of one cell ``L_j`` [m], > 0.  The actuator length is ``N L_j``.
+    width : float
+        Width ``b`` of both layers [m], > 0.
+    passive : Layer
+        Passive layer (CFC), layer 1 (index 1 in the formulas).
+    active : Layer
+        Active layer (MFC), layer 2 (index 2 in the formulas).
+    drive : PiezoDrive
+        Voltage program and voltage-to-strain law of the active layer.
+    cell : {"six-bar", "rigid", "beam", "ancf", "ritz"} or CellKind, optional
+        A cell kind by name, or a :class:`~exudyn_atcm.cells.CellKind` (also one defined outside the
+        package, e.g. a subclass of an existing kind); ``actuator.cell`` is the kind object.
+        ``"six-bar"`` (default): the paper's cell (Fig. 2): interface elements, the passive
+        bar, the active layer as three bodies A1-A2-A3, four revolute joints with torsion
+        spring-dampers, the prismatic motor A1-A2 (prescribed stroke) and the prismatic
+        joint A2-A3 carrying the axial spring ``k1``.
+        ``"rigid"``: one rigid body per cell (passive layer's mid-plane, carrying the mass
+        of both layers) with a torsion spring at each joint whose rest angle follows the
+        stroke; the same bending stiffness and free curvature, without the six-bar cell's
+        shear mode; much faster.
+        ``"beam"``: one geometrically exact beam element per cell (Exudyn's
+        ``ObjectBeamGeometricallyExact2D``, Simo-Reissner, linear elements) on the passive
+        layer's mid-plane with the laminate's ``EI``, mass and rotary inertia and a
+        practically inextensible, shear-rigid axis; the free curvature enters as one tip
+        torque ``EI kappa``.  Exact under actuation alone at any element count; tip
+        compliance factor ``1 - 1/(4 N^2)``, f1 from above.  ``cell_angle_j`` is the mean of
+        the element's two node rotations.
+        ``"ancf"``: one ANCF cable element per cell (Exudyn's ``ObjectANCFCable2D``, cubic
+        Bernoulli-Euler element in node positions and slopes), same laminate data and tip
+        torque; higher-order accurate (f1 +0.05 % at 2 elements): the cheapest at equal
+        accuracy for small deflections.  In strongly bent states coarse meshes lock (f1
+        about 1500 V +4 % at 2 elements): use >= 8 elements for large deflections.  Node
+        rotations are the slope angles.
+        ``"ritz"``: assumed modes of the whole bender's rotation field (Rayleigh-Ritz,
+        :mod:`exudyn_atcm.theory.ritz_beam`; one ``ObjectGenericODE2``): ``n_cells`` is the number of
+        modes ``n >= 1`` (integrated shifted Legendre polynomials), the bender is one piece of
+        length ``n_cells * cell_length``, and ``cell_angle_j`` is the mean rotation of the
+        ``j``-th of ``n`` equal segments.  Inextensible Euler-Bernoulli beam with the
+        laminate's ``EI``, mass and rotary inertia: the static shape under actuation is the
+        exact arc for any ``n`` (``n = 1`` included); the dynamics are linearised about the
+        quasi-static arc of the current free curvature (mass matrix updated with it), so a
+        ``RuntimeWarning`` says when the tip rotation deviates from that arc by more than
+        0.05 rad.  f1 +0.47 % / +0.03 % / +1.5e-6 at n = 2 / 3 / 4.  The cheapest cell at
+        equal accuracy.  Tip loads are refused (``tip_force`` must be zero: the model leaves
+        out a load's geometric stiffness); use ``"beam"`` or ``"ancf"`` for them.
+    stiffness : {"composite", "paper"}, optional
+        ``"composite"`` (default): torsion springs ``2 E_i I_i / L_j`` per layer joint and
+        ``k1 = [a1 a2/(a1 + a2)] / L_j`` (``a_i = E_i b h_i``): reproduces the laminate's
+        bending stiffness and free curvature exactly (lamination theory; Timoshenko 1925; see the theory page of the documentation).
+        ``"paper"``: as printed, ``k1 = E2 b h2 / L_j`` (Eq. 4) with a rigid passive bar and
+        the torsion springs ``2 E_i I_i / L_j`` (Eq. 5 with the text's doubling).
+    damping : float, optional
+        Modal damping ratio ``zeta >= 0`` of the first bending mode [-], default 0.02.
+        Realised as stiffness-proportional damping ``d = beta k`` on every spring
+        (torsion springs and ``k1``) with ``beta = 2 zeta / omega_1``, ``omega_1`` the
+        first bending frequency of the continuous beam: higher modes are damped more
+        (ratio ``zeta omega / omega_1``).  2 % is an assumed, typical order of magnitude
+        for fibre-composite laminates, not a value from the paper.
+
+    Raises
+    ------
+    ValueError
+        For non-positive or non-finite sizes, ``n_cells < 1``, an unknown ``cell`` or
+        ``stiffness``, a negative ``damping``, or ``passive``/``active``/``drive`` of the
+        wrong type.  The message names the parameter and the value received.
+
+    Notes
+    -----
+    Masses: the passive bar carries the passive layer, A1, A2, A3 one third of the active
+    layer each.  Six-bar interface elements need a mass of their own: each gets the mass
+    of the laminate over a length ``s = min(h1 + h2, L_j/10)``, half taken from the layer
+    bodies of each adjacent cell (lumped like the nodes of a finite-element mesh: the last
+    interface gets half, the clamped interface's half stays at the clamp), so the mass
+    distribution converges to the laminate's as the cells get shorter.
+    """
+
+    def __init__(
+        self,
+        n_cells: int,
+        cell_length: float,
+        width: float,
+        passive: Layer,
+        active: Layer,
+        drive: PiezoDrive,
+        cell: str | CellKind = "six-bar",
+        stiffness: str = "composite",
+        damping: float = DEFAULT_DAMPING_RATIO,
+    ) -> None:
+        self.n_cells = positive_int("n_cells", n_cells)
+        self.cell_length = positive_float("cell_length", cell_length)
+        self.width = positive_float("width", width)
+        warn_implausible("cell_length", self.cell_length, "length", "BendingActuator")
+        warn_implausible("width", self.width, "length", "BendingActuator")
+        for name, layer in (("passive", passive), ("active", active)):
+            if not isinstance(layer, Layer):
+                raise ValueError(f"{name} must be an exudyn_atcm Layer, got {layer!r}")
+        if not isinstance(drive, PiezoDrive):
+            raise ValueError(f"drive must be an exudyn_atcm PiezoDrive, got {drive!r}")
+        cell = cell_kind(cell)
+        if not isinstance(stiffness, str) or stiffness not in STIFFNESS_MODELS:
+            raise ValueError(f"stiffness must be one of {STIFFNESS_MODELS}, got {stiffness!r}")
+        if isinstance(damping, bool) or not isinstance(damping, numbers.Real):
+            raise ValueError(f"damping must be a finite damping ratio >= 0, got {damping!r}")
+        damping = finite_float("damping", damping)
+        if damping < 0.0:
+            raise ValueError(f"damping must be a damping ratio >= 0, got {damping!r}")
+        self.passive = passive
+        self.active = active
+        self.drive = drive
+        self.cell = cell
+        self.stiffness = stiffness
+        self.damping = damping
+
+    # ------------------------------------------------------------------ geometry
+    @property
+    def length(self) -> float:
+        """Actuator length ``L = N L_j`` [m]."""
+        return self.n_cells * self.cell_length
+
+    @property
+    def laminate(self) -> Laminate:
+        """The cross-section (layers, width, stiffness model) whose formulas this actuator uses."""
+        return Laminate(self.width, self.passive, self.active, self.stiffness)
+
+    @property
+    def layer_offset(self) -> float:
+        """Distance ``e`` between the layers' mid-planes [m]; the interface element's height."""
+        return self.laminate.layer_offset
+
+    # ------------------------------------------------------------------ stiffness
+    @property
+    def torsion_stiffness_passive(self) -> float:
+        """Torsion spring at each passive-layer (lower) revolute joint, ``2 E1 I1 / L_j`` [N m/rad]."""
+        return self.laminate.layer_joint_stiffness(self.cell_length)[0]
+
+    @property
+    def torsion_stiffness_active(self) -> float:
+        """Torsion spring at each active-layer (upper) revolute joint, ``2 E2 I2 / L_j`` [N m/rad]."""
+        return self.laminate.layer_joint_stiffness(self.cell_length)[1]
+
+    @property
+    def axial_rigidity_effective(self) -> float:
+        """Axial rigidity that couples the layers [N]: ``a1 a2/(a1+a2)`` (composite) or ``a2`` (paper)."""
+        return self.laminate.axial_rigidity_effective
+
+    @property
+    def axial_spring_stiffness(self) -> float:
+        """Stiffness ``k1`` of the axial spring A2-A3 in each cell [N/m]."""
+        return self.laminate.axial_spring_stiffness(self.cell_length)
+
+    @property
+    def bending_stiffness(self) -> float:
+        """Bending stiffness ``EI`` of the modelled laminate [N m²].
+
+        ``E1 I1 + E2 I2 + a_eff e²``; equal to lamination theory for ``stiffness="composite"``.
+        """
+        return self.laminate.bending_stiffness
+
+    @property
+    def spring_share(self) -> float:
+        """Share ``rho_s = (E1 I1 + E2 I2)/EI`` of the bending stiffness held by the torsion springs [-]."""
+        laminate = self.laminate
+        return laminate.own_bending_stiffness / laminate.bending_stiffness
+
+    @property
+    def curvature_per_strain(self) -> float:
+        """Free curvature per unit free strain ``a_eff e / EI`` [1/m]."""
+        return self.laminate.curvature_per_strain
+
+    def free_curvature(self, strain: float) -> float:
+        """Free curvature [1/m] of the modelled laminate at free strain ``strain`` [-]."""
+        return self.curvature_per_strain * strain
+
+    @property
+    def joint_stiffness_inside(self) -> float:
+        """Rigid cell: torsion spring between two cells, ``EI / L_j`` [N m/rad]."""
+        return self.bending_stiffness / self.cell_length
+
+    @property
+    def joint_stiffness_end(self) -> float:
+        """Rigid cell: torsion spring at the clamp (and the tip interface), ``2 EI / L_j`` [N m/rad].
+
+        Each end joint stands for half a cell.
+        """
+        return 2.0 * self.bending_stiffness / self.cell_length
+
+    # ------------------------------------------------------------------ masses
+    @property
+    def mass_per_length(self) -> float:
+        """Mass per unit length ``b (rho1 h1 + rho2 h2)`` [kg/m]."""
+        return self.laminate.mass_per_length
+
+    @property
+    def interface_length(self) -> float:
+        """Length ``s = min(h1 + h2, L_j/10)`` of laminate lumped into each six-bar interface [m]."""
+        return self.laminate.interface_length(self.cell_length)
+
+    @property
+    def first_frequency_estimate(self) -> float:
+        """First bending frequency of the continuous beam with this ``EI`` and mass [Hz]."""
+        return self.laminate.first_frequency(self.length)
+
+    @property
+    def stiffness_damping_factor(self) -> float:
+        """``beta = 2 zeta / omega_1`` [s]: every spring with stiffness ``k`` gets damping ``beta k``."""
+        return self.laminate.stiffness_damping_factor(self.damping, self.length)
+
+    # ------------------------------------------------------------------ description
+    def parameters(self) -> dict[str, Any]:
+        """Parameters with units, for headers of result files."""
+        drive = self.drive
+        hyst = drive.hysteresis
+        return {
+            "cell": self.cell.name,
+            "stiffness": self.stiffness,
+            "n_cells": self.n_cells,
+            "cell_length [m]": self.cell_length,
+            "width [m]": self.width,
+            "passive.thickness [m]": self.passive.thickness,
+            "passive.youngs_modulus [Pa]": self.passive.youngs_modulus,
+            "passive.density [kg/m^3]": self.passive.density,
+            "active.thickness [m]": self.active.thickness,
+            "active.youngs_modulus [Pa]": self.active.youngs_modulus,
+            "active.density [kg/m^3]": self.active.density,
+            "damping ratio [-]": self.damping,
+            "voltage": repr(drive.voltage),
+            "d33 [m/V]": drive.d33,
+            "electrode_spacing [m]": drive.electrode_spacing,
+            "hysteresis": "None" if hyst is None else repr(hyst),
+            "bending_stiffness [N m^2]": self.bending_stiffness,
+        }
+
+    def __repr__(self) -> str:
+        return (
+            f"BendingActuator(n_cells={self.n_cells}, cell_length={self.cell_length!r}, "
+            f"width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
+            f"drive={self.drive!r}, cell={self.cell!r}, stiffness={self.stiffness!r}, "
+            f"damping={self.damping!r})"
+        )

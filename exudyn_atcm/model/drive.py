@@ -1,0 +1,266 @@
+"""The electrical drive of the active layer: voltage program and voltage-to-strain law."""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+from typing import Any, Callable, Union
+
+from .._checks import finite_float, positive_float
+
+VoltageProgram = Union[float, Callable[[float], float]]
+
+_OPERATOR_METHODS = ("evaluate", "commit", "reset", "apply", "checkpoint", "restore")
+
+#: Rated operating voltage of the MFC P1 type [V] (d33 mode, -500 ... +1500 V; Smart Material
+#: Corp. data sheet; the paper drives its MFC over exactly this range).
+MFC_P1_RATED_RANGE = (-500.0, 1500.0)
+
+#: Free strains [-] above this magnitude are implausible for a piezo layer (MFC P1 reaches
+#: about 1.4e-3 at 1500 V, piezo ceramics about 2e-3): most likely a unit mistake.
+PLAUSIBLE_STRAIN = 1e-2
+
+#: A voltage program whose peak ``|U|`` stays below this fraction of the largest magnitude of
+#: the rated range (3 V for the MFC P1's -500 ... +1500 V) is most likely written in kV: a
+#: program in kV peaks at 1/1000 of its meaning, at most 1.5 V within the MFC's rating.
+#: The threshold leaves a factor 2 above that and a factor 5 below the smallest deliberate
+#: small-signal program of the package (a 1 % triangle, -5 ... 15 V); at 3 V the MFC's free
+#: strain is about 3e-6, 0.2 % of its full stroke.
+KV_SUSPECT_FRACTION = 2e-3
+
+
+def _is_controller(value: Any) -> bool:
+    """A controller of :mod:`exudyn_atcm.model.control`'s protocol (duck-typed)."""
+    return all(callable(getattr(value, m, None)) for m in ("voltage_at", "observe", "reset"))
+
+
+class PiezoDrive:
+    """Voltage program of the MFC layer and its map to the free actuation strain.
+
+    Parameters
+    ----------
+    voltage : float, callable or controller
+        Applied voltage ``U`` [V]: a constant number, a callable of time ``t`` [s] returning
+        volts (every object of :mod:`exudyn_atcm.model.signals` qualifies), or a controller (an
+        object with ``voltage_at(t)``, ``observe(t, tip_deflection)`` and ``reset()``, e.g.
+        :class:`exudyn_atcm.model.control.PIDController`; see :mod:`exudyn_atcm.model.control` for the
+        protocol) that sets the voltage from the simulated tip deflection during the run.
+    d33 : float, optional
+        Piezoelectric constant [m/V] (= C/N), > 0.  Default 460e-12 (MFC P1, high field).
+        Used only without ``hysteresis``.
+    electrode_spacing : float, optional
+        Spacing of the interdigitated electrodes ``t_IDE`` [m], > 0.  Default 0.5e-3.
+        Used only without ``hysteresis``.
+    hysteresis : hysteresis operator, optional
+        Operator mapping voltage [V] to free strain [-] (e.g.
+        :func:`exudyn_atcm.model.parameter_sets.paper_strain_preisach`).  It must provide
+        ``evaluate``, ``commit``, ``reset``, ``apply``, ``checkpoint`` and ``restore``.
+        Without it, the free strain is linear: ``d33 U / electrode_spacing`` (Eq. 3).
+        The operator's output must be the free strain: an operator whose
+        ``output_quantity`` is set to anything but ``"strain"`` (e.g. the paper's stroke
+        model :func:`~exudyn_atcm.model.parameter_sets.paper_stroke_preisach`, ``"stroke"``) is
+        refused; ``None`` (not stated) is accepted.
+    rated_range : (float, float) or None, optional
+        Rated voltage range of the MFC [V]; default ``(-500, 1500)``, the MFC P1 type.
+        Voltages outside it, or outside the operator's ``input_range`` (where its output
+        saturates), give one ``RuntimeWarning`` per run; so does a non-zero program whose
+        peak ``|U|`` stays below :data:`KV_SUSPECT_FRACTION` of the rating's largest magnitude
+        (3 V for the default: a program written in kV).  ``None``: no rating check.
+
+    Notes
+    -----
+    Each cell's motor stroke is the free strain times the cell length (Eq. 2), so one
+    strain-valued operator serves cells of any length.  The simulation resets the operator
+    at its start and commits it only on accepted solver steps.
+    """
+
+    def __init__(
+        self,
+        voltage: VoltageProgram,
+        d33: float = 460e-12,
+        electrode_spacing: float = 0.5e-3,
+        hysteresis: Any = None,
+        rated_range: tuple[float, float] | None = MFC_P1_RATED_RANGE,
+    ) -> None:
+        self.controller = None
+        if _is_controller(voltage):
+            self.controller = voltage
+            self._voltage_fn = voltage.voltage_at
+        elif callable(voltage):
+            self._voltage_fn = voltage
+        elif isinstance(voltage, numbers.Real) and not isinstance(voltage, bool):
+            value = float(voltage)
+            if not math.isfinite(value):
+                raise ValueError(f"voltage must be a finite number [V] or a callable of time, got {voltage!r}")
+            self._voltage_fn = None
+        else:
+            raise ValueError(
+                f"voltage must be a finite number [V] or a callable of time t [s], got {voltage!r}"
+            )
+        self.voltage = voltage
+        self.d33 = positive_float("d33", d33)
+        self.electrode_spacing = positive_float("electrode_spacing", electrode_spacing)
+        if hysteresis is not None:
+            missing = [m for m in _OPERATOR_METHODS if not callable(getattr(hysteresis, m, None))]
+            if missing:
+                raise ValueError(
+                    f"hysteresis must be a hysteresis operator with methods {', '.join(_OPERATOR_METHODS)}; "
+                    f"got {type(hysteresis).__name__!s} lacking {', '.join(missing)}"
+                )
+            quantity = getattr(hysteresis, "output_quantity", None)
+            if quantity is not None and quantity != "strain":
+                raise ValueError(
+                    f"hysteresis must give the free strain [-] of the active layer, got an operator whose "
+                    f"output is {quantity!r}. The drive turns strain into each cell's stroke itself "
+                    "(stroke = strain x cell length); use a strain-valued operator, e.g. "
+                    "exudyn_atcm.model.parameter_sets.paper_strain_preisach() instead of paper_stroke_preisach(), "
+                    "or scale your operator's output to strain"
+                )
+            _check_strain_magnitude(_output_bound(hysteresis), "the hysteresis operator's output range", stacklevel=4)
+        self.hysteresis = hysteresis
+        if rated_range is None:
+            self.rated_range = None
+        else:
+            try:
+                low, high = rated_range
+            except (TypeError, ValueError):
+                raise ValueError(f"rated_range must be None or a pair (U_min, U_max) [V], got {rated_range!r}") from None
+            low, high = finite_float("rated_range[0]", low), finite_float("rated_range[1]", high)
+            if not low < high:
+                raise ValueError(f"rated_range must have U_min < U_max, got {rated_range!r}")
+            self.rated_range = (low, high)
+
+    def voltage_at(self, t: float) -> float:
+        """Voltage [V] at time ``t`` [s]; raises ``ValueError`` if the program returns a non-finite value."""
+        if self._voltage_fn is None:
+            return float(self.voltage)
+        value = float(self._voltage_fn(t))
+        if not math.isfinite(value):
+            raise ValueError(f"voltage program returned {value!r} at t = {t!r} s; it must return finite volts")
+        return value
+
+    def linear_strain(self, voltage: float) -> float:
+        """Free strain without hysteresis, ``d33 U / t_IDE`` (Eq. 3) [-]."""
+        return self.d33 * voltage / self.electrode_spacing
+
+    def static_strain(self, voltage: float) -> float:
+        """Free strain [-] reached at ``voltage`` [V] by a monotone ramp from the operator's reset state.
+
+        Without hysteresis this is :meth:`linear_strain`.  A rate-independent operator
+        gives the same output for any monotone path from the reset state to ``voltage``,
+        so the ramp is applied as one input.
+        """
+        if self.hysteresis is None:
+            return self.linear_strain(voltage)
+        return float(self.hysteresis.apply([float(voltage)])[-1])
+
+    def check_voltage_range(self, u_low: float, u_high: float, *, what: str | None = None,
+                            stacklevel: int = 4) -> None:
+        """Warn once if voltages in ``[u_low, u_high]`` [V] leave the operator's input range or the rating.
+
+        Outside the hysteresis operator's ``input_range`` its output saturates (5000 V gives
+        the 1500 V answer); outside :attr:`rated_range` the MFC is driven beyond its rating.
+        One ``RuntimeWarning`` lists each range and how far the voltages go beyond it; ``what``
+        (e.g. ``"drive 'crank'"``) names the drive in it.  A second ``RuntimeWarning`` is given
+        when a non-zero program peaks below :data:`KV_SUSPECT_FRACTION` of the rating's largest
+        magnitude (below 3 V for the MFC P1: most likely written in kV).
+        """
+        problems = []
+        op_range = getattr(self.hysteresis, "input_range", None) if self.hysteresis is not None else None
+        if op_range is not None:
+            text = _outside(u_low, u_high, op_range)
+            if text:
+                problems.append(
+                    f"{text} the hysteresis operator's input range {op_range[0]:g} ... {op_range[1]:g} V, "
+                    "where its output saturates (larger voltages give the same strain)"
+                )
+        if self.rated_range is not None:
+            text = _outside(u_low, u_high, self.rated_range)
+            if text:
+                problems.append(
+                    f"{text} the MFC's rated range {self.rated_range[0]:g} ... {self.rated_range[1]:g} V "
+                    "(rated_range of the PiezoDrive)"
+                )
+        if problems:
+            warnings.warn(
+                (f"{what}: " if what else "") + f"the voltage program spans {u_low:g} ... {u_high:g} V: "
+                + "; ".join(problems),
+                RuntimeWarning,
+                stacklevel=stacklevel,
+            )
+        self._check_tiny_program(u_low, u_high, what, stacklevel + 1)
+
+    def _check_tiny_program(self, u_low: float, u_high: float, what: str | None, stacklevel: int) -> None:
+        """Warn when a non-zero program peaks below :data:`KV_SUSPECT_FRACTION` of the rating (kV?).
+
+        Not for a drive set by a controller (its voltage is computed, not written by the user)
+        nor without a rated range; a program that is zero throughout stays silent.
+        """
+        if self.rated_range is None or self.controller is not None:
+            return
+        peak = max(abs(u_low), abs(u_high))
+        rated = max(abs(self.rated_range[0]), abs(self.rated_range[1]))
+        limit = KV_SUSPECT_FRACTION * rated
+        if 0.0 < peak < limit:
+            warnings.warn(
+                (f"{what}: " if what else "")
+                + f"the voltage program peaks at |U| = {peak:.4g} V, below {limit:.3g} V "
+                f"({100 * KV_SUSPECT_FRACTION:g} % of the largest rated voltage; rated range "
+                f"{self.rated_range[0]:g} ... {self.rated_range[1]:g} V), so its response is about "
+                f"{peak / rated:.2g} of that at the rating. The drive takes volts: if the program is in kV, "
+                "multiply it by 1000",
+                RuntimeWarning,
+                stacklevel=stacklevel,
+            )
+
+    def check_strain(self, strain_low: float, strain_high: float, *, what: str | None = None,
+                     stacklevel: int = 5) -> None:
+        """Warn if free strains in ``[strain_low, strain_high]`` exceed :data:`PLAUSIBLE_STRAIN` in magnitude.
+
+        ``what`` (e.g. ``"drive 'crank'"``) names the drive in the warning.
+        """
+        _check_strain_magnitude(max(abs(strain_low), abs(strain_high)),
+                                f"the free strain of {what}" if what else "the free strain of the run", stacklevel=stacklevel)
+
+    def __repr__(self) -> str:
+        hyst = "None" if self.hysteresis is None else type(self.hysteresis).__name__
+        return (
+            f"PiezoDrive(voltage={self.voltage!r}, d33={self.d33!r}, "
+            f"electrode_spacing={self.electrode_spacing!r}, hysteresis={hyst})"
+        )
+
+
+def _outside(u_low: float, u_high: float, bounds: tuple[float, float]) -> str:
+    """``"reach 5000 V, 3500 V above"``-style text, or ``""`` when inside ``bounds``."""
+    parts = []
+    if u_high > bounds[1]:
+        parts.append(f"reach {u_high:g} V, {u_high - bounds[1]:g} V above")
+    if u_low < bounds[0]:
+        parts.append(f"reach {u_low:g} V, {bounds[0] - u_low:g} V below")
+    return " and ".join(parts) and "they " + " and ".join(parts)
+
+
+def _output_bound(operator: Any) -> float:
+    """Largest output magnitude an operator states (``y_min``/``y_max`` or ``output_range``), else 0."""
+    bounds = getattr(operator, "output_range", None)
+    if bounds is None:
+        low, high = getattr(operator, "y_min", None), getattr(operator, "y_max", None)
+        if low is None or high is None:
+            return 0.0
+        bounds = (low, high)
+    try:
+        return max(abs(float(bounds[0])), abs(float(bounds[1])))
+    except (TypeError, ValueError, IndexError):
+        return 0.0
+
+
+def _check_strain_magnitude(value: float, what: str, stacklevel: int) -> None:
+    if value > PLAUSIBLE_STRAIN:
+        warnings.warn(
+            f"{what} reaches a free strain of {value:.3g}, more than {PLAUSIBLE_STRAIN:g} (1 %); piezo "
+            "layers reach about 1e-3 (the paper's MFC: 1.38e-3 at 1500 V). Check the units: the drive "
+            "expects strain [-], not a stroke in micrometres or a strain in percent",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )

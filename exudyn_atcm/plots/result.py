@@ -1,0 +1,183 @@
+"""PNG plots of a :class:`~exudyn_atcm.io.result.Result` (matplotlib, headless).
+
+Figures are drawn with matplotlib's object interface on an Agg canvas, so importing or
+calling this module never selects or opens a GUI backend.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from typing import Sequence
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..io.atomic import FILE_MODE, WriteError, describe_os_error, make_directory
+from .style import new_figure, save_figure
+from ..io.progress import report_task
+
+
+def _save(fig: Figure, path: str) -> str:
+    save_figure(fig, path)
+    return path
+
+
+def chain_shape(result, row: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices [m] of the passive layer at recorded ``row``, from the per-cell angles.
+
+    Each cell's passive layer is a straight bar of the cell length at its recorded angle,
+    starting at the clamp (0, 0).
+    """
+    names = [n for n in result.names if n.startswith("cell_angle_")]
+    if not names:
+        raise ValueError("result has no cell_angle_* series to draw the shape from")
+    try:
+        cell_length = float(result.parameters["cell_length [m]"])
+    except KeyError:
+        raise ValueError("result.parameters lacks 'cell_length [m]'") from None
+    angles = np.array([result[n][row] for n in sorted(names, key=lambda s: int(s.rsplit("_", 1)[1]))])
+    x = np.concatenate([[0.0], np.cumsum(cell_length * np.cos(angles))])
+    y = np.concatenate([[0.0], np.cumsum(cell_length * np.sin(angles))])
+    return x, y
+
+
+def plot_time_series(result, path: str) -> str:
+    """Voltage, stroke and tip displacement over time."""
+    t = result["time"]
+    fig, axes = new_figure(3, 1, width=7, height=7, sharex=True)
+    axes[0].plot(t, result["voltage"], color="tab:blue")
+    axes[0].set_ylabel("voltage U [V]")
+    axes[1].plot(t, result["stroke"] * 1e6, color="tab:orange")
+    axes[1].set_ylabel("cell stroke x_a [µm]")
+    axes[2].plot(t, result["tip_y"] * 1e3, label="tip y", color="tab:green")
+    axes[2].plot(t, (result["tip_x"] - result["tip_x"].max()) * 1e3, label="tip x - max(tip x)",
+                 color="tab:red", linestyle="--")
+    axes[2].set_ylabel("tip displacement [mm]")
+    axes[2].set_xlabel("time t [s]")
+    axes[2].legend(loc="best")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_tip_vs_voltage(result, path: str) -> str:
+    """Tip deflection over voltage (the actuator's hysteresis loop)."""
+    fig, (ax,) = new_figure(1, 1, width=6, height=4.5)
+    ax.plot(result["voltage"], result["tip_y"] * 1e3, color="tab:green")
+    ax.set_xlabel("voltage U [V]")
+    ax.set_ylabel("tip deflection y [mm]")
+    ax.grid(True, alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_shapes(result, path: str, rows: Sequence[int] | None = None) -> str:
+    """Deformed shape of the passive layer at a few instants (default: 6 evenly spaced)."""
+    n = result.n_rows
+    if rows is None:
+        rows = sorted(set(np.linspace(0, n - 1, min(6, n)).round().astype(int).tolist()))
+    fig, (ax,) = new_figure(1, 1, width=7, height=4)
+    for row in rows:
+        x, y = chain_shape(result, row)
+        ax.plot(x * 1e3, y * 1e3, marker="o", markersize=3,
+                label=f"t = {result['time'][row]:.3g} s, U = {result['voltage'][row]:.0f} V")
+    ax.set_xlabel("x along the undeformed actuator [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize="small", loc="best")
+    return _save(fig, path)
+
+
+def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int = 15) -> str:
+    """GIF animation of the deformed actuator with its tip trace and the voltage.
+
+    Parameters
+    ----------
+    result : Result
+        A result with ``cell_angle_*`` series and ``cell_length [m]`` in its parameters.
+    path : str or os.PathLike
+        Target ``.gif`` file (written atomically).
+    frames : int, optional
+        Number of frames, evenly spaced over the recorded time, ``>= 2``.
+    fps : int, optional
+        Frames per second of the GIF, ``>= 1``.
+    """
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
+        raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
+    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
+        raise ValueError(f"fps must be an integer >= 1, got {fps!r}")
+    rows = np.unique(np.linspace(0, result.n_rows - 1, frames).round().astype(int))
+    shapes = [chain_shape(result, int(row)) for row in rows]
+    xs = np.concatenate([x for x, _ in shapes]) * 1e3
+    ys = np.concatenate([y for _, y in shapes]) * 1e3
+    fig, (ax,) = new_figure(1, 1, width=6, height=4)
+    ax.set_xlim(xs.min() - 5, xs.max() + 5)
+    margin = 0.1 * max(ys.max() - ys.min(), 1.0)
+    ax.set_ylim(ys.min() - margin, ys.max() + margin)
+    ax.set_xlabel("x along the undeformed actuator [mm]")
+    ax.set_ylabel("y [mm]")
+    (trace,) = ax.plot([], [], color="0.6", lw=1, label="tip path")
+    (chain,) = ax.plot([], [], "o-", color="tab:blue", lw=2, ms=4, label="passive layer")
+    label = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
+    ax.legend(loc="lower right", fontsize="small")
+    tip_x, tip_y = result["tip_x"] * 1e3, result["tip_y"] * 1e3
+
+    def draw(k: int):
+        x, y = shapes[k]
+        chain.set_data(x * 1e3, y * 1e3)
+        trace.set_data(tip_x[: rows[k] + 1], tip_y[: rows[k] + 1])
+        label.set_text(f"t = {result['time'][rows[k]]:.3f} s   U = {result['voltage'][rows[k]]:.0f} V")
+        return chain, trace, label
+
+    animation = FuncAnimation(fig, draw, frames=len(shapes), blit=False)
+    target = os.fspath(path)
+    directory = os.path.dirname(os.path.abspath(target))
+    if not os.path.isdir(directory):
+        raise ValueError(f"path must be in an existing directory, got {target!r}")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
+    except OSError as exc:
+        raise WriteError(f"cannot write {target!r} into {directory!r}: {describe_os_error(exc)}") from None
+    os.close(fd)
+    try:
+        os.chmod(tmp, FILE_MODE)
+        total = len(shapes)
+        report_task("GIF frames", 0, total)
+        animation.save(tmp, writer=PillowWriter(fps=fps),
+                       progress_callback=lambda done, _n: report_task("GIF frames", done + 1, total))
+        os.replace(tmp, target)
+    except BaseException as exc:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        if isinstance(exc, OSError) and not isinstance(exc, WriteError):
+            raise WriteError(f"cannot write {target!r}: {describe_os_error(exc)}") from None
+        raise
+    return target
+
+
+def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
+    """Write ``time_series.png``, ``tip_vs_voltage.png`` and ``shapes.png`` to ``out_dir``.
+
+    Returns the paths written.
+    """
+    if "voltage" not in result or "tip_y" not in result:
+        raise ValueError(
+            "plot_result draws the series of a BendingActuator run (voltage, tip_x, tip_y, ...); this result has "
+            f"{', '.join(list(result)[:6])}, ... - for a mechanism use exudyn_atcm.plots.mechanism.plot_mechanism"
+            "(mechanism, result, path) or plot_point_paths")
+    out_dir = os.fspath(out_dir)
+    make_directory(out_dir, "plot directory")
+    jobs = [
+        (plot_time_series, "time_series.png"),
+        (plot_tip_vs_voltage, "tip_vs_voltage.png"),
+        (plot_shapes, "shapes.png"),
+    ]
+    written = []
+    report_task("plots", 0, len(jobs))
+    for k, (draw, name) in enumerate(jobs, start=1):
+        written.append(draw(result, os.path.join(out_dir, f"{prefix}{name}")))
+        report_task("plots", k, len(jobs))
+    return written

@@ -1,0 +1,151 @@
+"""Checks of a mechanism run: the actuator's run checks applied to every drive and bender.
+
+Used by :mod:`exudyn_atcm.solve.mechanism_solve`; the thresholds and their reasons are those of
+:mod:`exudyn_atcm.solve.run_checks` and :class:`exudyn_atcm.PiezoDrive`:
+
+* :func:`check_steps` -- the step against every drive's voltage program (the message names
+  the drive), against the lowest first-frequency estimate of the benders and flexures (naming
+  the part), and the up-front run-time estimate over all cells and links;
+* :func:`check_drive_ranges` -- voltage range and strain, one warning per drive and run;
+* :func:`feedback_controllers` -- each drive set by a controller with the result column it
+  observes (:meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`), or a refusal.
+
+No Exudyn import.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..cells import CellKind, RigidCell
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
+from ..mechanism.flexure import Flexure
+from ..mechanism.points import MechanismError
+from .run_checks import check_step_against_frequency, check_step_against_program, warn_if_long
+
+if TYPE_CHECKING:
+    from ..mbs.model import MechanismModel
+
+__all__ = ["check_steps", "check_drive_ranges", "feedback_controllers", "lowest_first_frequency", "cost_parts"]
+
+
+def _drive_names(model: MechanismModel) -> list[str]:
+    """The drive name(s) of every strain source, for messages (``"'crank'"`` or ``"'a.1', 'a.2'"``)."""
+    names: list[list[str]] = [[] for _ in model.sources]
+    for name, k in model.drive_source.items():
+        names[k].append(repr(name))
+    return [", ".join(n) for n in names]
+
+
+def check_drive_ranges(model: MechanismModel, volts: np.ndarray, strains: np.ndarray, stacklevel: int = 4) -> None:
+    """Voltage-range and strain checks of every drive (one warning per drive and run, naming it).
+
+    ``volts`` and ``strains`` are rows (or one row) of per-source values, as recorded;
+    ``stacklevel`` counts from the caller of this function (default: its caller's caller).
+    """
+    volts = np.atleast_2d(volts)
+    strains = np.atleast_2d(strains)
+    if volts.shape[0] == 0:
+        return
+    for k, (drive, names) in enumerate(zip(model.sources, _drive_names(model))):
+        what = f"drive {names}"
+        drive.check_voltage_range(float(volts[:, k].min()), float(volts[:, k].max()), what=what,
+                                  stacklevel=stacklevel + 1)
+        drive.check_strain(float(strains[:, k].min()), float(strains[:, k].max()), what=what,
+                           stacklevel=stacklevel + 2)
+
+
+def lowest_first_frequency(mech: Mechanism) -> tuple[float, str]:
+    """The lowest first-frequency estimate [Hz] of the mechanism's benders and flexures, and which.
+
+    Each part as a clamped-free beam of its laminate and length (the same formula as
+    :attr:`exudyn_atcm.BendingActuator.first_frequency_estimate`); ``(inf, "")`` without such parts.
+    """
+    best, which = math.inf, ""
+    for comp in mech.components.values():
+        if isinstance(comp, (Bender, Flexure)):
+            f = comp.laminate.first_frequency(comp.length)
+            if f < best:
+                kind = "bender" if isinstance(comp, Bender) else "flexure"
+                best, which = f, f"the first bending mode of {kind} {comp.name!r} (clamped-free estimate)"
+    return best, which
+
+
+def cost_parts(mech: Mechanism) -> tuple[CellKind, int]:
+    """Cell kind and number of rigid parts for :func:`~exudyn_atcm.solve.run_checks.warn_if_long`.
+
+    The cells of every bender and ``"cells"`` flexure, two segments per pseudo-rigid-body
+    flexure and one body per link; the kind is the benders' dearest per cell (by each kind's
+    measured :attr:`~exudyn_atcm.cells.CellKind.cost_per_step`; rigid cells when none is dearer).
+    """
+    cell, count = RigidCell(), 0
+    for comp in mech.components.values():
+        if isinstance(comp, Bender):
+            count += sum(seg.n_cells for seg in comp.segments)
+            if _per_cell(comp.cell) > _per_cell(cell):
+                cell = comp.cell
+        elif isinstance(comp, Flexure):
+            count += comp.n_cells if comp.model == "cells" else 2
+        else:
+            count += 1
+    return cell, count
+
+
+def _per_cell(kind: CellKind) -> float:
+    """Cost of one more cell of ``kind`` at 10 cells [s] (0 when not measured)."""
+    return (kind.estimate_step_cost(11) or 0.0) - (kind.estimate_step_cost(10) or 0.0)
+
+
+def check_steps(mech: Mechanism, grid: Any, t_end: float) -> None:
+    """Step checks against every drive's voltage program and the lowest bender frequency; run-time estimate.
+
+    Drives sharing one program object (segments driven by one PiezoDrive) are checked once,
+    named together.
+    """
+    shared: dict[int, tuple[Any, list[str]]] = {}
+    for name, drive in mech.drives.items():
+        shared.setdefault(id(drive.voltage), (drive.voltage, []))[1].append(repr(name))
+    for program, names in shared.values():
+        label = "drive " + ", ".join(names) if len(names) == 1 else "drives " + ", ".join(names)
+        check_step_against_program(program, grid.step, t_end, what=f"the voltage program of {label}", stacklevel=5)
+    frequency, which = lowest_first_frequency(mech)
+    check_step_against_frequency(grid.step, frequency, what=which, stacklevel=5)
+    cell, parts = cost_parts(mech)
+    warn_if_long(cell, parts, grid.n_steps, parts=f"{parts} cells and bodies ({cell} cells)", stacklevel=5)
+
+
+def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[Any, str]]:
+    """``(controller, measurement column)`` of every drive set by a controller.
+
+    Refuses a controller without a declared measurement, and a measurement declared for a
+    drive that has no controller (the user meant a closed loop that would not exist).
+    """
+    out = []
+    for k, drive in enumerate(model.sources):
+        controller = getattr(drive, "controller", None)
+        if controller is None:
+            names = [n for n, j in model.drive_source.items() if j == k and n in mech.measurements]
+            if names:
+                raise MechanismError(
+                    f"mechanism {mech.name!r} declares the measurement {mech.measurements[names[0]]!r} for drive "
+                    f"{names[0]!r}, but that drive's voltage is not a controller ({drive.voltage!r}): nothing "
+                    "would observe it. Give the PiezoDrive a controller (exudyn_atcm.model.control) or remove the "
+                    "feedback declaration")
+            continue
+        names = [n for n, j in model.drive_source.items() if j == k]
+        declared = {mech.measurements[n] for n in names if n in mech.measurements}
+        if not declared:
+            raise MechanismError(
+                f"drive {names[0]!r} of mechanism {mech.name!r} is set by a controller "
+                f"({type(controller).__name__}), but the mechanism declares no measurement for it to observe. "
+                f"Declare one: mechanism.feedback({names[0]!r}, 'component.point_y') (any result column, e.g. "
+                f"a point's coordinate '{names[0].split('.')[0]}.tip_y', an angle or a spring force)")
+        if len(declared) > 1:
+            raise MechanismError(f"drives {', '.join(map(repr, names))} share one PiezoDrive but declare different "
+                                 f"measurements {sorted(declared)}; declare one")
+        out.append((controller, declared.pop()))
+    return out

@@ -1,0 +1,459 @@
+"""Static, quasi-static and dynamic solution of a :class:`~exudyn_atcm.mechanism.Mechanism`.
+
+:func:`exudyn_atcm.simulate`, :func:`exudyn_atcm.solve_static` and
+:func:`exudyn_atcm.eigenfrequencies` hand a mechanism to this module; :func:`static_sweep`
+is its own.  The hysteresis of every drive is evaluated in the solver step exactly as for a
+lone actuator (:class:`exudyn_atcm.model.strain_sources.InStepStrain`: trial from the committed memory
+in the pre-step hook, commit in the post-step hook of accepted steps only).
+
+The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
+:doc:`/mechanisms` page of the documentation.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any, Callable
+
+import numpy as np
+
+from .._checks import finite_array, finite_float, positive_int
+from ..mbs import builder as mb
+from ..mbs import linear
+from ..mbs import solver_runs as runs
+from ..mbs import solver_settings
+from ..mbs.recording import Rows, measurement_reader, restore_start_of_step
+from ..mechanism.actuator import BendingActuator
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import CELL_TYPES as BENDER_CELLS
+from ..mechanism.bender import Bender
+from ..mechanism.flexure import Flexure
+from ..mechanism.points import MechanismError, closest
+from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers
+from ..io.result import Result
+from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time
+from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
+from ..errors import SolverError
+from .run_checks import is_interrupt
+from ..model.strain_sources import InStepStrain
+
+VoltageSpec = Any  # None | float | Mapping[str, float]
+
+
+# ------------------------------------------------------------------------------ voltages
+
+def drive_voltages(mech: Mechanism, voltage: VoltageSpec) -> dict[str, float]:
+    """Voltage [V] of every drive: ``None`` -> each program at t = 0; a number -> every drive;
+    a mapping ``{drive_name: volts}`` (drives not named: their program at t = 0)."""
+    drives = mech.drives
+    out = {name: d.voltage_at(0.0) for name, d in drives.items()}
+    if voltage is None:
+        return out
+    if isinstance(voltage, Mapping):
+        for name, value in voltage.items():
+            if name not in drives:
+                raise MechanismError(f"voltage: unknown drive {name!r}{closest(str(name), drives)} "
+                                     f"(drives: {', '.join(drives) or 'none'})")
+            out[name] = finite_float(f"voltage[{name!r}]", value)
+        return out
+    value = finite_float("voltage", voltage)
+    return {name: value for name in drives}
+
+
+def _source_values(model: mb.MechanismModel, per_drive: Mapping[str, float], what: str) -> np.ndarray:
+    """One value per strain source; drives sharing one PiezoDrive object must agree."""
+    values = np.full(len(model.sources), np.nan)
+    owner: dict[int, str] = {}
+    for name, k in model.drive_source.items():
+        v = per_drive[name]
+        if k in owner and values[k] != v:
+            raise MechanismError(
+                f"{what}: drives {owner[k]!r} and {name!r} are one PiezoDrive object and cannot take "
+                f"different voltages ({values[k]!r} V and {v!r} V); give them separate PiezoDrive objects")
+        owner.setdefault(k, name)
+        values[k] = v
+    return values
+
+
+# ------------------------------------------------------------------------------ static equilibrium
+
+def _scales(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray) -> tuple[float, float]:
+    """Expected rotation [rad] (for load steps) and the lowest cantilever frequency [rad/s] of the parts."""
+    rot, omega = 0.0, math.inf
+    min_ei = math.inf
+    for comp in mech.components.values():
+        if isinstance(comp, (Bender, Flexure)):
+            lam = comp.laminate
+            min_ei = min(min_ei, lam.bending_stiffness)
+            omega = min(omega, 2.0 * math.pi * lam.first_frequency(comp.length))
+            if isinstance(comp, Bender):
+                for name in comp.drives:
+                    rot = max(rot, abs(lam.curvature_per_strain * strains[model.drive_source[name]]) * comp.length)
+    size = mech.size
+    for f in mech.forces:
+        value = f.force(0.0) if callable(f.force) else f.force
+        if math.isfinite(min_ei):
+            rot += math.hypot(*value) * size**2 / (2.0 * min_ei)
+    return rot, (omega if math.isfinite(omega) else 2.0 * math.pi * 10.0)
+
+
+def _equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, end: np.ndarray, from_reference: bool,
+                 load_steps: int | None, what: str) -> str:
+    """Static equilibrium with the strains moved from ``start`` to ``end``; returns the method used.
+
+    From the reference pose the loads are raised with the strains; otherwise they stay.
+    First Exudyn's static solver in load steps, then (as for a lone actuator) dynamic
+    relaxation polished by one static step.
+    """
+    # From the reference pose Exudyn's load factor raises the loads (as for a lone actuator, so
+    # that a one-bender mechanism takes the very same Newton path); later sweep points keep
+    # the loads and move the strains only.
+    model.load_factor = 1.0
+    model.set_path(start, end, ramp_loads=False)
+    rot, omega1 = _scales(mech, model, np.abs(end - start))
+    if load_steps is None:
+        load_steps = int(min(400, max(4, math.ceil(rot / 0.05))))
+    settings = solver_settings.static_settings(load_steps)
+    settings.staticSolver.useLoadFactor = from_reference
+    try:
+        runs.run_static(model, settings, lambda f: f)
+        return "static"
+    except runs.ExudynFailure as exc:
+        first = exc
+    model.set_path(start, end, ramp_loads=from_reference)
+    if from_reference:
+        runs.reset_to_reference(model)
+    else:
+        model.set_strain(0.0)
+    try:
+        change = runs.run_relaxation(model, 1.0, 0.5 * omega1, 2.0 / omega1)
+    except runs.ExudynFailure as exc:
+        raise SolverError(
+            f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge. Tried: Exudyn's static "
+            f"solver with {load_steps} load steps (stopped at load factor {first.time:.4g}: {first}), then dynamic "
+            f"relaxation (stopped at {exc.time:.3g} of its ramp: {exc}). Expected rotation about {rot:.3g} rad. "
+            "Use more cells, reduce the loads, check that the mechanism is not locked, or pass load_steps.") from exc
+    relaxed = np.array(model.coordinates())
+    runs.set_current_as_initial(model, zero_velocity=True)
+    model.load_factor = 1.0
+    model.set_path(end, end, ramp_loads=False)
+    polish = solver_settings.static_settings(1)
+    polish.staticSolver.useLoadFactor = False
+    try:
+        runs.run_static(model, polish, lambda f: f)
+        return "relaxation+static"
+    except runs.ExudynFailure:
+        pass
+    tol = 1e-9 * mech.size
+    if change <= tol:
+        runs.set_current_coordinates(model, relaxed)
+        return "relaxation"
+    raise SolverError(
+        f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge: Exudyn's static solver stopped "
+        f"at load factor {first.time:.4g} ({first}); dynamic relaxation still moved by {change:.3g} m over its last "
+        f"period (accepted: {tol:.3g} m) and the static polish failed. Use more cells, reduce the loads, or pass "
+        "more load_steps.")
+
+
+# ------------------------------------------------------------------------------ public solves
+
+def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int | None = None) -> Result:
+    """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`)."""
+    if load_steps is not None:
+        load_steps = positive_int("load_steps", load_steps)
+    model = mb.build(mech)
+    volts = drive_voltages(mech, voltage)
+    strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
+    strains = _source_values(model, strains_by_drive, "solve_static")
+    source_volts = _source_values(model, volts, "solve_static")
+    check_drive_ranges(model, source_volts, strains)
+    method = _equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
+    rows = Rows(model)
+    rows.add(0.0, source_volts, strains)
+    return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
+
+
+def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float] = (0.0, 0.0)) -> Mechanism:
+    """A :class:`BendingActuator` as a one-bender mechanism named ``"actuator"``: base welded to the
+    ground at the origin, along +x, the dead ``tip_force`` [N] at the tip (the same model).
+
+    Raises
+    ------
+    ValueError
+        For an actuator cell that cannot join a mechanism (the reason is the cell kind's own,
+        :meth:`~exudyn_atcm.cells.CellKind.mechanism_refusal`).
+    """
+    refusal = actuator.cell.mechanism_refusal()
+    if refusal is not None:
+        raise ValueError(
+            f"static_sweep runs a BendingActuator as a one-bender mechanism, whose cells are {BENDER_CELLS}; "
+            f"got an actuator with cell={actuator.cell.name!r} ({refusal}). Use one of those cells, or solve_static "
+            "per voltage (no hysteresis path)")
+    bender = Bender("actuator", width=actuator.width, passive=actuator.passive, active=actuator.active,
+                    length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive, cell=actuator.cell,
+                    stiffness=actuator.stiffness, damping=actuator.damping)
+    mech = Mechanism("actuator").add(bender).ground(bender.base)
+    fx = finite_float("tip_force[0]", tip_force[0])
+    fy = finite_float("tip_force[1]", tip_force[1])
+    if (fx, fy) != (0.0, 0.0):
+        mech.force(bender.tip, (fx, fy))
+    return mech
+
+
+def _actuator_result(actuator: BendingActuator, r: Result) -> Result:
+    """The columns of :func:`exudyn_atcm.simulate` for an actuator from a one-bender mechanism's result."""
+    base = "time" if "time" in r else "point"
+    series = {base: r[base], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
+              "stroke": r["actuator.strain"] * actuator.cell_length, "tip_x": r["actuator.tip_x"],
+              "tip_y": r["actuator.tip_y"], "tip_angle": r["actuator.tip_angle"]}
+    units = {base: r.unit(base), "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m",
+             "tip_angle": "rad"}
+    for j in range(actuator.n_cells):
+        series[f"cell_angle_{j + 1}"] = r[f"actuator.cell_angle_{j + 1}"]
+        units[f"cell_angle_{j + 1}"] = "rad"
+    return Result(series, units, parameters=actuator.parameters(), info=r.info)
+
+
+def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
+                 tip_force: tuple[float, float] = (0.0, 0.0)) -> Result:
+    """Quasi-static path over a voltage sequence, following the hysteresis.
+
+    Each point continues from the previous equilibrium and the previous hysteresis memory
+    (the operators are reset before the first point; between points the voltage is taken to
+    change monotonically, so each point commits its voltage once).  No dynamics: for path and
+    function generation.
+
+    Parameters
+    ----------
+    mech : Mechanism or BendingActuator
+        The mechanism with its loads (held constant along the sweep), or an actuator.
+    voltages : sequence of float, or mapping of drive name to sequence
+        Voltages [V] of all drives at each point, or per drive (equal lengths; drives not
+        named follow their program at t = 0 throughout).
+    tip_force : (float, float), optional
+        Actuator only: dead tip load [N], constant along the sweep.
+
+    Returns
+    -------
+    Result
+        One row per point; the first column ``point [-]`` holds the point's index (0, 1, 2, ...;
+        a sweep has no time), then the columns of :func:`exudyn_atcm.simulate` for the
+        mechanism (``{drive}.voltage [V]`` holds each point's voltage), or for the actuator.
+
+    Warns
+    -----
+    RuntimeWarning
+        Once per drive, naming it, for voltages outside its hysteresis operator's input range
+        or its rating, and implausible free strains (as for an actuator).
+    """
+    if isinstance(mech, BendingActuator):
+        return _actuator_result(mech, static_sweep(actuator_mechanism(mech, tip_force), voltages))
+    if not isinstance(mech, Mechanism):
+        raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {mech!r}")
+    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
+        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
+                         f"(Fx, Fy)), got tip_force={tip_force!r}")
+    model = mb.build(mech)
+    drives = mech.drives
+    if isinstance(voltages, Mapping):
+        series = {}
+        for name, values in voltages.items():
+            if name not in drives:
+                raise MechanismError(f"voltages: unknown drive {name!r}{closest(str(name), drives)} "
+                                     f"(drives: {', '.join(drives) or 'none'})")
+            series[name] = finite_array(f"voltages[{name!r}]", values)
+        lengths = {len(v) for v in series.values()}
+        if len(lengths) != 1:
+            raise ValueError(f"voltages: every drive's sequence must have the same length, got "
+                             f"{ {n: len(v) for n, v in series.items()} }")
+        n = lengths.pop()
+        base = drive_voltages(mech, None)
+        table = [{**base, **{name: float(v[i]) for name, v in series.items()}} for i in range(n)]
+    else:
+        values = finite_array("voltages", voltages)
+        table = [{name: float(v) for name in drives} for v in values]
+    source_table = np.array([_source_values(model, per_drive, f"static_sweep point {i}")
+                             for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
+    for drive in model.sources:
+        if drive.hysteresis is not None:
+            drive.hysteresis.reset()
+    strain_table = np.array([[d.linear_strain(u) if d.hysteresis is None else float(d.hysteresis.commit(u))
+                              for d, u in zip(model.sources, volts)] for volts in source_table])
+    strain_table = strain_table.reshape(source_table.shape)
+    check_drive_ranges(model, source_table, strain_table, stacklevel=3)
+    rows = Rows(model)
+    previous = np.zeros(len(model.sources))
+    methods = []
+    for i, per_drive in enumerate(table):
+        volts, strains = source_table[i], strain_table[i]
+        methods.append(_equilibrium(mech, model, previous, strains, i == 0, None,
+                                    f"sweep point {i}, voltages {per_drive} V"))
+        runs.set_current_as_initial(model, zero_velocity=True)
+        rows.add(float(i), volts, strains)
+        previous = strains
+    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)},
+                       base=("point", "-"))
+
+
+def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
+             progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
+    """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`).
+
+    The same checks as for an actuator (:mod:`exudyn_atcm.solve.run_checks`): the step against every
+    drive's voltage program and against the lowest first-frequency estimate of the benders
+    and flexures, the step used when it does not divide ``t_end``, a warning up front for a
+    long run (cells of all benders and flexures plus the links), one voltage-range and strain
+    warning per drive, ``record_every``, progress, and Ctrl-C as
+    :class:`~exudyn_atcm.solve.run_checks.SimulationInterrupted` carrying the partial result.
+    A drive set by a controller observes the column declared with
+    :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`.
+    """
+    t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
+    check_steps(mech, grid, t_end)
+    model = mb.build(mech)
+    feedback = feedback_controllers(mech, model)
+    observers = [(c, measurement_reader(model, column)) for c, column in feedback]
+    for controller, _ in feedback:
+        controller.reset()
+    sources = [InStepStrain(drive) for drive in model.sources]
+    strains0 = np.array([s.trial(0.0) for s in sources])
+    if np.any(strains0 != 0.0) or model.loads:
+        try:
+            _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+        except KeyboardInterrupt:
+            raise SimulationInterrupted(0.0) from None
+        except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
+            if is_interrupt(exc.__cause__ or exc):
+                raise SimulationInterrupted(0.0) from None
+            raise
+        runs.set_current_as_initial(model, zero_velocity=True)
+    model.ramp_loads, model.load_factor = False, 1.0
+    sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
+    solver_settings.apply_user_settings(sim_settings, settings)
+    rows = Rows(model)
+    clock = WallClock(progress, t_end) if progress is not None else None
+    guard = InterruptGuard()
+    # the last accepted step when the schedule skipped it: (t, volts, strains, Exudyn's post-step
+    # count then); its state is read once after the run (close_record), not copied every step
+    pending: list[Any] = []
+    counts = {"accepted": 0, "post_calls": 0}
+    # extremes over every accepted step (the record may be thinned), for the range checks
+    n_src = len(sources)
+    extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
+
+    user_errors: list[ValueError] = []
+
+    def pre_step(t: float) -> None:
+        model.time = t
+        try:
+            model.set_strains(np.array([s.trial(t) for s in sources]))
+        except ValueError as exc:  # a voltage program or load function gave nonsense: report it as such
+            user_errors.append(exc)
+            raise
+
+    def post_step(t: float) -> None:
+        committed = [s.commit(t) for s in sources]
+        counts["accepted"] += 1
+        t = snap_time(t, grid.step)  # recorded times on the step grid, as for an actuator
+        volts = np.array([u for u, _ in committed])
+        strains = np.array([e for _, e in committed])
+        np.minimum(extremes[0], volts, out=extremes[0])
+        np.maximum(extremes[1], volts, out=extremes[1])
+        np.minimum(extremes[2], strains, out=extremes[2])
+        np.maximum(extremes[3], strains, out=extremes[3])
+        if schedule.take(t):
+            rows.add(t, volts, strains)
+            pending.clear()
+        else:
+            pending[:] = [(t, volts, strains, counts["post_calls"])]
+        for controller, read in observers:
+            controller.observe(t, read(strains))
+        if clock is not None:
+            clock(t)
+
+    guarded_post = guard.wrap(post_step)
+
+    def counted_post(t: float) -> bool:
+        counts["post_calls"] += 1  # every step Exudyn accepted, also one the guard no longer passes on
+        return guarded_post(t)
+
+    def close_record(aborted: bool) -> None:
+        """Add the last accepted step if the schedule skipped it, reading its state now.
+
+        After a normal end or a post-step hook returning False, Exudyn's current state is the
+        last accepted step's.  After an interrupt caught in the pre-step hook Exudyn completes
+        one more step that was not accepted here, and after an exception in a user function
+        (``aborted``) the current state can be a Newton iterate: in both cases the state at
+        the start of Exudyn's last step is the last accepted one (verified with Exudyn 1.13 in
+        tests/test_mechanism_recording.py).
+        """
+        if not pending:
+            return
+        t, volts, strains, calls = pending.pop()
+        if aborted or counts["post_calls"] == calls + 1:
+            restore_start_of_step(model)
+        elif counts["post_calls"] != calls:  # not expected: Exudyn stops after at most one more step
+            return
+        rows.add(t, volts, strains)
+
+    stats, aborted = None, False
+    try:
+        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), counted_post)
+    except runs.ExudynFailure as exc:
+        if user_errors:
+            raise user_errors[0] from None
+        if not is_interrupt(exc):
+            last = pending[0][0] if pending else rows.last_time()
+            raise SolverError(
+                f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
+                f"t = {last:.6g} s, step {grid.step:g} s): generalized-alpha with Newton (absolute "
+                f"tolerance {sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
+                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
+                f"{exc}. Try a smaller step, a slower voltage program, more cells, or check that the mechanism is "
+                "not locked (mechanism.degrees_of_freedom()).") from exc
+        guard.interrupted = aborted = True
+    close_record(aborted)
+    accepted = max(counts["accepted"] - 1, 0)
+    info = run_info(grid, accepted, schedule, stats,
+                    hysteresis_evaluations=sum(s.evaluations for s in sources))
+    for controller, column in feedback:
+        report_controller(controller, info, f"the controller observing {column!r}")
+        info["controller"]["measurement"] = column
+    if counts["accepted"] and n_src:
+        check_drive_ranges(model, extremes[:2], extremes[2:])
+    if guard.interrupted:
+        t_stop = rows.last_time()
+        info["partial"] = True
+        info["interrupted_at [s]"] = t_stop
+        info.setdefault("attempted_steps", accepted)
+        info.setdefault("rejected_steps", 0)
+        raise SimulationInterrupted(t_stop, rows.result(info) if rows.times else None)
+    return rows.result(info)
+
+
+def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -> np.ndarray:
+    """Lowest ``n`` eigenfrequencies [Hz] of a mechanism about its static equilibrium at ``voltage``.
+
+    ``voltage=None`` linearises about the undeformed reference pose without loads (as for a
+    lone actuator); otherwise about the equilibrium at those voltages with the mechanism's
+    loads (see :func:`drive_voltages`).  The tangent stiffness includes the geometric stiffness
+    of the joints' internal forces (loads, closed-loop prestress, six-bar cells bent by their
+    motors), which Exudyn's own ``ComputeODE2Eigenvalues`` leaves out
+    (:func:`exudyn_atcm.mbs.linear.eigenfrequencies`).
+    """
+    n = positive_int("n", n)
+    model = mb.build(mech)
+    if voltage is not None:
+        volts = drive_voltages(mech, voltage)
+        strains = _source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
+                                 "eigenfrequencies")
+        check_drive_ranges(model, _source_values(model, volts, "eigenfrequencies"), strains)
+        _equilibrium(mech, model, np.zeros_like(strains), strains, True, None, f"voltages {volts} V")
+        runs.set_current_as_initial(model, zero_velocity=True)
+    else:
+        model.scale_loads(0.0)
+    freqs = linear.eigenfrequencies(model, n)
+    if freqs.size < n:
+        raise ValueError(f"n must be <= the number of degrees of freedom ({freqs.size}), got {n}")
+    return freqs

@@ -1,0 +1,477 @@
+"""Checks made before and around a time integration: step size, time grid, run time, Ctrl-C.
+
+Every function here is independent of Exudyn and of the model type, so any solve path (the
+bending actuator's :func:`~exudyn_atcm.solve.simulation.simulate`, a mechanism) can call them:
+
+* :func:`time_grid` -- the step actually used for ``t_end`` (warns when the requested step
+  does not divide the run);
+* :func:`check_step_against_program` -- refuses a step that cannot resolve the voltage
+  program, warns when it resolves it only coarsely;
+* :func:`check_step_against_frequency` -- warns when the step resolves the first
+  eigenfrequency too coarsely;
+* :func:`estimate_run_time` / :func:`warn_if_long` -- a predicted wall time from steps x a
+  measured cost per step for the cell type and number of cells;
+* :class:`InterruptGuard` -- turns Ctrl-C inside a solver hook into a clean stop.
+
+Thresholds and why
+------------------
+A voltage program's *feature* is the shortest interval between its corners (see
+:meth:`exudyn_atcm.model.signals.Signal.shortest_feature`): the ramp of a triangle (half a period),
+half a sine period, the dwell of a step program, the shortest stretch between reversals or
+marked kinks of a piecewise-linear program (a densely sampled smooth curve is judged by its
+extrema, not by its sampling interval).  The solver samples the program once per step, so with ``n`` steps per feature a
+peak of a ramp can be missed by up to ``1/(2n)`` of the ramp's swing, and a sine peak by
+``1 - cos(pi/(2n))`` of its amplitude:
+
+* :data:`MIN_STEPS_PER_FEATURE` = 4: below it the run is refused (a ramp's peak missed by more
+  than 12.5 % of its swing, reversals of the hysteresis input lost or moved by a quarter of a
+  feature; the Fig. 12 case with ``step = 1`` s samples -500 V three times and shows a flat
+  response);
+* :data:`COMFORTABLE_STEPS_PER_FEATURE` = 20: below it a warning (peak error up to 2.5 % of a
+  ramp's swing, 0.3 % of a sine amplitude).
+
+A piecewise-linear program whose corners all lie on the step grid is exempt: the solver then
+samples it exactly at every corner, and its input is the program itself
+(:func:`corners_on_grid`; e.g. a feedforward program tabulated at a controller's sample time
+that is a multiple of the step, whose inverse-hysteresis jumps at reversals last one sample).
+
+The other way round, a program whose shortest feature lasts more than
+:data:`SLOW_PROGRAM_FACTOR` = 100 times the run gives a warning: the run then sees at most 1 %
+of a ramp's swing (2 % of a triangle's amplitude), which is what a period or ramp time written in
+milliseconds against a run in seconds does (``Triangle(500, 1000, 500)`` for 500 ms, run 2 s).
+
+Against the first eigenfrequency ``f1``: generalized-alpha (spectral radius 0.8) damps a mode
+resolved by few steps per period and lengthens its period, so vibrations of the first bending
+mode are lost.  Below :data:`MIN_STEPS_PER_MODE_PERIOD` = 10 steps per ``1/f1`` a warning
+(period error of the trapezoidal family ~ (pi/n)^2/12, 8 % at 10 steps; fine for a
+quasi-static answer, wrong for the dynamics).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+from ..cells import CELL_KINDS, CellKind, cell_kind
+
+__all__ = [
+    "MIN_STEPS_PER_FEATURE",
+    "COMFORTABLE_STEPS_PER_FEATURE",
+    "MIN_STEPS_PER_MODE_PERIOD",
+    "SLOW_PROGRAM_FACTOR",
+    "LONG_RUN_SECONDS",
+    "COST_PER_STEP",
+    "TimeGrid",
+    "time_grid",
+    "snap_time",
+    "snap_times",
+    "check_step_against_program",
+    "corners_on_grid",
+    "check_step_against_frequency",
+    "estimate_run_time",
+    "warn_if_long",
+    "InterruptGuard",
+    "SimulationInterrupted",
+    "WallClock",
+]
+
+#: Fewest solver steps per feature of the voltage program; fewer are refused (see module notes).
+MIN_STEPS_PER_FEATURE = 4
+#: Fewer steps per feature than this give a warning (see module notes).
+COMFORTABLE_STEPS_PER_FEATURE = 20
+#: A program whose shortest feature (before ``t_end``) lasts more than this many runs gives a
+#: warning (see module notes).
+SLOW_PROGRAM_FACTOR = 100.0
+#: Fewer steps per period of the first eigenfrequency than this give a warning.
+MIN_STEPS_PER_MODE_PERIOD = 10
+#: A run predicted to take longer than this [s] of wall time is announced with a warning.
+LONG_RUN_SECONDS = 60.0
+
+#: Measured wall time of the time integration per accepted step [s], by cell type, as
+#: ``(a, b, c)``: a run of ``n`` cells and ``k`` steps takes about ``k * (a + b n + c n^2)``.
+#: ``(a, b, c)`` [s] of :func:`estimate_run_time` by cell name: each kind's own measured
+#: :attr:`~exudyn_atcm.cells.CellKind.cost_per_step` (``benchmarks/bench_run_cost.py``).
+COST_PER_STEP = {name: kind.cost_per_step for name, kind in CELL_KINDS.items() if kind.cost_per_step is not None}
+# ------------------------------------------------------------------------------ time grid
+
+@dataclass(frozen=True)
+class TimeGrid:
+    """The time steps of a run: ``n_steps`` equal steps of ``step`` [s] up to ``t_end`` [s]."""
+
+    t_end: float
+    step: float
+    n_steps: int
+    requested_step: float
+
+    @property
+    def adjusted(self) -> bool:
+        """True when the step used differs from the requested one."""
+        return self.step != self.requested_step
+
+
+def time_grid(t_end: float, step: float, *, warn: bool = True, stacklevel: int = 4) -> TimeGrid:
+    """Equal steps that end exactly at ``t_end``.
+
+    ``n = ceil(t_end/step)`` steps of ``t_end/n`` (what the solver does with a step that does
+    not divide the run).  If that differs from ``step`` by more than round-off, a
+    ``RuntimeWarning`` says so, and the returned :attr:`TimeGrid.step` is the one to record.
+
+    Parameters
+    ----------
+    t_end : float
+        End time [s], > 0.
+    step : float
+        Requested step [s], ``0 < step <= t_end``.
+    warn : bool, optional
+        Issue the warning (default True).
+    stacklevel : int, optional
+        Passed to ``warnings.warn`` (the frame the warning points at); the same in the
+        other checks.
+    """
+    ratio = t_end / step
+    n = max(1, int(math.ceil(ratio - 1e-9)))
+    used = t_end / n
+    if abs(used - step) <= 1e-9 * step:
+        return TimeGrid(t_end, step, n, step)
+    if warn:
+        warnings.warn(
+            f"step = {step!r} s does not divide t_end = {t_end!r} s ({ratio:.6g} steps); the run uses "
+            f"{n} steps of {used:.6g} s, and that step is recorded (info 'step [s]'). Choose a step "
+            f"that divides t_end (e.g. {t_end / n:.6g} or {t_end / max(n - 1, 1):.6g} s) to silence this",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+    return TimeGrid(t_end, used, n, step)
+
+
+def snap_time(t: float, step: float) -> float:
+    """``t`` [s] put on the grid ``k * step`` when it is within round-off of it.
+
+    Solver times accumulate round-off (``1.9998999999997962`` for ``19999 * 1e-4``).  A time
+    within ``1e-6`` steps of a grid point becomes that grid point, written with 15
+    significant digits so that its shortest representation is short (``1.9999``).  Times off
+    the grid (steps the solver halved) are returned unchanged.
+    """
+    k = round(t / step)
+    grid = k * step
+    if abs(t - grid) <= 1e-6 * step:
+        return float(f"{grid:.15g}")
+    return t
+
+
+def snap_times(times, step: float) -> np.ndarray:
+    """:func:`snap_time` applied to every element of ``times`` [s] (vectorised, same values).
+
+    A grid time ``g`` becomes ``rint(g 10^d) / 10^d`` with ``d = 14 - floor(log10 |g|)`` (15
+    significant digits, the nearest double to that decimal, as ``float(f"{g:.15g}")``); where
+    that could differ (``g 10^d`` near a rounding tie, ``|g|`` near a power of ten, or
+    ``10^d`` not exact) the element is formatted as :func:`snap_time` does.
+    """
+    t = np.array(times, dtype=float).ravel()
+    grid = np.round(t / step) * step
+    on = np.abs(t - grid) <= 1e-6 * step
+    out = t.copy()
+    g = grid[on]
+    snapped = g.copy()  # zeros stay zero
+    nz = g != 0.0
+    gn = g[nz]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        exponent = np.floor(np.log10(np.abs(gn)))
+    digits = 14.0 - exponent
+    exact = (digits >= 0.0) & (digits <= 22.0)  # 10^d exact in double precision
+    scale = 10.0 ** np.where(exact, digits, 0.0)
+    scaled = gn * scale
+    rounded = np.rint(scaled)
+    value = rounded / scale
+    mantissa = np.abs(gn) / 10.0 ** exponent
+    safe = (exact & (np.abs(np.abs(scaled - rounded) - 0.5) > 1e-3)
+            & (mantissa > 1.0 + 1e-9) & (mantissa < 10.0 - 1e-8) & (np.abs(rounded) < 2.0**53))
+    for i in np.flatnonzero(~safe):
+        value[i] = float(f"{gn[i]:.15g}")
+    snapped[nz] = value
+    out[on] = snapped
+    return out.reshape(np.shape(times))
+
+
+# ------------------------------------------------------------------------------ step checks
+
+def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program",
+                               stacklevel: int = 4) -> None:
+    """Refuse or warn when ``step`` resolves the program's shortest feature too coarsely.
+
+    Parameters
+    ----------
+    program : object
+        A voltage program; checked only if it has ``shortest_feature(t_end)`` (every
+        :mod:`exudyn_atcm.model.signals` object), which returns ``(duration [s], description)`` or
+        ``None``.  Plain callables and constants are not checked.
+    step : float
+        Step used [s].
+    t_end : float
+        End time of the run [s]; only features before it count.
+    what : str
+        How the program is named in messages.
+
+    Raises
+    ------
+    ValueError
+        With fewer than :data:`MIN_STEPS_PER_FEATURE` steps per feature: says what the step
+        would do and which step is needed.
+
+    Warns
+    -----
+    RuntimeWarning
+        With fewer than :data:`COMFORTABLE_STEPS_PER_FEATURE` steps per feature, and when the
+        shortest feature lasts more than :data:`SLOW_PROGRAM_FACTOR` times ``t_end`` (a period
+        or ramp time in milliseconds?).
+    """
+    shortest = getattr(program, "shortest_feature", None)
+    if not callable(shortest):
+        return
+    feature = shortest(t_end)
+    if feature is None:
+        return
+    duration, description = feature
+    if duration > SLOW_PROGRAM_FACTOR * t_end:
+        warnings.warn(
+            f"{what} hardly changes during the run: its shortest feature, {description}, lasts "
+            f"{duration:.6g} s, {duration / t_end:.3g} times t_end = {t_end:.6g} s, so the run covers at most "
+            f"{100.0 * t_end / duration:.2g} % of it. Times are in seconds: if the program's times or period are "
+            "in milliseconds, divide them by 1000",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+    if corners_on_grid(program, step, t_end):
+        return  # sampled exactly at every corner and linear between: nothing to miss
+    per_feature = duration / step
+    if per_feature < MIN_STEPS_PER_FEATURE:
+        raise ValueError(
+            f"step = {step:.6g} s is too coarse for {what}: its shortest feature, {description}, lasts "
+            f"{duration:.6g} s, only {per_feature:.3g} steps; the solver would sample the program "
+            f"{per_feature:.3g} times across it and miss its peaks and reversals (a flat or distorted "
+            f"response). Use step <= {duration / MIN_STEPS_PER_FEATURE:.6g} s (at least "
+            f"{MIN_STEPS_PER_FEATURE} steps per feature; {COMFORTABLE_STEPS_PER_FEATURE} recommended: "
+            f"step <= {duration / COMFORTABLE_STEPS_PER_FEATURE:.6g} s)"
+        )
+    if per_feature < COMFORTABLE_STEPS_PER_FEATURE:
+        warnings.warn(
+            f"step = {step:.6g} s resolves the shortest feature of {what}, {description} lasting "
+            f"{duration:.6g} s, with only {per_feature:.3g} steps: peaks can be missed by up to "
+            f"{50.0 / per_feature:.2g} % of a ramp's swing. For {COMFORTABLE_STEPS_PER_FEATURE} steps per "
+            f"feature use step <= {duration / COMFORTABLE_STEPS_PER_FEATURE:.6g} s",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+
+
+def corners_on_grid(program: Any, step: float, t_end: float) -> bool:
+    """Whether every corner of a piecewise-linear ``program`` before ``t_end`` lies on the step grid.
+
+    The solver samples the program at the grid times ``k * step``.  A program that is linear
+    between corners lying on that grid is then sampled exactly at every corner (peaks and
+    reversals included) and the solver's input is the program itself, however few steps a
+    segment spans; only the dynamics' resolution remains (:func:`check_step_against_frequency`).
+    Programs without ``corner_times(t_end)`` (:class:`~exudyn_atcm.model.signals.PiecewiseLinear`
+    has it) return False.
+    """
+    corner_times = getattr(program, "corner_times", None)
+    if not callable(corner_times):
+        return False
+    corners = np.asarray(corner_times(t_end), dtype=float)
+    if corners.size == 0:
+        return False
+    k = np.round(corners / step)
+    return bool(np.all(np.abs(corners - k * step) <= 1e-9 * max(step, 1e-300) + 1e-12 * np.abs(corners)))
+
+
+def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode",
+                                 stacklevel: int = 4) -> None:
+    """Warn when ``step`` [s] gives fewer than :data:`MIN_STEPS_PER_MODE_PERIOD` steps per ``1/frequency``.
+
+    Parameters
+    ----------
+    step : float
+        Step used [s].
+    frequency : float
+        Eigenfrequency [Hz] (e.g. :attr:`BendingActuator.first_frequency_estimate`); not
+        checked if not finite and positive.
+    what : str
+        How the mode is named in the message.
+    """
+    if not (frequency > 0.0 and math.isfinite(frequency)):
+        return
+    period = 1.0 / frequency
+    per_period = period / step
+    if per_period < MIN_STEPS_PER_MODE_PERIOD:
+        warnings.warn(
+            f"step = {step:.6g} s resolves {what} (f1 = {frequency:.4g} Hz, period {period:.4g} s) with "
+            f"only {per_period:.3g} steps: generalized-alpha damps it numerically and lengthens its "
+            f"period, so its vibrations are lost (acceptable for a quasi-static answer only). For the "
+            f"dynamics use step <= {period / (2 * MIN_STEPS_PER_MODE_PERIOD):.4g} s",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+
+
+# ------------------------------------------------------------------------------ run time
+
+def estimate_run_time(cell: str | CellKind, n_cells: int, n_steps: int) -> float | None:
+    """Predicted wall time [s] of a time integration from the cell kind's measured cost.
+
+    ``n_steps * (a + b n_cells + c n_cells^2)`` with the kind's
+    :attr:`~exudyn_atcm.cells.CellKind.cost_per_step` ``(a, b, c)``; ``None`` for a kind without
+    measured costs.  ``cell`` is a kind or its name.
+    """
+    per_step = cell_kind(cell).estimate_step_cost(n_cells)
+    return None if per_step is None else n_steps * per_step
+
+
+def _duration_text(seconds: float) -> str:
+    if seconds < 120.0:
+        return f"{seconds:.0f} s"
+    if seconds < 7200.0:
+        return f"{seconds / 60.0:.0f} min"
+    return f"{seconds / 3600.0:.1f} h"
+
+
+def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: float | None = None,
+                 parts: str | None = None, stacklevel: int = 4) -> float | None:
+    """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
+
+    ``limit`` defaults to :data:`LONG_RUN_SECONDS`.  ``parts`` describes the model in the
+    message (default ``"{n_cells} {cell} cells"``; a mechanism counts the cells of all its
+    benders and flexures and its links).
+    """
+    limit = LONG_RUN_SECONDS if limit is None else limit
+    estimate = estimate_run_time(cell, n_cells, n_steps)
+    if estimate is not None and estimate > limit:
+        per_step = estimate / max(n_steps, 1)
+        warnings.warn(
+            f"this run is predicted to take about {_duration_text(estimate)} ({n_steps} steps of "
+            f"{parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, measured). For a quicker answer "
+            "use a larger step (within the voltage program's limits), fewer cells or a shorter t_end; "
+            "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+    return estimate
+
+
+# ------------------------------------------------------------------------------ Ctrl-C
+
+class SimulationInterrupted(KeyboardInterrupt):
+    """Ctrl-C (or ``KeyboardInterrupt`` from a hook) stopped a time integration.
+
+    A ``KeyboardInterrupt``, so an uncaught one still ends a script as Ctrl-C does;
+    catch it to use what was computed.
+
+    Attributes
+    ----------
+    time : float
+        Time [s] of the last accepted step.
+    result : Result or None
+        The steps computed so far (``result.info["partial"]`` is True), or ``None``.
+    """
+
+    def __init__(self, time: float, result: Any = None) -> None:
+        super().__init__(f"interrupted at t = {time:.6g} s")
+        self.time = time
+        self.result = result
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+def is_interrupt(exc: BaseException) -> bool:
+    """Whether an Exudyn failure was a ``KeyboardInterrupt`` raised inside a user function
+    (Exudyn reports it in the text of its own error)."""
+    return "KeyboardInterrupt" in str(exc)
+
+
+def _caused_by_interrupt(exc: BaseException) -> bool:
+    """Whether ``KeyboardInterrupt`` is in the cause/context chain of ``exc``."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
+class InterruptGuard:
+    """Wraps solver hooks so that ``KeyboardInterrupt`` inside them stops the solver cleanly.
+
+    A Ctrl-C during the solver's C++ code surfaces in the next Python hook.  Raised through
+    Exudyn it becomes a solver failure with a meaningless time; instead, a wrapped hook
+    catches it, remembers it and returns ``False``, which tells Exudyn to stop after the
+    current step.  After the solve, :attr:`interrupted` says whether that happened.
+
+    Examples
+    --------
+    >>> guard = InterruptGuard()
+    >>> hook = guard.wrap(lambda t: None)
+    >>> hook(0.1), guard.interrupted
+    (True, False)
+    """
+
+    def __init__(self) -> None:
+        self.interrupted = False
+        self.at: float | None = None
+
+    def wrap(self, hook: Callable[[float], Any] | None) -> Callable[[float], bool] | None:
+        """``hook`` made to return ``True`` (go on) or ``False`` (stop: interrupted)."""
+        if hook is None:
+            return None
+
+        def guarded(t: float) -> bool:
+            if self.interrupted:
+                return False
+            try:
+                hook(t)
+            except KeyboardInterrupt:
+                self.interrupted = True
+                self.at = t
+                return False
+            except SystemError as exc:
+                # a Ctrl-C that lands while a C function returns inside the hook surfaces as
+                # "SystemError: ... returned a result with an exception set", caused by the
+                # KeyboardInterrupt: still an interrupt, not a fault of the model
+                if not _caused_by_interrupt(exc):
+                    raise
+                self.interrupted = True
+                self.at = t
+                return False
+            return True
+
+        return guarded
+
+
+class WallClock:
+    """Calls ``callback(t, t_end)`` every ``share`` of ``t_end`` or every ``interval`` seconds of wall time.
+
+    So a progress display moves both on fast runs (by simulated time) and on runs whose
+    simulated time crawls (by wall time).
+    """
+
+    def __init__(self, callback: Callable[[float, float], None] | None, t_end: float,
+                 share: float = 0.01, interval: float = 0.5) -> None:
+        self.callback = callback
+        self.t_end = t_end
+        self.share = share
+        self.interval = interval
+        self._next_t = 0.0
+        self._next_wall = time.perf_counter() + interval
+
+    def __call__(self, t: float) -> None:
+        if self.callback is None:
+            return
+        now = time.perf_counter()
+        if t >= self._next_t or now >= self._next_wall:
+            self.callback(t, self.t_end)
+            self._next_t = t + self.share * self.t_end
+            self._next_wall = now + self.interval

@@ -1,0 +1,400 @@
+"""Dynamic and static solution and eigenfrequencies of a :class:`~exudyn_atcm.mechanism.actuator.BendingActuator`.
+
+Hysteresis inside the solver step
+---------------------------------
+The drive's hysteresis operator is evaluated from its *committed* memory for the voltage at
+the time ``t`` of the step being attempted (Exudyn passes the step's end time to every hook),
+and committed only in the post-step hook, which Exudyn calls for accepted steps only.  A step
+that Exudyn rejects and repeats with a smaller step size therefore leaves no trace in the
+memory, and the recorded strain equals the operator applied offline to the recorded
+voltages (tested).  The strain is evaluated once per attempted step (cached by ``t``) and
+written into the model in a pre-step hook; see :mod:`exudyn_atcm.mbs.actuator_chains` for why this
+is the same as an offset user function.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+import numpy as np
+
+from ..mbs import actuator_chains, solver_settings
+from ..mbs import solver_runs as runs
+from .._checks import finite_float, positive_int
+from ..mechanism.actuator import BendingActuator
+from ..mechanism import Mechanism
+from ..errors import SolverError
+from ..io.result import Result
+from ..model.strain_sources import InStepStrain
+from . import mechanism_solve
+from .actuator_record import ActuatorRecorder, make_result
+from .actuator_static import static_equilibrium
+from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
+from .run_checks import (
+    InterruptGuard,
+    SimulationInterrupted,
+    check_step_against_frequency,
+    check_step_against_program,
+    is_interrupt,
+    warn_if_long,
+)
+
+
+# ------------------------------------------------------------------------------ argument checks
+
+def _mechanism_only(tip_force: Any) -> None:
+    """A mechanism carries its loads itself (``mechanism.force``); ``tip_force`` is for a lone actuator."""
+    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
+        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
+                         f"(Fx, Fy)), got tip_force={tip_force!r}")
+
+
+def _check_actuator(actuator: Any) -> BendingActuator:
+    if not isinstance(actuator, BendingActuator):
+        raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
+    return actuator
+
+
+def _check_force(tip_force: Any) -> tuple[float, float]:
+    try:
+        fx, fy = tip_force
+    except (TypeError, ValueError):
+        raise ValueError(f"tip_force must be a pair (Fx, Fy) of finite numbers [N], got {tip_force!r}") from None
+    return finite_float("tip_force[0]", fx), finite_float("tip_force[1]", fy)
+
+
+
+# ------------------------------------------------------------------------------ static solve
+def solve_static(
+    actuator: BendingActuator,
+    voltage: float | None = None,
+    tip_force: tuple[float, float] = (0.0, 0.0),
+    load_steps: int | None = None,
+) -> Result:
+    """Static equilibrium at a voltage and a dead tip load (geometrically nonlinear).
+
+    Parameters
+    ----------
+    actuator : BendingActuator or Mechanism
+        The actuator; its drive gives the voltage-to-strain law.  A
+        :class:`~exudyn_atcm.Mechanism` is solved with its own loads (``tip_force`` must stay
+        zero) and gives the columns listed on the :doc:`/mechanisms` page.
+    voltage : float or mapping, optional
+        Voltage [V].  Default: the drive's voltage at ``t = 0``.  For a mechanism: a number
+        for every drive, or ``{drive_name: volts}``.  With a hysteresis
+        operator, the voltage is reached by a monotone ramp from the operator's reset state.
+    tip_force : (float, float), optional
+        Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+    load_steps : int, optional
+        Number of equal load steps in which strain and load are raised from zero together
+        (each step is halved adaptively if Newton fails).  Default: about one step per
+        0.05 rad of expected tip rotation, at least 4.  If Exudyn's static iteration stalls
+        (large tip forces, see Notes), the equilibrium is found by dynamic relaxation and
+        polished with one static step; ``result.info["solver"]`` says which path was taken.
+
+    Returns
+    -------
+    Result
+        One row, with the series of :func:`simulate` (``time`` is 0).
+
+    Raises
+    ------
+    ValueError
+        For a non-finite voltage or force, or a wrong argument type.
+    SolverError
+        If the equilibrium iteration does not converge.
+
+    Notes
+    -----
+    Exudyn's static Newton Jacobian leaves out the derivative of the constraint forces; under
+    large tip forces the iteration then converges ever more slowly and can stall.  A warning
+    is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
+    """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+
+        return mechanism_solve.solve_static(actuator, voltage, load_steps)
+    actuator = _check_actuator(actuator)
+    force = _check_force(tip_force)
+    if voltage is None:
+        volts = actuator.drive.voltage_at(0.0)
+    else:
+        volts = finite_float("voltage", voltage)
+    if load_steps is not None:
+        load_steps = positive_int("load_steps", load_steps)
+    actuator.drive.check_voltage_range(volts, volts)
+    strain = actuator.drive.static_strain(volts)
+    actuator.drive.check_strain(strain, strain)
+    model = actuator_chains.build(actuator, force)
+    method = static_equilibrium(actuator, model, strain, force, load_steps,
+                                 f"voltage {volts:g} V, tip force {force} N")
+    x, y, a, ca = model.read_state(model.coordinates(), strain)
+    rows = np.array([[0.0, volts, strain, x, y, a]])
+    return make_result(actuator, rows, np.asarray(ca, dtype=float).reshape(1, -1),
+                        {"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
+
+
+# ------------------------------------------------------------------------------ dynamic solve
+
+def simulate(
+    actuator: BendingActuator,
+    t_end: float,
+    step: float = DEFAULT_STEP,
+    tip_force: tuple[float, float] = (0.0, 0.0),
+    settings: Callable[[Any], None] | dict | None = None,
+    progress: Callable[[float, float], None] | None = None,
+    record_every: int | float | None = None,
+) -> Result:
+    """Dynamic response of the actuator to its voltage program (generalized-alpha).
+
+    The run starts from the static equilibrium at the voltage ``U(0)`` and the tip force
+    (the hysteresis operator is reset and then fed ``U(0)``), then integrates to ``t_end``.
+    Every accepted step is committed to the hysteresis memory; ``record_every`` chooses which
+    are recorded.
+
+    Parameters
+    ----------
+    actuator : BendingActuator or Mechanism
+        The actuator, with its drive (voltage program, optional hysteresis operator), or a
+        :class:`~exudyn_atcm.Mechanism` (its own loads; ``tip_force`` must stay zero; columns
+        as listed on the :doc:`/mechanisms` page).
+    t_end : float
+        End time [s], > 0.
+    step : float, optional
+        Time step [s], > 0 and <= ``t_end``; default 1e-4.  A step that does not divide
+        ``t_end`` is replaced by ``t_end / ceil(t_end / step)`` with a warning, and the step
+        used is recorded (``info["step [s]"]``; the request in ``info["step_requested [s]"]``).
+        Exudyn halves it temporarily when a step's Newton iteration fails (those steps are
+        repeated, not recorded).
+    tip_force : (float, float), optional
+        Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates, constant in time.
+    settings : callable or dict, optional
+        Adjusts the underlying ``exudyn.SimulationSettings`` after the package defaults are
+        set: a callable receiving the settings object, or a dict of dotted names, e.g.
+        ``{"timeIntegration.newton.maxIterations": 12}``.
+    progress : callable, optional
+        ``progress(t, t_end)`` is called with the simulated time [s] about every 1 % of
+        ``t_end`` and at least every 0.5 s of wall time (for progress bars).  It may raise
+        ``KeyboardInterrupt`` to stop the run (see Raises).
+    record_every : int or float, optional
+        Recording interval: ``None`` (default) records every accepted step; an ``int`` ``n``
+        every ``n``-th accepted step; a ``float`` an interval in seconds (a multiple of the
+        step gives evenly spaced records).  The first and the last instant are always
+        recorded.  The solution is the same; only memory and output shrink.
+
+    Returns
+    -------
+    Result
+        Series ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
+        ``tip_angle``, ``cell_angle_1..N``; ``result.info`` holds the step used, the number of
+        accepted, attempted and rejected steps, the recording interval (and, in closed loop,
+        the controller's ``summary()`` under ``"controller"``).
+
+    Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.model.control`), it is reset at
+    the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
+    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``
+    (a mechanism: the result column declared with
+    :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`; a controller without one
+    is refused).
+    A ``RuntimeWarning`` says when its output was held at a limit.
+
+    Raises
+    ------
+    ValueError
+        For non-positive or non-finite ``t_end``/``step``, a bad ``tip_force``, ``settings``
+        or ``record_every``, or a step too coarse for the voltage program (fewer than
+        :data:`~exudyn_atcm.solve.run_checks.MIN_STEPS_PER_FEATURE` steps across its shortest
+        ramp, half period or dwell).
+    SolverError
+        If the time integration fails; the message gives the time reached.
+    SimulationInterrupted
+        On Ctrl-C (``KeyboardInterrupt`` in the solver's hooks, the voltage program or
+        ``progress``): a ``KeyboardInterrupt`` whose ``result`` holds the steps computed so
+        far (``info["partial"]`` True, ``info["interrupted_at [s]"]``).
+
+    Warns
+    -----
+    RuntimeWarning
+        A step that resolves the voltage program or the first bending mode only coarsely, a
+        step that does not divide ``t_end``, a run predicted to take long, voltages outside
+        the hysteresis operator's input range or the MFC's rating, a non-zero program that
+        peaks below 0.2 % of the rating (3 V: written in kV?), a program whose shortest
+        feature lasts more than 100 runs (a period in ms?), implausible strains.
+
+    Notes
+    -----
+    Defaults: generalized-alpha with spectral radius 0.8, modified Newton, absolute Newton
+    tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
+    The step checks and their thresholds are described in :mod:`exudyn_atcm.solve.run_checks`.
+    """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+
+        return mechanism_solve.simulate(actuator, t_end, step, settings, progress, record_every)
+    actuator = _check_actuator(actuator)
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+    return run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
+                     progress=progress, record_every=record_every)
+
+
+def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
+                 progress=None, record_every=None) -> Result:
+    """:func:`simulate` of a lone actuator with the choices tests and benchmarks compare.
+
+    Internal API (documented for tests and benchmarks): ``source`` is the strain source
+    (:class:`~exudyn_atcm.model.strain_sources.InStepStrain` by default, or a
+    :class:`~exudyn_atcm.model.strain_sources.TableStrain`) and ``stroke_path`` how the strain reaches
+    the model (``"prestep"``: written in a pre-step hook; ``"offsets"``: offset user functions).
+    The other arguments are those of :func:`simulate`, all positional here.
+    """
+    t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
+    force = _check_force(tip_force)
+    check_step_against_program(actuator.drive.voltage, grid.step, t_end)
+    check_step_against_frequency(grid.step, actuator.first_frequency_estimate)
+    warn_if_long(actuator.cell, actuator.n_cells, grid.n_steps)
+    controller = getattr(actuator.drive, "controller", None)
+    if controller is not None:
+        if source is not None and not isinstance(source, InStepStrain):
+            raise ValueError(
+                f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
+                "the voltage depends on the simulated response and cannot be tabulated beforehand"
+            )
+        controller.reset()
+    if source is None:
+        source = InStepStrain(actuator.drive)
+    model = actuator_chains.build(actuator, force, stroke_path=stroke_path)
+    model.uf_strain = source.trial
+
+    # initial equilibrium at U(0) (the hysteresis memory takes U(0) at the t = 0 post-step)
+    strain0 = source.trial(0.0)
+    if strain0 != 0.0 or force != (0.0, 0.0):
+        try:
+            static_equilibrium(actuator, model, strain0, force, None, "initial state at t = 0")
+        except SolverError as exc:
+            if is_interrupt(exc.__cause__ or exc):
+                raise SimulationInterrupted(0.0) from None
+            raise
+        runs.set_current_as_initial(model, zero_velocity=True)
+
+    sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
+    model.adjust_settings(sim_settings)
+    solver_settings.apply_user_settings(sim_settings, settings)
+    recorder = ActuatorRecorder(model, source, progress, t_end, step=grid.step, schedule=schedule)
+    guard = InterruptGuard()
+
+    if stroke_path != "user_function":
+        def pre_step(t: float) -> None:
+            model.set_strain(source.trial(t))
+    else:
+        pre_step = None
+    stats = None
+    try:
+        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(recorder.post_step))
+    except runs.ExudynFailure as exc:
+        if not is_interrupt(exc):
+            t_fail = exc.time
+            last = recorder.last_time()
+            raise SolverError(
+                f"time integration of the {actuator.cell} actuator with {actuator.n_cells} cells failed at "
+                f"t = {t_fail:.6g} s (last accepted step at t = {last:.6g} s, step {grid.step:g} s): "
+                f"generalized-alpha with Newton (absolute tolerance "
+                f"{sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
+                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
+                f"{exc}. Try a smaller step, a slower voltage program, more cells for large deflections, or a "
+                f"looser tolerance via settings={{'timeIntegration.newton.absoluteTolerance': 1e-7}}."
+            ) from exc
+        guard.interrupted = True
+    accepted = max(recorder.accepted - 1, 0)
+    info = run_info(grid, accepted, schedule, stats, stroke_path=stroke_path)
+    if isinstance(source, InStepStrain):
+        info["hysteresis_evaluations"] = source.evaluations
+    u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
+    if u_low <= u_high:
+        actuator.drive.check_voltage_range(u_low, u_high)
+    if controller is not None:
+        report_controller(controller, info)
+    if guard.interrupted:
+        t_stop = recorder.last_time()
+        info["partial"] = True
+        info["interrupted_at [s]"] = t_stop
+        info.setdefault("attempted_steps", accepted)
+        info.setdefault("rejected_steps", 0)
+        partial = recorder.result(actuator, info) if recorder.n_rows or recorder._pending else None
+        raise SimulationInterrupted(t_stop, partial)
+    result = recorder.result(actuator, info)
+    actuator.cell.check_run(result, actuator, stacklevel=4)  # the caller of simulate
+    if recorder.strain_low <= recorder.strain_high:
+        actuator.drive.check_strain(recorder.strain_low, recorder.strain_high)
+    return result
+
+
+# ------------------------------------------------------------------------------ eigenfrequencies
+
+def eigenfrequencies(
+    actuator: BendingActuator,
+    n: int = 3,
+    *,
+    voltage: float | None = None,
+    tip_force: tuple[float, float] = (0.0, 0.0),
+) -> np.ndarray:
+    """Lowest eigenfrequencies [Hz] of the undamped actuator about a static equilibrium.
+
+    Without ``voltage`` and ``tip_force`` the equilibrium is the undeformed state (motor
+    strokes zero, no load).  With them, the static equilibrium at that voltage and dead tip
+    load is found first (as :func:`solve_static` does) and the actuator is linearised about
+    it, with the drive strain held at its equilibrium value.
+
+    Parameters
+    ----------
+    actuator : BendingActuator or Mechanism
+        The actuator, or a mechanism.
+    n : int, optional
+        Number of frequencies, >= 1 (default 3).
+    voltage : float or mapping, optional
+        Operating voltage [V] (a mechanism: a number for every drive or ``{drive_name: volts}``);
+        default: no actuation (strain 0, not the program's ``U(0)``).  With a hysteresis
+        operator the strain is the one reached by a monotone ramp from the operator's reset
+        state, as in :func:`solve_static`.
+    tip_force : (float, float), optional
+        Actuator only: dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ``n`` lowest eigenfrequencies [Hz], ascending.  For a slender actuator these are
+        its bending modes; the six-bar cell's shear and axial modes lie far above.  An
+        unstable equilibrium (e.g. a buckling compressive tip load) gives negative values
+        and a ``RuntimeWarning``.
+
+    Raises
+    ------
+    ValueError
+        For ``n < 1`` or more than the degrees of freedom, a non-finite voltage or force.
+    SolverError
+        If the static equilibrium does not converge.
+
+    Notes
+    -----
+    The tangent stiffness includes the geometric stiffness of the joints' constraint forces,
+    which Exudyn's ``ComputeODE2Eigenvalues`` leaves out: about a bent six-bar chain (joints
+    carrying the layers' axial forces, ~50 N at 1500 V on the reference bender) or any chain
+    under a tip load, Exudyn's routine gives wrong frequencies (-67 % at 4 cells, +151 % at
+    16 cells at 1500 V).  See :mod:`exudyn_atcm.mbs.eigen`.
+    """
+    if isinstance(actuator, Mechanism):
+        _mechanism_only(tip_force)
+
+        return mechanism_solve.eigenfrequencies(actuator, n, voltage)
+    actuator = _check_actuator(actuator)
+    n = positive_int("n", n)
+    force = _check_force(tip_force)
+    volts = None if voltage is None else finite_float("voltage", voltage)
+    strain = 0.0 if volts is None else actuator.drive.static_strain(volts)
+    model = actuator_chains.build(actuator, force)
+    if strain != 0.0 or force != (0.0, 0.0):
+        static_equilibrium(actuator, model, strain, force, None,
+                            f"voltage {volts!r} V, tip force {force} N, for eigenfrequencies")
+    model.before_linearisation(strain)
+    return runs.eigenfrequencies(model, n)

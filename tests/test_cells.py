@@ -1,0 +1,213 @@
+"""Cell kinds as objects (issue 14, part 1): listed once, asked rather than compared by name, and
+extensible from outside the package.
+
+References: the chain polygon of a rigid chain under actuation (closed form,
+:func:`exudyn_atcm.theory.beam.chain_polygon`), and the parent kind's own results, which a subclass
+that changes nothing of the physics must reproduce to round-off.
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+import pathlib
+
+import exudyn as exu
+import numpy as np
+import pytest
+
+import exudyn_atcm as atcm
+from exudyn_atcm.cells import CELL_KINDS, CellKind, RigidCell, BeamCell, cell_kind
+from exudyn_atcm.mbs import solver_settings
+from exudyn_atcm.mbs.cells import add_actuator_cells, add_mechanism_bender
+from exudyn_atcm.plots.mechanism import plot_mechanism
+from exudyn_atcm.theory import beam as bt
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exudyn_atcm"
+CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
+MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)
+
+
+class MyRigid(RigidCell):
+    """A kind defined outside the package: the rigid chain under another name and joint label."""
+
+    name = "my-rigid"
+    joint_label = "my joints"
+
+
+class MyBeam(BeamCell):
+    name = "my-beam"
+
+
+def actuator(cell, voltage=1500.0, n=6):
+    return atcm.BendingActuator(n, 0.087 / n, 28e-3, CFC, MFC, atcm.PiezoDrive(voltage), cell=cell)
+
+
+def bender_with_lever(cell):
+    b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4,
+                    drive=atcm.PiezoDrive(atcm.signals.Triangle(750.0, 750.0, 0.1)), cell=cell)
+    lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
+    return atcm.Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A"))
+
+
+# ----------------------------------------------------------------------------- resolution
+def test_names_resolve_to_the_listed_kinds_and_compare_equal_to_them():
+    for name, kind in CELL_KINDS.items():
+        assert cell_kind(name) is kind
+        assert kind == name and str(kind) == name and hash(kind) == hash(name)
+    assert cell_kind(MyRigid) == MyRigid() and cell_kind(MyRigid()).name == "my-rigid"
+    assert MyRigid() != RigidCell()  # another kind, although it is built like its parent
+
+
+@pytest.mark.parametrize("bad", ["beams", 3, None, object()])
+def test_unknown_cells_are_refused_naming_the_value_and_the_kinds(bad):
+    with pytest.raises(ValueError, match=r"cell must be one of \('six-bar', 'rigid', 'beam', 'ancf', 'ritz'\) "
+                                         r"or a CellKind, got "):
+        actuator(bad)
+
+
+def test_no_package_code_compares_cell_names():
+    """Outside cells/ no module compares a ``.cell`` (or ``cell``) with a string literal."""
+    offenders = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path.relative_to(PACKAGE).parts[0] == "cells":
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Compare):
+                names = [n for n in [node.left, *node.comparators]
+                         if (isinstance(n, ast.Attribute) and n.attr == "cell") or (isinstance(n, ast.Name) and n.id == "cell")]
+                strings = [n for n in [node.left, *node.comparators] if isinstance(n, ast.Constant) and isinstance(n.value, str)]
+                tuples = [n for n in [node.left, *node.comparators] if isinstance(n, (ast.Tuple, ast.Set, ast.List))]
+                if names and (strings or tuples):
+                    offenders.append(f"{path.relative_to(PACKAGE)}:{node.lineno}")
+    assert offenders == []
+
+
+# ----------------------------------------------------------------------------- a kind from outside
+def test_a_subclass_kind_works_in_a_lone_actuator():
+    mine, ref = atcm.solve_static(actuator(MyRigid())), atcm.solve_static(actuator("rigid"))
+    for name in ref.names:
+        np.testing.assert_allclose(mine[name], ref[name], rtol=0, atol=1e-15, err_msg=name)
+    assert mine.parameters["cell"] == "my-rigid"
+    # and it is the rigid chain: the tip on the chain polygon of the free curvature
+    act = actuator(MyRigid())
+    kappa = act.free_curvature(act.drive.static_strain(1500.0))
+    px, py = bt.chain_polygon(kappa, act.length, act.n_cells)
+    assert mine["tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * act.length)
+    assert mine["tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * act.length)
+
+
+def test_a_subclass_kind_works_in_dynamics_and_eigenfrequencies():
+    mine = atcm.simulate(actuator(MyRigid(), n=4), 0.005, step=1e-4)
+    ref = atcm.simulate(actuator("rigid", n=4), 0.005, step=1e-4)
+    np.testing.assert_allclose(mine["tip_y"], ref["tip_y"], rtol=0, atol=1e-15)
+    f_mine = atcm.eigenfrequencies(actuator(MyRigid(), n=4), 2, voltage=500.0)
+    f_ref = atcm.eigenfrequencies(actuator("rigid", n=4), 2, voltage=500.0)
+    np.testing.assert_allclose(f_mine, f_ref, rtol=1e-12)
+
+
+@pytest.mark.parametrize("mine, parent", [(MyRigid(), "rigid"), (MyBeam(), "beam")], ids=["rigid", "beam"])
+def test_a_subclass_kind_works_in_a_mechanism_and_its_eigenfrequencies(mine, parent):
+    r_mine = atcm.simulate(bender_with_lever(mine), 0.005, step=1e-4)
+    r_ref = atcm.simulate(bender_with_lever(parent), 0.005, step=1e-4)
+    assert r_mine.names == r_ref.names
+    for name in r_ref.names:
+        np.testing.assert_allclose(r_mine[name], r_ref[name], rtol=0, atol=1e-13, err_msg=name)
+    f_mine = atcm.eigenfrequencies(bender_with_lever(mine), 2, voltage=300.0)
+    f_ref = atcm.eigenfrequencies(bender_with_lever(parent), 2, voltage=300.0)
+    np.testing.assert_allclose(f_mine, f_ref, rtol=1e-12)
+
+
+def test_a_subclass_kind_works_through_add_to():
+    ref = atcm.simulate(bender_with_lever("rigid"), 0.005, step=1e-4)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    handle = atcm.add_to(mbs, bender_with_lever(MyRigid()))
+    mbs.Assemble()
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.005, 1e-4))
+    r = handle.result()
+    for name in ref.names:
+        np.testing.assert_allclose(r[name], ref[name], rtol=0, atol=1e-12, err_msg=name)
+
+
+def test_a_subclass_kind_is_drawn_with_its_own_joint_label(tmp_path, monkeypatch):
+    mech = bender_with_lever(MyRigid())
+    r = atcm.simulate(mech, 0.005, step=1e-4)
+    labels = []
+    import matplotlib.axes
+
+    original = matplotlib.axes.Axes.legend
+
+    def spy(self, *args, **kwargs):
+        labels.extend(t.get_label() for t in self.get_lines() + list(self.collections))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.axes.Axes, "legend", spy)
+    path = plot_mechanism(mech, r, tmp_path / "mine.png")
+    assert pathlib.Path(path).stat().st_size > 1000
+    assert any("my joints" in label for label in labels), labels
+
+
+# ----------------------------------------------------------------------------- a genuinely new kind
+class Unrealised(CellKind):
+    name = "unrealised"
+
+
+def test_a_new_kind_without_a_realisation_says_how_to_register_one():
+    with pytest.raises(ValueError, match=r"cell kind 'unrealised' \(Unrealised\) has no Exudyn realisation for a "
+                                         r"lone actuator: register one with exudyn_atcm.mbs.cells.add_actuator_cells"):
+        atcm.solve_static(actuator(Unrealised()))
+    with pytest.raises(ValueError, match=r"has no Exudyn realisation in a mechanism: register one with "
+                                         r"exudyn_atcm.mbs.cells.add_mechanism_bender"):
+        atcm.simulate(bender_with_lever(Unrealised()), 0.005, step=1e-4)
+
+
+def test_a_new_kind_registers_its_own_realisation():
+    """A kind that is no subclass of a package kind, realised by delegating to the rigid chain's builders."""
+
+    class Delegating(CellKind):
+        name = "delegating"
+
+    @add_actuator_cells.register(Delegating)
+    def _(cell, SC, mbs, act, stroke_path, tip_force):
+        return add_actuator_cells(RigidCell(), SC, mbs, act, stroke_path, tip_force)
+
+    @add_mechanism_bender.register(Delegating)
+    def _(cell, builder, bender):
+        add_mechanism_bender(RigidCell(), builder, bender)
+
+    ref = atcm.solve_static(actuator("rigid", voltage=800.0))
+    mine = atcm.solve_static(actuator(Delegating(), voltage=800.0))
+    assert mine["tip_y"][0] == pytest.approx(ref["tip_y"][0], abs=1e-15)
+    r = atcm.solve_static(bender_with_lever(Delegating()), voltage=500.0)
+    r_ref = atcm.solve_static(bender_with_lever("rigid"), voltage=500.0)
+    assert r["lever.E_y"][0] == pytest.approx(r_ref["lever.E_y"][0], abs=1e-15)
+
+
+# ----------------------------------------------------------------------------- refusals from the kind
+@pytest.mark.parametrize("name", [n for n, k in CELL_KINDS.items() if k.mechanism_refusal() is not None])
+def test_kinds_that_cannot_join_a_mechanism_say_why_themselves(name):
+    reason = CELL_KINDS[name].mechanism_refusal()
+    with pytest.raises(ValueError) as info:
+        atcm.Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, cell=name)
+    assert reason in str(info.value)
+
+
+def test_tip_load_refusal_comes_from_the_kind():
+    kinds = [k for k in CELL_KINDS.values() if not k.carries_tip_load]
+    assert kinds, "some kind refuses tip loads (ritz)"
+    for kind in kinds:
+        assert kind.tip_load_refusal()
+        with pytest.raises(ValueError, match="tip_force"):
+            atcm.solve_static(actuator(kind, n=2), tip_force=(0.0, -0.01))
+
+
+def test_run_cost_estimate_comes_from_the_kind():
+    from exudyn_atcm.solve.run_checks import estimate_run_time
+
+    for name, kind in CELL_KINDS.items():
+        if kind.cost_per_step is None:
+            assert estimate_run_time(kind, 10, 1000) is None
+        else:
+            a, b, c = kind.cost_per_step
+            assert estimate_run_time(name, 10, 1000) == pytest.approx(1000 * (a + 10 * b + 100 * c))
