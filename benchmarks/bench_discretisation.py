@@ -86,7 +86,7 @@ def bent_reference() -> float:
     """
     if "f1" not in _BENT_REFERENCE:
         act = actuator(64, "beam", PiezoDrive(0.0))
-        _BENT_REFERENCE["f1"] = float(eigenfrequencies(act, 1, voltage=BENT_VOLTAGE)[0])
+        _BENT_REFERENCE["f1"] = float(eigenfrequencies(act, n=1, voltage=BENT_VOLTAGE)[0])
     return _BENT_REFERENCE["f1"]
 
 
@@ -216,8 +216,8 @@ def measure(name: str, n: int) -> dict:
         else:
             r = run_actuator(act_small, PERIOD, STEP, (0.0, 0.0), None)
             times, angles = r["time"], r["tip_angle"]
-            builder_f1 = eigenfrequencies(act_small, 1)[0]
-            bent_f1 = eigenfrequencies(act_small, 1, voltage=BENT_VOLTAGE)[0]
+            builder_f1 = eigenfrequencies(act_small, n=1)[0]
+            bent_f1 = eigenfrequencies(act_small, n=1, voltage=BENT_VOLTAGE)[0]
             wall = math.inf
             for _ in range(REPEATS):
                 start = time.perf_counter()

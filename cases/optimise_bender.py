@@ -124,7 +124,7 @@ def evaluate(p: Parameters) -> dict[str, tuple[float, str]]:
         full = _actuator(p, p.voltage)
         free = float(solve_static(full)["tip_y"][-1])
         force, solves = _blocked_force(full, free, compliance)
-    f1 = float(eigenfrequencies(probe, 1)[0])
+    f1 = float(eigenfrequencies(probe, n=1)[0])
     e1, h1, e2, h2, b = p.passive_modulus, p.passive_thickness, p.active_modulus, p.active_thickness, p.width
     strain = probe.drive.linear_strain(p.voltage)
     return {

@@ -107,7 +107,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             "beam": lambda: bt.beam_element_compliance_factor(p.n_cells),
             "ancf": lambda: 1.0,  # cubic elements: the cantilever's cubic deflection exactly
         }[p.cell]()
-        f1 = float(eigenfrequencies(unloaded, 1)[0])
+        f1 = float(eigenfrequencies(unloaded, n=1)[0])
         steps += 2
         scalars.update(
             {

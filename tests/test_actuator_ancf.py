@@ -94,7 +94,7 @@ def test_first_eigenfrequency_converges_from_above_at_fourth_order():
     g = REF_A
     mu = bt.mass_per_length(g.rho1, g.h1, g.rho2, g.h2, g.width)
     f1 = bt.first_bending_frequency(composite_EI(g), mu, g.length)
-    errors = np.array([eigenfrequencies(g.actuator(PiezoDrive(0.0), n_cells=n, cell="ancf"), 1)[0] / f1 - 1
+    errors = np.array([eigenfrequencies(g.actuator(PiezoDrive(0.0), n_cells=n, cell="ancf"), n=1)[0] / f1 - 1
                        for n in (1, 2, 4)])
     # consistent cubic mass and stiffness: from above, O(1/N^4) (doubling N divides by ~16,
     # at least 8); measured +0.48 % / +0.048 % / +0.0034 %
@@ -126,6 +126,6 @@ def test_bent_state_f1_converges_to_the_linear_elements_value_and_locks_when_coa
     changes = {}
     for cell, n in (("ancf", 2), ("ancf", 16), ("beam", 16)):
         act = REF_A.actuator(PiezoDrive(0.0), n_cells=n, cell=cell)
-        changes[(cell, n)] = eigenfrequencies(act, 1, voltage=1500.0)[0] / eigenfrequencies(act, 1)[0] - 1
+        changes[(cell, n)] = eigenfrequencies(act, n=1, voltage=1500.0)[0] / eigenfrequencies(act, n=1)[0] - 1
     assert changes[("ancf", 16)] == pytest.approx(changes[("beam", 16)], abs=2e-4)
     assert changes[("ancf", 2)] > 0.03

@@ -103,7 +103,7 @@ def test_first_eigenfrequency_converges_to_beam_f1_from_above():
     mu = bt.mass_per_length(g.rho1, g.h1, g.rho2, g.h2, g.width)
     f1 = bt.first_bending_frequency(composite_EI(g), mu, g.length)
     assert f1 == pytest.approx(35.97, abs=0.005)
-    errors = np.array([eigenfrequencies(g.actuator(PiezoDrive(0.0), n_cells=n, cell="beam"), 1)[0] / f1 - 1
+    errors = np.array([eigenfrequencies(g.actuator(PiezoDrive(0.0), n_cells=n, cell="beam"), n=1)[0] / f1 - 1
                        for n in (4, 8, 16)])
     # the element's (lumped-at-midpoint) stiffness is exact in rotation but its consistent mass
     # with linear shape functions over-estimates the frequency: from above, second order (ratio
@@ -118,8 +118,8 @@ def test_bent_beam_f1_changes_at_second_order():
     # as the chains (test_actuator_eigen): the beam's mass line is its reference line, so it has
     # only the even, O((kappa L)^2) change (the chains' even part measured +0.27 % at 1500 V)
     act = REF_A.actuator(PiezoDrive(0.0), n_cells=8, cell="beam")
-    f0 = eigenfrequencies(act, 1)[0]
-    d = {v: eigenfrequencies(act, 1, voltage=v)[0] / f0 - 1 for v in (-1500.0, 750.0, 1500.0)}
+    f0 = eigenfrequencies(act, n=1)[0]
+    d = {v: eigenfrequencies(act, n=1, voltage=v)[0] / f0 - 1 for v in (-1500.0, 750.0, 1500.0)}
     assert d[1500.0] == pytest.approx(d[-1500.0], rel=1e-3)
     assert d[1500.0] / d[750.0] == pytest.approx(4.0, rel=0.05)
     assert d[1500.0] == pytest.approx(0.0027, abs=0.0003)

@@ -45,7 +45,7 @@ def test_undeformed_frequencies_equal_exudyns_routine(cell):
     # there, and the numerically differentiated tangent must reproduce it (difference
     # quotients with step 1e-7: relative error ~1e-8)
     act = ref_a(cell, 4)
-    ours = eigenfrequencies(act, 3)
+    ours = eigenfrequencies(act, n=3)
     model = builder.build(act)
     np.testing.assert_allclose(ours, exudyn_eigenfrequencies(model.mbs, 3), rtol=1e-7)
     # and the beam limit of the existing tests is untouched: 35.97 Hz, chains below it
@@ -63,8 +63,8 @@ def test_exudyns_routine_is_wrong_about_a_bent_six_bar_chain_and_ours_is_not():
     lam = np.asarray(model.mbs.systemData.GetAECoordinates())
     assert np.max(np.abs(lam)) > 10.0  # newtons: the constraint forces are large
     exudyn_f1 = exudyn_eigenfrequencies(model.mbs, 1)[0]
-    ours = eigenfrequencies(act, 1, voltage=1500.0)[0]
-    straight = eigenfrequencies(ref_a("six-bar", 4), 1)[0]
+    ours = eigenfrequencies(act, n=1, voltage=1500.0)[0]
+    straight = eigenfrequencies(ref_a("six-bar", 4), n=1)[0]
     assert abs(exudyn_f1 / straight - 1) > 0.5  # measured -67 %
     assert abs(ours / straight - 1) < 0.01      # second-order effect, see the next test
 
@@ -89,8 +89,8 @@ def test_bent_chains_agree_and_change_at_second_order_in_kappa_L():
     parts = {}
     for cell in CELLS:
         act = ref_a(cell, n)
-        f0 = eigenfrequencies(act, 1)[0]
-        d = {v: eigenfrequencies(act, 1, voltage=v)[0] / f0 - 1 for v in (-1500.0, -750.0, 750.0, 1500.0)}
+        f0 = eigenfrequencies(act, n=1)[0]
+        d = {v: eigenfrequencies(act, n=1, voltage=v)[0] / f0 - 1 for v in (-1500.0, -750.0, 750.0, 1500.0)}
         even = [(d[v] + d[-v]) / 2 for v in (1500.0, 750.0)]
         odd = [(d[v] - d[-v]) / 2 for v in (1500.0, 750.0)]
         assert even[0] / even[1] == pytest.approx(4.0, rel=0.05)
@@ -123,9 +123,9 @@ def test_axial_tip_load_shifts_f1_as_the_rayleigh_quotient_of_the_beam_mode(cell
     act = ref_a(cell, 16)
     p = 0.1
     P = p * composite_EI() / REF_A.length**2
-    f0 = eigenfrequencies(act, 1)[0]
-    f_t = eigenfrequencies(act, 1, tip_force=(P, 0.0))[0]
-    f_c = eigenfrequencies(act, 1, tip_force=(-P, 0.0))[0]
+    f0 = eigenfrequencies(act, n=1)[0]
+    f_t = eigenfrequencies(act, n=1, tip_force=(P, 0.0))[0]
+    f_c = eigenfrequencies(act, n=1, tip_force=(-P, 0.0))[0]
     slope = ((f_t / f0) ** 2 - (f_c / f0) ** 2) / 2
     assert slope == pytest.approx(c * p, rel=5e-3)
 
@@ -133,8 +133,8 @@ def test_axial_tip_load_shifts_f1_as_the_rayleigh_quotient_of_the_beam_mode(cell
 def test_eigenfrequencies_reject_bad_operating_point():
     act = ref_a("rigid", 2)
     with pytest.raises(ValueError, match="voltage"):
-        eigenfrequencies(act, 1, voltage=float("nan"))
+        eigenfrequencies(act, n=1, voltage=float("nan"))
     with pytest.raises(ValueError, match="tip_force"):
-        eigenfrequencies(act, 1, tip_force=(0.0,))
+        eigenfrequencies(act, n=1, tip_force=(0.0,))
     with pytest.raises(ValueError, match="degrees of freedom"):
-        eigenfrequencies(act, 50)
+        eigenfrequencies(act, n=50)

@@ -265,7 +265,7 @@ def test_straight_f1_is_the_beams_and_exudyns_eigen_path_sees_the_ritz_matrices(
     EI = bt.composite_bending_stiffness(g.E1, g.h1, g.E2, g.h2, g.width)
     f1 = bt.first_bending_frequency(EI, mu, g.length)
     act = g.actuator(PiezoDrive(0.0), n_cells=4, cell="ritz")
-    f = eigenfrequencies(act, 2)
+    f = eigenfrequencies(act, n=2)
     # Ritz error at n = 4 (+1.5e-6) plus the rotary inertia's -2.3e-5 (Rayleigh, test above): 5e-5
     assert f[0] == pytest.approx(f1, rel=5e-5)
     # the package's eigen path (numerical tangent of Exudyn's residual) against scipy on (K, M(0))
@@ -281,14 +281,14 @@ def test_bent_f1_agrees_with_the_converged_beam_elements():
     # model's own error at n = 6 (Ritz 8e-11 of f1 in the straight state) is that of the mass
     # linearisation and of the beam elements' finite axial and shear stiffness: measured 6e-6;
     # tolerance 2e-5.  Without the curvature-dependent mass it would be -0.27 %.
-    f = {n: eigenfrequencies(REF_A.actuator(PiezoDrive(0.0), n_cells=n, cell="beam"), 1, voltage=1500.0)[0]
+    f = {n: eigenfrequencies(REF_A.actuator(PiezoDrive(0.0), n_cells=n, cell="beam"), n=1, voltage=1500.0)[0]
          for n in (16, 32, 64)}
     reference = (4 * f[64] - f[32]) / 3
     assert reference == pytest.approx((4 * f[32] - f[16]) / 3, rel=5e-6)
     act = REF_A.actuator(PiezoDrive(0.0), n_cells=6, cell="ritz")
-    f_ritz = eigenfrequencies(act, 1, voltage=1500.0)[0]
+    f_ritz = eigenfrequencies(act, n=1, voltage=1500.0)[0]
     assert f_ritz == pytest.approx(reference, rel=2e-5)
-    assert abs(f_ritz / eigenfrequencies(act, 1)[0] - 1) > 2e-3  # the bent state is visibly different
+    assert abs(f_ritz / eigenfrequencies(act, n=1)[0] - 1) > 2e-3  # the bent state is visibly different
     # the eigen path linearises with M at the static state's exact free curvature (not the
     # 0.01 rad grid of the time integration): scipy on (K, M(kappa)) to the numerical tangent's 1e-9
     kappa = act.curvature_per_strain * act.drive.static_strain(1500.0)
@@ -296,7 +296,7 @@ def test_bent_f1_agrees_with_the_converged_beam_elements():
     M = rb.mass_matrix(6, act.length, act.mass_per_length, act.laminate.rotary_inertia_per_length, kappa)
     assert f_ritz == pytest.approx(math.sqrt(eigh(K, M, eigvals_only=True)[0]) / (2 * math.pi), rel=1e-9)
     # n = 3 within its Ritz error (measured +3.2e-4)
-    f3 = eigenfrequencies(REF_A.actuator(PiezoDrive(0.0), n_cells=3, cell="ritz"), 1, voltage=1500.0)[0]
+    f3 = eigenfrequencies(REF_A.actuator(PiezoDrive(0.0), n_cells=3, cell="ritz"), n=1, voltage=1500.0)[0]
     assert 0.0 < f3 / reference - 1 < 5e-4
 
 
@@ -369,7 +369,7 @@ def test_tip_force_is_refused(call):
     act = REF_A.actuator(PiezoDrive(500.0), n_cells=3, cell="ritz")
     run = {"solve_static": lambda: solve_static(act, tip_force=(0.0, -0.2)),
            "simulate": lambda: simulate(act, 1e-3, tip_force=(0.0, -0.2)),
-           "eigenfrequencies": lambda: eigenfrequencies(act, 1, tip_force=(0.0, -0.2))}[call]
+           "eigenfrequencies": lambda: eigenfrequencies(act, n=1, tip_force=(0.0, -0.2))}[call]
     with pytest.raises(ValueError, match=r"tip_force must be \(0, 0\) for cell='ritz', got \(0\.0, -0\.2\).*'beam'"):
         run()
 

@@ -34,7 +34,7 @@ def test_tree_reproduces_the_rigid_body_chain(formulation):
         formulation(name)
         act = REF_A.actuator(PiezoDrive(1500.0), n_cells=8, cell="rigid")
         s = solve_static(act, tip_force=(0.0, -0.2))
-        f = eigenfrequencies(act, 3, voltage=1500.0, tip_force=(0.05, 0.1))
+        f = eigenfrequencies(act, n=3, voltage=1500.0, tip_force=(0.05, 0.1))
         dyn = simulate(REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.05)), n_cells=8, cell="rigid"),
                        0.02, step=1e-4)
         out[name] = (s, f, dyn)

@@ -101,8 +101,8 @@ def test_a_subclass_kind_works_in_dynamics_and_eigenfrequencies():
     mine = atcm.simulate(actuator(MyRigid(), n=4), 0.005, step=1e-4)
     ref = atcm.simulate(actuator("rigid", n=4), 0.005, step=1e-4)
     np.testing.assert_allclose(mine["tip_y"], ref["tip_y"], rtol=0, atol=1e-15)
-    f_mine = atcm.eigenfrequencies(actuator(MyRigid(), n=4), 2, voltage=500.0)
-    f_ref = atcm.eigenfrequencies(actuator("rigid", n=4), 2, voltage=500.0)
+    f_mine = atcm.eigenfrequencies(actuator(MyRigid(), n=4), n=2, voltage=500.0)
+    f_ref = atcm.eigenfrequencies(actuator("rigid", n=4), n=2, voltage=500.0)
     np.testing.assert_allclose(f_mine, f_ref, rtol=1e-12)
 
 
@@ -113,8 +113,8 @@ def test_a_subclass_kind_works_in_a_mechanism_and_its_eigenfrequencies(mine, par
     assert r_mine.names == r_ref.names
     for name in r_ref.names:
         np.testing.assert_allclose(r_mine[name], r_ref[name], rtol=0, atol=1e-13, err_msg=name)
-    f_mine = atcm.eigenfrequencies(bender_with_lever(mine), 2, voltage=300.0)
-    f_ref = atcm.eigenfrequencies(bender_with_lever(parent), 2, voltage=300.0)
+    f_mine = atcm.eigenfrequencies(bender_with_lever(mine), n=2, voltage=300.0)
+    f_ref = atcm.eigenfrequencies(bender_with_lever(parent), n=2, voltage=300.0)
     np.testing.assert_allclose(f_mine, f_ref, rtol=1e-12)
 
 
@@ -211,3 +211,38 @@ def test_run_cost_estimate_comes_from_the_kind():
         else:
             a, b, c = kind.cost_per_step
             assert estimate_run_time(name, 10, 1000) == pytest.approx(1000 * (a + 10 * b + 100 * c))
+
+
+# ----------------------------------------------------------------------------- one surface
+def test_solves_take_the_system_first_and_the_rest_by_keyword():
+    import inspect
+
+    for function in (atcm.simulate, atcm.solve_static, atcm.eigenfrequencies, atcm.static_sweep):
+        parameters = list(inspect.signature(function).parameters.values())
+        assert parameters[0].name == "system" or function is atcm.static_sweep
+        positional = [p.name for p in parameters if p.kind is not inspect.Parameter.KEYWORD_ONLY]
+        assert positional == {"simulate": ["system", "t_end"], "static_sweep": ["mech", "voltages"]}.get(
+            function.__name__, ["system"]), function.__name__
+
+
+def test_positional_calls_of_the_old_signatures_still_work_for_one_release_with_a_warning():
+    act = actuator("rigid", voltage=800.0, n=4)
+    with pytest.warns(DeprecationWarning, match=r"solve_static\(\): pass voltage= by keyword"):
+        old = atcm.solve_static(act, 500.0)
+    assert old["tip_y"][0] == atcm.solve_static(act, voltage=500.0)["tip_y"][0]
+    with pytest.warns(DeprecationWarning, match=r"eigenfrequencies\(\): pass n= by keyword"):
+        f_old = atcm.eigenfrequencies(act, 2)
+    np.testing.assert_array_equal(f_old, atcm.eigenfrequencies(act, n=2))
+    with pytest.warns(DeprecationWarning, match=r"simulate\(\): pass step= by keyword"):
+        r_old = atcm.simulate(act, 0.002, 1e-4)
+    np.testing.assert_array_equal(r_old["tip_y"], atcm.simulate(act, 0.002, step=1e-4)["tip_y"])
+    with pytest.raises(TypeError, match="multiple values for argument 'step'"):
+        atcm.simulate(act, 0.002, 1e-4, step=2e-4)
+
+
+def test_warnings_of_a_solve_point_at_the_callers_line():
+    """No wrapper frame between the caller and the solve: a run-check warning names this file."""
+    act = actuator("rigid", voltage=800.0, n=4)
+    with pytest.warns(RuntimeWarning) as record:
+        atcm.simulate(act, 0.02, step=5e-3)
+    assert any(pathlib.Path(w.filename).name == "test_cells.py" for w in record), [w.filename for w in record]

@@ -65,7 +65,7 @@ def test_case_change_decays_as_the_first_mode_per_cycle(case_module, tmp_path):
     change_3_2 = case_module.last_cycle_change(t[upto3], y[upto3], T, 3)
     change_2_1 = float(np.max(np.abs(y[(t >= T - 1e-12) & upto3][: n + 1] - y[: n + 1])))
     actuator = case_module.build(case.resolve({"cell": "rigid", "period": T, "cycles": cycles}))
-    omega1 = 2 * math.pi * eigenfrequencies(actuator, 1)[0]
+    omega1 = 2 * math.pi * eigenfrequencies(actuator, n=1)[0]
     zeta1 = actuator.stiffness_damping_factor * omega1 / 2
     decay = math.exp(-zeta1 * omega1 * T)
     # 5 %: the largest change in a cycle falls within its first oscillation of the mode, where

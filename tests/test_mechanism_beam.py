@@ -75,9 +75,9 @@ def test_one_beam_bender_equals_the_beam_actuator_statics_and_eigenfrequencies(f
     assert abs(r["b.base_x"][0]) < 1e-15 and abs(r["b.base_angle"][0]) < 1e-15
     assert abs(r["b.tip_y"][0]) > 1e-3
     # about the undeformed pose and about the bent equilibrium (with the tip load)
-    np.testing.assert_allclose(eigenfrequencies(m, 3), eigenfrequencies(act, 3), rtol=1e-10)
-    np.testing.assert_allclose(eigenfrequencies(m, 3, voltage=800.0),
-                               eigenfrequencies(act, 3, voltage=800.0, tip_force=force), rtol=1e-7)
+    np.testing.assert_allclose(eigenfrequencies(m, n=3), eigenfrequencies(act, n=3), rtol=1e-10)
+    np.testing.assert_allclose(eigenfrequencies(m, n=3, voltage=800.0),
+                               eigenfrequencies(act, n=3, voltage=800.0, tip_force=force), rtol=1e-7)
 
 
 def test_one_beam_bender_equals_the_beam_actuator_dynamics_with_hysteresis():
@@ -131,7 +131,7 @@ def test_two_beam_benders_welded_end_to_end_equal_one_of_the_summed_length():
     # the weld is two coincident nodes held by constraints instead of one node: the same model in
     # other coordinates; the eigen solution (central differences of 1e-7, then a null-space
     # projection) agrees to 1e-7
-    np.testing.assert_allclose(eigenfrequencies(two, 3), eigenfrequencies(one, 3), rtol=1e-7)
+    np.testing.assert_allclose(eigenfrequencies(two, n=3), eigenfrequencies(one, n=3), rtol=1e-7)
 
 
 def test_rigid_and_beam_benders_welded_end_to_end_join_exactly():

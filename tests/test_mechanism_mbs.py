@@ -201,20 +201,20 @@ def test_eigenfrequencies_about_the_bent_equilibrium_match_the_minimal_coordinat
     drive = atcm.PiezoDrive(500.0)
     b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=n_cells, drive=drive)
     m = atcm.Mechanism().add(b).ground(b.base)
-    undeformed = atcm.eigenfrequencies(m, 3)
-    bent = atcm.eigenfrequencies(m, 3, voltage=1500.0)
+    undeformed = atcm.eigenfrequencies(m, n=3)
+    bent = atcm.eigenfrequencies(m, n=3, voltage=1500.0)
     np.testing.assert_allclose(undeformed, chain_reference(b, 0.0)[:3], rtol=1e-9)
     np.testing.assert_allclose(bent, chain_reference(b, drive.static_strain(1500.0))[:3], rtol=1e-9)
     # bending changes the spectrum (the test is not about the straight chain only)
     assert abs(bent[1] / undeformed[1] - 1) > 1e-3
     # the same as today's BendingActuator about the undeformed state
     act = atcm.BendingActuator(n_cells, 0.087 / n_cells, 28e-3, CFC, MFC, drive, cell="rigid")
-    np.testing.assert_allclose(undeformed, atcm.eigenfrequencies(act, 3), rtol=1e-9)
+    np.testing.assert_allclose(undeformed, atcm.eigenfrequencies(act, n=3), rtol=1e-9)
 
 
 def test_first_frequency_tends_to_the_beam():
     b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=32, drive=atcm.PiezoDrive(0.0))
-    f1 = atcm.eigenfrequencies(atcm.Mechanism().add(b).ground(b.base), 1)[0]
+    f1 = atcm.eigenfrequencies(atcm.Mechanism().add(b).ground(b.base), n=1)[0]
     # Euler-Bernoulli cantilever; the 32-cell chain is 0.05 % low (discretisation error ~ 1/N^2)
     assert f1 == pytest.approx(b.laminate.first_frequency(0.087), rel=1e-3)
 
@@ -233,11 +233,11 @@ def test_eigenfrequencies_about_a_prestressed_six_bar_equilibrium_match_the_rigi
         m = atcm.Mechanism().add(b).ground(b.base)
         with warnings.catch_warnings():
             warnings.simplefilter("error")
-            bent = atcm.eigenfrequencies(m, 1, voltage=1500.0)[0]
-            straight = atcm.eigenfrequencies(m, 1)[0]
+            bent = atcm.eigenfrequencies(m, n=1, voltage=1500.0)[0]
+            straight = atcm.eigenfrequencies(m, n=1)[0]
         shift[cell] = bent / straight - 1
         act = atcm.BendingActuator(8, 0.087 / 8, 28e-3, CFC, MFC, drive, cell=cell)
-        assert bent == pytest.approx(atcm.eigenfrequencies(act, 1, voltage=1500.0)[0], rel=1e-6)
+        assert bent == pytest.approx(atcm.eigenfrequencies(act, n=1, voltage=1500.0)[0], rel=1e-6)
     assert 1e-3 < shift["rigid"] < 5e-3
     assert shift["six-bar"] == pytest.approx(shift["rigid"], abs=5e-4)
 
@@ -246,9 +246,9 @@ def test_actuator_eigenfrequencies_about_its_bent_equilibrium_use_the_mechanism_
     drive = atcm.PiezoDrive(0.0)
     act = atcm.BendingActuator(4, 0.087 / 4, 28e-3, CFC, MFC, drive, cell="rigid")
     b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4, drive=drive)
-    np.testing.assert_allclose(atcm.eigenfrequencies(act, 3, voltage=1500.0),
+    np.testing.assert_allclose(atcm.eigenfrequencies(act, n=3, voltage=1500.0),
                                chain_reference(b, drive.static_strain(1500.0))[:3], rtol=1e-9)
     # a tip load: the joints carry it; the actuator path's tangent includes that (see
     # tests/test_actuator_eigen.py for the Rayleigh-quotient check of the shift)
-    loaded = atcm.eigenfrequencies(act, 1, tip_force=(-0.1, 0.0))[0]
-    assert loaded < atcm.eigenfrequencies(act, 1)[0]  # a compressive axial load lowers f1
+    loaded = atcm.eigenfrequencies(act, n=1, tip_force=(-0.1, 0.0))[0]
+    assert loaded < atcm.eigenfrequencies(act, n=1)[0]  # a compressive axial load lowers f1

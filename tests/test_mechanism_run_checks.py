@@ -231,7 +231,7 @@ def test_warnings_point_at_the_callers_line():
         simulate(mech, 0.01, step=3e-3)  # does not divide, coarse for the program, beyond the rating
     assert len(record) == 3 and {w.filename for w in record} == {__file__}
     with pytest.warns(RuntimeWarning) as record:
-        solve_static(mech, {"a": 0.0, "b": 1800.0})
+        solve_static(mech, voltage={"a": 0.0, "b": 1800.0})
     assert {w.filename for w in record} == {__file__}
 
 

@@ -110,8 +110,8 @@ def test_two_benders_welded_end_to_end_equal_one_of_the_summed_length(cell):
     np.testing.assert_allclose([r2[f"a.cell_angle_{j}"][0] for j in (1, 2, 3)] +
                                [r2[f"b.cell_angle_{j}"][0] for j in (1, 2, 3, 4)],
                                [r1[f"one.cell_angle_{j}"][0] for j in range(1, 8)], rtol=0, atol=1e-9)
-    f1 = eigenfrequencies(one, 3)
-    f2 = eigenfrequencies(two, 3)
+    f1 = eigenfrequencies(one, n=3)
+    f2 = eigenfrequencies(two, n=3)
     # the same model in other coordinates (six-bar: the welded interface body's node sits elsewhere);
     # the dense eigen solution agrees to 1e-8
     np.testing.assert_allclose(f2, f1, rtol=1e-9 if cell == "rigid" else 1e-7)

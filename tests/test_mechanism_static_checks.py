@@ -40,11 +40,11 @@ def test_static_solves_warn_per_drive_beyond_the_rating(solve):
     mech = pair(PiezoDrive(0.0), PiezoDrive(0.0))
     with pytest.warns(RuntimeWarning) as record:
         if solve == "solve_static":
-            solve_static(mech, {"a": 300.0, "b": 1800.0})
+            solve_static(mech, voltage={"a": 300.0, "b": 1800.0})
         elif solve == "static_sweep":
             static_sweep(mech, {"a": [0.0, 300.0], "b": [0.0, 1800.0]})
         else:
-            eigenfrequencies(mech, 1, voltage={"a": 300.0, "b": 1800.0})
+            eigenfrequencies(mech, n=1, voltage={"a": 300.0, "b": 1800.0})
     hits = [m for m in _messages(record) if "rated range" in m]
     assert len(hits) == 1 and hits[0].startswith("drive 'b': the voltage program spans")
     assert "reach 1800 V, 300 V above" in hits[0]
@@ -55,18 +55,18 @@ def test_static_solve_beyond_the_operator_range_warns_that_it_saturates():
     low, high = op.input_range
     mech = pair(PiezoDrive(0.0, hysteresis=op, rated_range=None), PiezoDrive(0.0))
     with pytest.warns(RuntimeWarning, match=rf"drive 'a'.*reach {high + 1000:g} V, 1000 V above the hysteresis operator's input range"):
-        solve_static(mech, {"a": high + 1000.0, "b": 0.0})
+        solve_static(mech, voltage={"a": high + 1000.0, "b": 0.0})
 
 
 def test_implausible_strain_in_a_static_solve_names_the_drive():
     mech = pair(PiezoDrive(0.0, d33=5.5e-8), PiezoDrive(0.0))  # 0.011 at 100 V
     with pytest.warns(RuntimeWarning, match=r"the free strain of drive 'a' reaches a free strain of 0\.011"):
-        solve_static(mech, {"a": 100.0, "b": 0.0})
+        solve_static(mech, voltage={"a": 100.0, "b": 0.0})
 
 
 def test_static_solves_within_the_ranges_are_quiet():
     mech = pair(PiezoDrive(0.0, hysteresis=paper_strain_preisach()), PiezoDrive(0.0))
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
-        solve_static(mech, {"a": 1500.0, "b": -500.0})
+        solve_static(mech, voltage={"a": 1500.0, "b": -500.0})
         static_sweep(mech, [0.0, 1500.0, -500.0])

@@ -289,7 +289,7 @@ def test_progress_bar_shows_eta_and_tasks(monkeypatch):
 def test_progress_is_reported_by_wall_time_when_simulated_time_crawls(monkeypatch):
     calls = []
     clock = iter(np.arange(0.0, 100.0, 1.0))  # one second of wall time per step
-    monkeypatch.setattr("exudyn_atcm.solve.run_checks.time.perf_counter", lambda: float(next(clock)))
+    monkeypatch.setattr("exudyn_atcm.solve.interrupts.time.perf_counter", lambda: float(next(clock)))
     tick = WallClock(lambda t, t_end: calls.append(t), t_end=1e9)
     for k in range(1, 6):
         tick(k * 1e-4)  # far below 1 % of t_end
@@ -349,7 +349,9 @@ def test_recorded_times_are_on_the_grid_and_short():
 def test_long_run_estimate_and_warning(monkeypatch):
     # 40 six-bar cells for 20 s at 1e-4 s: 2e5 steps x (20 + 55*40 + 1.3*1600) µs = 860 s
     assert run_checks.estimate_run_time("six-bar", 40, 200_000) == pytest.approx(200_000 * 4300e-6)
-    assert run_checks.estimate_run_time("no-such-cell", 4, 10) is None
+    assert run_checks.estimate_run_time("ancf", 4, 10) is None  # no measured cost
+    with pytest.raises(ValueError, match="cell must be one of"):
+        run_checks.estimate_run_time("no-such-cell", 4, 10)
     with pytest.warns(RuntimeWarning, match=r"predicted to take about 14 min \(200000 steps of 40 six-bar cells"):
         run_checks.warn_if_long("six-bar", 40, 200_000)
     # through simulate, with a tiny limit (the warning comes before the run)

@@ -48,6 +48,7 @@ from .items import position_marker as _marker_position
 from .items import rigid_marker as _rigid_marker
 from .items import rotation_marker as _rot_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
+from .graphics import part_graphics, shift_graphics
 from .loads import add_loads
 from ..cells import END_CHAIN, END_NODE
 from . import rigid_chain  # noqa: F401 - registers the rigid cell's realisation
@@ -55,8 +56,6 @@ from .cells import add_mechanism_bender
 from .six_bar import six_bar_end_mass
 from .beam_chain import actuation_torques, beam_end_key, weld_node
 
-_LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
-_FLEX_COLOR = [0.85, 0.55, 0.15, 1.0]
 
 
 # ---------------------------------------------------------------------------- building
@@ -150,11 +149,11 @@ class _Builder:
                 if g.kind == "body" and part in g.interfaces and not self._is_six_bar(part):
                     continue
                 masses += self._part_masses(part)
-                graphics += self._part_graphics(part)
+                graphics += part_graphics(self.mech, part)
             m = sum(mm for mm, _, _ in masses)
             com = sum(mm * c for mm, _, c in masses) / m
             inertia = sum(j + mm * float((c - com) @ (c - com)) for mm, j, c in masses)
-            local_graphics = [self._shift(gd, -com) for gd in graphics]
+            local_graphics = [shift_graphics(gd, -com) for gd in graphics]
             model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
 
     def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
@@ -196,33 +195,6 @@ class _Builder:
             (m, j, _), = self._part_masses(part)
             com = (0.0, 0.0)
         return _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
-
-    def _part_graphics(self, part: str) -> list:
-        if part == GROUND:
-            return []
-        name, _, end = part.partition("#")
-        comp = self.mech.components[name]
-        if isinstance(comp, Link):
-            pts = list(comp.points.values())
-            if len(pts) == 1:
-                pts = [pts[0], comp.center_of_mass]
-            loop = pts + ([pts[0]] if len(pts) > 2 else [])
-            return [exu.graphics.Lines([[p[0], p[1], 0.0] for p in loop], color=_LINK_COLOR)]
-        if isinstance(comp, Flexure) and comp.model == "prbm":
-            a = comp.base_position if end == "base" else comp.pivot
-            b = comp.pivot if end == "base" else comp.tip_position
-            return [exu.graphics.Lines([[a[0], a[1], 0.0], [b[0], b[1], 0.0]], color=_FLEX_COLOR)]
-        return []
-
-    @staticmethod
-    def _shift(gdata: dict, offset: np.ndarray) -> dict:
-        gd = dict(gdata)
-        if "points" in gd:
-            pts = np.array(gd["points"], dtype=float).reshape(-1, 3)
-            pts[:, 0] += offset[0]
-            pts[:, 1] += offset[1]
-            gd["points"] = pts.ravel().tolist()
-        return gd
 
     # ---------------------------------------------------------------- benders
     def _bender_cells(self, bender: Bender) -> None:

@@ -14,6 +14,7 @@ from typing import Any, Literal, Union
 
 import numpy as np
 
+from ..io.atomic import describe_os_error
 from .._checks import finite_array, finite_float, positive_float
 
 __all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram"]
@@ -412,8 +413,6 @@ def _read_table(path: Path) -> tuple[list[str] | None, list[tuple[int, list[str]
     try:
         handle = path.open(newline="")
     except OSError as exc:
-        from ..io.atomic import describe_os_error
-
         raise ValueError(f"path {str(path)!r} cannot be read: {describe_os_error(exc)}") from None
     with handle:
         for line_number, row in enumerate(csv.reader(handle), start=1):

@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..io.result import Result
+from ..mechanism.actuator import BendingActuator
 from ..mechanism import Bender, Flexure, Link, Mechanism
 
 __all__ = ["BenderShape", "MechanismShape", "mechanism_shape", "actuator_as_mechanism"]
@@ -197,9 +199,6 @@ def actuator_as_mechanism(actuator, result, name: str = "actuator"):
     name : str, optional
         Component name used in the drawing.
     """
-    from ..mechanism.actuator import BendingActuator
-    from ..io.result import Result
-
     if not isinstance(actuator, BendingActuator):
         raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
     bender = Bender(name, width=actuator.width, passive=actuator.passive, active=actuator.active,

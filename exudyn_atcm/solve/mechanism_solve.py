@@ -12,7 +12,6 @@ The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
@@ -28,132 +27,16 @@ from ..mechanism.actuator import BendingActuator
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import CELL_TYPES as BENDER_CELLS
 from ..mechanism.bender import Bender
-from ..mechanism.flexure import Flexure
 from ..mechanism.points import MechanismError, closest
 from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers
 from ..io.result import Result
 from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time
+from .mechanism_static import VoltageSpec, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from ..errors import SolverError
 from .run_checks import is_interrupt
 from ..model.strain_sources import InStepStrain
 
-VoltageSpec = Any  # None | float | Mapping[str, float]
-
-
-# ------------------------------------------------------------------------------ voltages
-
-def drive_voltages(mech: Mechanism, voltage: VoltageSpec) -> dict[str, float]:
-    """Voltage [V] of every drive: ``None`` -> each program at t = 0; a number -> every drive;
-    a mapping ``{drive_name: volts}`` (drives not named: their program at t = 0)."""
-    drives = mech.drives
-    out = {name: d.voltage_at(0.0) for name, d in drives.items()}
-    if voltage is None:
-        return out
-    if isinstance(voltage, Mapping):
-        for name, value in voltage.items():
-            if name not in drives:
-                raise MechanismError(f"voltage: unknown drive {name!r}{closest(str(name), drives)} "
-                                     f"(drives: {', '.join(drives) or 'none'})")
-            out[name] = finite_float(f"voltage[{name!r}]", value)
-        return out
-    value = finite_float("voltage", voltage)
-    return {name: value for name in drives}
-
-
-def _source_values(model: mb.MechanismModel, per_drive: Mapping[str, float], what: str) -> np.ndarray:
-    """One value per strain source; drives sharing one PiezoDrive object must agree."""
-    values = np.full(len(model.sources), np.nan)
-    owner: dict[int, str] = {}
-    for name, k in model.drive_source.items():
-        v = per_drive[name]
-        if k in owner and values[k] != v:
-            raise MechanismError(
-                f"{what}: drives {owner[k]!r} and {name!r} are one PiezoDrive object and cannot take "
-                f"different voltages ({values[k]!r} V and {v!r} V); give them separate PiezoDrive objects")
-        owner.setdefault(k, name)
-        values[k] = v
-    return values
-
-
-# ------------------------------------------------------------------------------ static equilibrium
-
-def _scales(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray) -> tuple[float, float]:
-    """Expected rotation [rad] (for load steps) and the lowest cantilever frequency [rad/s] of the parts."""
-    rot, omega = 0.0, math.inf
-    min_ei = math.inf
-    for comp in mech.components.values():
-        if isinstance(comp, (Bender, Flexure)):
-            lam = comp.laminate
-            min_ei = min(min_ei, lam.bending_stiffness)
-            omega = min(omega, 2.0 * math.pi * lam.first_frequency(comp.length))
-            if isinstance(comp, Bender):
-                for name in comp.drives:
-                    rot = max(rot, abs(lam.curvature_per_strain * strains[model.drive_source[name]]) * comp.length)
-    size = mech.size
-    for f in mech.forces:
-        value = f.force(0.0) if callable(f.force) else f.force
-        if math.isfinite(min_ei):
-            rot += math.hypot(*value) * size**2 / (2.0 * min_ei)
-    return rot, (omega if math.isfinite(omega) else 2.0 * math.pi * 10.0)
-
-
-def _equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, end: np.ndarray, from_reference: bool,
-                 load_steps: int | None, what: str) -> str:
-    """Static equilibrium with the strains moved from ``start`` to ``end``; returns the method used.
-
-    From the reference pose the loads are raised with the strains; otherwise they stay.
-    First Exudyn's static solver in load steps, then (as for a lone actuator) dynamic
-    relaxation polished by one static step.
-    """
-    # From the reference pose Exudyn's load factor raises the loads (as for a lone actuator, so
-    # that a one-bender mechanism takes the very same Newton path); later sweep points keep
-    # the loads and move the strains only.
-    model.load_factor = 1.0
-    model.set_path(start, end, ramp_loads=False)
-    rot, omega1 = _scales(mech, model, np.abs(end - start))
-    if load_steps is None:
-        load_steps = int(min(400, max(4, math.ceil(rot / 0.05))))
-    settings = solver_settings.static_settings(load_steps)
-    settings.staticSolver.useLoadFactor = from_reference
-    try:
-        runs.run_static(model, settings, lambda f: f)
-        return "static"
-    except runs.ExudynFailure as exc:
-        first = exc
-    model.set_path(start, end, ramp_loads=from_reference)
-    if from_reference:
-        runs.reset_to_reference(model)
-    else:
-        model.set_strain(0.0)
-    try:
-        change = runs.run_relaxation(model, 1.0, 0.5 * omega1, 2.0 / omega1)
-    except runs.ExudynFailure as exc:
-        raise SolverError(
-            f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge. Tried: Exudyn's static "
-            f"solver with {load_steps} load steps (stopped at load factor {first.time:.4g}: {first}), then dynamic "
-            f"relaxation (stopped at {exc.time:.3g} of its ramp: {exc}). Expected rotation about {rot:.3g} rad. "
-            "Use more cells, reduce the loads, check that the mechanism is not locked, or pass load_steps.") from exc
-    relaxed = np.array(model.coordinates())
-    runs.set_current_as_initial(model, zero_velocity=True)
-    model.load_factor = 1.0
-    model.set_path(end, end, ramp_loads=False)
-    polish = solver_settings.static_settings(1)
-    polish.staticSolver.useLoadFactor = False
-    try:
-        runs.run_static(model, polish, lambda f: f)
-        return "relaxation+static"
-    except runs.ExudynFailure:
-        pass
-    tol = 1e-9 * mech.size
-    if change <= tol:
-        runs.set_current_coordinates(model, relaxed)
-        return "relaxation"
-    raise SolverError(
-        f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge: Exudyn's static solver stopped "
-        f"at load factor {first.time:.4g} ({first}); dynamic relaxation still moved by {change:.3g} m over its last "
-        f"period (accepted: {tol:.3g} m) and the static polish failed. Use more cells, reduce the loads, or pass "
-        "more load_steps.")
 
 
 # ------------------------------------------------------------------------------ public solves
@@ -165,10 +48,10 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     model = mb.build(mech)
     volts = drive_voltages(mech, voltage)
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
-    strains = _source_values(model, strains_by_drive, "solve_static")
-    source_volts = _source_values(model, volts, "solve_static")
+    strains = source_values(model, strains_by_drive, "solve_static")
+    source_volts = source_values(model, volts, "solve_static")
     check_drive_ranges(model, source_volts, strains)
-    method = _equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
+    method = equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
     rows = Rows(model)
     rows.add(0.0, source_volts, strains)
     return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
@@ -273,7 +156,7 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     else:
         values = finite_array("voltages", voltages)
         table = [{name: float(v) for name in drives} for v in values]
-    source_table = np.array([_source_values(model, per_drive, f"static_sweep point {i}")
+    source_table = np.array([source_values(model, per_drive, f"static_sweep point {i}")
                              for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
     for drive in model.sources:
         if drive.hysteresis is not None:
@@ -287,7 +170,7 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     methods = []
     for i, per_drive in enumerate(table):
         volts, strains = source_table[i], strain_table[i]
-        methods.append(_equilibrium(mech, model, previous, strains, i == 0, None,
+        methods.append(equilibrium(mech, model, previous, strains, i == 0, None,
                                     f"sweep point {i}, voltages {per_drive} V"))
         runs.set_current_as_initial(model, zero_velocity=True)
         rows.add(float(i), volts, strains)
@@ -320,7 +203,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     strains0 = np.array([s.trial(0.0) for s in sources])
     if np.any(strains0 != 0.0) or model.loads:
         try:
-            _equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+            equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
         except KeyboardInterrupt:
             raise SimulationInterrupted(0.0) from None
         except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
@@ -446,10 +329,10 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -
     model = mb.build(mech)
     if voltage is not None:
         volts = drive_voltages(mech, voltage)
-        strains = _source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
+        strains = source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
                                  "eigenfrequencies")
-        check_drive_ranges(model, _source_values(model, volts, "eigenfrequencies"), strains)
-        _equilibrium(mech, model, np.zeros_like(strains), strains, True, None, f"voltages {volts} V")
+        check_drive_ranges(model, source_values(model, volts, "eigenfrequencies"), strains)
+        equilibrium(mech, model, np.zeros_like(strains), strains, True, None, f"voltages {volts} V")
         runs.set_current_as_initial(model, zero_velocity=True)
     else:
         model.scale_loads(0.0)

@@ -14,7 +14,9 @@ is the same as an offset user function.
 
 from __future__ import annotations
 
+import inspect
 import math
+from collections.abc import Mapping
 from typing import Any, Callable
 
 import numpy as np
@@ -28,6 +30,7 @@ from ..errors import SolverError
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
 from . import mechanism_solve
+from .keywords import keyword_signature, legacy_positional
 from .actuator_record import ActuatorRecorder, make_result
 from .actuator_static import static_equilibrium
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
@@ -66,9 +69,11 @@ def _check_force(tip_force: Any) -> tuple[float, float]:
 
 
 # ------------------------------------------------------------------------------ static solve
+@keyword_signature
 def solve_static(
-    actuator: BendingActuator,
-    voltage: float | None = None,
+    system: BendingActuator | Mechanism,
+    *legacy: Any,
+    voltage: float | Mapping[str, float] | None = None,
     tip_force: tuple[float, float] = (0.0, 0.0),
     load_steps: int | None = None,
 ) -> Result:
@@ -76,7 +81,7 @@ def solve_static(
 
     Parameters
     ----------
-    actuator : BendingActuator or Mechanism
+    system : BendingActuator or Mechanism
         The actuator; its drive gives the voltage-to-strain law.  A
         :class:`~exudyn_atcm.Mechanism` is solved with its own loads (``tip_force`` must stay
         zero) and gives the columns listed on the :doc:`/mechanisms` page.
@@ -111,6 +116,11 @@ def solve_static(
     large tip forces the iteration then converges ever more slowly and can stall.  A warning
     is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
     """
+    if legacy:  # the positional signature of earlier releases, for one more release
+        given = dict(voltage=voltage, tip_force=tip_force, load_steps=load_steps)
+        voltage, tip_force, load_steps = legacy_positional("solve_static", legacy, given,
+                                                           _DEFAULTS["solve_static"]).values()
+    actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
 
@@ -137,9 +147,11 @@ def solve_static(
 
 # ------------------------------------------------------------------------------ dynamic solve
 
+@keyword_signature
 def simulate(
-    actuator: BendingActuator,
+    system: BendingActuator | Mechanism,
     t_end: float,
+    *legacy: Any,
     step: float = DEFAULT_STEP,
     tip_force: tuple[float, float] = (0.0, 0.0),
     settings: Callable[[Any], None] | dict | None = None,
@@ -155,7 +167,7 @@ def simulate(
 
     Parameters
     ----------
-    actuator : BendingActuator or Mechanism
+    system : BendingActuator or Mechanism
         The actuator, with its drive (voltage program, optional hysteresis operator), or a
         :class:`~exudyn_atcm.Mechanism` (its own loads; ``tip_force`` must stay zero; columns
         as listed on the :doc:`/mechanisms` page).
@@ -228,6 +240,12 @@ def simulate(
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     The step checks and their thresholds are described in :mod:`exudyn_atcm.solve.run_checks`.
     """
+    if legacy:  # the positional signature of earlier releases, for one more release
+        given = dict(step=step, tip_force=tip_force, settings=settings, progress=progress,
+                     record_every=record_every)
+        step, tip_force, settings, progress, record_every = legacy_positional(
+            "simulate", legacy, given, _DEFAULTS["simulate"]).values()
+    actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
 
@@ -332,10 +350,11 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
 
 # ------------------------------------------------------------------------------ eigenfrequencies
 
+@keyword_signature
 def eigenfrequencies(
-    actuator: BendingActuator,
+    system: BendingActuator | Mechanism,
+    *legacy: Any,
     n: int = 3,
-    *,
     voltage: float | None = None,
     tip_force: tuple[float, float] = (0.0, 0.0),
 ) -> np.ndarray:
@@ -348,7 +367,7 @@ def eigenfrequencies(
 
     Parameters
     ----------
-    actuator : BendingActuator or Mechanism
+    system : BendingActuator or Mechanism
         The actuator, or a mechanism.
     n : int, optional
         Number of frequencies, >= 1 (default 3).
@@ -383,6 +402,10 @@ def eigenfrequencies(
     under a tip load, Exudyn's routine gives wrong frequencies (-67 % at 4 cells, +151 % at
     16 cells at 1500 V).  See :mod:`exudyn_atcm.mbs.eigen`.
     """
+    if legacy:  # the positional signature of earlier releases, for one more release
+        given = dict(n=n)
+        (n,) = legacy_positional("eigenfrequencies", legacy, given, _DEFAULTS["eigenfrequencies"]).values()
+    actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
 
@@ -398,3 +421,9 @@ def eigenfrequencies(
                             f"voltage {volts!r} V, tip force {force} N, for eigenfrequencies")
     model.before_linearisation(strain)
     return runs.eigenfrequencies(model, n)
+
+
+#: Defaults of the public solves' keyword arguments in their old positional order (the positional
+#: grace period maps extra positional arguments onto them in this order).
+_DEFAULTS = {f.__name__: {n: p.default for n, p in inspect.signature(f).parameters.items()}
+             for f in (solve_static, simulate, eigenfrequencies)}

@@ -1,0 +1,142 @@
+"""Static equilibrium of a built mechanism model: drive voltages to strains, load steps, relaxation.
+
+Internal API of the solve layer (documented for tests): :func:`drive_voltages`,
+:func:`source_values`, :func:`equilibrium`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from .._checks import finite_float
+from ..errors import SolverError
+from ..mbs import builder as mb
+from ..mbs import solver_runs as runs
+from ..mbs import solver_settings
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
+from ..mechanism.flexure import Flexure
+from ..mechanism.points import MechanismError, closest
+
+__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium"]
+
+VoltageSpec = Any  # None | float | Mapping[str, float]
+
+
+# ------------------------------------------------------------------------------ voltages
+
+def drive_voltages(mech: Mechanism, voltage: VoltageSpec) -> dict[str, float]:
+    """Voltage [V] of every drive: ``None`` -> each program at t = 0; a number -> every drive;
+    a mapping ``{drive_name: volts}`` (drives not named: their program at t = 0)."""
+    drives = mech.drives
+    out = {name: d.voltage_at(0.0) for name, d in drives.items()}
+    if voltage is None:
+        return out
+    if isinstance(voltage, Mapping):
+        for name, value in voltage.items():
+            if name not in drives:
+                raise MechanismError(f"voltage: unknown drive {name!r}{closest(str(name), drives)} "
+                                     f"(drives: {', '.join(drives) or 'none'})")
+            out[name] = finite_float(f"voltage[{name!r}]", value)
+        return out
+    value = finite_float("voltage", voltage)
+    return {name: value for name in drives}
+
+
+def source_values(model: mb.MechanismModel, per_drive: Mapping[str, float], what: str) -> np.ndarray:
+    """One value per strain source; drives sharing one PiezoDrive object must agree."""
+    values = np.full(len(model.sources), np.nan)
+    owner: dict[int, str] = {}
+    for name, k in model.drive_source.items():
+        v = per_drive[name]
+        if k in owner and values[k] != v:
+            raise MechanismError(
+                f"{what}: drives {owner[k]!r} and {name!r} are one PiezoDrive object and cannot take "
+                f"different voltages ({values[k]!r} V and {v!r} V); give them separate PiezoDrive objects")
+        owner.setdefault(k, name)
+        values[k] = v
+    return values
+
+
+# ------------------------------------------------------------------------------ static equilibrium
+
+def static_scales(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray) -> tuple[float, float]:
+    """Expected rotation [rad] (for load steps) and the lowest cantilever frequency [rad/s] of the parts."""
+    rot, omega = 0.0, math.inf
+    min_ei = math.inf
+    for comp in mech.components.values():
+        if isinstance(comp, (Bender, Flexure)):
+            lam = comp.laminate
+            min_ei = min(min_ei, lam.bending_stiffness)
+            omega = min(omega, 2.0 * math.pi * lam.first_frequency(comp.length))
+            if isinstance(comp, Bender):
+                for name in comp.drives:
+                    rot = max(rot, abs(lam.curvature_per_strain * strains[model.drive_source[name]]) * comp.length)
+    size = mech.size
+    for f in mech.forces:
+        value = f.force(0.0) if callable(f.force) else f.force
+        if math.isfinite(min_ei):
+            rot += math.hypot(*value) * size**2 / (2.0 * min_ei)
+    return rot, (omega if math.isfinite(omega) else 2.0 * math.pi * 10.0)
+
+
+def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, end: np.ndarray, from_reference: bool,
+                 load_steps: int | None, what: str) -> str:
+    """Static equilibrium with the strains moved from ``start`` to ``end``; returns the method used.
+
+    From the reference pose the loads are raised with the strains; otherwise they stay.
+    First Exudyn's static solver in load steps, then (as for a lone actuator) dynamic
+    relaxation polished by one static step.
+    """
+    # From the reference pose Exudyn's load factor raises the loads (as for a lone actuator, so
+    # that a one-bender mechanism takes the very same Newton path); later sweep points keep
+    # the loads and move the strains only.
+    model.load_factor = 1.0
+    model.set_path(start, end, ramp_loads=False)
+    rot, omega1 = static_scales(mech, model, np.abs(end - start))
+    if load_steps is None:
+        load_steps = int(min(400, max(4, math.ceil(rot / 0.05))))
+    settings = solver_settings.static_settings(load_steps)
+    settings.staticSolver.useLoadFactor = from_reference
+    try:
+        runs.run_static(model, settings, lambda f: f)
+        return "static"
+    except runs.ExudynFailure as exc:
+        first = exc
+    model.set_path(start, end, ramp_loads=from_reference)
+    if from_reference:
+        runs.reset_to_reference(model)
+    else:
+        model.set_strain(0.0)
+    try:
+        change = runs.run_relaxation(model, 1.0, 0.5 * omega1, 2.0 / omega1)
+    except runs.ExudynFailure as exc:
+        raise SolverError(
+            f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge. Tried: Exudyn's static "
+            f"solver with {load_steps} load steps (stopped at load factor {first.time:.4g}: {first}), then dynamic "
+            f"relaxation (stopped at {exc.time:.3g} of its ramp: {exc}). Expected rotation about {rot:.3g} rad. "
+            "Use more cells, reduce the loads, check that the mechanism is not locked, or pass load_steps.") from exc
+    relaxed = np.array(model.coordinates())
+    runs.set_current_as_initial(model, zero_velocity=True)
+    model.load_factor = 1.0
+    model.set_path(end, end, ramp_loads=False)
+    polish = solver_settings.static_settings(1)
+    polish.staticSolver.useLoadFactor = False
+    try:
+        runs.run_static(model, polish, lambda f: f)
+        return "relaxation+static"
+    except runs.ExudynFailure:
+        pass
+    tol = 1e-9 * mech.size
+    if change <= tol:
+        runs.set_current_coordinates(model, relaxed)
+        return "relaxation"
+    raise SolverError(
+        f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge: Exudyn's static solver stopped "
+        f"at load factor {first.time:.4g} ({first}); dynamic relaxation still moved by {change:.3g} m over its last "
+        f"period (accepted: {tol:.3g} m) and the static polish failed. Use more cells, reduce the loads, or pass "
+        "more load_steps.")
