@@ -30,7 +30,7 @@ import scipy
 from exudyn_atcm import __version__
 from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm.hysteresis import DiscretePreisach, EverettPreisach, PrandtlIshlinskii
-from exudyn_atcm.hysteresis.reference_record import REFERENCE, reference_samples
+from exudyn_atcm.model.reference_record import REFERENCE, reference_samples
 
 NOISE = REFERENCE["noise [m]"]
 

@@ -32,7 +32,7 @@ from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, Everett
 from exudyn_atcm.hysteresis.fit_report import make_report
 from exudyn_atcm.plots.identification import plot_fit
 from exudyn_atcm.io.measurements import preprocess, read_record
-from exudyn_atcm.hysteresis.reference_record import REFERENCE
+from exudyn_atcm.model.reference_record import REFERENCE
 from exudyn_atcm.io.result import Result
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "preisach_record.csv"

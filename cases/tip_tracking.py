@@ -2,7 +2,7 @@
 
 The paper's actuator (three 29 mm cells, CFC on MFC) is driven through a hysteresis operator
 that plays the real MFC: the known non-uniform Preisach model behind the shipped record
-(``exudyn_atcm.hysteresis.reference_record.reference_preisach``, as free strain of a 29 mm cell).  The
+(``exudyn_atcm.model.reference_record.reference_preisach``, as free strain of a 29 mm cell).  The
 compensation does not know it: it uses the Preisach model *identified* from the noisy record
 ``cases/data/preisach_record.csv`` (:meth:`EverettPreisach.fit`, ``n_levels`` grid), as a
 designer would.  The wanted tip deflection is a slow two-tone wave (a major swing with minor
@@ -33,12 +33,12 @@ from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.model.control import PIDController
 from exudyn_atcm.model.drive import PiezoDrive
-from exudyn_atcm.hysteresis.feedforward import feedforward_program, linear_program
+from exudyn_atcm.model.feedforward import feedforward_program, linear_program
 from exudyn_atcm.hysteresis import EverettPreisach
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.io.measurements import read_record
 from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm.hysteresis.reference_record import reference_preisach
+from exudyn_atcm.model.reference_record import reference_preisach
 from exudyn_atcm.io.result import Result
 from exudyn_atcm.solve import simulate
 

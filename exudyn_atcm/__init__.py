@@ -10,7 +10,7 @@ Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``Bendi
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
 ``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
 else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
-``exudyn_atcm.hysteresis.feedforward``, ...): see the API reference.
+``exudyn_atcm.model.feedforward``, ...): see the API reference.
 """
 
 from . import deprecated_paths, hysteresis

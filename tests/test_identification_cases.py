@@ -11,7 +11,7 @@ import pytest
 
 from exudyn_atcm.casework.case import load_case
 from exudyn_atcm.io.measurements import read_record
-from exudyn_atcm.hysteresis.reference_record import REFERENCE, reference_samples
+from exudyn_atcm.model.reference_record import REFERENCE, reference_samples
 
 from _cli_helpers import CASES, run
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm.hysteresis.feedforward import feedforward_program
+from exudyn_atcm.model.feedforward import feedforward_program
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, PrandtlIshlinskii
 from exudyn_atcm.hysteresis.identification import relay_grid
 from exudyn_atcm.hysteresis.inverse import BisectionInverse, inverse_operator

@@ -22,7 +22,8 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exudyn_atcm"
 #: folder -> folders (or top-level modules) it must never import, also not inside a function
 FORBIDDEN = {
     "theory": {"model", "io", "mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli", "hysteresis"},
-    "hysteresis": {"mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli"},
+    "io": {"model", "mechanism", "cells", "mbs", "solve", "casework", "study", "cli", "hysteresis", "theory"},
+    "hysteresis": {"model", "mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli"},
     "model": {"mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli"},
     "cells": {"model", "mechanism", "mbs", "solve", "plots", "casework", "study", "cli", "io"},
     "mechanism": {"mbs", "solve", "plots", "casework", "study", "cli"},

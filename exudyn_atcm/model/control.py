@@ -89,7 +89,7 @@ class PIDController(Controller):
         Wanted tip deflection ``r(t)`` [m].
     feedforward : float or callable, optional
         Feedforward voltage program [V] added to the feedback (e.g. from
-        :func:`exudyn_atcm.hysteresis.feedforward.feedforward_program`), evaluated at every step.
+        :func:`exudyn_atcm.model.feedforward.feedforward_program`), evaluated at every step.
     output_limits : (float, float), optional
         Lowest and highest voltage [V].  Limiting is counted, never silent: see
         :meth:`summary` (``limited_samples``, ``largest_excess [V]``).

@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, same_length
-from .inverse import inverse_operator
-from ..model.signals import PiecewiseLinear
+from ..hysteresis.inverse import inverse_operator
+from .signals import PiecewiseLinear
 
 __all__ = ["feedforward_program", "linear_program"]
 

@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 
 from ..io.atomic import write_text
-from .everett import EverettPreisach
-from .identification import relay_grid
-from ..model.signals import PiecewiseLinear
+from ..hysteresis.everett import EverettPreisach
+from ..hysteresis.identification import relay_grid
+from .signals import PiecewiseLinear
 
 __all__ = ["REFERENCE", "reference_preisach", "reference_program", "reference_samples", "write_reference_record"]
 
@@ -98,8 +98,8 @@ def write_reference_record(path: str | Path) -> Path:
     r = REFERENCE
     header = [
         "# Synthetic hysteresis record (NOT a measurement), made by cases/data/make_preisach_record.py",
-        "# with exudyn_atcm.hysteresis.reference_record.write_reference_record:",
-        "# output = known non-uniform Preisach model exudyn_atcm.hysteresis.reference_record.reference_preisach()",
+        "# with exudyn_atcm.model.reference_record.write_reference_record:",
+        "# output = known non-uniform Preisach model exudyn_atcm.model.reference_record.reference_preisach()",
         f"#   ({r['grid_levels']}-cell grid over {r['u_min [V]']:g}...{r['u_max [V]']:g} V, weights spread over the cells, density",
         "#   exp(-((a-b)-350)^2/(2*300^2))*exp(-((a+b)/2-300)^2/(2*600^2)) plus a reversible diagonal part,",
         "#   output -4e-6 m with all relays off, 40e-6 m with all on)",
