@@ -4,7 +4,7 @@
 >>> layer = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550)
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
-``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``), solving (``simulate``,
+``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
 ``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``add_to``), results and files
 (``Result``, ``read_csv``, ``read_record``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
@@ -18,6 +18,7 @@ from ._version import __version__
 from .actuator import BendingActuator
 from .control import PIDController
 from .csv_io import read_csv
+from .damping import RayleighDamping
 from .drive import PiezoDrive
 from .materials import Layer
 from .measurements import read_record
@@ -41,6 +42,7 @@ __all__ = [
     "Flexure",
     "Mechanism",
     "MechanismError",
+    "RayleighDamping",
     "simulate",
     "solve_static",
     "static_sweep",
