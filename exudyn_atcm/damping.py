@@ -22,13 +22,17 @@ The ``damping=`` argument of :class:`~exudyn_atcm.mechanism.Bender` and
 first clamped-free frequency of *that* bender, i.e. the same damping ratio ``zeta`` at the
 bender's own first mode.  It is the same material damping as
 ``RayleighDamping(beta=2 zeta / omega_1)`` for an unsplit bender, but it changes with the
-length of each part; give a :class:`RayleighDamping` to make the damping a property of the
+length of each part; give a :class:`~exudyn_atcm.RayleighDamping` to make the damping a property of the
 material (independent of how a bender is split into parts).
 
 A free decay with the logarithmic decrement ``delta = ln(x_k / x_{k+1})`` (successive peaks of
 one side) has the damping ratio ``zeta = delta / sqrt(4 pi^2 + delta^2)``
-(:func:`damping_ratio_from_log_decrement`); :meth:`RayleighDamping.from_log_decrement` turns a
+(:func:`damping_ratio_from_log_decrement`); :meth:`~exudyn_atcm.RayleighDamping.from_log_decrement` turns a
 decrement measured at a frequency into the material coefficient.
+
+``MASS_DAMPING_CELLS`` lists the cells that realise ``alpha M`` exactly (``"rigid"`` and
+``"six-bar"``: all their masses are rigid bodies, see ``exudyn_atcm.mbs.mass_damping``); the
+continuum cells refuse ``alpha > 0`` (:func:`check_damping`).
 """
 
 from __future__ import annotations
@@ -161,15 +165,15 @@ class RayleighDamping:
 
 
 def check_damping(damping: object, *, cell: str, owner: str) -> float | RayleighDamping:
-    """The ``damping=`` argument of a bender: a damping ratio ``>= 0`` or a :class:`RayleighDamping`.
+    """The ``damping=`` argument of a bender: a damping ratio ``>= 0`` or a :class:`~exudyn_atcm.RayleighDamping`.
 
     Parameters
     ----------
     damping : float or RayleighDamping
         The value given.
     cell : str
-        The bender's cell kind: a :class:`RayleighDamping` with ``alpha > 0`` needs one of
-        :data:`MASS_DAMPING_CELLS`.
+        The bender's cell kind: a :class:`~exudyn_atcm.RayleighDamping` with ``alpha > 0`` needs one of
+        ``MASS_DAMPING_CELLS``.
     owner : str
         Who is checking (for the message), e.g. ``"bender 'b'"``.
 

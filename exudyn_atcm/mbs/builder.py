@@ -23,6 +23,11 @@ Model (planar, SI units):
   whose net torque is not identically zero.  For a uniform cantilever that is one torque on
   the last cell, exactly as in :mod:`exudyn_atcm.mbs.actuator_chains`.
 
+* Damping: every spring ``k`` of a bender gets ``beta k`` (series springs of one ``beta`` keep
+  it); with a mass-proportional part ``alpha`` every laminate mass (cells, interface masses,
+  flexure segments; not links) gets a force at its own centre and a torque
+  (:mod:`exudyn_atcm.mbs.mass_damping`).
+
 The :mod:`exudyn_atcm.mbs` package holds the package's only Exudyn calls.
 """
 
