@@ -54,7 +54,7 @@ from .items import rigid_marker as _rigid_marker
 from .items import rotation_marker as _rot_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
 from .loads import add_loads
-from .mass_damping import add_mass_damper, ground_position_marker
+from .mass_damping import MassDampers, part_mass_damping_factor
 from .six_bar import add_six_bar_chain, six_bar_end_mass
 from .beam_chain import actuation_torques, add_beam_chain, beam_end_key, weld_node
 
@@ -85,7 +85,6 @@ class _Builder:
         self.n_sources = len(sources)
         self._theta: dict[str, tuple] = {}
         self._clamped: set[str] = set()  # beam nodes clamped to the ground (no actuation torque)
-        self._ground_position: int | None = None  # the mass dampers' ground marker, made on first use
 
     def zeros(self) -> np.ndarray:
         return np.zeros(self.n_sources)
@@ -103,6 +102,7 @@ class _Builder:
                                                                             'graphicsData': []}))
         gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
         self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+        self.dampers = MassDampers(mbs, self.ground_item, self.gcoord)
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
         six_bar = {b.name for b in mech.benders if b.cell == "six-bar"}
         beam = {b.name for b in mech.benders if b.cell == "beam"}
@@ -155,7 +155,7 @@ class _Builder:
                     continue
                 own = self._part_masses(part)
                 masses += own
-                damped += [(self._mass_damping_factor(part), mm, j, c) for mm, j, c in own]
+                damped += [(part_mass_damping_factor(self.mech, part), mm, j, c) for mm, j, c in own]
                 graphics += self._part_graphics(part)
             m = sum(mm for mm, _, _ in masses)
             com = sum(mm * c for mm, _, c in masses) / m
@@ -163,24 +163,8 @@ class _Builder:
             local_graphics = [self._shift(gd, -com) for gd in graphics]
             model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
             for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre
-                self._damp_mass(model.bodies[key], alpha, mm, j, c - com)
+                self.dampers.add(model.bodies[key], alpha, mm, j, c - com)
 
-    def _mass_damping_factor(self, part: str) -> float:
-        """``alpha`` [1/s] of the component that owns ``part`` (0 for the ground and links)."""
-        if part == GROUND:
-            return 0.0
-        comp = self.mech.components[part.partition("#")[0]]
-        return comp.mass_damping_factor if isinstance(comp, (Bender, Flexure)) else 0.0
-
-    def _damp_mass(self, body: Body, alpha: float, mass: float, inertia: float, center) -> None:
-        """Mass-proportional damping ``alpha`` [1/s] of a mass on ``body`` (centre ``center`` in the body frame)."""
-        if alpha == 0.0:
-            return
-        if self._ground_position is None:
-            self._ground_position = ground_position_marker(self.mbs, self.ground_item)
-        add_mass_damper(self.mbs, body_item=body.item, rotation_marker=_rot_marker(self.mbs, body, self.gcoord),
-                        ground_position=self._ground_position, ground_rotation=self.gcoord, alpha=alpha,
-                        mass=mass, inertia=inertia, center=center)
 
     def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
         """(mass, inertia about own centre, centre) of a rigid part."""
@@ -221,7 +205,7 @@ class _Builder:
             (m, j, _), = self._part_masses(part)
             com = (0.0, 0.0)
         body = _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
-        self._damp_mass(body, bender.mass_damping_factor, m, j, com)
+        self.dampers.add(body, bender.mass_damping_factor, m, j, com)
         return body
 
     def _part_graphics(self, part: str) -> list:
@@ -259,7 +243,7 @@ class _Builder:
             alpha = bender.mass_damping_factor
             model.cells[bender.name] = add_six_bar_chain(
                 mbs, model, bender, *ends, self.gcoord,
-                damp=lambda body, mass, inertia, center: self._damp_mass(body, alpha, mass, inertia, center))
+                damp=lambda body, mass, inertia, center: self.dampers.add(body, alpha, mass, inertia, center))
             return
         if bender.cell == "beam":
             add_beam_chain(mbs, model, bender)
@@ -282,7 +266,7 @@ class _Builder:
                                       size=[lc, thick, 0.2 * lc], color=_CELL_COLOR)]
             key = f"{bender.name}/cell{j + 1}"
             model.bodies[key] = _add_body(mbs, key, x0 + s * d, bender.angle, m, j_com, com, gfx)
-            self._damp_mass(model.bodies[key], bender.mass_damping_factor, m, j_com, com)
+            self.dampers.add(model.bodies[key], bender.mass_damping_factor, m, j_com, com)
             keys.append(key)
         model.cells[bender.name] = keys
 

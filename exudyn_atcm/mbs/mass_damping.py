@@ -19,7 +19,13 @@ from __future__ import annotations
 
 from exudyn import itemInterface as ii
 
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
+from ..mechanism.flexure import Flexure
+from ..mechanism.points import GROUND
 from .actuator_items import NOVIS
+from .items import rotation_marker as body_rotation_marker
+from .model import Body
 
 
 def ground_position_marker(mbs, ground_item: int) -> int:
@@ -60,3 +66,41 @@ def add_mass_damper(mbs, *, body_item: int, rotation_marker: int, ground_positio
         markerNumbers=[ground_rotation, rotation_marker], stiffness=0.0, damping=alpha * inertia,
         visualization=NOVIS))
     return translation, rotation
+
+
+def part_mass_damping_factor(mech: Mechanism, part: str) -> float:
+    """``alpha`` [1/s] of the component owning the rigid part ``part`` (0 for the ground and links)."""
+    if part == GROUND:
+        return 0.0
+    comp = mech.components[part.partition("#")[0]]
+    return comp.mass_damping_factor if isinstance(comp, (Bender, Flexure)) else 0.0
+
+
+class MassDampers:
+    """The mass dampers of one mechanism system (the ground marker is made on first use).
+
+    Parameters
+    ----------
+    mbs : exudyn MainSystem
+    ground_item : int
+        The ground object.
+    ground_rotation : int
+        A fixed coordinate marker (the ground's rotation for the torque dampers).
+    """
+
+    def __init__(self, mbs, ground_item: int, ground_rotation: int) -> None:
+        self.mbs = mbs
+        self.ground_item = ground_item
+        self.ground_rotation = ground_rotation
+        self.ground_position: int | None = None
+
+    def add(self, body: Body, alpha: float, mass: float, inertia: float, center) -> None:
+        """Damp ``mass`` [kg] / ``inertia`` [kg m²] at ``center`` (body frame) on ``body`` with ``alpha`` (0: nothing)."""
+        if alpha == 0.0:
+            return
+        if self.ground_position is None:
+            self.ground_position = ground_position_marker(self.mbs, self.ground_item)
+        add_mass_damper(self.mbs, body_item=body.item,
+                        rotation_marker=body_rotation_marker(self.mbs, body, self.ground_rotation),
+                        ground_position=self.ground_position, ground_rotation=self.ground_rotation,
+                        alpha=alpha, mass=mass, inertia=inertia, center=center)
