@@ -165,7 +165,6 @@ class _Builder:
             for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre
                 self.dampers.add(model.bodies[key], alpha, mm, j, c - com)
 
-
     def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
         """(mass, inertia about own centre, centre) of a rigid part."""
         if part == GROUND:
