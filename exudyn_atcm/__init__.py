@@ -4,7 +4,7 @@
 >>> layer = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550)
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
-``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``), solving (``simulate``,
+``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
 ``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``add_to``), results and files
 (``Result``, ``read_csv``, ``read_record``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
@@ -22,6 +22,7 @@ from .io.result import read_csv
 from .model.drive import PiezoDrive
 from .model.materials import Layer
 from .io.measurements import read_record
+from .model.damping import RayleighDamping
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .io.result import Result
 from .solve import SimulationInterrupted
@@ -42,6 +43,7 @@ __all__ = [
     "Flexure",
     "Mechanism",
     "MechanismError",
+    "RayleighDamping",
     "simulate",
     "solve_static",
     "static_sweep",

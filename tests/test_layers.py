@@ -24,7 +24,7 @@ FORBIDDEN = {
     "theory": {"model", "io", "mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli", "hysteresis"},
     "io": {"model", "mechanism", "cells", "mbs", "solve", "casework", "study", "cli", "hysteresis", "theory"},
     "hysteresis": {"model", "mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli"},
-    "model": {"mechanism", "cells", "mbs", "solve", "plots", "casework", "study", "cli"},
+    "model": {"mechanism", "mbs", "solve", "plots", "casework", "study", "cli"},
     "cells": {"model", "mechanism", "mbs", "solve", "plots", "casework", "study", "cli", "io"},
     "mechanism": {"mbs", "solve", "plots", "casework", "study", "cli"},
     "mbs": {"solve", "plots", "casework", "study", "cli"},

@@ -47,6 +47,9 @@ class CellKind:
         :data:`END_CHAIN` or :data:`END_NODE`.
     joint_label : str
         What the points between cells are called in drawings.
+    realises_mass_damping : bool
+        Every mass of the kind is a rigid body, so mass-proportional (Rayleigh ``alpha``) damping is
+        realised exactly as ``-alpha m v`` and ``-alpha J omega`` on each body.
     cost_per_step : tuple of float or None
         ``(a, b, c)`` [s]: measured wall time per accepted step ``a + b n + c n^2`` for ``n`` cells
         (``None``: not measured; no run-time estimate).
@@ -61,6 +64,7 @@ class CellKind:
     chain_of_cells: ClassVar[bool] = True
     end_kind: ClassVar[str] = END_BODY
     joint_label: ClassVar[str] = "cell joints"
+    realises_mass_damping: ClassVar[bool] = False
     cost_per_step: ClassVar[tuple[float, float, float] | None] = None
     limits: ClassVar[str] = ""
 

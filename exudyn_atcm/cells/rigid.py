@@ -20,6 +20,7 @@ class RigidCell(CellKind):
     summary = "one rigid body per cell, torsion springs at the joints"
     end_kind = END_BODY
     # bench_run_cost.py: 20, 28 and 192 µs per step at 3, 10 and 40 cells (fit, rounded up)
+    realises_mass_damping = True
     cost_per_step = (20e-6, 1e-6, 0.12e-6)
     limits = ("the chain's tip compliance is 1 + 1/(2 N^2) times the beam's (N cells); a cell turning by more "
               "than 0.5 rad against its neighbour is warned about as a coarse discretisation")

@@ -62,6 +62,7 @@ from .actuator_model import BuiltModel
 from .actuator_ritz import build_ritz
 from .actuator_tree import build_tree
 from .cells import add_actuator_cells
+from .mass_damping import add_mass_damper, ground_position_marker
 
 #: How ``cell="rigid"`` is built with the default stroke path: ``"tree"`` (minimal coordinates,
 #: one ``ObjectKinematicTree``) or ``"bodies"`` (rigid bodies, revolute joints, springs).
@@ -102,6 +103,20 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
     return model
 
 
+def _mass_damping(mbs, act, ground, gcoord):
+    """``damp(node, body, mass, inertia, com)``: the mass dampers of ``act.mass_damping_factor`` on a
+    rigid body (nothing for ``alpha = 0``); see :mod:`exudyn_atcm.mbs.mass_damping`."""
+    alpha = act.mass_damping_factor
+    if alpha == 0.0:
+        return lambda node, body, mass, inertia, com=(0.0, 0.0): None
+    gpos = ground_position_marker(mbs, ground)
+
+    def damp(node, body, mass, inertia, com=(0.0, 0.0)):
+        add_mass_damper(mbs, body_item=body, rotation_marker=rotation_marker(mbs, node), ground_position=gpos,
+                        ground_rotation=gcoord, alpha=alpha, mass=mass, inertia=inertia, center=com)
+    return damp
+
+
 def build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
     n, lc, e = act.n_cells, act.cell_length, act.layer_offset
     beta = act.stiffness_damping_factor
@@ -116,6 +131,7 @@ def build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
     j_if = m_if * (s**2 + (e + 0.5 * (h1 + h2)) ** 2) / 12.0
 
     ground, gcoord = add_ground(mbs)
+    damp = _mass_damping(mbs, act, ground, gcoord)
     model = BuiltModel(SC=SC, mbs=mbs, cell="six-bar", n_cells=n, cell_length=lc)
 
     def motor_uf_factory(factor):
@@ -132,6 +148,7 @@ def build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
         # passive bar
         mp = m1_cell * keep
         npb, bp = rigid_body_2d(mbs, (x0 + 0.5 * lc, 0.0), mp, mp * (lc**2 + h1**2) / 12.0)
+        damp(npb, bp, mp, mp * (lc**2 + h1**2) / 12.0)
         passive_nodes.append(npb)
         # active bodies A1, A2, A3
         ma = m2_cell * keep / 3.0
@@ -141,12 +158,14 @@ def build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
         bodies_a = []
         for k in range(3):
             nd, bd = rigid_body_2d(mbs, (x0 + (k + 0.5) * la, -e), ma, ja)
+            damp(nd, bd, ma, ja)
             nodes_a.append(nd)
             bodies_a.append(bd)
         # next interface element (reference point on the passive layer)
         # interface j+1 takes half its lumped mass from cell j and half from cell j+1
         share = 1.0 if j < n - 1 else 0.5
         nif, bif = rigid_body_2d(mbs, (x0 + lc, 0.0), share * m_if, share * j_if, com=(0.0, -0.5 * e))
+        damp(nif, bif, share * m_if, share * j_if, (0.0, -0.5 * e))
         last_if_node = nif
         if_lower = position_marker(mbs, bif, (0.0, 0.0))
         if_upper = position_marker(mbs, bif, (0.0, -e))
@@ -206,6 +225,7 @@ def build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
     rot_per_strain = act.curvature_per_strain * lc  # free rotation of one cell per unit strain
 
     ground, gcoord = add_ground(mbs)
+    damp = _mass_damping(mbs, act, ground, gcoord)
     model = BuiltModel(SC=SC, mbs=mbs, cell="rigid", n_cells=n, cell_length=lc)
 
     def spring_uf_factory(factor):
@@ -220,6 +240,7 @@ def build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
         # node (reference point) at the cell's end joint: the tip load then acts at a node
         # and its generalized force does not depend on the body's rotation
         nd, bd = rigid_body_2d(mbs, ((j + 1.0) * lc, 0.0), m, j_com, com=(-0.5 * lc, y_com))
+        damp(nd, bd, m, j_com, (-0.5 * lc, y_com))
         nodes.append(nd)
         ml = position_marker(mbs, bd, (-lc, 0.0))
         mr = position_marker(mbs, bd, (0.0, 0.0))
@@ -272,7 +293,9 @@ def _six_bar(cell: SixBarCell, SC, mbs, actuator, stroke_path, tip_force) -> Bui
 
 @add_actuator_cells.register
 def _rigid(cell: RigidCell, SC, mbs, actuator, stroke_path, tip_force) -> BuiltModel:
-    if RIGID_FORMULATION == "tree" and stroke_path == "prestep":
+    if RIGID_FORMULATION == "tree" and stroke_path == "prestep" and actuator.mass_damping_factor == 0.0:
+        # the minimal-coordinate tree has no bodies to hang the mass dampers on: with alpha > 0
+        # the rigid chain is built from bodies (the same model in other coordinates)
         return build_tree(SC, mbs, actuator, stroke_path)
     return build_rigid(SC, mbs, actuator, stroke_path)
 

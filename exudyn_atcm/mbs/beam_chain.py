@@ -7,8 +7,9 @@ passive layer's mid-plane, with the laminate's numbers of
 (:mod:`exudyn_atcm.mbs.actuator_beam`): bending stiffness ``EI``, axial and shear stiffness
 ``a1 + a2`` (a practically inextensible, shear-rigid axis: the closed forms are
 Euler-Bernoulli's), mass per length, rotary inertia about the passive mid-plane, and
-stiffness-proportional damping ``beta`` times each stiffness (``beta`` of the whole bender as
-a cantilever, as for the other cells).
+stiffness-proportional damping ``beta`` times each stiffness (the bender's ``beta``: its
+laminate's material damping, or ``2 zeta / omega_1`` of the whole bender as a cantilever for a
+damping ratio, as for the other cells; a beam bender refuses mass-proportional damping).
 
 The nodes are the bender's *bodies*: node ``i`` (``i = 0 .. N``) sits at the ``i``-th cell
 boundary with the bender's direction as reference angle, so a bender end is a real node

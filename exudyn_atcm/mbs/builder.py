@@ -23,6 +23,11 @@ Model (planar, SI units):
   whose net torque is not identically zero.  For a uniform cantilever that is one torque on
   the last cell, exactly as in :mod:`exudyn_atcm.mbs.actuator_chains`.
 
+* Damping: every spring ``k`` of a bender gets ``beta k`` (series springs of one ``beta`` keep
+  it); with a mass-proportional part ``alpha`` every laminate mass (cells, interface masses,
+  flexure segments; not links) gets a force at its own centre and a torque
+  (:mod:`exudyn_atcm.mbs.mass_damping`).
+
 The :mod:`exudyn_atcm.mbs` package holds the package's only Exudyn calls.
 """
 
@@ -55,6 +60,7 @@ from . import rigid_chain  # noqa: F401 - registers the rigid cell's realisation
 from .cells import add_mechanism_bender
 from .six_bar import six_bar_end_mass
 from .beam_chain import actuation_torques, beam_end_key, weld_node
+from .mass_damping import MassDampers, part_mass_damping_factor
 
 
 
@@ -98,6 +104,7 @@ class _Builder:
                                                                             'graphicsData': []}))
         gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
         self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+        self.dampers = MassDampers(mbs, self.ground_item, self.gcoord)
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
         six_bar = {b.name for b in mech.benders if b.cell.end_kind == END_CHAIN}
         beam = {b.name for b in mech.benders if b.cell.end_kind == END_NODE}
@@ -143,18 +150,22 @@ class _Builder:
             if len(g.parts) == 1 and g.interfaces:
                 model.bodies[key] = self._interface_body(key, g.parts[0])
                 continue
-            masses, graphics = [], []
+            masses, graphics, damped = [], [], []
             for part in g.parts:
                 # a rigid-cell end's interface mass only where nothing else carries the bender end
                 if g.kind == "body" and part in g.interfaces and not self._is_six_bar(part):
                     continue
-                masses += self._part_masses(part)
+                own = self._part_masses(part)
+                masses += own
+                damped += [(part_mass_damping_factor(self.mech, part), mm, j, c) for mm, j, c in own]
                 graphics += part_graphics(self.mech, part)
             m = sum(mm for mm, _, _ in masses)
             com = sum(mm * c for mm, _, c in masses) / m
             inertia = sum(j + mm * float((c - com) @ (c - com)) for mm, j, c in masses)
             local_graphics = [shift_graphics(gd, -com) for gd in graphics]
             model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
+            for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre
+                self.dampers.add(model.bodies[key], alpha, mm, j, c - com)
 
     def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
         """(mass, inertia about own centre, centre) of a rigid part."""
@@ -194,7 +205,9 @@ class _Builder:
         else:
             (m, j, _), = self._part_masses(part)
             com = (0.0, 0.0)
-        return _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
+        body = _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
+        self.dampers.add(body, bender.mass_damping_factor, m, j, com)
+        return body
 
     # ---------------------------------------------------------------- benders
     def _bender_cells(self, bender: Bender) -> None:

@@ -45,6 +45,7 @@ def add_rigid_chain(builder, bender: Bender) -> None:
                                   size=[lc, thick, 0.2 * lc], color=CELL_COLOR)]
         key = f"{bender.name}/cell{j + 1}"
         model.bodies[key] = add_body(mbs, key, x0 + s * d, bender.angle, m, j_com, com, gfx)
+        builder.dampers.add(model.bodies[key], bender.mass_damping_factor, m, j_com, com)
         keys.append(key)
     model.cells[bender.name] = keys
 

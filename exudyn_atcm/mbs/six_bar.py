@@ -15,6 +15,7 @@ each neighbouring cell; an end interface carries its half (:func:`six_bar_end_ma
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import exudyn as exu
 import numpy as np
@@ -51,11 +52,18 @@ def _interface(bender: Bender, lc: float) -> tuple[float, float]:
     return m_if, m_if * (s**2 + (lam.layer_offset + 0.5 * h) ** 2) / 12.0
 
 
-def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, tip: Body, ground_coordinate) -> list:
+def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, tip: Body, ground_coordinate,
+                      damp: Callable[[Body, float, float, tuple[float, float]], None] | None = None) -> list:
     """Add the cells of ``bender`` between the end bodies ``base`` and ``tip``; returns the passive bars' keys.
 
     Registers the motors in ``model.motor_offsets`` and the spring-dampers in ``model.springs``.
+    ``damp(body, mass, inertia, center)``, if given, is called for every body the chain adds
+    (mass [kg], inertia about the centre [kg m²], centre in the body frame [m]): the
+    mass-proportional damping of :mod:`exudyn_atcm.mbs.mass_damping`.
     """
+    if damp is None:
+        def damp(body, mass, inertia, center):
+            return None
     lam = bender.laminate
     side = bender.curvature_sign
     e = lam.layer_offset
@@ -95,6 +103,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         bar = add_body(mbs, key, x0 + 0.5 * lc * d, angle, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0),
                        [exu.graphics.Brick(size=[lc, h1, 0.2 * lc], color=PASSIVE_COLOR)])
         model.bodies[key] = bar
+        damp(bar, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0))
         bars.append(key)
         ma = lam.active.mass_per_length(w) * lc * keep / 3.0
         la = lc / 3.0
@@ -103,6 +112,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
             pos = x0 + (k + 0.5) * la * d - side * e * n_hat
             body = add_body(mbs, f"{key}/A{k + 1}", pos, angle, ma, ma * (la**2 + h2**2) / 12.0, (0.0, 0.0),
                             [exu.graphics.Brick(size=[la, h2, 0.2 * lc], color=ACTIVE_COLOR)])
+            damp(body, ma, ma * (la**2 + h2**2) / 12.0, (0.0, 0.0))
             act.append(body)
         if j < len(lengths) - 1:
             # an inner interface: half the lumped laminate of each neighbouring cell
@@ -111,6 +121,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
             nxt = add_body(mbs, f"{bender.name}/interface{j + 1}", x0 + lc * d, angle, 0.5 * (m_a + m_b),
                            0.5 * (j_a + j_b), (0.0, -side * 0.5 * e), [])
             model.bodies[nxt.key] = nxt
+            damp(nxt, 0.5 * (m_a + m_b), 0.5 * (j_a + j_b), (0.0, -side * 0.5 * e))
             lower, upper_m, rot = (position_marker(mbs, nxt, (0.0, 0.0)), position_marker(mbs, nxt, upper),
                                    rotation_marker(mbs, nxt, ground_coordinate))
         else:
@@ -148,4 +159,7 @@ def _six_bar(cell: SixBarCell, builder, bender: Bender) -> None:
     """A six-bar chain between the bodies of the groups its two ends belong to."""
     model = builder.model
     ends = [model.bodies[builder.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
-    model.cells[bender.name] = add_six_bar_chain(builder.mbs, model, bender, *ends, builder.gcoord)
+    alpha = bender.mass_damping_factor
+    model.cells[bender.name] = add_six_bar_chain(
+        builder.mbs, model, bender, *ends, builder.gcoord,
+        damp=lambda body, mass, inertia, center: builder.dampers.add(body, alpha, mass, inertia, center))

@@ -15,14 +15,14 @@ interface element (positive counter-clockwise).
 
 from __future__ import annotations
 
-import numbers
 from typing import Any
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
-from .._checks import finite_float, positive_float, positive_int, warn_implausible
+from .._checks import positive_float, positive_int, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
+from ..model.damping import RayleighDamping, check_damping
 
 #: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
 CELL_TYPES = tuple(CELL_KINDS)
@@ -92,13 +92,19 @@ class BendingActuator:
         bending stiffness and free curvature exactly (lamination theory; Timoshenko 1925; see the theory page of the documentation).
         ``"paper"``: as printed, ``k1 = E2 b h2 / L_j`` (Eq. 4) with a rigid passive bar and
         the torsion springs ``2 E_i I_i / L_j`` (Eq. 5 with the text's doubling).
-    damping : float, optional
-        Modal damping ratio ``zeta >= 0`` of the first bending mode [-], default 0.02.
+    damping : float or RayleighDamping, optional
+        A float: modal damping ratio ``zeta >= 0`` of the first bending mode [-], default 0.02.
         Realised as stiffness-proportional damping ``d = beta k`` on every spring
-        (torsion springs and ``k1``) with ``beta = 2 zeta / omega_1``, ``omega_1`` the
-        first bending frequency of the continuous beam: higher modes are damped more
-        (ratio ``zeta omega / omega_1``).  2 % is an assumed, typical order of magnitude
-        for fibre-composite laminates, not a value from the paper.
+        (torsion springs and ``k1``; beam cells: their elements) with ``beta = 2 zeta / omega_1``,
+        ``omega_1`` the first bending frequency of the continuous beam of this length: higher
+        modes are damped more (ratio ``zeta omega / omega_1``).  2 % is an assumed, typical
+        order of magnitude for fibre-composite laminates, not a value from the paper.  The
+        same as the material damping ``RayleighDamping(beta=2 zeta / omega_1)`` for this
+        length.  A :class:`~exudyn_atcm.RayleighDamping`: material damping of the laminate
+        (``alpha`` [1/s] on the masses, ``beta`` [s] on the stiffnesses), which does not depend
+        on the length; ``alpha > 0`` needs ``cell="rigid"`` or ``"six-bar"`` (see
+        :mod:`exudyn_atcm.model.damping`, and :meth:`~exudyn_atcm.RayleighDamping.from_log_decrement`
+        for a measured decay).
 
     Raises
     ------
@@ -127,7 +133,7 @@ class BendingActuator:
         drive: PiezoDrive,
         cell: str | CellKind = "six-bar",
         stiffness: str = "composite",
-        damping: float = DEFAULT_DAMPING_RATIO,
+        damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO,
     ) -> None:
         self.n_cells = positive_int("n_cells", n_cells)
         self.cell_length = positive_float("cell_length", cell_length)
@@ -142,11 +148,7 @@ class BendingActuator:
         cell = cell_kind(cell)
         if not isinstance(stiffness, str) or stiffness not in STIFFNESS_MODELS:
             raise ValueError(f"stiffness must be one of {STIFFNESS_MODELS}, got {stiffness!r}")
-        if isinstance(damping, bool) or not isinstance(damping, numbers.Real):
-            raise ValueError(f"damping must be a finite damping ratio >= 0, got {damping!r}")
-        damping = finite_float("damping", damping)
-        if damping < 0.0:
-            raise ValueError(f"damping must be a damping ratio >= 0, got {damping!r}")
+        damping = check_damping(damping, cell=cell, owner="BendingActuator")
         self.passive = passive
         self.active = active
         self.drive = drive
@@ -163,7 +165,8 @@ class BendingActuator:
     @property
     def laminate(self) -> Laminate:
         """The cross-section (layers, width, stiffness model) whose formulas this actuator uses."""
-        return Laminate(self.width, self.passive, self.active, self.stiffness)
+        material = self.damping if isinstance(self.damping, RayleighDamping) else None
+        return Laminate(self.width, self.passive, self.active, self.stiffness, material)
 
     @property
     def layer_offset(self) -> float:
@@ -244,9 +247,21 @@ class BendingActuator:
         return self.laminate.first_frequency(self.length)
 
     @property
+    def rayleigh_damping(self) -> RayleighDamping:
+        """The actuator's Rayleigh coefficients: the material damping given, or ``beta = 2 zeta / omega_1``
+        (``alpha = 0``) for a damping ratio ``zeta``."""
+        ratio = None if isinstance(self.damping, RayleighDamping) else self.damping
+        return self.laminate.rayleigh_damping(self.length, ratio)
+
+    @property
     def stiffness_damping_factor(self) -> float:
-        """``beta = 2 zeta / omega_1`` [s]: every spring with stiffness ``k`` gets damping ``beta k``."""
-        return self.laminate.stiffness_damping_factor(self.damping, self.length)
+        """``beta`` [s]: every spring with stiffness ``k`` gets damping ``beta k`` (``2 zeta / omega_1`` for a ratio)."""
+        return self.rayleigh_damping.beta
+
+    @property
+    def mass_damping_factor(self) -> float:
+        """``alpha`` [1/s]: every mass ``m`` gets the damping force ``-alpha m v`` (0 for a damping ratio)."""
+        return self.rayleigh_damping.alpha
 
     # ------------------------------------------------------------------ description
     def parameters(self) -> dict[str, Any]:
@@ -265,7 +280,8 @@ class BendingActuator:
             "active.thickness [m]": self.active.thickness,
             "active.youngs_modulus [Pa]": self.active.youngs_modulus,
             "active.density [kg/m^3]": self.active.density,
-            "damping ratio [-]": self.damping,
+            **({"damping.alpha [1/s]": self.damping.alpha, "damping.beta [s]": self.damping.beta}
+               if isinstance(self.damping, RayleighDamping) else {"damping ratio [-]": self.damping}),
             "voltage": repr(drive.voltage),
             "d33 [m/V]": drive.d33,
             "electrode_spacing [m]": drive.electrode_spacing,

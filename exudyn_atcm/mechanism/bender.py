@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -15,6 +14,7 @@ from .._checks import finite_float, positive_float, positive_int, warn_implausib
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
+from ..model.damping import RayleighDamping, check_damping
 from .points import PointRef, check_name, unknown_point
 
 #: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
@@ -103,9 +103,17 @@ class Bender:
         Side of the active layer seen from base to tip.  ``"right"`` (default, the layout of
         :class:`~exudyn_atcm.BendingActuator`): a positive free strain bends the bender
         counter-clockwise; ``"left"`` mirrors it.
-    damping : float, optional
-        Modal damping ratio of the bender's first clamped-free bending mode [-] (default
-        0.02), realised as stiffness-proportional damping on its joints.
+    damping : float or RayleighDamping, optional
+        A float: the modal damping ratio ``zeta`` of *this* bender's first clamped-free
+        bending mode [-] (default 0.02), realised as stiffness-proportional damping
+        ``beta k`` on its joints (beam cells: on its elements) with ``beta = 2 zeta / omega_1``
+        of the bender's own length; the same as ``RayleighDamping(beta=2 zeta / omega_1)``.
+        Because ``omega_1`` depends on the length, benders cut from one strip get different
+        ``beta``.  A :class:`~exudyn_atcm.RayleighDamping`: material damping of the laminate
+        (``alpha`` [1/s] on the masses, ``beta`` [s] on the stiffnesses), independent of how a
+        strip is split into benders: two benders of one laminate welded end to end are then
+        damped exactly as one bender of the summed length.  ``alpha > 0`` needs
+        ``cell="rigid"`` or ``"six-bar"`` (see :mod:`exudyn_atcm.model.damping`).
 
     Notes
     -----
@@ -130,7 +138,7 @@ class Bender:
         cell: str | CellKind = "rigid",
         stiffness: str = "composite",
         active_side: str = "right",
-        damping: float = DEFAULT_DAMPING_RATIO,
+        damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO,
     ) -> None:
         self.name = check_name("Bender name", name)
         self.width = positive_float("width", width)
@@ -182,18 +190,14 @@ class Bender:
         self.cell = cell
         self.stiffness = stiffness
         self.active_side = active_side
-        if isinstance(damping, bool) or not isinstance(damping, numbers.Real):
-            raise ValueError(f"damping must be a finite damping ratio >= 0, got {damping!r}")
-        damping = finite_float("damping", damping)
-        if damping < 0.0:
-            raise ValueError(f"damping must be a damping ratio >= 0, got {damping!r}")
-        self.damping = damping
+        self.damping: float | RayleighDamping = check_damping(damping, cell=cell, owner=owner)
 
     # ------------------------------------------------------------------ geometry
     @property
     def laminate(self) -> Laminate:
         """The cross-section (layers, width, stiffness model)."""
-        return Laminate(self.width, self.passive, self.active, self.stiffness)
+        material = self.damping if isinstance(self.damping, RayleighDamping) else None
+        return Laminate(self.width, self.passive, self.active, self.stiffness, material)
 
     @property
     def length(self) -> float:
@@ -226,9 +230,22 @@ class Bender:
         return 1.0 if self.active_side == "right" else -1.0
 
     @property
+    def rayleigh_damping(self) -> RayleighDamping:
+        """The bender's Rayleigh coefficients: the material damping given, or ``beta = 2 zeta / omega_1``
+        of the whole bender as a cantilever for a damping ratio ``zeta`` (``alpha = 0``)."""
+        ratio = None if isinstance(self.damping, RayleighDamping) else self.damping
+        return self.laminate.rayleigh_damping(self.length, ratio)
+
+    @property
     def stiffness_damping_factor(self) -> float:
-        """``beta = 2 zeta / omega_1`` [s] of the whole bender as a cantilever (damping ``beta k`` per spring)."""
-        return self.laminate.stiffness_damping_factor(self.damping, self.length)
+        """``beta`` [s]: every spring or element of stiffness ``k`` gets the damping ``beta k``
+        (``2 zeta / omega_1`` of the whole bender as a cantilever for a damping ratio ``zeta``)."""
+        return self.rayleigh_damping.beta
+
+    @property
+    def mass_damping_factor(self) -> float:
+        """``alpha`` [1/s]: every mass ``m`` gets the damping force ``-alpha m v`` (0 for a damping ratio)."""
+        return self.rayleigh_damping.alpha
 
     # ------------------------------------------------------------------ points and drives
     @property
@@ -287,7 +304,11 @@ class Bender:
             out[f"{q}.length [m]"] = s.length
             out[f"{q}.n_cells"] = s.n_cells
             out[f"{q}.drive"] = repr(s.drive)
-        out[f"{p}.damping ratio [-]"] = self.damping
+        if isinstance(self.damping, RayleighDamping):
+            out[f"{p}.damping.alpha [1/s]"] = self.damping.alpha
+            out[f"{p}.damping.beta [s]"] = self.damping.beta
+        else:
+            out[f"{p}.damping ratio [-]"] = self.damping
         out[f"{p}.bending_stiffness [N m^2]"] = self.laminate.bending_stiffness
         return out
 

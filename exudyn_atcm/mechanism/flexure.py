@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_float, positive_int, warn_implausible
+from .._checks import positive_float, positive_int, warn_implausible
 from ..model.laminate import Laminate
 from ..model.materials import PLAUSIBLE_RANGES, Layer
+from ..model.damping import RayleighDamping, check_damping
 from .bender import DEFAULT_DAMPING_RATIO, Bender
 from .link import point_pair
 from .points import MechanismError, PointRef, check_name, unknown_point
@@ -49,13 +49,17 @@ class Flexure:
         end force).
     k_theta : float, optional
         Stiffness coefficient, > 0 (default 2.65).
-    damping : float, optional
-        Modal damping ratio of the strip's first clamped-free mode [-] (default 0.02).
+    damping : float or RayleighDamping, optional
+        A float: modal damping ratio of the strip's first clamped-free mode [-] (default
+        0.02), i.e. ``beta = 2 zeta / omega_1`` of this strip.  A
+        :class:`~exudyn_atcm.RayleighDamping`: the material's damping (``alpha`` [1/s] on
+        the masses, ``beta`` [s] on the stiffnesses), independent of the strip's length.
     """
 
     def __init__(self, name: str, *, base: tuple[float, float], tip: tuple[float, float], width: float,
                  thickness: float, youngs_modulus: float, density: float, model: str = "prbm", n_cells: int = 4,
-                 gamma: float = 0.8517, k_theta: float = 2.65, damping: float = DEFAULT_DAMPING_RATIO) -> None:
+                 gamma: float = 0.8517, k_theta: float = 2.65,
+                 damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO) -> None:
         self.name = check_name("Flexure name", name)
         self.base_position = point_pair("base", base)
         self.tip_position = point_pair("tip", tip)
@@ -71,9 +75,8 @@ class Flexure:
         if self.gamma > 1.0:
             raise ValueError(f"gamma must be in (0, 1], got {gamma!r}")
         self.k_theta = positive_float("k_theta", k_theta)
-        if isinstance(damping, bool) or not isinstance(damping, numbers.Real) or not finite_float("damping", damping) >= 0:
-            raise ValueError(f"damping must be a finite damping ratio >= 0, got {damping!r}")
-        self.damping = float(damping)
+        # both models' masses are rigid bodies (cells, or the PRBM's two segments)
+        self.damping: float | RayleighDamping = check_damping(damping, cell="rigid", owner=f"flexure {name!r}")
         if self.length <= 0.0:
             raise MechanismError(f"flexure {name!r}: base and tip coincide ({self.base_position}); it needs a length")
         owner = f"flexure {name!r}"
@@ -109,7 +112,8 @@ class Flexure:
     @property
     def laminate(self) -> Laminate:
         """The cross-section as a passive laminate."""
-        return Laminate(self.width, self.layer, None)
+        material = self.damping if isinstance(self.damping, RayleighDamping) else None
+        return Laminate(self.width, self.layer, None, "composite", material)
 
     @property
     def bending_stiffness(self) -> float:
@@ -134,9 +138,21 @@ class Flexure:
         return (1.0 - self.gamma) * self.length, self.gamma * self.length
 
     @property
+    def rayleigh_damping(self) -> RayleighDamping:
+        """The strip's Rayleigh coefficients: the material damping given, or ``beta = 2 zeta / omega_1``
+        of the strip as a cantilever (``alpha = 0``) for a damping ratio ``zeta``."""
+        ratio = None if isinstance(self.damping, RayleighDamping) else self.damping
+        return self.laminate.rayleigh_damping(self.length, ratio)
+
+    @property
     def stiffness_damping_factor(self) -> float:
-        """``beta = 2 zeta / omega_1`` [s] of the strip as a cantilever (damping ``beta K`` on its spring)."""
-        return self.laminate.stiffness_damping_factor(self.damping, self.length)
+        """``beta`` [s] (damping ``beta K`` on its spring; ``2 zeta / omega_1`` of the strip for a ratio)."""
+        return self.rayleigh_damping.beta
+
+    @property
+    def mass_damping_factor(self) -> float:
+        """``alpha`` [1/s]: every mass ``m`` gets the damping force ``-alpha m v`` (0 for a damping ratio)."""
+        return self.rayleigh_damping.alpha
 
     @property
     def points(self) -> dict[str, tuple[float, float]]:
@@ -183,7 +199,12 @@ class Flexure:
         out: dict[str, Any] = {f"{p}.type": "Flexure", f"{p}.model": self.model, f"{p}.base [m]": self.base_position,
                                f"{p}.tip [m]": self.tip_position, f"{p}.width [m]": self.width,
                                f"{p}.thickness [m]": self.thickness, f"{p}.youngs_modulus [Pa]": self.youngs_modulus,
-                               f"{p}.density [kg/m^3]": self.density, f"{p}.damping ratio [-]": self.damping}
+                               f"{p}.density [kg/m^3]": self.density}
+        if isinstance(self.damping, RayleighDamping):
+            out[f"{p}.damping.alpha [1/s]"] = self.damping.alpha
+            out[f"{p}.damping.beta [s]"] = self.damping.beta
+        else:
+            out[f"{p}.damping ratio [-]"] = self.damping
         if self.model == "prbm":
             out[f"{p}.gamma [-]"] = self.gamma
             out[f"{p}.k_theta [-]"] = self.k_theta

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .damping import RayleighDamping
 from .materials import Layer
 
 STIFFNESS_MODELS = ("composite", "paper")
@@ -36,12 +37,21 @@ class Laminate:
     stiffness : {"composite", "paper"}
         ``"composite"``: the layers couple through ``a1 a2/(a1 + a2)`` (lamination theory);
         ``"paper"``: through ``a2 = E2 b h2`` as printed in the paper (its Eq. 4).
+    damping : RayleighDamping or None, optional
+        Material damping of the laminate (Rayleigh coefficients, the same for every bender
+        of it however it is cut into parts); ``None`` (default): none given, a bender then
+        uses its damping ratio at its own first mode (see :meth:`rayleigh_damping`).
     """
 
     width: float
     passive: Layer
     active: Layer | None
     stiffness: str = "composite"
+    damping: RayleighDamping | None = None
+
+    def __post_init__(self) -> None:
+        if self.damping is not None and not isinstance(self.damping, RayleighDamping):
+            raise ValueError(f"damping must be a RayleighDamping or None, got {self.damping!r}")
 
     @property
     def layer_offset(self) -> float:
@@ -126,6 +136,20 @@ class Laminate:
         Every spring of stiffness ``k`` gets the damping ``beta k`` (stiffness-proportional damping).
         """
         return 2.0 * damping / (2.0 * math.pi * self.first_frequency(length))
+
+    def rayleigh_damping(self, length: float, ratio: float | None = None) -> RayleighDamping:
+        """Rayleigh coefficients of a bender of this laminate and ``length`` [m].
+
+        The laminate's material damping :attr:`damping` when given (then ``length`` and
+        ``ratio`` do not matter); otherwise stiffness-proportional damping with the damping
+        ratio ``ratio`` [-] at the first clamped-free mode of ``length``:
+        ``beta = 2 ratio / omega_1(length)`` (:meth:`stiffness_damping_factor`), ``alpha = 0``.
+        """
+        if self.damping is not None:
+            return self.damping
+        if ratio is None:
+            raise ValueError("ratio must be a damping ratio >= 0 when the laminate has no material damping, got None")
+        return RayleighDamping(0.0, self.stiffness_damping_factor(ratio, length))
 
     def rigid_cell(self, cell_length: float) -> tuple[float, float, float]:
         """One rigid cell of length ``cell_length`` [m]: mass [kg], centre-of-mass offset [m], inertia [kg m²].
