@@ -24,6 +24,7 @@ from typing import Any, Union
 import numpy as np
 
 from ._checks import finite_float, positive_int
+from .file_checks import SuspectFileWarning, check_header_names, check_volt_column, warn_unterminated_last_line
 
 __all__ = ["Record", "read_record", "preprocess"]
 
@@ -138,6 +139,45 @@ def _cells(line: str) -> list[str]:
     return line.split()
 
 
+def _stated_rows(body: str, previous: int | None) -> int | None:
+    """The row count of a ``data_rows: N`` comment (as :meth:`Result.to_csv` writes it), else ``previous``."""
+    match = re.fullmatch(r"\s*data_rows:\s*(\d+)\s*", body)
+    return int(match.group(1)) if match else previous
+
+
+#: A whitespace-separated header cell: a name, optionally followed by ``[unit]``.
+_SPACED_CELL = re.compile(r"[^\s\[\]]+(?:\s*\[[^\]]*\])?")
+
+
+def _header_cells(path: Path, line: int, text: str, cells: list[str], n_columns: int) -> list[str]:
+    """The header's names, one per data column (``name [unit]`` kept together when blank-separated).
+
+    A blank-separated header such as ``time [s]  voltage [V]  displacement [um]`` is split at
+    runs of two or more blanks, or else into names each with its ``[unit]``, whichever gives
+    as many names as the data has columns.
+
+    Raises
+    ------
+    ValueError
+        If the header has more names than the data has columns (the names cannot be matched
+        to the columns), or names with invisible characters.
+    """
+    if not any(sep in text for sep in (",", ";", "\t")):
+        options = [re.split(r"\s{2,}", text.strip()), _SPACED_CELL.findall(text), cells]
+        cells = next((o for o in options if len(o) == n_columns), options[1] if "[" in text else cells)
+    check_header_names(str(path), line, cells)
+    named = list(cells)
+    while named and named[-1] == "":
+        named.pop()  # a trailing separator
+    if len(named) > n_columns:
+        raise ValueError(
+            f"{path}, line {line}: the header has {len(named)} names {named!r} but the data rows have "
+            f"{n_columns} columns; separate the header like the data (commas, semicolons, tabs, or blanks "
+            "between 'name [unit]' cells)"
+        )
+    return cells
+
+
 def _is_number(cell: str) -> bool:
     if cell in _MISSING:
         return True
@@ -156,10 +196,14 @@ def _column(header: list[str] | None, choice: Any, default: int, parameter: str,
         full = [h.lower() for h in names]
         bare = [_split_name(h)[0].lower() for h in names]
         key = choice.strip().lower()
-        if key in full:
-            index = full.index(key)
-        elif key in bare:
-            index = bare.index(key)
+        matches = [i for i, h in enumerate(full) if h == key] or [i for i, b in enumerate(bare) if b == key]
+        if len(matches) > 1:
+            raise ValueError(
+                f"{parameter} = {choice!r} names {len(matches)} columns of {path} (indices {matches}); "
+                f"columns: {names!r}; choose one by its index or rename the duplicates"
+            )
+        if matches:
+            index = matches[0]
         else:
             raise ValueError(f"{parameter} = {choice!r} is not a column of {path}; columns: {names!r}")
     elif isinstance(choice, (int, np.integer)) and not isinstance(choice, bool) and choice >= 0:
@@ -238,17 +282,38 @@ def read_record(
     if not path.is_file():
         raise ValueError(f"path must be an existing text file, got {str(path)!r}")
     header: list[str] | None = None
+    header_text = ""
     rows: list[tuple[int, list[str]]] = []
+    stated_rows: int | None = None
+    unterminated: tuple[int, str] | None = None  # (line, text) of a data or header line without a line end
     with path.open(encoding="utf-8-sig") as handle:
         for number, line in enumerate(handle, start=1):
             text = line.strip()
+            if text.startswith(comment):
+                stated_rows = _stated_rows(text[len(comment):], stated_rows)
             if not text or text.startswith(comment):
                 continue
+            if not line.endswith("\n"):
+                unterminated = (number, line)
             cells = _cells(line.rstrip("\r\n"))
             if header is None and not rows and not all(_is_number(c) for c in cells if c):
-                header = cells
+                header, header_text, header_line = cells, line.rstrip("\r\n"), number
                 continue
             rows.append((number, cells))
+    if stated_rows is not None and len(rows) != stated_rows:
+        raise ValueError(
+            f"{path}: the file states {stated_rows} data rows (line 'data_rows') but holds {len(rows)}; "
+            + ("it was cut off (an interrupted copy or write?)" if len(rows) < stated_rows
+               else "rows were appended after it was written")
+        )
+    if unterminated is not None:
+        if stated_rows is not None:
+            raise ValueError(
+                f"{path}, line {unterminated[0]}: the file ends inside this line (no line end); files with a "
+                "'data_rows' line (written by Result.to_csv) end every line, so this one was cut off and its "
+                "last number may be cut short"
+            )
+        warn_unterminated_last_line(str(path), unterminated[0], unterminated[1], stacklevel=3)
     if not rows:
         raise ValueError(f"{path}: no data rows")
     # a blank leading column: empty in the header (if any) and in every row
@@ -256,6 +321,8 @@ def read_record(
         rows = [(n, cells[1:]) for n, cells in rows]
         header = header[1:] if header is not None else None
     n_columns = max(len(cells) for _, cells in rows)
+    if header is not None:
+        header = _header_cells(path, header_line, header_text, header, n_columns)
     indices = {
         "time": _column(header, time, 0, "time", path, n_columns),
         "input": _column(header, input, 1, "input", path, n_columns),
@@ -281,7 +348,13 @@ def read_record(
             f"{path}: dropped {int(bad.sum())} of {len(rows)} rows with NaN, infinite or empty cells in the "
             f"time/input/output columns (first at lines {lines})"
         )
-        warnings.warn(message, RuntimeWarning, stacklevel=2)
+        if 2 * int(bad.sum()) > len(rows):
+            message += (
+                f"; that is most of the record ({100.0 * bad.sum() / len(rows):.0f} %): check the columns chosen "
+                f"(time={indices['time']}, input={indices['input']}, output={indices['output']}), the separator "
+                "and the decimal mark"
+            )
+        warnings.warn(message, SuspectFileWarning, stacklevel=2)
         processing.append(f"dropped {int(bad.sum())} rows with non-finite values")
         data = data[~bad]
     if data.shape[0] < min_samples:
@@ -296,6 +369,9 @@ def read_record(
         units["time"] = "s"
     if not isinstance(si, bool):
         raise ValueError(f"si must be True or False, got {si!r}")
+    for c, key in enumerate(("time", "input", "output")):
+        if units[key] == "V":
+            check_volt_column(str(path), f"{names[key]} [V]", data[:, c], stacklevel=3)
     if si:
         for c, key in enumerate(("time", "input", "output")):
             factor_unit = _SI_SCALE.get(units[key])
