@@ -10,7 +10,8 @@
                       [--set NAME=VALUE] [--workers N | --scheduler ADDRESS] [--out DIR]
 
 Exit status of ``sweep``: 0 if every run succeeded, 1 if any run failed (the study still
-completes and the table holds each error), 2 for a usage error (unknown case or
+completes and the table holds each error), if the output directory cannot be written, or
+if another sweep is writing the same table now; 2 for a usage error (unknown case or
 parameter, bad grid).  Of ``optimize``: 0 if the best design satisfies the constraints,
 1 if no evaluated design does, 2 for a usage error.
 """
@@ -24,6 +25,7 @@ from typing import IO
 
 from .._cli_errors import report_error as _error
 from ..cases import CaseError, load_case
+from .lock import StudyLockedError
 
 __all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
 
@@ -155,6 +157,9 @@ def sweep_command(args: argparse.Namespace) -> int:
     except ImportError as exc:
         bar.close()
         return _error(exc, debug, 2)
+    except (OSError, StudyLockedError) as exc:  # an output directory that cannot be written, a second sweep
+        bar.close()
+        return _error(exc, debug, 1)
     bar.close()
     files = list(result.files)
     if not args.no_plot:
@@ -259,6 +264,8 @@ def optimize_command(args: argparse.Namespace) -> int:
         )
     except (CaseError, ValueError, ImportError) as exc:
         return _error(exc, debug, 2)
+    except OSError as exc:  # an output directory or store that cannot be written
+        return _error(exc, debug, 1)
     units = {p.name: p.unit for p in case.parameters}
     sense = "maximum" if args.maximize else "minimum"
     print(f"{case.name}: {sense} of {args.objective} = {best.objective:.7g} after {best.evaluations} evaluations "

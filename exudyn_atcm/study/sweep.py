@@ -11,18 +11,20 @@ See :doc:`/studies` for engines (process pool, Dask), resuming and the command l
 from __future__ import annotations
 
 import os
-from collections import Counter
 import time
+from collections import Counter
+from contextlib import nullcontext
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .._atomic import write_json
+from .._atomic import make_directory, write_json
 from .._version import __version__
 from ..cases import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
+from .lock import TableLock
 from .store import RunStore, run_key
 from .table import Column, table_columns, to_table, write_table_csv
 
@@ -155,9 +157,18 @@ def run_study(
     full = [dict(case.resolve({**fixed_values, **p})) for p in pts]
     keys = [run_key(spec.fingerprint, values) for values in full]
 
-    out_dir = Path(out) if out is not None else None
-    if out_dir is not None:
-        out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = make_directory(out) if out is not None else None
+    lock = TableLock(out_dir / f"{case.name}_sweep.csv", f"sweep of {case.name}") if out_dir is not None else nullcontext()
+    with lock:
+        return _run_locked(case, spec, fixed_values, pts, full, keys, out_dir, store, retry_failed, progress,
+                           use_pandas, engine, workers, client, scheduler, start)
+
+
+def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[dict[str, Any]], full: list[dict[str, Any]],
+                keys: list[str], out_dir: Path | None, store: Any, retry_failed: bool, progress: StudyProgress | None,
+                use_pandas: bool | None, engine: Any, workers: int | None, client: Any, scheduler: str | None,
+                start: float) -> StudyResult:
+    """The body of :func:`run_study` once the table is locked (two studies never write one table)."""
     if isinstance(store, RunStore):
         run_store: RunStore | None = store
     elif store is not None:
@@ -327,6 +338,10 @@ def sweep(
         type, an empty range or ``samples < 1``.
     CaseError
         If the case cannot be loaded or has no source file.
+    exudyn_atcm.study.lock.StudyLockedError
+        If another study is writing the same table (``out`` and case) now.
+    exudyn_atcm._atomic.WriteError
+        (an ``OSError``) if ``out`` or the store cannot be created, naming it and the reason.
 
     Notes
     -----
