@@ -47,7 +47,9 @@ with the package (``exudyn_atcm.example_cases``, built from ``cases/``), so that
 
 Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
 CSV and JSON marked ``partial``), the message says ``interrupted at t = ... s``, and the exit
-status is 130.
+status is 130.  ``SIGTERM`` (``timeout``, batch schedulers, ``docker stop``) and ``SIGHUP`` are
+handled the same way (:mod:`exudyn_atcm.termination`): ``stopped by SIGTERM at t = ... s``,
+exit status 143 (129 for ``SIGHUP``).
 """
 
 from __future__ import annotations
@@ -73,6 +75,7 @@ from ._version import __version__
 from .progress import ProgressBar, ProgressCallback, no_progress, reporting
 from .result import Result
 from .run_checks import SimulationInterrupted
+from .termination import StopSignal, stop_signals_as_interrupt
 
 __all__ = [
     "Parameter",
@@ -647,22 +650,23 @@ def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool,
     """Run ``case`` with ``NAME=VALUE`` overrides, print a summary; the exit status.
 
     Errors are printed as one line on stderr (with the traceback when ``debug``): exit
-    status 2 for a bad parameter, 1 for a failure of the run, 130 for Ctrl-C (what was
-    computed until then is written, marked partial).
+    status 2 for a bad parameter, 1 for a failure of the run, 130 for Ctrl-C and 143 for
+    SIGTERM (what was computed until then is written, marked partial).
     """
     try:
         values = case.parse_assignments(assignments)
     except CaseError as exc:
         return _fail(exc, debug, 2)
     bar = ProgressBar(sys.stdout) if sys.stdout.isatty() else None
+    stop = StopSignal()
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), stop_signals_as_interrupt() as stop:
             warnings.showwarning = _show_warning
             output = case.run(values, out_dir=out, plot=plot, progress=bar)
     except KeyboardInterrupt as exc:
         if bar is not None:
             bar.close()
-        return _interrupted(case, exc, out, debug)
+        return _interrupted(case, exc, out, debug, stop)
     except Exception as exc:  # noqa: BLE001 - reported as one line
         return _fail(exc, debug, 2 if isinstance(exc, CaseError) else 1)
     finally:
@@ -680,8 +684,12 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
     print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
-def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool) -> int:
-    """Report Ctrl-C: where the simulation stopped and what was written; exit status 130."""
+def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool, stop: StopSignal) -> int:
+    """Report Ctrl-C or a stop signal: where the simulation stopped and what was written.
+
+    Exit status 130 for Ctrl-C, ``128 + signal number`` for a stop signal (143 for SIGTERM).
+    """
+    how = "interrupted" if stop.signum is None else f"stopped by {stop.name}"
     if isinstance(exc, SimulationInterrupted):
         files = getattr(exc, "files", [])
         rows = exc.result.n_rows if exc.result is not None else 0
@@ -689,9 +697,9 @@ def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool) -> i
             written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}"
         else:
             written = "; nothing was written (no output directory, or nothing computed yet)"
-        return _fail(f"{case.name}: interrupted at t = {exc.time:.6g} s{written}", debug, 130)
-    return _fail(f"{case.name}: interrupted (Ctrl-C) before the simulation started or after it ended; "
-                 "files may be missing", debug, 130)
+        return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{written}", debug, stop.exit_status)
+    return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; "
+                 "files may be missing", debug, stop.exit_status)
 
 
 def _fail(exc: BaseException | str, debug: bool, status: int) -> int:

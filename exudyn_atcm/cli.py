@@ -11,8 +11,9 @@
 Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
 up by name first) and ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
 fails, a benchmark metric fails or ``list`` finds no case; 2 for a usage error (unknown case
-or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C (a run writes
-what it computed until then, marked partial).  Errors are one line on stderr; a misspelt
+or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C and 143 on
+``SIGTERM`` (a run writes what it computed until then, marked partial; a sweep says how many
+runs are stored and the command that resumes it).  Errors are one line on stderr; a misspelt
 case or parameter name is answered with the closest valid one.
 """
 
@@ -25,6 +26,7 @@ from collections.abc import Sequence
 
 from . import cases as _cases
 from ._cli_errors import report_error as _error
+from .termination import StopSignal, stop_signals_as_interrupt
 
 __all__ = ["main", "build_parser"]
 
@@ -135,30 +137,38 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``exudyn-atcm``; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)  # to print the command that resumes a sweep
     debug = bool(getattr(args, "debug", False))
     if args.command is None:
         parser.print_help()
         return 2
+    stop = StopSignal()
     try:
-        if args.command == "list":
-            return _list(args.cases_dir)
-        if args.command == "run":
-            try:
-                case = _cases.load_case(args.case, args.cases_dir)
-            except _cases.CaseError as exc:
-                return _error(exc, debug, 2)
-            return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
-        if args.command in ("sweep", "optimize"):
-            return _study_command(args)
-        return _bench(args)
+        with stop_signals_as_interrupt() as stop:
+            return _dispatch(args, debug)
     except KeyboardInterrupt:
-        return _error("interrupted", debug, 130)
+        return _error("interrupted" if stop.signum is None else stop.describe(), debug, stop.exit_status)
     except BrokenPipeError:  # output piped into e.g. `head`: stop quietly
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 0
     except Exception as exc:  # noqa: BLE001 - last resort: still one line
         return _error(exc, debug, 1)
+
+
+def _dispatch(args: argparse.Namespace, debug: bool) -> int:
+    """Run the command of ``args``; its exit status."""
+    if args.command == "list":
+        return _list(args.cases_dir)
+    if args.command == "run":
+        try:
+            case = _cases.load_case(args.case, args.cases_dir)
+        except _cases.CaseError as exc:
+            return _error(exc, debug, 2)
+        return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
+    if args.command in ("sweep", "optimize"):
+        return _study_command(args)
+    return _bench(args)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -145,6 +145,12 @@ def run_study(
     Parameters are those of :func:`sweep`; ``engine`` (an object from
     :mod:`exudyn_atcm.study.engines`) replaces ``workers``/``client``/``scheduler`` and is
     left open (for a caller that runs several studies on one pool).
+
+    A ``KeyboardInterrupt`` (Ctrl-C; ``SIGTERM`` inside
+    :func:`~exudyn_atcm.termination.stop_signals_as_interrupt`) stops the workers at once and
+    propagates with three attributes: ``stored_runs`` (distinct runs of the study in the store
+    now), ``distinct_runs`` (distinct runs of the study) and ``store_directory`` (``None``
+    without a store), so that the caller can say what a new start will resume from.
     """
     start = time.perf_counter()
     case = _as_case(case)
@@ -213,10 +219,14 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
                 failed += n_rows if record["status"] != "ok" else 0
                 if progress is not None:
                     progress(done, total, failed)
-    except BaseException:
+    except BaseException as exc:
         # interrupted (Ctrl-C, a failing progress callback ...): finished runs are stored;
         # stop the workers at once instead of waiting for the runs in flight
         runner.abort()
+        if isinstance(exc, KeyboardInterrupt):  # say what a new start would find
+            exc.stored_runs = sum(1 for r in by_key.values() if not r.get("transient")) if run_store is not None else 0
+            exc.distinct_runs = len(set(keys))
+            exc.store_directory = run_store.directory if run_store is not None else None
         raise
     finally:
         if own_engine:
