@@ -8,6 +8,7 @@ import warnings
 from typing import Any, Callable, Union
 
 from ._checks import finite_float, positive_float
+from .physical_bounds import check_physical
 
 VoltageProgram = Union[float, Callable[[float], float]]
 
@@ -47,7 +48,8 @@ class PiezoDrive:
         :class:`exudyn_atcm.control.PIDController`; see :mod:`exudyn_atcm.control` for the
         protocol) that sets the voltage from the simulated tip deflection during the run.
     d33 : float, optional
-        Piezoelectric constant [m/V] (= C/N), > 0.  Default 460e-12 (MFC P1, high field).
+        Piezoelectric constant [m/V] (= C/N), > 0 and at most 1e-7 (no material comes near:
+        :data:`~exudyn_atcm.physical_bounds.PHYSICAL_LIMITS`).  Default 460e-12 (MFC P1, high field).
         Used only without ``hysteresis``.
     electrode_spacing : float, optional
         Spacing of the interdigitated electrodes ``t_IDE`` [m], > 0.  Default 0.5e-3.
@@ -99,8 +101,9 @@ class PiezoDrive:
                 f"voltage must be a finite number [V] or a callable of time t [s], got {voltage!r}"
             )
         self.voltage = voltage
-        self.d33 = positive_float("d33", d33)
-        self.electrode_spacing = positive_float("electrode_spacing", electrode_spacing)
+        self.d33 = check_physical("d33", positive_float("d33", d33), "PiezoDrive")
+        self.electrode_spacing = check_physical("electrode_spacing", positive_float("electrode_spacing", electrode_spacing),
+                                                "PiezoDrive")
         if hysteresis is not None:
             missing = [m for m in _OPERATOR_METHODS if not callable(getattr(hysteresis, m, None))]
             if missing:
