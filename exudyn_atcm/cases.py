@@ -40,10 +40,14 @@ The convention, in full (see ``cases/paper_stroke_table.py`` for a short example
 
 Cases are found (:func:`find_case`) by path, or by name in, in this order: the directory
 given with ``--cases-dir``, the directories in the environment variable
-``EXUDYN_ATCM_CASES`` (``os.pathsep``-separated), ``./cases`` in the current directory, the
-``cases/`` folder of the source checkout beside the package, and the example cases installed
-with the package (``exudyn_atcm.example_cases``, built from ``cases/``), so that
-``exudyn-atcm list`` works from any directory of any installation.
+``EXUDYN_ATCM_CASES`` (``os.pathsep``-separated), the ``cases/`` folder of the source
+checkout beside the package, and the example cases installed with the package
+(``exudyn_atcm.example_cases``, built from ``cases/``), so that ``exudyn-atcm list`` works
+from any directory of any installation.  The current directory is searched only when asked
+(``--cases-dir cases``, or a path such as ``cases/my_case.py``): running the command line
+inside someone else's unpacked archive does not execute its files.  A name found in two
+different files is taken from the first and a ``RuntimeWarning`` names both
+(:func:`case_files`).
 
 Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
 CSV and JSON marked ``partial``), the message says ``interrupted at t = ... s``, and the exit
@@ -86,6 +90,7 @@ __all__ = [
     "CaseError",
     "case_dirs",
     "find_case",
+    "case_files",
     "list_cases",
     "load_case",
     "versions",
@@ -715,16 +720,18 @@ def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
     """Directories searched for cases by name, in order (existing ones only).
 
     ``cases_dir`` (``--cases-dir``), then ``$EXUDYN_ATCM_CASES`` (``os.pathsep``-separated),
-    then ``./cases``, then the ``cases/`` folder of the source checkout beside the package,
-    then the example cases installed with the package (``exudyn_atcm.example_cases``).
+    then the ``cases/`` folder of the source checkout beside the package (only if it is this
+    package's checkout), then the example cases installed with the package
+    (``exudyn_atcm.example_cases``).  Not the current directory's ``cases/`` unless given.
     """
     candidates: list[Path] = []
     if cases_dir is not None:
         candidates.append(Path(cases_dir))
     env = os.environ.get(ENV_CASES, "")
     candidates.extend(Path(p) for p in env.split(os.pathsep) if p.strip())
-    candidates.append(Path.cwd() / "cases")
-    candidates.append(Path(__file__).resolve().parents[1] / "cases")
+    checkout = _checkout_cases_dir()
+    if checkout is not None:
+        candidates.append(checkout)
     installed = _installed_cases_dir()
     if installed is not None:
         candidates.append(installed)
@@ -734,6 +741,16 @@ def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
         if resolved.is_dir() and resolved not in seen:
             seen.append(resolved)
     return seen
+
+
+def _checkout_cases_dir() -> Path | None:
+    """``cases/`` beside the package if the package sits in its source checkout (not site-packages)."""
+    root = Path(__file__).resolve().parents[1]
+    try:
+        setup = (root / "setup.cfg").read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    return root / "cases" if "name = exudyn-atcm" in setup else None
 
 
 def _installed_cases_dir() -> Path | None:
@@ -771,15 +788,52 @@ def find_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
         if path.is_file():
             return path.resolve()
         raise CaseError(f"case file {text!r} does not exist")
-    if path.is_file():
-        return path.resolve()
-    for candidate in list_cases(cases_dir):
-        if candidate.stem == text:
-            return candidate
+    found = case_files(text, cases_dir)
+    if found:
+        if len(found) > 1:
+            warnings.warn(
+                f"case {text!r} is found in {len(found)} different files: using {found[0]} (the first in the search "
+                f"order --cases-dir, ${ENV_CASES}, the package's cases); not using {', '.join(str(f) for f in found[1:])}",
+                RuntimeWarning, stacklevel=3,
+            )
+        return found[0]
     stems = [p.stem for p in list_cases(cases_dir)]
     names = ", ".join(stems) or "none"
     dirs = ", ".join(str(d) for d in case_dirs(cases_dir)) or "none"
-    raise CaseError(f"no case named {text!r}{closest(text, stems)}; available: {names} (searched {dirs})")
+    raise CaseError(f"no case named {text!r}{closest(text, stems)}; available: {names} (searched {dirs})"
+                    + _local_hint(text))
+
+
+def _local_hint(name: str) -> str:
+    """A note if ``./cases/<name>.py`` exists: the current directory is searched only when asked."""
+    local = Path("cases") / f"{name}.py"
+    if not local.is_file():
+        return ""
+    return (f"; {local} exists here, but the current directory is searched only when asked: "
+            f"give --cases-dir cases or the path {local}")
+
+
+def case_files(name: str, cases_dir: str | os.PathLike | None = None) -> list[Path]:
+    """Every file that defines case ``name`` in the search order of :func:`case_dirs`, the one used first.
+
+    Files with the same content (the checkout's case and its installed copy) count once.
+    """
+    files: list[Path] = []
+    if name.startswith("_"):
+        return files
+    contents: list[bytes] = []
+    for directory in case_dirs(cases_dir):
+        path = directory / f"{name}.py"
+        if not path.is_file():
+            continue
+        try:
+            content = path.read_bytes()
+        except OSError:
+            content = b""
+        if content not in contents:
+            files.append(path)
+            contents.append(content)
+    return files
 
 
 def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> Case:

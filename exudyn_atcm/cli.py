@@ -9,7 +9,8 @@
     exudyn-atcm bench [--quick] [--only ID ...] [--out DIR] [--update-references --reason TEXT]
 
 Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
-up by name first) and ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
+up by name first; the current directory's ``cases/`` is searched only when given here) and
+``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
 fails, a benchmark metric fails or ``list`` finds no case; 2 for a usage error (unknown case
 or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C and 143 on
 ``SIGTERM`` (a run writes what it computed until then, marked partial; a sweep says how many
@@ -22,6 +23,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 
 from . import cases as _cases
@@ -41,7 +43,7 @@ class _Parser(argparse.ArgumentParser):
 def _common(debug_default) -> argparse.ArgumentParser:
     parent = argparse.ArgumentParser(add_help=False)
     parent.add_argument("--debug", action="store_true", default=debug_default, help="show tracebacks of errors")
-    parent.add_argument("--cases-dir", default=debug_default if debug_default is argparse.SUPPRESS else None, metavar="DIR", help="directory searched first for cases by name")
+    parent.add_argument("--cases-dir", default=debug_default if debug_default is argparse.SUPPRESS else None, metavar="DIR", help="directory searched first for cases by name (the current directory is searched only when given: --cases-dir cases)")
     return parent
 
 
@@ -98,6 +100,8 @@ def _list(cases_dir: str | None) -> int:
             print(f"{path.stem}\n    cannot be loaded: {exc}\n")
             continue
         print(f"{case.name}  ({path})")
+        for other in _cases.case_files(path.stem, cases_dir)[1:]:
+            print(f"    also {other} (not used: the first file of a name wins)")
         print(f"    {case.description}")
         for parameter in case.parameters:
             print(f"    --set {parameter.describe()}")
@@ -144,7 +148,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     stop = StopSignal()
     try:
-        with stop_signals_as_interrupt() as stop:
+        with stop_signals_as_interrupt() as stop, warnings.catch_warnings():
+            warnings.showwarning = _one_line_warning
             return _dispatch(args, debug)
     except KeyboardInterrupt:
         return _error("interrupted" if stop.signum is None else stop.describe(), debug, stop.exit_status)
@@ -154,6 +159,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     except Exception as exc:  # noqa: BLE001 - last resort: still one line
         return _error(exc, debug, 1)
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings of the command line as one line ``warning: ...`` on stderr (no source line)."""
+    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 def _dispatch(args: argparse.Namespace, debug: bool) -> int:
