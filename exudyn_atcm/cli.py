@@ -9,10 +9,12 @@
     exudyn-atcm bench [--quick] [--only ID ...] [--out DIR] [--update-references --reason TEXT]
 
 Global options (before or after the command): ``--cases-dir DIR`` (where cases are looked
-up by name first) and ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
+up by name first; the current directory's ``cases/`` is searched only when given here) and
+``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
 fails, a benchmark metric fails or ``list`` finds no case; 2 for a usage error (unknown case
-or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C (a run writes
-what it computed until then, marked partial).  Errors are one line on stderr; a misspelt
+or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C and 143 on
+``SIGTERM`` (a run writes what it computed until then, marked partial; a sweep says how many
+runs are stored and the command that resumes it).  Errors are one line on stderr; a misspelt
 case or parameter name is answered with the closest valid one.
 """
 
@@ -21,10 +23,12 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 
-from .casework import case as _cases
+from . import cases as _cases
 from .casework.error_report import report_error as _error
+from .casework.termination import StopSignal, stop_signals_as_interrupt
 
 __all__ = ["main", "build_parser"]
 
@@ -39,7 +43,7 @@ class _Parser(argparse.ArgumentParser):
 def _common(debug_default) -> argparse.ArgumentParser:
     parent = argparse.ArgumentParser(add_help=False)
     parent.add_argument("--debug", action="store_true", default=debug_default, help="show tracebacks of errors")
-    parent.add_argument("--cases-dir", default=debug_default if debug_default is argparse.SUPPRESS else None, metavar="DIR", help="directory searched first for cases by name")
+    parent.add_argument("--cases-dir", default=debug_default if debug_default is argparse.SUPPRESS else None, metavar="DIR", help="directory searched first for cases by name (the current directory is searched only when given: --cases-dir cases)")
     return parent
 
 
@@ -96,6 +100,8 @@ def _list(cases_dir: str | None) -> int:
             print(f"{path.stem}\n    cannot be loaded: {exc}\n")
             continue
         print(f"{case.name}  ({path})")
+        for other in _cases.case_files(path.stem, cases_dir)[1:]:
+            print(f"    also {other} (not used: the first file of a name wins)")
         print(f"    {case.description}")
         for parameter in case.parameters:
             print(f"    --set {parameter.describe()}")
@@ -135,30 +141,44 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``exudyn-atcm``; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)  # to print the command that resumes a sweep
     debug = bool(getattr(args, "debug", False))
     if args.command is None:
         parser.print_help()
         return 2
+    stop = StopSignal()
     try:
-        if args.command == "list":
-            return _list(args.cases_dir)
-        if args.command == "run":
-            try:
-                case = _cases.load_case(args.case, args.cases_dir)
-            except _cases.CaseError as exc:
-                return _error(exc, debug, 2)
-            return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
-        if args.command in ("sweep", "optimize"):
-            return _study_command(args)
-        return _bench(args)
+        with stop_signals_as_interrupt() as stop, warnings.catch_warnings():
+            warnings.showwarning = _one_line_warning
+            return _dispatch(args, debug)
     except KeyboardInterrupt:
-        return _error("interrupted", debug, 130)
+        return _error("interrupted" if stop.signum is None else stop.describe(), debug, stop.exit_status)
     except BrokenPipeError:  # output piped into e.g. `head`: stop quietly
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 0
     except Exception as exc:  # noqa: BLE001 - last resort: still one line
         return _error(exc, debug, 1)
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings of the command line as one line ``warning: ...`` on stderr (no source line)."""
+    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
+
+
+def _dispatch(args: argparse.Namespace, debug: bool) -> int:
+    """Run the command of ``args``; its exit status."""
+    if args.command == "list":
+        return _list(args.cases_dir)
+    if args.command == "run":
+        try:
+            case = _cases.load_case(args.case, args.cases_dir)
+        except _cases.CaseError as exc:
+            return _error(exc, debug, 2)
+        return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
+    if args.command in ("sweep", "optimize"):
+        return _study_command(args)
+    return _bench(args)
 
 
 if __name__ == "__main__":  # pragma: no cover

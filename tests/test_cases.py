@@ -287,7 +287,11 @@ def test_copy_a_case_and_find_it_by_env_cwd_and_path(tmp_path, monkeypatch):
     assert find_case("my_table") == path.resolve()  # $EXUDYN_ATCM_CASES
     monkeypatch.delenv("EXUDYN_ATCM_CASES")
     local = _copied_case(tmp_path / "cases", "local_case")
-    assert find_case("local_case") == local.resolve()  # ./cases
+    # issue 17: ./cases is searched only when asked (--cases-dir cases, or a path)
+    with pytest.raises(CaseError, match="the current directory is searched only when asked"):
+        find_case("local_case")
+    assert find_case("local_case", cases_dir="cases") == local.resolve()
+    assert find_case("cases/local_case.py") == local.resolve()
     assert CASES.resolve() in case_dirs()  # the checkout's cases/
     out = load_case("my_table", cases_dir=extra).run()
     assert out.result["time"][-1] == pytest.approx(4.0)  # the changed default

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
 from exudyn_atcm.io import read_csv, read_csv_header
+from exudyn_atcm.io.file_checks import SuspectFileWarning
 from exudyn_atcm.io.result import Result
 
 
@@ -142,3 +145,62 @@ def test_unreadable_path_is_named_without_errno(tmp_path):
     with pytest.raises(ValueError) as info:
         read_csv(tmp_path)
     assert str(info.value) == f"{tmp_path}: is a directory, not a CSV file"
+
+
+# ---------------------------------------------------------------- issue 17: files that read but mislead
+
+
+def test_leading_byte_order_mark_is_not_part_of_the_first_name(tmp_path):
+    path = tmp_path / "excel.csv"
+    path.write_bytes("\ufefftime [s],stroke [m]\n0,1e-6\n0.5,2e-6\n".encode())
+    r = read_csv(path)
+    assert r.names == ["time", "stroke"]  # not "\ufefftime"
+    np.testing.assert_array_equal(r["time"], [0.0, 0.5])
+
+
+@pytest.mark.parametrize("name", ["\ufefftime", "ti\u200bme", "stroke\ufeff"])
+def test_invisible_characters_in_a_name_are_refused(tmp_path, name):
+    # a BOM after other text (two files joined), a zero-width space: the name looks right and is not
+    path = _write(tmp_path, f"# joined\n{name} [s],x [m]\n0,1\n1,2\n")
+    with pytest.raises(ValueError, match=r"line 2: column 1 of the header, .* contains invisible characters \['U\+"):
+        read_csv(path)
+
+
+def test_times_that_go_back_are_refused_and_repeats_warned(tmp_path):
+    path = _write(tmp_path, "time [s],x [m]\n0,1\n0.5,2\n0.25,3\n1,4\n")
+    with pytest.raises(ValueError, match=r"line 4: time \[s\] goes back from 0.5 to 0.25 \(1 such step\)"):
+        read_csv(path)
+    path = _write(tmp_path, "time [s],x [m]\n0,1\n0.5,2\n0.5,3\n1,4\n1,5\n")
+    with pytest.warns(SuspectFileWarning, match=r"2 rows repeat the time of the row before \(first at line 4, time \[s\] = 0.5\)"):
+        r = read_csv(path)
+    assert r.n_rows == 5  # warned, not dropped
+
+
+@pytest.mark.parametrize("peak, warns", [(1.5, True), (2.999, True), (-0.5, True), (3.0, False), (1500.0, False), (0.0, False)])
+def test_a_volt_column_that_looks_like_kilovolts_warns(tmp_path, peak, warns):
+    # 3 V = KV_SUSPECT_FRACTION (0.2 %) of the MFC P1's 1500 V: the drive's own kV threshold
+    path = _write(tmp_path, f"time [s],voltage [V]\n0,0\n1,{peak!r}\n")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        read_csv(path)
+    messages = [str(w.message) for w in caught if issubclass(w.category, SuspectFileWarning)]
+    assert bool(messages) == warns
+    if warns:
+        assert "'voltage [V]' is in V but peaks at" in messages[0] and "kilovolts" in messages[0]
+
+
+def test_hand_written_file_without_final_newline_warns(tmp_path):
+    path = _write(tmp_path, "time [s],x [m]\n0,1\n0.5,2.5")
+    with pytest.warns(SuspectFileWarning, match=r"last line \(3: '0.5,2.5'\) has no line end, so the file may be truncated"):
+        r = read_csv(path)
+    np.testing.assert_array_equal(r["x"], [1.0, 2.5])
+
+
+def test_written_file_ending_inside_its_last_line_is_refused(tmp_path):
+    path = tmp_path / "r.csv"
+    _result().to_csv(path)
+    cut = tmp_path / "cut.csv"
+    cut.write_bytes(path.read_bytes()[:-1])  # only the final newline gone: the row count still matches
+    last = len(path.read_text().splitlines())  # the last line's number
+    with pytest.raises(ValueError, match=rf"line {last}: the file ends inside this line .* cut off"):
+        read_csv(cut)

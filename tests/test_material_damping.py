@@ -17,7 +17,7 @@ import pytest
 from exudyn_atcm import (Bender, BendingActuator, Flexure, Layer, Link, Mechanism, PiezoDrive, RayleighDamping,
                          eigenfrequencies, simulate)
 from exudyn_atcm.model.damping import damping_ratio_from_log_decrement, log_decrement_from_damping_ratio
-from exudyn_atcm.signals import Steps
+from exudyn_atcm.model.signals import Steps
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)
 MFC = Layer(0.3e-3, 30.336e9, 5440.0)

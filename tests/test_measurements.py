@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
+from exudyn_atcm.io.file_checks import SuspectFileWarning
 from exudyn_atcm.io.measurements import Record, preprocess, read_record
 
 
@@ -54,7 +57,7 @@ def test_blank_leading_column_and_indices_without_header(tmp_path):
 
 
 def test_whitespace_separated_with_blank_header_column(tmp_path):
-    path = write(tmp_path, "\ttime [s]\tU [V]\tx [m]\n\t0\t1\t2\n\t1\t2\t3\n")
+    path = write(tmp_path, "\ttime [s]\tU [V]\tx [m]\n\t0\t100\t2\n\t1\t200\t3\n")
     rec = read_record(path)
     assert rec.units == {"time": "s", "input": "V", "output": "m"}
     np.testing.assert_array_equal(rec.output, [2, 3])
@@ -123,3 +126,65 @@ def test_preprocess_trim_and_decimate():
         preprocess(rec, decimate=0)
     with pytest.raises(ValueError, match="trim_start must be >= 0"):
         preprocess(rec, trim_start=-1)
+
+
+# ---------------------------------------------------------------- issue 17: files that read but mislead
+def test_blank_separated_header_with_units_gives_three_names(tmp_path):
+    # the header splits at blanks into six words; the data has three columns
+    path = write(tmp_path, "time [s]  voltage [V]  displacement [um]\n0.0 0 0.0\n0.5 500 10.0\n1.0 1000 22.5\n")
+    rec = read_record(path)
+    assert rec.names == {"time": "time", "input": "voltage", "output": "displacement"}
+    np.testing.assert_array_equal(rec.input, [0.0, 500.0, 1000.0])
+    np.testing.assert_allclose(rec.output, [0.0, 10e-6, 22.5e-6], rtol=1e-15)  # um -> m
+    assert rec.units == {"time": "s", "input": "V", "output": "m"}
+    # single blanks, and names holding a blank separated by two
+    rec = read_record(write(tmp_path, "time [s] voltage [V] displacement [um]\n0 0 0\n1 500 10\n"), output="displacement")
+    assert rec.units["output"] == "m" and rec.output[1] == pytest.approx(10e-6, rel=1e-15)
+    rec = read_record(write(tmp_path, "time [s]  drive voltage [V]  tip displacement [um]\n0 0 0\n1 500 10\n"),
+                      input="drive voltage")
+    assert rec.names["input"] == "drive voltage" and rec.units["output"] == "m"
+
+
+def test_header_with_more_names_than_columns_is_refused(tmp_path):
+    with pytest.raises(ValueError, match=r"line 1: the header has 4 names .* the data rows have 3 columns"):
+        read_record(write(tmp_path, "t,u,y,z\n0,1,2\n1,2,3\n"))
+
+
+def test_a_name_that_matches_two_columns_is_refused(tmp_path):
+    path = write(tmp_path, "time [s],voltage [V],voltage [kV],x [m]\n0,100,0.1,1\n1,200,0.2,2\n")
+    with pytest.raises(ValueError, match=r"input = 'voltage' names 2 columns .* \(indices \[1, 2\]\)"):
+        read_record(path, input="voltage", output="x")
+    rec = read_record(path, input="voltage [kV]", output="x")  # the full header text is unique
+    np.testing.assert_allclose(rec.input, [100.0, 200.0], rtol=1e-15)
+
+
+def test_byte_order_marks(tmp_path):
+    path = tmp_path / "bom.csv"
+    path.write_bytes("\ufefftime [s],U [V],x [m]\n0,100,1\n1,200,2\n".encode())
+    assert read_record(path).names["time"] == "time"  # a leading BOM is not text
+    path.write_bytes("# exported\n\ufefftime [s],U [V],x [m]\n0,100,1\n1,200,2\n".encode())
+    with pytest.raises(ValueError, match=r"line 2: column 1 of the header, .* \['U\+FEFF'\] \(a byte-order mark"):
+        read_record(path)
+
+
+def test_record_that_lost_most_rows_says_so(tmp_path):
+    path = write(tmp_path, "t,u,y\n0,1,2\n1,nan,3\n2,,4\n3,4,\n4,5,6\n")  # 3 of 5 rows lost
+    with pytest.warns(SuspectFileWarning, match=r"dropped 3 of 5 rows .* most of the record \(60 %\): check the columns"):
+        rec = read_record(path)
+    assert rec.n_samples == 2
+
+
+def test_volt_input_that_looks_like_kilovolts_warns(tmp_path):
+    with pytest.warns(SuspectFileWarning, match=r"'voltage \[V\]' is in V but peaks at \|U\| = 1.5 V, below 3 V"):
+        read_record(write(tmp_path, "time [s],voltage [V],x [m]\n0,-0.5,0\n1,1.5,1e-5\n"))
+    # written as kV: converted, no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SuspectFileWarning)
+        rec = read_record(write(tmp_path, "time [s],voltage [kV],x [m]\n0,-0.5,0\n1,1.5,1e-5\n"))
+    np.testing.assert_allclose(rec.input, [-500.0, 1500.0], rtol=1e-15)
+
+
+def test_record_checks_a_stated_row_count(tmp_path):
+    path = write(tmp_path, "# data_rows: 3\nt,u,y\n0,100,2\n1,200,3\n")
+    with pytest.raises(ValueError, match=r"states 3 data rows .* holds 2; it was cut off"):
+        read_record(path)

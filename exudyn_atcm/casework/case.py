@@ -40,14 +40,20 @@ The convention, in full (see ``cases/paper_stroke_table.py`` for a short example
 
 Cases are found (:func:`find_case`) by path, or by name in, in this order: the directory
 given with ``--cases-dir``, the directories in the environment variable
-``EXUDYN_ATCM_CASES`` (``os.pathsep``-separated), ``./cases`` in the current directory, the
-``cases/`` folder of the source checkout beside the package, and the example cases installed
-with the package (``exudyn_atcm.example_cases``, built from ``cases/``), so that
-``exudyn-atcm list`` works from any directory of any installation.
+``EXUDYN_ATCM_CASES`` (``os.pathsep``-separated), the ``cases/`` folder of the source
+checkout beside the package, and the example cases installed with the package
+(``exudyn_atcm.example_cases``, built from ``cases/``), so that ``exudyn-atcm list`` works
+from any directory of any installation.  The current directory is searched only when asked
+(``--cases-dir cases``, or a path such as ``cases/my_case.py``): running the command line
+inside someone else's unpacked archive does not execute its files.  A name found in two
+different files is taken from the first and a ``RuntimeWarning`` names both
+(:func:`case_files`).
 
 Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
 CSV and JSON marked ``partial``), the message says ``interrupted at t = ... s``, and the exit
-status is 130.
+status is 130.  ``SIGTERM`` (``timeout``, batch schedulers, ``docker stop``) and ``SIGHUP`` are
+handled the same way (:mod:`exudyn_atcm.casework.termination`): ``stopped by SIGTERM at t = ... s``,
+exit status 143 (129 for ``SIGHUP``).
 """
 
 from __future__ import annotations
@@ -73,6 +79,7 @@ from .._version import __version__
 from ..io.progress import ProgressBar, ProgressCallback, no_progress, reporting
 from ..io.result import Result
 from ..solve.run_checks import SimulationInterrupted
+from .termination import StopSignal, stop_signals_as_interrupt
 
 __all__ = [
     "Parameter",
@@ -83,6 +90,7 @@ __all__ = [
     "CaseError",
     "case_dirs",
     "find_case",
+    "case_files",
     "list_cases",
     "load_case",
     "versions",
@@ -647,22 +655,23 @@ def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool,
     """Run ``case`` with ``NAME=VALUE`` overrides, print a summary; the exit status.
 
     Errors are printed as one line on stderr (with the traceback when ``debug``): exit
-    status 2 for a bad parameter, 1 for a failure of the run, 130 for Ctrl-C (what was
-    computed until then is written, marked partial).
+    status 2 for a bad parameter, 1 for a failure of the run, 130 for Ctrl-C and 143 for
+    SIGTERM (what was computed until then is written, marked partial).
     """
     try:
         values = case.parse_assignments(assignments)
     except CaseError as exc:
         return _fail(exc, debug, 2)
     bar = ProgressBar(sys.stdout) if sys.stdout.isatty() else None
+    stop = StopSignal()
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), stop_signals_as_interrupt() as stop:
             warnings.showwarning = _show_warning
             output = case.run(values, out_dir=out, plot=plot, progress=bar)
     except KeyboardInterrupt as exc:
         if bar is not None:
             bar.close()
-        return _interrupted(case, exc, out, debug)
+        return _interrupted(case, exc, out, debug, stop)
     except Exception as exc:  # noqa: BLE001 - reported as one line
         return _fail(exc, debug, 2 if isinstance(exc, CaseError) else 1)
     finally:
@@ -680,8 +689,12 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
     print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
-def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool) -> int:
-    """Report Ctrl-C: where the simulation stopped and what was written; exit status 130."""
+def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool, stop: StopSignal) -> int:
+    """Report Ctrl-C or a stop signal: where the simulation stopped and what was written.
+
+    Exit status 130 for Ctrl-C, ``128 + signal number`` for a stop signal (143 for SIGTERM).
+    """
+    how = "interrupted" if stop.signum is None else f"stopped by {stop.name}"
     if isinstance(exc, SimulationInterrupted):
         files = getattr(exc, "files", [])
         rows = exc.result.n_rows if exc.result is not None else 0
@@ -689,9 +702,9 @@ def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool) -> i
             written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}"
         else:
             written = "; nothing was written (no output directory, or nothing computed yet)"
-        return _fail(f"{case.name}: interrupted at t = {exc.time:.6g} s{written}", debug, 130)
-    return _fail(f"{case.name}: interrupted (Ctrl-C) before the simulation started or after it ended; "
-                 "files may be missing", debug, 130)
+        return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{written}", debug, stop.exit_status)
+    return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; "
+                 "files may be missing", debug, stop.exit_status)
 
 
 def _fail(exc: BaseException | str, debug: bool, status: int) -> int:
@@ -707,16 +720,18 @@ def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
     """Directories searched for cases by name, in order (existing ones only).
 
     ``cases_dir`` (``--cases-dir``), then ``$EXUDYN_ATCM_CASES`` (``os.pathsep``-separated),
-    then ``./cases``, then the ``cases/`` folder of the source checkout beside the package,
-    then the example cases installed with the package (``exudyn_atcm.example_cases``).
+    then the ``cases/`` folder of the source checkout beside the package (only if it is this
+    package's checkout), then the example cases installed with the package
+    (``exudyn_atcm.example_cases``).  Not the current directory's ``cases/`` unless given.
     """
     candidates: list[Path] = []
     if cases_dir is not None:
         candidates.append(Path(cases_dir))
     env = os.environ.get(ENV_CASES, "")
     candidates.extend(Path(p) for p in env.split(os.pathsep) if p.strip())
-    candidates.append(Path.cwd() / "cases")
-    candidates.append(Path(__file__).resolve().parents[2] / "cases")
+    checkout = _checkout_cases_dir()
+    if checkout is not None:
+        candidates.append(checkout)
     installed = _installed_cases_dir()
     if installed is not None:
         candidates.append(installed)
@@ -726,6 +741,16 @@ def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
         if resolved.is_dir() and resolved not in seen:
             seen.append(resolved)
     return seen
+
+
+def _checkout_cases_dir() -> Path | None:
+    """``cases/`` beside the package if the package sits in its source checkout (not site-packages)."""
+    root = Path(__file__).resolve().parents[2]
+    try:
+        setup = (root / "setup.cfg").read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    return root / "cases" if "name = exudyn-atcm" in setup else None
 
 
 def _installed_cases_dir() -> Path | None:
@@ -763,15 +788,52 @@ def find_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
         if path.is_file():
             return path.resolve()
         raise CaseError(f"case file {text!r} does not exist")
-    if path.is_file():
-        return path.resolve()
-    for candidate in list_cases(cases_dir):
-        if candidate.stem == text:
-            return candidate
+    found = case_files(text, cases_dir)
+    if found:
+        if len(found) > 1:
+            warnings.warn(
+                f"case {text!r} is found in {len(found)} different files: using {found[0]} (the first in the search "
+                f"order --cases-dir, ${ENV_CASES}, the package's cases); not using {', '.join(str(f) for f in found[1:])}",
+                RuntimeWarning, stacklevel=3,
+            )
+        return found[0]
     stems = [p.stem for p in list_cases(cases_dir)]
     names = ", ".join(stems) or "none"
     dirs = ", ".join(str(d) for d in case_dirs(cases_dir)) or "none"
-    raise CaseError(f"no case named {text!r}{closest(text, stems)}; available: {names} (searched {dirs})")
+    raise CaseError(f"no case named {text!r}{closest(text, stems)}; available: {names} (searched {dirs})"
+                    + _local_hint(text))
+
+
+def _local_hint(name: str) -> str:
+    """A note if ``./cases/<name>.py`` exists: the current directory is searched only when asked."""
+    local = Path("cases") / f"{name}.py"
+    if not local.is_file():
+        return ""
+    return (f"; {local} exists here, but the current directory is searched only when asked: "
+            f"give --cases-dir cases or the path {local}")
+
+
+def case_files(name: str, cases_dir: str | os.PathLike | None = None) -> list[Path]:
+    """Every file that defines case ``name`` in the search order of :func:`case_dirs`, the one used first.
+
+    Files with the same content (the checkout's case and its installed copy) count once.
+    """
+    files: list[Path] = []
+    if name.startswith("_"):
+        return files
+    contents: list[bytes] = []
+    for directory in case_dirs(cases_dir):
+        path = directory / f"{name}.py"
+        if not path.is_file():
+            continue
+        try:
+            content = path.read_bytes()
+        except OSError:
+            content = b""
+        if content not in contents:
+            files.append(path)
+            contents.append(content)
+    return files
 
 
 def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> Case:

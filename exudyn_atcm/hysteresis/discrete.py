@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, finite_float, same_length
+from ..physical_bounds import check_element_count
 from ._dominance import DominanceSums
 from .staircase import StaircasePreisach
 
@@ -61,6 +62,7 @@ class DiscretePreisach(StaircasePreisach):
         beta_a = finite_array("beta", beta)
         weights_a = finite_array("weights", weights)
         same_length(("alpha", "beta", "weights"), (alpha_a, beta_a, weights_a))
+        check_element_count("len(alpha)", alpha_a.size, "relays")
         bad = alpha_a < beta_a
         if bad.any():
             i = int(np.argmax(bad))

@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, same_length
+from ..physical_bounds import check_element_count
 from .fit_report import FitReport, make_report
 from .staircase import StaircasePreisach
 
@@ -310,7 +311,7 @@ def fit_prandtl_ishlinskii(cls: type, u: Any, y: Any, n: int, *, n_fit: int | No
 
     started = time.perf_counter()
     u_a, y_a, n_fit = check_record(u, y, n_fit)
-    n = _levels_int("n", n)
+    n = check_element_count("n", _levels_int("n", n), "plays")
     u_fit = u_a[:n_fit]
     span = float(np.ptp(u_fit))
     radii = span * np.arange(1, n) / (2.0 * n)

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, positive_int, same_length
+from ..physical_bounds import check_element_count
 from .fit_report import make_report
 from .identification import nonnegative_float
 
@@ -106,7 +107,7 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     u_a = finite_array("u", u, min_length=2)
     y_a = finite_array("y", y, min_length=2)
     same_length(("u", "y"), (u_a, y_a))
-    n = positive_int("n", n)
+    n = check_element_count("n", positive_int("n", n), "relays")
     reversal_tolerance = nonnegative_float("reversal_tolerance", reversal_tolerance)
     coverage = nonnegative_float("coverage", coverage)
     if coverage > 1.0:

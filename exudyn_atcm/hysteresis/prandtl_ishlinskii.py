@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, finite_float, same_length
+from ..physical_bounds import check_element_count
 from .base import HysteresisOperator, check_input
 
 
@@ -38,6 +39,7 @@ class PrandtlIshlinskii(HysteresisOperator):
         r = finite_array("radii", radii, min_length=0)
         p = finite_array("weights", weights, min_length=0)
         same_length(("radii", "weights"), (r, p))
+        check_element_count("len(radii)", r.size, "plays")
         if r.size and r[0] < 0.0:
             raise ValueError(f"radii must be >= 0, got {float(r[0])!r}")
         steps = np.diff(r)

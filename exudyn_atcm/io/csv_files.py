@@ -16,27 +16,31 @@ written as the shortest text that reads back to the same float), parameters and 
 their text parses as a Python literal (numbers, booleans, ``None``, lists, dicts), otherwise
 as strings.  A malformed file is refused with a ``ValueError`` that names the file, the line
 and what is wrong: among others a file with fewer or more rows than its ``data_rows`` line
-states (cut off or appended to), and non-finite numbers (``nan``, ``inf``, ``1e400``) unless
-``allow_nonfinite=True``.
+states (cut off or appended to), a file that ends inside its last line when it has a
+``data_rows`` line (cut inside a number: ``-4e-06`` cut to ``-4e-0`` would read as -4), a
+``time`` column that goes back, header names with invisible characters, and non-finite numbers
+(``nan``, ``inf``, ``1e400``) unless ``allow_nonfinite=True``.  A
+:class:`~exudyn_atcm.io.file_checks.SuspectFileWarning` is given for a file without ``data_rows``
+whose last line has no line end (possibly cut off), repeated times, and a ``[V]`` column that
+peaks below 3 V (kilovolts?).  A byte-order mark at the start of the file is not part of the
+text (``utf-8-sig``).  The rules the writer and the reader share are in
+:mod:`exudyn_atcm.io.csv_format`.
 """
 
 from __future__ import annotations
 
-import ast
 import math
 import os
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from .atomic import describe_os_error
+from .csv_format import COLUMN, parse_value, split_comment
+from .file_checks import check_header_names, check_times, check_volt_column, warn_unterminated_last_line
 
 __all__ = ["read_table", "read_csv_header", "CsvHeader", "CsvTable"]
-
-_COLUMN = re.compile(r"^\s*([^\[\],#]+?)\s*\[([^\[\],]*)\]\s*$")
-
 
 @dataclass
 class CsvHeader:
@@ -66,20 +70,10 @@ class CsvHeader:
     data_rows: int | None = None
 
 
-def _parse_value(text: str) -> Any:
-    text = text.strip()
-    if text in ("nan", "inf", "-inf"):
-        return float(text)
-    try:
-        return ast.literal_eval(text)
-    except (ValueError, SyntaxError, MemoryError, RecursionError, TypeError):
-        return text
-
-
 def _read_lines(path: str | os.PathLike) -> tuple[str, list[str]]:
     name = os.fspath(path)
     try:
-        with open(name, encoding="utf-8", newline=None) as handle:
+        with open(name, encoding="utf-8-sig", newline=None) as handle:  # -sig: a leading BOM is not text
             return name, handle.read().split("\n")
     except FileNotFoundError:
         raise ValueError(f"{name}: no such file") from None
@@ -108,12 +102,10 @@ def _parse_header(name: str, lines: list[str]) -> tuple[CsvHeader, int]:
                 version = body.split(None, 1)[1].strip()
                 header.exudyn_version = None if version == "unknown" else version
                 continue
-            key, sep, value = body.partition(": ")
-            if not sep:
-                key, sep, value = body.partition(":")
-            if not sep or not key.strip():
+            parsed = split_comment(body)
+            if parsed is None:
                 continue  # free comment
-            key = key.strip()
+            key, value = parsed
             if key == "data_rows":
                 try:
                     header.data_rows = int(value.strip())
@@ -125,14 +117,14 @@ def _parse_header(name: str, lines: list[str]) -> tuple[CsvHeader, int]:
                     raise ValueError(f"{name}, line {index + 1}: data_rows must be >= 0, got {header.data_rows}")
                 continue
             if key.startswith("info."):
-                header.info[key[5:]] = _parse_value(value)
+                header.info[key[5:]] = parse_value(value)
             else:
-                header.parameters[key] = _parse_value(value)
+                header.parameters[key] = parse_value(value)
             continue
         # the header row
         cells = line.split(",")
         for column, cell in enumerate(cells, start=1):
-            match = _COLUMN.match(cell)
+            match = COLUMN.match(cell)
             if match is None:
                 if _looks_numeric(cell):
                     raise ValueError(
@@ -145,6 +137,7 @@ def _parse_header(name: str, lines: list[str]) -> tuple[CsvHeader, int]:
                 )
             header.names.append(match.group(1).strip())
             header.units.append(match.group(2).strip())
+        check_header_names(name, index + 1, header.names)
         duplicates = sorted({n for n in header.names if header.names.count(n) > 1})
         if duplicates:
             raise ValueError(f"{name}, line {index + 1}: duplicate column names {duplicates}")
@@ -193,6 +186,7 @@ def read_table(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Csv
     header, header_index = _parse_header(name, lines)
     n_columns = len(header.names)
     rows: list[list[float]] = []
+    row_lines: list[int] = []
     for index in range(header_index + 1, len(lines)):
         line = lines[index]
         stripped = line.strip()
@@ -223,6 +217,8 @@ def read_table(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Csv
                 )
             row.append(value)
         rows.append(row)
+        row_lines.append(index + 1)
+    _check_last_line(name, lines, header, header_index, row_lines)
     if header.data_rows is not None and len(rows) != header.data_rows:
         raise ValueError(
             f"{name}: the file states {header.data_rows} data rows (line 'data_rows') but holds {len(rows)}; "
@@ -230,6 +226,7 @@ def read_table(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Csv
                else "rows were appended after it was written")
         )
     matrix = np.array(rows, dtype=float).reshape(len(rows), n_columns)
+    _check_columns(name, header, matrix, row_lines)
     info = dict(header.info)
     if header.exudyn_version is not None:
         info = {"exudyn_version": header.exudyn_version, **info}
@@ -240,3 +237,31 @@ def read_table(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Csv
         info,
     )
 
+
+def _check_last_line(name: str, lines: list[str], header: CsvHeader, header_index: int, row_lines: list[int]) -> None:
+    """A file ending inside its header or a data row (no line end) may be cut off inside a number.
+
+    Refused for a file with a ``data_rows`` line (:meth:`Result.to_csv` ends every line, so
+    the file was cut), warned otherwise (a hand-written file may just lack the last newline).
+    """
+    last = len(lines) - 1
+    if not lines[last].strip() or lines[last].strip().startswith("#"):
+        return
+    if last != header_index and (not row_lines or row_lines[-1] != last + 1):  # pragma: no cover - every other line is a row
+        return
+    if header.data_rows is not None:
+        raise ValueError(
+            f"{name}, line {last + 1}: the file ends inside this line (no line end); files written by to_csv "
+            "end every line, so this one was cut off (an interrupted copy or write?) and its last number "
+            "may be cut short"
+        )
+    warn_unterminated_last_line(name, last + 1, lines[last], stacklevel=5)
+
+
+def _check_columns(name: str, header: CsvHeader, matrix: np.ndarray, row_lines: list[int]) -> None:
+    """Times that go back (refused) or repeat (warned); ``[V]`` columns that look like kilovolts (warned)."""
+    for i, (column, unit) in enumerate(zip(header.names, header.units)):
+        if column == "time":
+            check_times(name, f"time [{unit}]", matrix[:, i], row_lines, stacklevel=5)
+        if unit == "V":
+            check_volt_column(name, f"{column} [V]", matrix[:, i], stacklevel=5)

@@ -17,109 +17,21 @@ from __future__ import annotations
 import math
 import re
 import warnings
-from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Union
 
 import numpy as np
 
-from .._checks import finite_float, positive_int
+from .._checks import positive_int
+from .preprocessing import preprocess
+from .record import Record
+from .file_checks import SuspectFileWarning, check_header_names, check_volt_column, warn_unterminated_last_line
 
-__all__ = ["Record", "read_record", "preprocess"]
+__all__ = ["Record", "read_record", "preprocess"]  # preprocess: see exudyn_atcm.io.preprocessing
 
 ColumnChoice = Union[str, int]
 _UNIT = re.compile(r"^(.*?)\s*\[([^\]]*)\]\s*$")
 _MISSING = {"", "nan", "NaN", "NAN", "na", "NA", "n/a", "N/A"}
-
-
-@dataclass(frozen=True)
-class Record:
-    """A measured record: three equally long 1-D arrays and their units.
-
-    Attributes
-    ----------
-    time : numpy.ndarray
-        Sample times [s], strictly increasing.
-    input, output : numpy.ndarray
-        Input (e.g. voltage [V]) and output (e.g. displacement [m]) samples.
-    units : dict
-        Units of ``"time"``, ``"input"``, ``"output"`` (``""`` where the file gave none).
-    names : dict
-        Column names of ``"time"``, ``"input"``, ``"output"`` in the file (without units).
-    processing : tuple of str
-        Every change made since the file was read (dropped rows, offset, drift, trim,
-        decimation, split), in order, with the amounts.
-    source : str
-        Where the record came from (file path).
-    """
-
-    time: np.ndarray
-    input: np.ndarray
-    output: np.ndarray
-    units: dict = field(default_factory=lambda: {"time": "s", "input": "", "output": ""})
-    names: dict = field(default_factory=lambda: {"time": "time", "input": "input", "output": "output"})
-    processing: tuple = ()
-    source: str = ""
-
-    def __post_init__(self) -> None:
-        t = np.asarray(self.time, dtype=float)
-        u = np.asarray(self.input, dtype=float)
-        y = np.asarray(self.output, dtype=float)
-        if not (t.ndim == u.ndim == y.ndim == 1) or not (t.size == u.size == y.size):
-            raise ValueError(
-                f"time, input and output must be 1-D arrays of one length, got sizes {t.size}, {u.size}, {y.size}"
-            )
-        if t.size >= 2 and np.any(np.diff(t) <= 0.0):
-            i = int(np.argmax(np.diff(t) <= 0.0)) + 1
-            raise ValueError(
-                f"time must be strictly increasing, got time[{i}] = {float(t[i])!r} s after {float(t[i - 1])!r} s"
-                + (f" in {self.source}" if self.source else "")
-            )
-        object.__setattr__(self, "time", t)
-        object.__setattr__(self, "input", u)
-        object.__setattr__(self, "output", y)
-
-    @property
-    def n_samples(self) -> int:
-        """Number of samples."""
-        return int(self.time.size)
-
-    def __len__(self) -> int:
-        return self.n_samples
-
-    def split_index(self, t_split: float) -> int:
-        """Index of the first sample at or after ``t_split`` [s] (the start of the held-out part)."""
-        t_split = finite_float("t_split", t_split)
-        if not self.time[0] < t_split <= self.time[-1]:
-            raise ValueError(
-                f"t_split must lie in ({float(self.time[0])!r}, {float(self.time[-1])!r}] s (inside the record), "
-                f"got {t_split!r}"
-            )
-        return int(np.searchsorted(self.time, t_split, side="left"))
-
-    def split(self, t_split: float) -> tuple["Record", "Record"]:
-        """The part before ``t_split`` [s] (to fit on) and the part from ``t_split`` on (held out).
-
-        A hysteresis model's prediction of the held-out part depends on the memory built by the
-        first part: run the model over the whole record and compare on the held-out samples
-        (the fits of :mod:`exudyn_atcm.hysteresis.identification` take ``n_fit`` for this).
-        """
-        k = self.split_index(t_split)
-        note = f"split at t = {t_split:g} s: samples [0, {k}) and [{k}, {self.n_samples})"
-        first = self._take(slice(0, k), note + ", this is the first part")
-        second = self._take(slice(k, None), note + ", this is the second part")
-        return first, second
-
-    def _take(self, index: Any, note: str) -> "Record":
-        return replace(
-            self, time=self.time[index], input=self.input[index], output=self.output[index],
-            processing=self.processing + (note,),
-        )
-
-    def label(self, which: str) -> str:
-        """``"name [unit]"`` of ``"time"``, ``"input"`` or ``"output"``."""
-        unit = self.units.get(which, "")
-        return f"{self.names[which]} [{unit}]" if unit else self.names[which]
 
 
 # ------------------------------------------------------------------------------ reading
@@ -136,6 +48,45 @@ def _cells(line: str) -> list[str]:
         if sep in line:
             return [c.strip() for c in line.split(sep)]
     return line.split()
+
+
+def _stated_rows(body: str, previous: int | None) -> int | None:
+    """The row count of a ``data_rows: N`` comment (as :meth:`Result.to_csv` writes it), else ``previous``."""
+    match = re.fullmatch(r"\s*data_rows:\s*(\d+)\s*", body)
+    return int(match.group(1)) if match else previous
+
+
+#: A whitespace-separated header cell: a name, optionally followed by ``[unit]``.
+_SPACED_CELL = re.compile(r"[^\s\[\]]+(?:\s*\[[^\]]*\])?")
+
+
+def _header_cells(path: Path, line: int, text: str, cells: list[str], n_columns: int) -> list[str]:
+    """The header's names, one per data column (``name [unit]`` kept together when blank-separated).
+
+    A blank-separated header such as ``time [s]  voltage [V]  displacement [um]`` is split at
+    runs of two or more blanks, or else into names each with its ``[unit]``, whichever gives
+    as many names as the data has columns.
+
+    Raises
+    ------
+    ValueError
+        If the header has more names than the data has columns (the names cannot be matched
+        to the columns), or names with invisible characters.
+    """
+    if not any(sep in text for sep in (",", ";", "\t")):
+        options = [re.split(r"\s{2,}", text.strip()), _SPACED_CELL.findall(text), cells]
+        cells = next((o for o in options if len(o) == n_columns), options[1] if "[" in text else cells)
+    check_header_names(str(path), line, cells)
+    named = list(cells)
+    while named and named[-1] == "":
+        named.pop()  # a trailing separator
+    if len(named) > n_columns:
+        raise ValueError(
+            f"{path}, line {line}: the header has {len(named)} names {named!r} but the data rows have "
+            f"{n_columns} columns; separate the header like the data (commas, semicolons, tabs, or blanks "
+            "between 'name [unit]' cells)"
+        )
+    return cells
 
 
 def _is_number(cell: str) -> bool:
@@ -156,10 +107,14 @@ def _column(header: list[str] | None, choice: Any, default: int, parameter: str,
         full = [h.lower() for h in names]
         bare = [_split_name(h)[0].lower() for h in names]
         key = choice.strip().lower()
-        if key in full:
-            index = full.index(key)
-        elif key in bare:
-            index = bare.index(key)
+        matches = [i for i, h in enumerate(full) if h == key] or [i for i, b in enumerate(bare) if b == key]
+        if len(matches) > 1:
+            raise ValueError(
+                f"{parameter} = {choice!r} names {len(matches)} columns of {path} (indices {matches}); "
+                f"columns: {names!r}; choose one by its index or rename the duplicates"
+            )
+        if matches:
+            index = matches[0]
         else:
             raise ValueError(f"{parameter} = {choice!r} is not a column of {path}; columns: {names!r}")
     elif isinstance(choice, (int, np.integer)) and not isinstance(choice, bool) and choice >= 0:
@@ -238,17 +193,38 @@ def read_record(
     if not path.is_file():
         raise ValueError(f"path must be an existing text file, got {str(path)!r}")
     header: list[str] | None = None
+    header_text = ""
     rows: list[tuple[int, list[str]]] = []
+    stated_rows: int | None = None
+    unterminated: tuple[int, str] | None = None  # (line, text) of a data or header line without a line end
     with path.open(encoding="utf-8-sig") as handle:
         for number, line in enumerate(handle, start=1):
             text = line.strip()
+            if text.startswith(comment):
+                stated_rows = _stated_rows(text[len(comment):], stated_rows)
             if not text or text.startswith(comment):
                 continue
+            if not line.endswith("\n"):
+                unterminated = (number, line)
             cells = _cells(line.rstrip("\r\n"))
             if header is None and not rows and not all(_is_number(c) for c in cells if c):
-                header = cells
+                header, header_text, header_line = cells, line.rstrip("\r\n"), number
                 continue
             rows.append((number, cells))
+    if stated_rows is not None and len(rows) != stated_rows:
+        raise ValueError(
+            f"{path}: the file states {stated_rows} data rows (line 'data_rows') but holds {len(rows)}; "
+            + ("it was cut off (an interrupted copy or write?)" if len(rows) < stated_rows
+               else "rows were appended after it was written")
+        )
+    if unterminated is not None:
+        if stated_rows is not None:
+            raise ValueError(
+                f"{path}, line {unterminated[0]}: the file ends inside this line (no line end); files with a "
+                "'data_rows' line (written by Result.to_csv) end every line, so this one was cut off and its "
+                "last number may be cut short"
+            )
+        warn_unterminated_last_line(str(path), unterminated[0], unterminated[1], stacklevel=3)
     if not rows:
         raise ValueError(f"{path}: no data rows")
     # a blank leading column: empty in the header (if any) and in every row
@@ -256,6 +232,8 @@ def read_record(
         rows = [(n, cells[1:]) for n, cells in rows]
         header = header[1:] if header is not None else None
     n_columns = max(len(cells) for _, cells in rows)
+    if header is not None:
+        header = _header_cells(path, header_line, header_text, header, n_columns)
     indices = {
         "time": _column(header, time, 0, "time", path, n_columns),
         "input": _column(header, input, 1, "input", path, n_columns),
@@ -281,7 +259,13 @@ def read_record(
             f"{path}: dropped {int(bad.sum())} of {len(rows)} rows with NaN, infinite or empty cells in the "
             f"time/input/output columns (first at lines {lines})"
         )
-        warnings.warn(message, RuntimeWarning, stacklevel=2)
+        if 2 * int(bad.sum()) > len(rows):
+            message += (
+                f"; that is most of the record ({100.0 * bad.sum() / len(rows):.0f} %): check the columns chosen "
+                f"(time={indices['time']}, input={indices['input']}, output={indices['output']}), the separator "
+                "and the decimal mark"
+            )
+        warnings.warn(message, SuspectFileWarning, stacklevel=2)
         processing.append(f"dropped {int(bad.sum())} rows with non-finite values")
         data = data[~bad]
     if data.shape[0] < min_samples:
@@ -296,6 +280,9 @@ def read_record(
         units["time"] = "s"
     if not isinstance(si, bool):
         raise ValueError(f"si must be True or False, got {si!r}")
+    for c, key in enumerate(("time", "input", "output")):
+        if units[key] == "V":
+            check_volt_column(str(path), f"{names[key]} [V]", data[:, c], stacklevel=3)
     if si:
         for c, key in enumerate(("time", "input", "output")):
             factor_unit = _SI_SCALE.get(units[key])
@@ -306,124 +293,3 @@ def read_record(
                 units[key] = base
     return Record(data[:, 0], data[:, 1], data[:, 2], units=units, names=names,
                   processing=tuple(processing), source=str(path))
-
-
-# ------------------------------------------------------------------------------ preprocessing
-
-def preprocess(
-    record: Record,
-    *,
-    offset_samples: int | None = None,
-    drift: bool = False,
-    trim_start: float = 0.0,
-    decimate: int = 1,
-) -> Record:
-    """Optional corrections for measured records, each written into ``processing``.
-
-    Applied in this order:
-
-    1. ``trim_start``: drop the samples before ``time[0] + trim_start`` [s] (a settling start).
-    2. ``drift``: remove a linear drift of the output, the straight line fitted (least squares)
-       through the output at the input's local minima.  At those instants a periodic input is
-       in the same state every cycle, so a rate-independent output would repeat: what changes
-       is drift.  Needs at least two minima.
-    3. ``offset_samples``: subtract the mean output of the first ``offset_samples`` samples
-       (the sensor's zero before the excitation).
-    4. ``decimate``: replace each block of ``decimate`` samples by its mean (time, input and
-       output alike; averaging rather than picking lowers the noise; a trailing partial block
-       is dropped and said).
-
-    Parameters
-    ----------
-    record : Record
-        The record.
-    offset_samples : int, optional
-        Number of leading samples whose mean output is the offset; ``None`` keeps the offset.
-    drift : bool, optional
-        Remove the linear output drift (default ``False``).
-    trim_start : float, optional
-        Settling time trimmed from the start [s], ``>= 0``.
-    decimate : int, optional
-        Block length of the decimation, ``>= 1`` (1: none).
-
-    Returns
-    -------
-    Record
-        A new record; the original is unchanged.
-    """
-    if not isinstance(record, Record):
-        raise ValueError(f"record must be a Record (see read_record), got {type(record).__name__}")
-    trim_start = finite_float("trim_start", trim_start)
-    if trim_start < 0.0:
-        raise ValueError(f"trim_start must be >= 0 s, got {trim_start!r}")
-    decimate = positive_int("decimate", decimate)
-    t, u, y = record.time, record.input, record.output
-    notes = list(record.processing)
-    unit = record.units.get("output", "")
-    if trim_start > 0.0:
-        keep = t >= t[0] + trim_start
-        if keep.sum() < 2:
-            raise ValueError(f"trim_start = {trim_start!r} s leaves fewer than 2 samples of the record")
-        notes.append(f"trimmed {int((~keep).sum())} samples of the first {trim_start:g} s (settling)")
-        t, u, y = t[keep], u[keep], y[keep]
-    if drift:
-        minima = _local_minima(u)
-        if minima.size < 2:
-            raise ValueError(
-                f"drift=True needs at least 2 local minima of the input to estimate a drift, found {minima.size}"
-            )
-        slope, _ = np.polyfit(t[minima], y[minima], 1)
-        y = y - slope * (t - t[0])
-        notes.append(
-            f"removed a linear output drift of {slope:.6g} {unit}/s (fitted through the output at "
-            f"{minima.size} input minima)"
-        )
-    if offset_samples is not None:
-        n = positive_int("offset_samples", offset_samples)
-        if n > y.size:
-            raise ValueError(f"offset_samples must be <= the number of samples ({y.size}), got {n}")
-        offset = float(np.mean(y[:n]))
-        y = y - offset
-        notes.append(f"removed an output offset of {offset:.6g} {unit} (mean of the first {n} samples)")
-    if decimate > 1:
-        blocks = t.size // decimate
-        if blocks < 2:
-            raise ValueError(f"decimate = {decimate} leaves fewer than 2 samples of {t.size}")
-        rest = t.size - blocks * decimate
-        cut = blocks * decimate
-
-        def mean(a: np.ndarray) -> np.ndarray:
-            return a[:cut].reshape(blocks, decimate).mean(axis=1)
-
-        t, u, y = mean(t), mean(u), mean(y)
-        notes.append(
-            f"decimated by {decimate} (block means)" + (f", dropped the last {rest} samples (partial block)" if rest else "")
-        )
-    return replace(record, time=t, input=u, output=y, processing=tuple(notes))
-
-
-def _local_minima(u: np.ndarray) -> np.ndarray:
-    """Indices of the input's cycle minima: the lowest sample of every falling-then-rising stretch.
-
-    Reversals smaller than 5 % of the input range are ignored (noise).
-    """
-    tolerance = 0.05 * float(np.ptp(u)) if u.size else 0.0
-    minima = []
-    low_index = 0
-    falling = True
-    high = low = float(u[0])
-    for i, v in enumerate(u.tolist()):
-        if falling:
-            if v < low:
-                low, low_index = v, i
-            elif v > low + tolerance:
-                minima.append(low_index)
-                falling, high = False, v
-        else:
-            if v > high:
-                high = v
-            elif v < high - tolerance:
-                falling, low, low_index = True, v, i
-    if falling and low_index not in minima and low_index != 0:
-        minima.append(low_index)
-    return np.asarray(minima, dtype=int)

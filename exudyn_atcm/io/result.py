@@ -13,8 +13,9 @@ from typing import Any
 import numpy as np
 
 from .atomic import write_atomic
-from .csv_files import read_table
 from .._version import __version__
+from .csv_files import read_table
+from .csv_format import comment_line, header_cell, invisible_characters
 
 
 class Result(Mapping):
@@ -128,21 +129,33 @@ class Result(Mapping):
         return dict(self._units)
 
     def column_header(self) -> str:
-        """The CSV header row, ``name [unit],...``."""
-        return ",".join(f"{n} [{self._units[n]}]" for n in self._series)
+        """The CSV header row, ``name [unit],...``.
+
+        Raises
+        ------
+        ValueError
+            If a name or unit cannot be read back (see :func:`exudyn_atcm.io.csv_format.header_cell`),
+            or there are no series.
+        """
+        if not self._series:
+            raise ValueError("a Result without series cannot be written to CSV (the file would have no header row)")
+        return ",".join(header_cell(n, self._units[n]) for n in self._series)
 
     def header_comment_lines(self) -> list[str]:
-        """The ``#`` comment lines written before the header row."""
+        """The ``#`` comment lines written before the header row.
+
+        Raises
+        ------
+        ValueError
+            If a parameter or info entry cannot be read back as itself (see
+            :func:`exudyn_atcm.io.csv_format.comment_line`).
+        """
         lines = [f"# exudyn_atcm {__version__}"]
         exu_version = self.info.get("exudyn_version")
-        lines.append(f"# exudyn {exu_version if exu_version is not None else 'unknown'}")
-        for key, value in self.parameters.items():
-            text = str(value).replace("\n", " ")
-            lines.append(f"# {key}: {text}")
-        for key, value in self.info.items():
-            if key == "exudyn_version":
-                continue
-            lines.append(f"# info.{key}: {str(value).replace(chr(10), ' ')}")
+        lines.append(f"# exudyn {_version_text(exu_version)}")
+        lines.extend(comment_line(key, value) for key, value in self.parameters.items())
+        lines.extend(comment_line(key, value, prefix="info.", what="info")
+                     for key, value in self.info.items() if key != "exudyn_version")
         return lines
 
     def to_csv(self, path: str | os.PathLike) -> None:
@@ -166,18 +179,30 @@ class Result(Mapping):
         path : str or os.PathLike
             Target file; missing parent directories are created.
 
+        Whatever this method writes, :func:`~exudyn_atcm.read_csv` reads back identically
+        (names, units, every value bit for bit, parameters and info; numpy numbers and arrays as
+        Python numbers and lists; non-finite values with ``allow_nonfinite=True``), or it
+        refuses to write: see :mod:`exudyn_atcm.io.csv_format` for the rules.
+
         Raises
         ------
+        ValueError
+            Before anything is written, naming the series or key: a name or unit holding ``,``,
+            ``[``, ``]``, a line break or an invisible character; a parameter named
+            ``data_rows`` or ``info.*``; a parameter or info value that would not read back as
+            itself (an arbitrary object).
         exudyn_atcm.io.atomic.WriteError
             (an ``OSError``) if the file cannot be written, naming the file and the reason.
         """
+        comments = self.header_comment_lines()  # validates before the file is touched
+        header = self.column_header()
         columns = [self._series[n].tolist() for n in self._series]
 
         def write(handle) -> None:
-            for line in self.header_comment_lines():
+            for line in comments:
                 handle.write(line + "\n")
             handle.write(f"# data_rows: {self.n_rows}\n")
-            handle.write(self.column_header() + "\n")
+            handle.write(header + "\n")
             if columns:
                 fmt = float.__repr__
                 handle.writelines(",".join(map(fmt, row)) + "\n" for row in zip(*columns))
@@ -203,6 +228,23 @@ class Result(Mapping):
 
     def __repr__(self) -> str:
         return f"Result({self.n_rows} rows: {', '.join(self.names[:8])}{', ...' if len(self) > 8 else ''})"
+
+
+def _version_text(version: Any) -> str:
+    """The Exudyn version as written on the second line (``unknown`` for ``None``; read back as absent).
+
+    Raises
+    ------
+    ValueError
+        If the version is not a one-line string without surrounding blanks (it would not read back).
+    """
+    if version is None:
+        return "unknown"
+    text = version if isinstance(version, str) else None
+    if (text is None or not text.strip() or text != text.strip() or "\n" in text or "\r" in text
+            or invisible_characters(text)):
+        raise ValueError(f"info['exudyn_version'] must be a one-line version string (or None), got {version!r}")
+    return text
 
 
 def read_csv(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Result:
@@ -231,12 +273,20 @@ def read_csv(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Resul
         column without ``[unit]``, duplicate names, a row with the wrong number of cells,
         a cell that is not a number, a non-finite number (unless ``allow_nonfinite``), or a
         number of data rows different from the file's ``# data_rows: N`` line (a file cut
-        off at a row boundary).
+        off at a row boundary), a file with a ``data_rows`` line that ends inside its last
+        line (cut inside a number), a ``time`` column that goes back, or header names with
+        invisible characters (a byte-order mark inside the file).
+
+    Warns
+    -----
+    exudyn_atcm.io.file_checks.SuspectFileWarning
+        A file without ``data_rows`` whose last line has no line end (possibly cut inside its
+        last number), repeated times, or a ``[V]`` column peaking below 3 V (kilovolts?).
 
     Examples
     --------
     >>> import tempfile, os
-        >>> r = Result({"time": [0.0, 0.5], "stroke": [0.0, 4e-5]}, {"time": "s", "stroke": "m"})
+    >>> r = Result({"time": [0.0, 0.5], "stroke": [0.0, 4e-5]}, {"time": "s", "stroke": "m"})
     >>> path = os.path.join(tempfile.mkdtemp(), "r.csv")
     >>> r.to_csv(path)
     >>> read_csv(path).unit("stroke")

@@ -17,7 +17,7 @@ The modal damping ratio of a mode of circular frequency ``omega`` is
 ``zeta(omega) = alpha/(2 omega) + beta omega/2``.
 
 The ``damping=`` argument of :class:`~exudyn_atcm.mechanism.Bender` and
-:class:`~exudyn_atcm.actuator.BendingActuator` also takes a plain ratio ``zeta`` (default
+:class:`~exudyn_atcm.mechanism.actuator.BendingActuator` also takes a plain ratio ``zeta`` (default
 0.02): that is stiffness-proportional damping with ``beta = 2 zeta / omega_1``, ``omega_1`` the
 first clamped-free frequency of *that* bender, i.e. the same damping ratio ``zeta`` at the
 bender's own first mode.  It is the same material damping as

@@ -8,26 +8,17 @@ import warnings
 from typing import Any, Callable, Union
 
 from .._checks import finite_float, positive_float
+from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE, check_physical
 
 VoltageProgram = Union[float, Callable[[float], float]]
 
 _OPERATOR_METHODS = ("evaluate", "commit", "reset", "apply", "checkpoint", "restore")
 
-#: Rated operating voltage of the MFC P1 type [V] (d33 mode, -500 ... +1500 V; Smart Material
-#: Corp. data sheet; the paper drives its MFC over exactly this range).
-MFC_P1_RATED_RANGE = (-500.0, 1500.0)
 
 #: Free strains [-] above this magnitude are implausible for a piezo layer (MFC P1 reaches
 #: about 1.4e-3 at 1500 V, piezo ceramics about 2e-3): most likely a unit mistake.
 PLAUSIBLE_STRAIN = 1e-2
 
-#: A voltage program whose peak ``|U|`` stays below this fraction of the largest magnitude of
-#: the rated range (3 V for the MFC P1's -500 ... +1500 V) is most likely written in kV: a
-#: program in kV peaks at 1/1000 of its meaning, at most 1.5 V within the MFC's rating.
-#: The threshold leaves a factor 2 above that and a factor 5 below the smallest deliberate
-#: small-signal program of the package (a 1 % triangle, -5 ... 15 V); at 3 V the MFC's free
-#: strain is about 3e-6, 0.2 % of its full stroke.
-KV_SUSPECT_FRACTION = 2e-3
 
 
 def _is_controller(value: Any) -> bool:
@@ -47,7 +38,8 @@ class PiezoDrive:
         :class:`exudyn_atcm.model.control.PIDController`; see :mod:`exudyn_atcm.model.control` for the
         protocol) that sets the voltage from the simulated tip deflection during the run.
     d33 : float, optional
-        Piezoelectric constant [m/V] (= C/N), > 0.  Default 460e-12 (MFC P1, high field).
+        Piezoelectric constant [m/V] (= C/N), > 0 and at most 1e-7 (no material comes near:
+        :data:`~exudyn_atcm.physical_bounds.PHYSICAL_LIMITS`).  Default 460e-12 (MFC P1, high field).
         Used only without ``hysteresis``.
     electrode_spacing : float, optional
         Spacing of the interdigitated electrodes ``t_IDE`` [m], > 0.  Default 0.5e-3.
@@ -99,8 +91,9 @@ class PiezoDrive:
                 f"voltage must be a finite number [V] or a callable of time t [s], got {voltage!r}"
             )
         self.voltage = voltage
-        self.d33 = positive_float("d33", d33)
-        self.electrode_spacing = positive_float("electrode_spacing", electrode_spacing)
+        self.d33 = check_physical("d33", positive_float("d33", d33), "PiezoDrive")
+        self.electrode_spacing = check_physical("electrode_spacing", positive_float("electrode_spacing", electrode_spacing),
+                                                "PiezoDrive")
         if hysteresis is not None:
             missing = [m for m in _OPERATOR_METHODS if not callable(getattr(hysteresis, m, None))]
             if missing:

@@ -6,6 +6,7 @@ import warnings
 from dataclasses import dataclass
 
 from .._checks import positive_float
+from ..physical_bounds import check_physical
 
 #: Plausible ranges (SI) of a layer's values; outside them a ``RuntimeWarning`` suggests a unit
 #: mistake.  Thickness: textile and piezo layers are 10 µm ... 10 mm thick (0.2 means
@@ -35,7 +36,9 @@ class Layer:
     Raises
     ------
     ValueError
-        If a value is not a finite positive number (the message names the parameter).
+        If a value is not a finite positive number (the message names the parameter), or
+        cannot be physical (:data:`~exudyn_atcm.physical_bounds.PHYSICAL_LIMITS`: a modulus
+        above 1e13 Pa, a density above 1e5 kg/m³, a thickness below 1e-10 m).
 
     Warns
     -----
@@ -55,6 +58,8 @@ class Layer:
         object.__setattr__(self, "thickness", positive_float("thickness", self.thickness))
         object.__setattr__(self, "youngs_modulus", positive_float("youngs_modulus", self.youngs_modulus))
         object.__setattr__(self, "density", positive_float("density", self.density))
+        for name in ("thickness", "youngs_modulus", "density"):
+            check_physical(name, getattr(self, name), "Layer")
         for name, (low, high, unit, mistake) in PLAUSIBLE_RANGES.items():
             value = getattr(self, name)
             if not low <= value <= high:

@@ -9,8 +9,11 @@
                       [--constraint "NAME>=VALUE"] [--method differential_evolution]
                       [--set NAME=VALUE] [--workers N | --scheduler ADDRESS] [--out DIR]
 
+Ctrl-C or ``SIGTERM`` stops a sweep at once (its workers too) and says how many runs are
+stored and the command that resumes; exit status 130 (Ctrl-C) or 143 (``SIGTERM``).
 Exit status of ``sweep``: 0 if every run succeeded, 1 if any run failed (the study still
-completes and the table holds each error), 2 for a usage error (unknown case or
+completes and the table holds each error), if the output directory cannot be written, or
+if another sweep is writing the same table now; 2 for a usage error (unknown case or
 parameter, bad grid).  Of ``optimize``: 0 if the best design satisfies the constraints,
 1 if no evaluated design does, 2 for a usage error.
 """
@@ -18,14 +21,18 @@ parameter, bad grid).  Of ``optimize``: 0 if the best design satisfies the const
 from __future__ import annotations
 
 import argparse
+import shlex
 import sys
 import time
+from collections.abc import Sequence
 from typing import IO
 
 from ..casework.error_report import report_error as _error
 from ..casework.case import CaseError, load_case
+from ..casework.termination import StopSignal, stop_signals_as_interrupt
+from .lock import StudyLockedError
 
-__all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
+__all__ = ["add_sweep_parser", "sweep_command", "resume_note", "add_optimize_parser", "optimize_command", "RunProgressBar"]
 
 
 class RunProgressBar:
@@ -92,6 +99,27 @@ def _check_engine_options(args: argparse.Namespace, debug: bool) -> int | None:
     return None
 
 
+def resume_note(case_name: str, exc: BaseException, argv: Sequence[str] | None) -> str:
+    """What an interrupted sweep leaves: runs stored, and the command that resumes (one line).
+
+    Parameters
+    ----------
+    case_name : str
+        The case.
+    exc : BaseException
+        The ``KeyboardInterrupt`` from :func:`~exudyn_atcm.study.run_study` (with
+        ``stored_runs``, ``distinct_runs`` and ``store_directory`` if the runs had started).
+    argv : sequence of str, optional
+        The command's arguments after ``exudyn-atcm`` (``None``: not known).
+    """
+    command = ("exudyn-atcm " + shlex.join(argv)) if argv else "the same command"
+    store = getattr(exc, "store_directory", None)
+    if store is None:
+        return f"{case_name}: sweep stopped before any run was stored; {command} starts it again"
+    return (f"{case_name}: sweep stopped with {exc.stored_runs} of {exc.distinct_runs} runs stored in {store}; "
+            f"to resume (stored runs are not repeated): {command}")
+
+
 def add_sweep_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
     """Add the ``sweep`` subcommand to ``sub``; returns its parser."""
     sweep = sub.add_parser(
@@ -143,18 +171,27 @@ def sweep_command(args: argparse.Namespace) -> int:
     except (CaseError, ValueError) as exc:
         return _error(exc, debug, 2)
     bar = RunProgressBar(sys.stderr)
+    stop = StopSignal()
     try:
-        result = run_study(
-            case, grid or None, samples=args.samples, bounds=bounds or None, method=args.sampling, seed=args.seed,
-            fixed=fixed, workers=args.workers, scheduler=args.scheduler, out=args.out, store=args.store,
-            retry_failed=args.retry_failed, progress=bar,
-        )
+        with stop_signals_as_interrupt() as stop:
+            result = run_study(
+                case, grid or None, samples=args.samples, bounds=bounds or None, method=args.sampling, seed=args.seed,
+                fixed=fixed, workers=args.workers, scheduler=args.scheduler, out=args.out, store=args.store,
+                retry_failed=args.retry_failed, progress=bar,
+            )
+    except KeyboardInterrupt as exc:
+        bar.close()
+        print(resume_note(case.name, exc, getattr(args, "argv", None)), file=sys.stderr)
+        return _error("interrupted" if stop.signum is None else stop.describe(), debug, stop.exit_status)
     except (CaseError, ValueError) as exc:
         bar.close()
         return _error(exc, debug, 2)
     except ImportError as exc:
         bar.close()
         return _error(exc, debug, 2)
+    except (OSError, StudyLockedError) as exc:  # an output directory that cannot be written, a second sweep
+        bar.close()
+        return _error(exc, debug, 1)
     bar.close()
     files = list(result.files)
     if not args.no_plot:
@@ -259,6 +296,8 @@ def optimize_command(args: argparse.Namespace) -> int:
         )
     except (CaseError, ValueError, ImportError) as exc:
         return _error(exc, debug, 2)
+    except OSError as exc:  # an output directory or store that cannot be written
+        return _error(exc, debug, 1)
     units = {p.name: p.unit for p in case.parameters}
     sense = "maximum" if args.maximize else "minimum"
     print(f"{case.name}: {sense} of {args.objective} = {best.objective:.7g} after {best.evaluations} evaluations "

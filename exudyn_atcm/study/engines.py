@@ -9,7 +9,9 @@ workers) and builds one Exudyn system per run.
 * :class:`SerialEngine`: runs in the calling process (``workers=1``; debugging).
 * :class:`ProcessEngine`: a pool of worker processes on this machine (default: one per
   core), reused for all runs of the study; at most ``2 x workers`` runs are queued at a
-  time, so an interrupted study leaves little work in flight.
+  time, so an interrupted study leaves little work in flight.  The workers end with the
+  study's process however it ends, ``SIGKILL`` included
+  (:func:`~exudyn_atcm.study.parent_watch.end_with_parent`).
 * :class:`DaskEngine`: the runs go to the workers of a Dask distributed cluster (a
   ``dask.distributed.Client``, or the address of its scheduler).  Needs the optional
   extra ``pip install "exudyn-atcm[distributed]"``.  Workers need this package installed,
@@ -35,6 +37,8 @@ from pathlib import Path
 from typing import Any
 
 from ..casework.case import Case, CaseError
+from ..casework.termination import STOP_SIGNALS
+from .parent_watch import end_with_parent
 from .store import case_fingerprint
 
 __all__ = ["CaseSpec", "case_spec", "execute_run", "SerialEngine", "ProcessEngine", "DaskEngine", "make_engine"]
@@ -155,12 +159,20 @@ def execute_run(spec: CaseSpec, index: int, key: str, values: dict[str, Any]) ->
 _WORKER_SPEC: CaseSpec | None = None
 
 
-def _init_worker(spec: CaseSpec) -> None:
+def _init_worker(spec: CaseSpec, study_pid: int | None = None) -> None:
     global _WORKER_SPEC
     _WORKER_SPEC = spec
+    # end with the study's process, however it ends (SIGKILL too): no orphan blocked on the pipe
+    if study_pid is not None:
+        end_with_parent(study_pid)
     # Ctrl-C in a terminal reaches the whole process group: only the study's process reacts
     # (it stops the workers itself), so no worker dies half-way through a pool operation
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # a forked worker inherits the study's SIGTERM handler (which raises KeyboardInterrupt and
+    # would be caught by the pool): SIGTERM ends a worker at once, as by default
+    for name in STOP_SIGNALS:
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
     try:
         load_spec(spec)  # once per worker; a failure is reported by each run
     except Exception:  # noqa: BLE001
@@ -237,7 +249,8 @@ class ProcessEngine(SerialEngine):
             context = multiprocessing.get_context(self.start_method)
             if self.start_method == "forkserver":
                 context.set_forkserver_preload(["exudyn_atcm.study.engines", "exudyn"])
-            self._pool = cf.ProcessPoolExecutor(self.workers, mp_context=context, initializer=_init_worker, initargs=(spec,))
+            self._pool = cf.ProcessPoolExecutor(self.workers, mp_context=context, initializer=_init_worker,
+                                                initargs=(spec, os.getpid()))
             self._spec = spec
         return self._pool
 

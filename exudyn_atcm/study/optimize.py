@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.atomic import write_json
+from ..io.atomic import make_directory, write_json
 from ..casework.case import Case, CaseOutput, load_case
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
@@ -219,9 +219,7 @@ def optimize(
     overlap = sorted(set(fixed_values) & set(names))
     if overlap:
         raise GridError(f"parameters {overlap} are both fixed and design variables")
-    out_dir = Path(out) if out is not None else None
-    if out_dir is not None:
-        out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = make_directory(out) if out is not None else None
     run_store = store if isinstance(store, RunStore) else RunStore(store) if store is not None else (
         RunStore(out_dir / "runs") if out_dir is not None else None)
 

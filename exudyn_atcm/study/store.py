@@ -14,14 +14,54 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from ..io.atomic import write_json
+from ..io.atomic import describe_os_error, make_directory, write_json
 from .._version import __version__
 
-__all__ = ["RunStore", "run_key", "case_fingerprint"]
+__all__ = ["RunStore", "run_key", "case_fingerprint", "record_problem"]
+
+#: Fields of a run record and the types they must have (``None`` allowed where listed).
+_FIELDS: dict[str, tuple[type, ...]] = {
+    "key": (str,),
+    "status": (str,),
+    "error": (str,),
+    "scalars": (dict,),
+    "scalar_units": (dict,),
+    "steps": (int, type(None)),
+    "wall_time": (int, float, type(None)),
+}
+
+
+def record_problem(record: Any, key: str) -> str | None:
+    """What makes ``record`` unusable as the stored run ``key``, or ``None`` if it is usable.
+
+    Checks that it is a JSON object with the run's ``key``, a ``status`` of ``"ok"`` or
+    ``"failed"``, a string ``error``, ``scalars`` mapping names to numbers, ``scalar_units``
+    mapping names to strings, ``steps`` an integer or null and ``wall_time`` a number.
+    """
+    if not isinstance(record, dict):
+        return f"it holds a JSON {type(record).__name__}, not an object"
+    if record.get("key") != key:
+        return f"its key is {record.get('key')!r}, not the run's {key!r} (a file of another run?)"
+    for name, types in _FIELDS.items():
+        if name not in record:
+            return f"the field {name!r} is missing"
+        value = record[name]
+        if isinstance(value, bool) or not isinstance(value, types):
+            return f"the field {name!r} is {value!r} ({type(value).__name__}), expected {' or '.join(t.__name__ for t in types)}"
+    if record["status"] not in ("ok", "failed"):
+        return f"the field 'status' is {record['status']!r}, expected 'ok' or 'failed'"
+    for name, value in record["scalars"].items():
+        if not isinstance(name, str) or isinstance(value, bool) or not isinstance(value, (int, float)):
+            return f"the scalar {name!r} is {value!r} ({type(value).__name__}), expected a number"
+    for name, value in record["scalar_units"].items():
+        if not isinstance(value, str):
+            return f"the unit of scalar {name!r} is {value!r}, expected a string"
+    return None
 
 
 def case_fingerprint(name: str, source_text: str) -> str:
@@ -72,22 +112,39 @@ class RunStore:
     """
 
     def __init__(self, directory: str | os.PathLike) -> None:
-        self.directory = Path(directory)
-        self.directory.mkdir(parents=True, exist_ok=True)
+        self.directory = make_directory(directory, "run store")
 
     def path(self, key: str) -> Path:
         """File of the record of ``key``."""
         return self.directory / key[:2] / f"{key}.json"
 
     def load(self, key: str) -> dict[str, Any] | None:
-        """The stored record of ``key``, or ``None`` if the run has not finished (or the file is unreadable)."""
+        """The stored record of ``key``, or ``None`` if the run has not finished.
+
+        A record that exists but cannot be used (not JSON, another key, a field of the wrong
+        type: a damaged or hand-edited file) is also ``None``, so the run is executed again and
+        the record replaced; a ``RuntimeWarning`` names the file and what is wrong with it.
+        """
         path = self.path(key)
         try:
             with open(path, encoding="utf-8") as handle:
                 record = json.load(handle)
-        except (OSError, ValueError):
+        except FileNotFoundError:
             return None
-        return record if isinstance(record, dict) and record.get("key") == key else None
+        except (OSError, ValueError) as exc:
+            reason = describe_os_error(exc) if isinstance(exc, OSError) else f"not valid JSON ({exc})"
+            self._unusable(path, reason)
+            return None
+        problem = record_problem(record, key)
+        if problem is not None:
+            self._unusable(path, problem)
+            return None
+        return record
+
+    @staticmethod
+    def _unusable(path: Path, reason: str) -> None:
+        warnings.warn(f"run store record {str(path)!r} cannot be used: {reason}; the run is executed again "
+                      "and the record replaced", RuntimeWarning, stacklevel=4)
 
     def save(self, record: Mapping[str, Any]) -> Path:
         """Write ``record`` (which holds its ``key``) atomically; returns the file."""

@@ -11,18 +11,20 @@ See :doc:`/studies` for engines (process pool, Dask), resuming and the command l
 from __future__ import annotations
 
 import os
-from collections import Counter
 import time
+from collections import Counter
+from contextlib import nullcontext
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..io.atomic import write_json
+from ..io.atomic import make_directory, write_json
 from .._version import __version__
 from ..casework.case import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
+from .lock import TableLock
 from .store import RunStore, run_key
 from .table import Column, table_columns, to_table, write_table_csv
 
@@ -143,6 +145,12 @@ def run_study(
     Parameters are those of :func:`sweep`; ``engine`` (an object from
     :mod:`exudyn_atcm.study.engines`) replaces ``workers``/``client``/``scheduler`` and is
     left open (for a caller that runs several studies on one pool).
+
+    A ``KeyboardInterrupt`` (Ctrl-C; ``SIGTERM`` inside
+    :func:`~exudyn_atcm.casework.termination.stop_signals_as_interrupt`) stops the workers at once and
+    propagates with three attributes: ``stored_runs`` (distinct runs of the study in the store
+    now), ``distinct_runs`` (distinct runs of the study) and ``store_directory`` (``None``
+    without a store), so that the caller can say what a new start will resume from.
     """
     start = time.perf_counter()
     case = _as_case(case)
@@ -155,9 +163,18 @@ def run_study(
     full = [dict(case.resolve({**fixed_values, **p})) for p in pts]
     keys = [run_key(spec.fingerprint, values) for values in full]
 
-    out_dir = Path(out) if out is not None else None
-    if out_dir is not None:
-        out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = make_directory(out) if out is not None else None
+    lock = TableLock(out_dir / f"{case.name}_sweep.csv", f"sweep of {case.name}") if out_dir is not None else nullcontext()
+    with lock:
+        return _run_locked(case, spec, fixed_values, pts, full, keys, out_dir, store, retry_failed, progress,
+                           use_pandas, engine, workers, client, scheduler, start)
+
+
+def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[dict[str, Any]], full: list[dict[str, Any]],
+                keys: list[str], out_dir: Path | None, store: Any, retry_failed: bool, progress: StudyProgress | None,
+                use_pandas: bool | None, engine: Any, workers: int | None, client: Any, scheduler: str | None,
+                start: float) -> StudyResult:
+    """The body of :func:`run_study` once the table is locked (two studies never write one table)."""
     if isinstance(store, RunStore):
         run_store: RunStore | None = store
     elif store is not None:
@@ -202,10 +219,14 @@ def run_study(
                 failed += n_rows if record["status"] != "ok" else 0
                 if progress is not None:
                     progress(done, total, failed)
-    except BaseException:
+    except BaseException as exc:
         # interrupted (Ctrl-C, a failing progress callback ...): finished runs are stored;
         # stop the workers at once instead of waiting for the runs in flight
         runner.abort()
+        if isinstance(exc, KeyboardInterrupt):  # say what a new start would find
+            exc.stored_runs = sum(1 for r in by_key.values() if not r.get("transient")) if run_store is not None else 0
+            exc.distinct_runs = len(set(keys))
+            exc.store_directory = run_store.directory if run_store is not None else None
         raise
     finally:
         if own_engine:
@@ -327,6 +348,10 @@ def sweep(
         type, an empty range or ``samples < 1``.
     CaseError
         If the case cannot be loaded or has no source file.
+    exudyn_atcm.study.lock.StudyLockedError
+        If another study is writing the same table (``out`` and case) now.
+    exudyn_atcm.io.atomic.WriteError
+        (an ``OSError``) if ``out`` or the store cannot be created, naming it and the reason.
 
     Notes
     -----
