@@ -26,7 +26,7 @@ import sys
 import warnings
 from collections.abc import Sequence
 
-from . import cases as _cases
+from .casework import case as _cases
 from .casework.error_report import report_error as _error
 from .casework.termination import StopSignal, stop_signals_as_interrupt
 
