@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, positive_int, same_length
+from .fit_cost import check_cost, finite_squares, loop_fit_cost
 from .fit_report import make_report
 from .identification import _nonnegative
 
@@ -107,6 +108,10 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     y_a = finite_array("y", y, min_length=2)
     same_length(("u", "y"), (u_a, y_a))
     n = positive_int("n", n)
+    finite_squares("u", u_a)
+    finite_squares("y", y_a)
+    check_cost(f"{cls.__name__}.from_loop", loop_fit_cost(n, u_a.size),
+               "use fewer relays (n; the error on the loop is below one gain step (y_max - y_min)/n)")
     reversal_tolerance = _nonnegative("reversal_tolerance", reversal_tolerance)
     coverage = _nonnegative("coverage", coverage)
     if coverage > 1.0:
