@@ -6,7 +6,7 @@ estimates its working memory and run time from the record length and the model s
 doing any work, and
 
 * refuses with a ``ValueError`` when the memory would exceed ``LIMITS["bytes"]`` (1 GiB) or
-  the time ``10 × LIMITS["seconds"]`` (10 minutes),
+  the time ``LIMITS["refuse_seconds"]`` (10 minutes),
 * warns (``RuntimeWarning``) when the time would exceed ``LIMITS["seconds"]`` (one minute),
 
 each message giving the estimate and what to change (fewer levels or plays, a decimated
@@ -27,9 +27,9 @@ import numpy as np
 __all__ = ["LIMITS", "FLOP_RATE", "CostEstimate", "check_cost", "grid_fit_cost", "play_fit_cost",
            "continuous_fit_cost", "loop_fit_cost", "finite_squares"]
 
-#: Work a fit may start without being asked: run time [s] (a warning beyond it, a refusal
-#: beyond ten times it) and working memory [bytes] (a refusal beyond it).
-LIMITS = {"seconds": 60.0, "bytes": float(2**30)}
+#: Work a fit may start without being asked: run time [s] (``"seconds"``: a warning beyond it;
+#: ``"refuse_seconds"``: a refusal beyond it) and working memory [bytes] (a refusal beyond it).
+LIMITS = {"seconds": 60.0, "refuse_seconds": 600.0, "bytes": float(2**30)}
 
 #: Dense floating-point operations per second assumed for the estimates (one BLAS thread on a
 #: busy machine; a quiet modern core does two to four times more).
@@ -69,10 +69,10 @@ def check_cost(method: str, estimate: CostEstimate, advice: str) -> None:
         raise ValueError(
             f"{method} refused before starting: it would need {estimate.text()}, more than the "
             f"{limit_b / 2**30:.3g} GiB allowed (exudyn_atcm.hysteresis.fit_cost.LIMITS); {advice}")
-    if estimate.seconds > 10.0 * limit_s:
+    if estimate.seconds > LIMITS["refuse_seconds"]:
         raise ValueError(
             f"{method} refused before starting: it would take {estimate.text()}, more than "
-            f"{10.0 * limit_s:.3g} s (10 x exudyn_atcm.hysteresis.fit_cost.LIMITS['seconds']); {advice}")
+            f"{LIMITS['refuse_seconds']:.3g} s (exudyn_atcm.hysteresis.fit_cost.LIMITS); {advice}")
     if estimate.seconds > limit_s:
         warnings.warn(f"{method} will take {estimate.text()}, more than {limit_s:.3g} s; {advice}",
                       RuntimeWarning, stacklevel=4)
