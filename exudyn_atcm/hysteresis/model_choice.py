@@ -4,15 +4,14 @@
 predicts the same held-out part with each (the model runs over the whole record from its
 reset state, so the held-out part starts from the memory the fitted part left):
 
-=====================  ====================================================  ===============
-family                 fit                                                   inverse
-=====================  ====================================================  ===============
-``equal_gain``         :meth:`DiscretePreisach.from_loop` (the paper's Eq. 12)  none: steps
-``discrete``           :meth:`DiscretePreisach.fit` (relay grid)               none: steps
-``everett``            :meth:`EverettPreisach.fit` (grid, cells spread)        bisection
-``prandtl_ishlinskii`` :meth:`PrandtlIshlinskii.fit`                           analytic
-``continuous``         :meth:`ContinuousPreisach.fit` (power law, Eqs. 8-10)   bisection
-=====================  ====================================================  ===============
+* ``equal_gain``: :meth:`DiscretePreisach.from_loop` (the paper's Eq. 12); no continuous inverse
+  (staircase);
+* ``discrete``: :meth:`DiscretePreisach.fit` (relay grid); no continuous inverse (staircase);
+* ``everett``: :meth:`EverettPreisach.fit` (grid, each weight spread over its cell); inverse by
+  bisection;
+* ``prandtl_ishlinskii``: :meth:`PrandtlIshlinskii.fit`; analytic inverse;
+* ``continuous``: :meth:`ContinuousPreisach.fit` (the paper's power law, Eqs. 8-10); inverse by
+  bisection.
 
 The result, a :class:`ModelChoice`, ranks them by held-out RMS error (in % of the output range
 of the fitted part), with parameter count, fit time and whether a continuous inverse exists
