@@ -51,6 +51,8 @@ PARAMETERS = [
     Parameter("split_fraction", 0.6, "-", "fraction of the duration fitted; the rest is held out"),
     Parameter("n_levels", 40, "-", "grid levels of the Preisach fit"),
     Parameter("smoothing", 1e-3, "-", "smoothness regularisation of the Preisach fit"),
+    Parameter("prior", "pi", "-", "prior of the Preisach fits where the record says nothing: pi (cross-validated) or smooth",
+              choices=("pi", "smooth")),
     Parameter("n_plays", 20, "-", "plays of the Prandtl-Ishlinskii fit"),
     Parameter("n_relays_eq12", 20, "-", "relays of the equal-gain model (Eq. 12)"),
     Parameter("trim_start", 0.0, "s", "settling time trimmed from the start"),
@@ -71,7 +73,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     choice = None
     if n_fit < t.size:  # every family on the same split, ranked on the held-out part
-        choice = identify(u, y, n_fit=n_fit, n_levels=p.n_levels, smoothing=p.smoothing, n_plays=p.n_plays,
+        choice = identify(u, y, n_fit=n_fit, n_levels=p.n_levels, smoothing=p.smoothing, prior=p.prior, n_plays=p.n_plays,
                           n_relays=p.n_relays_eq12, reversal_tolerance=0.02, output_unit=unit)
         print(choice.to_text())
         report = choice.candidate("everett").report
@@ -82,8 +84,10 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         eq12_report = make_report(eq12.model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
                                   notes=eq12.report.notes, output_unit=unit)
     else:
-        _, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
-        _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
+        _, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                        prior=p.prior)
+        _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                              prior=p.prior)
         _, pi_report = PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit)
         _, cont_report = ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit)
         eq12_model, eq12_fit = DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12,

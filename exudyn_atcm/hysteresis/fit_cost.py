@@ -79,7 +79,8 @@ def check_cost(method: str, estimate: CostEstimate, advice: str) -> None:
 
 
 def grid_fit_cost(n_levels: int, n_samples: int, basis: str = "relays",
-                  distinct_rows: int | None = None) -> CostEstimate:
+                  distinct_rows: int | None = None, cv_folds: int = 0,
+                  cv_strengths: int = 5) -> CostEstimate:
     """Cost of a relay-grid fit (:meth:`DiscretePreisach.fit`, :meth:`EverettPreisach.fit`).
 
     ``R = n_levels (n_levels + 1) / 2`` unknowns.  Memory: three ``R × R`` float arrays (Gram
@@ -87,7 +88,9 @@ def grid_fit_cost(n_levels: int, n_samples: int, basis: str = "relays",
     sweep over the samples, the Gram matrix (``2 m R²`` flops for spread cells; for relays the
     distinct states, at most ``distinct_rows``, default the samples) and about ``R³`` flops of
     Cholesky factorisations in the block-pivoting NNLS (measured: ten factorisations of
-    shrinking free sets add up to 0.9 ``R³``).
+    shrinking free sets add up to 0.9 ``R³``); with ``cv_folds`` (the ``"pi"`` prior's
+    cross-validation over ``cv_strengths`` candidates) a Gram matrix per block and
+    ``cv_folds × cv_strengths`` warm-started fits of about half a fit's factorisations each.
     """
     relays = n_levels * (n_levels + 1) // 2
     m = max(int(n_samples), 1)
@@ -102,7 +105,12 @@ def grid_fit_cost(n_levels: int, n_samples: int, basis: str = "relays",
         sweep = m * (7e-5 + 5e-8 * relays)
         gram_flops = 2.0 * m * relays**2
     seconds = sweep + (gram_flops + relays**3) / FLOP_RATE
-    return CostEstimate(seconds, memory, f"{relays} relays, {m} samples")
+    cv_fits = cv_folds * cv_strengths
+    if cv_fits:
+        memory += (cv_folds + 1) * relays**2 * 8.0
+        seconds += cv_folds * sweep + cv_fits * 0.5 * relays**3 / FLOP_RATE
+    return CostEstimate(seconds, memory, f"{relays} relays, {m} samples"
+                        + (f", {cv_fits} cross-validation fits" if cv_fits else ""))
 
 
 def play_fit_cost(n_plays: int, n_samples: int) -> CostEstimate:

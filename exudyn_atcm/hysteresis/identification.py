@@ -33,6 +33,7 @@ from .._checks import finite_array, same_length
 from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_cost, play_fit_cost
 from .fit_report import FitReport, make_report
 from .nnls import nnls_gram, single_blas_thread
+from .priors import PRIOR_STRENGTHS, PRIORS, along_lines_matrix, cross_validate_strength, solve_regularised
 from .staircase import StaircasePreisach
 
 #: Fewest samples accepted by the least-squares fits.
@@ -262,7 +263,8 @@ def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: Any) -> np.ndar
 
 def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float = 1e-3, n_fit: int | None = None,
                  input_range: tuple[float, float] | None = None, output_unit: str = "",
-                 basis: str = "relays") -> tuple[Any, FitReport]:
+                 basis: str = "relays", prior: str = "smooth", prior_weight: float | None = None,
+                 cv_folds: int = 5) -> tuple[Any, FitReport]:
     """Body of :meth:`DiscretePreisach.fit` (``basis="relays"``) and :meth:`EverettPreisach.fit`
     (``basis="cells"``: each weight spread over its grid cell)."""
     if basis not in ("relays", "cells"):
@@ -277,6 +279,13 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             f"of {relays}x{relays} floats ({relays**2 * 8 / 2**30:.3g} GiB); 10 ... 40 levels resolve a measured loop "
             "to about its noise level")
     smoothing = _nonnegative("smoothing", smoothing)
+    if prior not in PRIORS:
+        raise ValueError(f"prior must be one of {', '.join(repr(p) for p in PRIORS)}, got {prior!r}")
+    if prior_weight is not None:
+        prior_weight = _nonnegative("prior_weight", prior_weight)
+    cross_validate = prior == "pi" and prior_weight is None
+    if cross_validate and (isinstance(cv_folds, bool) or not isinstance(cv_folds, (int, np.integer)) or cv_folds < 2):
+        raise ValueError(f"cv_folds must be an integer >= 2, got {cv_folds!r}")
     if input_range is not None:
         try:
             u_lo, u_hi = (float(v) for v in input_range)
@@ -291,7 +300,9 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     crossed = (np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="right")) != 0) | (
         np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="left")) != 0)
     changes = 1 + int(np.count_nonzero(crossed))
-    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, n_fit, basis, distinct_rows=changes),
+    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, n_fit, basis, distinct_rows=changes,
+                                                    cv_folds=cv_folds if cross_validate else 0,
+                                                    cv_strengths=len(PRIOR_STRENGTHS)),
                "use fewer levels (n_levels) or decimate the record (exudyn_atcm.measurements.preprocess)")
     alpha, beta, index = relay_grid(u_lo, u_hi, n_levels)
     edges = np.linspace(u_lo, u_hi, n_levels + 1)
@@ -322,7 +333,37 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     d = _smoothness_matrix(index, n_levels)
     dtd = (d.T @ d).tocsr()
     lam = smoothing * float(np.trace(gram_c)) / max(float(dtd.diagonal().sum()), 1e-300)
-    weights = _nnls_normal(gram_c, rhs_c, lam * dtd)
+    prior_settings: dict = {"prior": prior}
+    if prior == "smooth":
+        weights = _nnls_normal(gram_c, rhs_c, lam * dtd)
+    else:
+        dp = along_lines_matrix(index, n_levels)
+        ptp_lap = (dp.T @ dp).tocsr()
+        strength = prior_weight
+        if cross_validate:
+            if (n_fit - start) < cv_folds * MIN_SAMPLES:
+                raise ValueError(f"cv_folds = {cv_folds} blocks of at least {MIN_SAMPLES} samples need {cv_folds * MIN_SAMPLES} "
+                                 f"fitted samples, got {n_fit - start}; give prior_weight or fewer folds")
+            bounds = np.linspace(start, n_fit, cv_folds + 1).round().astype(int)
+            folds = []
+            with single_blas_thread():
+                for a, b in zip(bounds[:-1], bounds[1:]):
+                    if basis == "relays":
+                        stats = relay_gram(alpha, beta, u_a, y_a / scale, int(a), int(b))
+                    else:
+                        stats = cell_gram(edges, index, u_a, y_a / scale, int(a), int(b))
+                    folds.append((*stats, float(np.sum((y_a[a:b] / scale) ** 2))))
+                strength, cv_table = cross_validate_strength(folds, dtd, smoothing, ptp_lap)
+            for row in cv_table:
+                row["cv_rms"] *= scale
+                row["cv_mse_se"] *= scale**2
+            prior_settings["cross_validation"] = {"folds": cv_folds, "rule": "strongest within one standard error",
+                                                  "table": cv_table}
+            notes.append(f"prior 'pi' (smoothness along alpha - beta): strength {strength:g} chosen by {cv_folds}-fold "
+                         "cross-validation (strongest within one standard error of the best)")
+        with single_blas_thread():
+            weights, lams, _ = solve_regularised(gram_c, rhs_c, [(smoothing, dtd), (strength, ptp_lap)])
+        prior_settings.update({"prior_weight": strength, "prior_weight_absolute": lams[1]})
     offset = (ysum / m - float(mean_s @ weights)) * scale
     weights = weights * scale
     never = colsum == 0.0
@@ -334,8 +375,8 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     report = make_report(
         model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
         settings={"n_levels": n_levels, "n_relays": int(alpha.size), "smoothing": smoothing,
-                  "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis},
-        notes=notes, output_unit=output_unit, fit_time=elapsed,
+                  "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis, **prior_settings},
+        notes=notes, output_unit=output_unit, fit_time=elapsed, coverage_levels=n_levels,
     )
     return model, report
 

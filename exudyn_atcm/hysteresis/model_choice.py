@@ -195,7 +195,7 @@ def _record_arrays(record: Any, y: Any) -> tuple[Any, Any, str, Any]:
 
 def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = None,
              families: tuple[str, ...] = FAMILIES, n_levels: int = 30, n_plays: int = 20, n_relays: int = 20,
-             smoothing: float = 1e-3, reversal_tolerance: float = 0.02, levels: str = "paper",
+             smoothing: float = 1e-3, prior: str = "pi", reversal_tolerance: float = 0.02, levels: str = "paper",
              simpler_margin: float = 0.1, output_unit: str | None = None) -> ModelChoice:
     """Fit every hysteresis family to a record and choose one by its held-out error.
 
@@ -222,6 +222,9 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
         Relays of the ``equal_gain`` model.
     smoothing : float, optional
         Regularisation of the grid fits.
+    prior : {"pi", "smooth"}, optional
+        Prior of the grid fits where the record says nothing (default ``"pi"``, its strength
+        cross-validated on the fitted part: see :mod:`exudyn_atcm.hysteresis.priors`).
     reversal_tolerance : float, optional
         Of the ``equal_gain`` construction (fraction of the input range; see ``from_loop``).
     levels : {"paper", "centred"}, optional
@@ -271,8 +274,8 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
             return f"equal_gain ({n_relays} relays, {levels})", model, report, 2 * n_relays + 2
         if family in ("discrete", "everett"):
             cls = DiscretePreisach if family == "discrete" else EverettPreisach
-            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, n_fit=n_fit, output_unit=unit)
-            return f"{family} ({n_levels} levels)", model, report, n_levels * (n_levels + 1) // 2 + 1
+            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, n_fit=n_fit, output_unit=unit, prior=prior)
+            return f"{family} ({n_levels} levels, {prior})", model, report, n_levels * (n_levels + 1) // 2 + 1
         if family == "prandtl_ishlinskii":
             model, report = PrandtlIshlinskii.fit(u_a, y_a, n_plays, n_fit=n_fit, output_unit=unit)
             return f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1
