@@ -51,8 +51,8 @@ PARAMETERS = [
     Parameter("split_fraction", 0.6, "-", "fraction of the duration fitted; the rest is held out"),
     Parameter("n_levels", 40, "-", "grid levels of the Preisach fit"),
     Parameter("smoothing", 1e-3, "-", "smoothness regularisation of the Preisach fit"),
-    Parameter("prior", "pi", "-", "prior of the Preisach fits where the record says nothing: pi (cross-validated) or smooth",
-              choices=("pi", "smooth")),
+    Parameter("prior", "smooth", "-", "prior of the Preisach fits where the record says nothing: smooth or pi "
+              "(cross-validated)", choices=("smooth", "pi")),
     Parameter("n_plays", 20, "-", "plays of the Prandtl-Ishlinskii fit"),
     Parameter("n_relays_eq12", 20, "-", "relays of the equal-gain model (Eq. 12)"),
     Parameter("trim_start", 0.0, "s", "settling time trimmed from the start"),
