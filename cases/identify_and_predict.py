@@ -13,6 +13,11 @@ continuous output; the main result) and once as the bare relay grid
 paper's continuous power-law model fitted by least squares, and the equal-gain relays of
 Eq. 12 (:meth:`DiscretePreisach.from_loop`, on the record's major-loop branches).
 
+All five families are fitted on the same split by :func:`exudyn_atcm.hysteresis.identify`,
+which ranks them by held-out RMS error (with parameter count, fit time, invertibility) and
+chooses one; the table is printed, kept in the case JSON's notes (``model_choice``), its
+predictions written as ``<case>_model_choice.csv`` and drawn in ``<case>_model_choice.png``.
+
 Outputs: the time series (measured, predicted, error), the Preisach fit's
 :class:`~exudyn_atcm.hysteresis.fit_report.FitReport` as ``<case>_fit_report.json`` (and all
 four reports in the case JSON's notes), plots of the loop and the time series.  Key scalars:
@@ -23,14 +28,15 @@ the Preisach fit's held-out RMS error divided by the known noise level.
 from __future__ import annotations
 
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
 from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
+from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii, identify
 from exudyn_atcm.hysteresis.fit_report import make_report
-from exudyn_atcm.plots.identification import plot_fit
+from exudyn_atcm.plots.identification import plot_fit, plot_model_choice
 from exudyn_atcm.io.measurements import preprocess, read_record
 from exudyn_atcm.model.reference_record import REFERENCE
 from exudyn_atcm.io.result import Result
@@ -45,6 +51,8 @@ PARAMETERS = [
     Parameter("split_fraction", 0.6, "-", "fraction of the duration fitted; the rest is held out"),
     Parameter("n_levels", 40, "-", "grid levels of the Preisach fit"),
     Parameter("smoothing", 1e-3, "-", "smoothness regularisation of the Preisach fit"),
+    Parameter("prior", "smooth", "-", "prior of the Preisach fits where the record says nothing: smooth or pi "
+              "(cross-validated)", choices=("smooth", "pi")),
     Parameter("n_plays", 20, "-", "plays of the Prandtl-Ishlinskii fit"),
     Parameter("n_relays_eq12", 20, "-", "relays of the equal-gain model (Eq. 12)"),
     Parameter("trim_start", 0.0, "s", "settling time trimmed from the start"),
@@ -63,14 +71,29 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     unit = record.units["output"]
     n_fit = t.size if p.split_fraction == 1.0 else record.split_index(t[0] + p.split_fraction * (t[-1] - t[0]))
 
-    _, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
-    _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit)
-    _, pi_report = PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit)
-    _, cont_report = ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit)
-    eq12_model, eq12_fit = DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12,
-                                                      reversal_tolerance=0.02, report=True, output_unit=unit)
-    eq12_report = make_report(eq12_model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
-                              notes=eq12_fit.notes, output_unit=unit)
+    choice = None
+    if n_fit < t.size:  # every family on the same split, ranked on the held-out part
+        choice = identify(u, y, n_fit=n_fit, n_levels=p.n_levels, smoothing=p.smoothing, prior=p.prior, n_plays=p.n_plays,
+                          n_relays=p.n_relays_eq12, reversal_tolerance=0.02, output_unit=unit)
+        print(choice.to_text())
+        report = choice.candidate("everett").report
+        grid_report = choice.candidate("discrete").report
+        pi_report = choice.candidate("prandtl_ishlinskii").report
+        cont_report = choice.candidate("continuous").report
+        eq12 = choice.candidate("equal_gain")
+        eq12_report = make_report(eq12.model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
+                                  notes=eq12.report.notes, output_unit=unit)
+    else:
+        _, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                        prior=p.prior)
+        _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                              prior=p.prior)
+        _, pi_report = PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit)
+        _, cont_report = ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit)
+        eq12_model, eq12_fit = DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12,
+                                                          reversal_tolerance=0.02, report=True, output_unit=unit)
+        eq12_report = make_report(eq12_model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
+                                  notes=eq12_fit.notes, output_unit=unit)
     reports = {"preisach_fit": report, "relay_grid_fit": grid_report, "prandtl_ishlinskii_fit": pi_report,
                "continuous_fit": cont_report, "equal_gain_eq12": eq12_report}
 
@@ -95,21 +118,30 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if path.resolve() == SHIPPED:
         scalars["held_out_rms_per_noise"] = (report.model_errors["held_out"]["rms"] / REFERENCE["noise [m]"], "-")
     notes = {name: r.to_dict() for name, r in reports.items()}
+    tables = {}
+    if choice is not None:
+        notes["model_choice"] = choice.to_dict()
+        scalars["chosen_held_out_rms_percent"] = (choice.chosen.held_out_rms_percent, "%")
+        fitted = [c for c in choice.candidates if not c.failure]
+        tables["model_choice"] = Result(
+            {"time": t, "voltage": u, "measured": y, **{f"predicted_{c.family}": c.report.predicted for c in fitted}},
+            {"time": record.units["time"], "voltage": record.units["input"] or "-", "measured": unit or "-",
+             **{f"predicted_{c.family}": unit or "-" for c in fitted}},
+            parameters={"record": str(path)},
+        )
     if ctx.out_dir is not None:
         written = write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json", report.to_dict())
         notes["fit_report_file"] = written.name
-    return CaseOutput(result, scalars, notes=notes)
+    return CaseOutput(result, scalars, tables=tables, notes=notes)
 
 
 def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     r = output.result
     n_fit = int(np.sum(r["fitted"]))
-    from types import SimpleNamespace
-
     report = SimpleNamespace(**{k: v for k, v in output.notes["preisach_fit"].items()})
     report.predicted = r["predicted"]
     report.n_fit = n_fit
-    return plot_fit(
+    files = plot_fit(
         out_dir / f"{output.case}_loop.png",
         out_dir / f"{output.case}_time.png",
         report,
@@ -119,6 +151,19 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
         output_unit=r.unit("measured"),
         title=f"Preisach fit, {p.n_levels} levels",
     )
+    if "model_choice" in output.notes:  # the ranked table of hysteresis.identify as a figure
+        data = output.notes["model_choice"]
+        table = output.tables["model_choice"]
+        candidates = [SimpleNamespace(label=c["label"], family=c["family"], failure=c["failure"],
+                                      held_out_rms_percent=c["held_out_rms [% of range]"], parameters=c["parameters"],
+                                      report=SimpleNamespace(predicted=table[f"predicted_{c['family']}"]))
+                      for c in data["candidates"] if not c["failure"]]
+        chosen = next(c for c in candidates if c.family == data["chosen"])
+        choice = SimpleNamespace(candidates=candidates, chosen=chosen, input=table["voltage"], output=table["measured"],
+                                 n_fit=data["n_fit"], output_unit=data["output_unit"])
+        files.append(plot_model_choice(out_dir / f"{output.case}_model_choice.png", choice,
+                                       title="hysteresis.identify: families on the same held-out part"))
+    return files
 
 
 CASE = Case("identify_and_predict", __doc__, PARAMETERS, run, plot)

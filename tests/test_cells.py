@@ -9,7 +9,6 @@ that changes nothing of the physics must reproduce to round-off.
 from __future__ import annotations
 
 import ast
-import math
 import pathlib
 
 import exudyn as exu

@@ -52,7 +52,14 @@ def test_identify_and_predict_meets_the_noise_goal(tmp_path):
     assert s["held_out_rms_equal_gain"] > s["held_out_rms_preisach"]
     report = json.loads((out / "identify_and_predict_fit_report.json").read_text())
     assert report["model_errors"]["held_out"]["rms"] == pytest.approx(s["held_out_rms_preisach"], rel=1e-12)
-    assert sorted(p.name for p in out.glob("*.png")) == ["identify_and_predict_loop.png", "identify_and_predict_time.png"]
+    assert sorted(p.name for p in out.glob("*.png")) == ["identify_and_predict_loop.png", "identify_and_predict_model_choice.png",
+                                                         "identify_and_predict_time.png"]
+    # the model-choice table (hysteresis.identify, issue 16): printed, in the notes, its figure above;
+    # on this record (a non-PI Preisach density) the spread-cell grid is chosen, within 1.5x the noise
+    choice = record["notes"]["model_choice"]
+    assert choice["chosen"] == "everett" and "* chosen: everett" in proc.stdout
+    assert s["chosen_held_out_rms_percent"] == pytest.approx(100 * s["held_out_rms_preisach"] / choice["output_range"], rel=1e-9)
+    assert [c["family"] for c in choice["candidates"]][:2] == ["everett", "discrete"]
 
 
 def test_tip_tracking_feedforward_plus_pid_beats_linear_inversion_tenfold():

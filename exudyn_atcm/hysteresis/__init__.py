@@ -11,7 +11,8 @@ effect), ``commit(u)`` (accept ``u``), ``reset()``, ``apply(u_series)`` and
   output), e.g. from :meth:`EverettPreisach.fit`;
 * :class:`PrandtlIshlinskii`: play operators with the analytic inverse.
 
-Identification from records: :mod:`exudyn_atcm.hysteresis.identification`; inverses:
+Identification from records: :mod:`exudyn_atcm.hysteresis.identification`, and
+:func:`identify` (every family fitted and ranked on held-out data); inverses:
 :mod:`exudyn_atcm.hysteresis.inverse`.
 """
 
@@ -20,6 +21,7 @@ from .continuous import ContinuousPreisach
 from .discrete import DiscretePreisach
 from .everett import EverettPreisach
 from .prandtl_ishlinskii import PrandtlIshlinskii
+from .model_choice import ModelChoice, identify
 from .staircase import StaircasePreisach
 
 __all__ = [
@@ -29,4 +31,6 @@ __all__ = [
     "DiscretePreisach",
     "EverettPreisach",
     "PrandtlIshlinskii",
+    "ModelChoice",
+    "identify",
 ]

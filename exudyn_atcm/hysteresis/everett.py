@@ -110,7 +110,8 @@ class EverettPreisach(StaircasePreisach):
 
         The same procedure as :meth:`DiscretePreisach.fit
         <exudyn_atcm.hysteresis.DiscretePreisach.fit>` (same arguments: ``smoothing``,
-        ``n_fit``, ``input_range``, ``output_unit``), with each relay's state replaced by the
+        ``n_fit``, ``input_range``, ``output_unit``, ``prior``, ``prior_weight``,
+        ``cv_folds``), with each relay's state replaced by the
         share of its cell that is switched on, so the identified operator is the one fitted
         (continuous output, no staircase error).  The samples before the input first comes
         down to the grid's lowest edge are left out (the memory is unknown until then).

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..io.atomic import write_json
+from .coverage import TriangleCoverage
 
 __all__ = ["FitReport", "error_measures", "make_report"]
 
@@ -83,6 +84,12 @@ class FitReport:
         What the identification had to decide (unreached levels, excluded samples, ...).
     predicted : numpy.ndarray
         The model's output over the whole record (not written to JSON).
+    coverage : dict
+        How much of the Preisach triangle the fitted input showed the model
+        (:meth:`TriangleCoverage.to_dict <exudyn_atcm.hysteresis.coverage.TriangleCoverage.to_dict>`),
+        and ``held_out_unseen``: the share of the held-out input's reversal-curve cells outside it.
+    triangle : TriangleCoverage or None
+        The coverage itself, for :meth:`check_use` (not written to JSON).
     """
 
     model: str
@@ -99,6 +106,19 @@ class FitReport:
     notes: list = field(default_factory=list)
     fit_time: float = math.nan
     predicted: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+    coverage: dict = field(default_factory=dict)
+    triangle: Any = field(default=None, repr=False)
+
+    def check_use(self, u: Any, threshold: float = 0.1) -> float:
+        """Share of the reversal-curve cells of input ``u`` that the fitted record never crossed.
+
+        Warns (``RuntimeWarning``) above ``threshold``: the model would be used on minor loops
+        it never saw, where its output rests on the fit's prior (see
+        :mod:`exudyn_atcm.hysteresis.coverage`).
+        """
+        if self.triangle is None:
+            raise ValueError("this report has no coverage (made without the fitted input)")
+        return self.triangle.check(u, threshold)
 
     def improvement_over_linear(self, part: str = "held_out") -> float:
         """Linear model's RMS error divided by the model's, on ``part`` (``"fit"`` or ``"held_out"``)."""
@@ -129,6 +149,7 @@ class FitReport:
             "settings": self.settings,
             "notes": list(self.notes),
             "fit_time [s]": self.fit_time,
+            "coverage": self.coverage,
         })
 
     def write_json(self, path: str | Path) -> Path:
@@ -173,9 +194,27 @@ def make_report(
     notes: list | None = None,
     output_unit: str = "",
     fit_time: float = math.nan,
+    coverage_levels: int = 20,
 ) -> FitReport:
-    """Run ``operator`` over the whole record and compare with the measured output (see module)."""
+    """Run ``operator`` over the whole record and compare with the measured output (see module).
+
+    ``coverage_levels``: grid of the :class:`~exudyn_atcm.hysteresis.coverage.TriangleCoverage`
+    of the fitted samples (over their input range).
+    """
     predicted = operator.apply(u)
+    notes = list(notes or [])
+    triangle = None
+    coverage: dict = {}
+    u_fit = u[fit_start:n_fit]
+    if u_fit.size >= 2 and float(np.ptp(u_fit)) > 0.0:
+        triangle = TriangleCoverage(u_fit, float(u_fit.min()), float(u_fit.max()), coverage_levels)
+        coverage = triangle.to_dict()
+        coverage["held_out_unseen"] = triangle.unseen_fraction(u[n_fit - 1:]) if n_fit < u.size else 0.0
+        notes.append(f"the fitted input's reversal curves cross {100 * triangle.fraction:.1f} % of the Preisach "
+                     f"triangle ({coverage['cells_crossed']} of {coverage['cells_total']} cells of a "
+                     f"{coverage_levels}-level grid)"
+                     + (f"; {100 * coverage['held_out_unseen']:.0f} % of the held-out input's lie outside, where the "
+                        "model follows its prior" if coverage["held_out_unseen"] > 0.0 else ""))
     fit = slice(fit_start, n_fit)
     held = slice(n_fit, u.size)
     output_range = float(np.ptp(y[fit]))
@@ -198,7 +237,9 @@ def make_report(
         linear_model={"a": float(a), "b": float(b)},
         output_unit=output_unit,
         settings=dict(settings or {}),
-        notes=list(notes or []),
+        notes=notes,
         fit_time=fit_time,
         predicted=predicted,
+        coverage=coverage,
+        triangle=triangle,
     )

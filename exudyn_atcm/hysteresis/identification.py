@@ -27,10 +27,14 @@ import time
 from typing import Any
 
 import numpy as np
+import scipy.sparse
 
 from .._checks import finite_array, same_length
 from ..physical_bounds import check_element_count
+from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_cost, play_fit_cost
 from .fit_report import FitReport, make_report
+from .nnls import nnls_gram, single_blas_thread
+from .priors import PRIOR_STRENGTHS, PRIORS, along_lines_matrix, cross_validate_strength, solve_regularised
 from .staircase import StaircasePreisach
 
 #: Fewest samples accepted by the least-squares fits.
@@ -57,6 +61,8 @@ def check_record(u: Any, y: Any, n_fit: int | None = None, *, min_samples: int =
             f"n_fit (samples fitted, the rest held out) must be an integer in [{min_samples}, {u_a.size}], got {n_fit!r}"
         )
     n_fit = int(n_fit)
+    finite_squares("u", u_a)
+    finite_squares("y", y_a)
     span = float(np.ptp(u_a[:n_fit]))
     if span <= 0.0:
         raise ValueError(f"u must vary over the fitted samples, got a constant input {float(u_a[0])!r}")
@@ -114,19 +120,22 @@ def relay_grid(u_lo: float, u_hi: float, n_levels: int) -> tuple[np.ndarray, np.
     return levels[i], levels[j], np.column_stack([i, j])
 
 
-def _smoothness_matrix(index: np.ndarray, n_levels: int) -> np.ndarray:
-    """First differences between neighbouring grid cells (along alpha and along beta)."""
+def _smoothness_matrix(index: np.ndarray, n_levels: int) -> Any:
+    """First differences between neighbouring grid cells (along alpha and along beta), sparse."""
     position = -np.ones((n_levels, n_levels), dtype=int)
     position[index[:, 0], index[:, 1]] = np.arange(index.shape[0])
-    rows = []
-    for k, (i, j) in enumerate(index.tolist()):
-        for ni, nj in ((i + 1, j), (i, j + 1)):
-            if ni < n_levels and nj <= ni and position[ni, nj] >= 0:
-                rows.append((k, int(position[ni, nj])))
-    d = np.zeros((len(rows), index.shape[0]))
-    for r, (a, b) in enumerate(rows):
-        d[r, a], d[r, b] = 1.0, -1.0
-    return d
+    first, second = [], []
+    for di, dj in ((1, 0), (0, 1)):
+        ni, nj = index[:, 0] + di, index[:, 1] + dj
+        ok = (ni < n_levels) & (nj <= ni)
+        first.append(np.flatnonzero(ok))
+        second.append(position[ni[ok], nj[ok]])
+    a = np.concatenate(first)
+    b = np.concatenate(second)
+    rows = np.arange(a.size)
+    return scipy.sparse.csr_matrix(
+        (np.r_[np.ones(a.size), -np.ones(a.size)], (np.r_[rows, rows], np.r_[a, b])),
+        shape=(a.size, index.shape[0]))
 
 
 def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
@@ -136,17 +145,45 @@ def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray
     ``S[k, r]`` is the state of relay ``r`` after sample ``k`` of ``u`` from all relays off
     (relay rule of Mayergoyz 2003: on if ``u >= alpha``, else off if ``u <= beta``, else
     unchanged).  Returns ``S^T S``, ``S^T y``, the column sums of ``S``, ``sum(y)`` and the
-    number of samples, accumulated in chunks so ``S`` is never stored whole.
+    number of samples.  ``S`` is never stored whole: a record's relay states repeat (the same
+    staircase memory is reached again and again), so each distinct row is kept once, as bits,
+    with its count and the sum of its samples' outputs, and ``S^T S`` is accumulated from the
+    distinct rows in chunks (exactly the same sums, a few hundred rows instead of thousands).
     """
-
-    def rows():
-        state = np.zeros(alpha.size)
-        for k in range(stop):
-            v = u[k]
-            state = np.where(v >= alpha, 1.0, np.where(v <= beta, 0.0, state))
-            yield state
-
-    return _gram(rows(), alpha.size, y, start, stop, chunk)
+    seen: dict[bytes, int] = {}
+    packed: list[np.ndarray] = []
+    counts: list[int] = []
+    sums: list[float] = []
+    state = np.zeros(alpha.size, dtype=bool)
+    for k in range(stop):
+        v = u[k]
+        state = (v >= alpha) | (state & (v > beta))
+        if k < start:
+            continue
+        bits = np.packbits(state)
+        key = bits.tobytes()
+        row = seen.get(key)
+        if row is None:
+            seen[key] = len(packed)
+            packed.append(bits)
+            counts.append(1)
+            sums.append(float(y[k]))
+        else:
+            counts[row] += 1
+            sums[row] += float(y[k])
+    n_r = alpha.size
+    gram = np.zeros((n_r, n_r))
+    rhs = np.zeros(n_r)
+    colsum = np.zeros(n_r)
+    count_a = np.asarray(counts, dtype=float)
+    sum_a = np.asarray(sums, dtype=float)
+    for first in range(0, len(packed), chunk):
+        block = np.unpackbits(np.asarray(packed[first:first + chunk]), axis=1, count=n_r).astype(float)
+        c = count_a[first:first + chunk]
+        gram += (block * c[:, None]).T @ block
+        rhs += block.T @ sum_a[first:first + chunk]
+        colsum += block.T @ c
+    return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
 
 
 class _CellFractions(StaircasePreisach):
@@ -214,17 +251,12 @@ def _gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chunk: int)
     return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
 
 
-def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: np.ndarray) -> np.ndarray:
-    """``argmin_{w >= 0} w^T (G + R) w - 2 b^T w`` via a Cholesky factor and scipy's NNLS."""
-    from scipy.linalg import cholesky, solve_triangular
-    from scipy.optimize import nnls
-
-    matrix = gram + regulariser
+def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: Any) -> np.ndarray:
+    """``argmin_{w >= 0} w^T (G + R) w - 2 b^T w`` by block principal pivoting (:mod:`.nnls`)."""
+    matrix = gram + (regulariser.toarray() if scipy.sparse.issparse(regulariser) else regulariser)
     ridge = 1e-10 * max(float(np.trace(matrix)) / matrix.shape[0], 1e-300)
-    matrix = matrix + ridge * np.eye(matrix.shape[0])
-    upper = cholesky(matrix, lower=False)  # matrix = U^T U
-    target = solve_triangular(upper, rhs, trans="T", lower=False)
-    weights, _ = nnls(upper, target, maxiter=50 * matrix.shape[0])
+    matrix[np.diag_indices_from(matrix)] += ridge
+    weights, _ = nnls_gram(matrix, rhs)
     return weights
 
 
@@ -232,7 +264,8 @@ def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: np.ndarray) -> 
 
 def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float = 1e-3, n_fit: int | None = None,
                  input_range: tuple[float, float] | None = None, output_unit: str = "",
-                 basis: str = "relays") -> tuple[Any, FitReport]:
+                 basis: str = "relays", prior: str = "smooth", prior_weight: float | None = None,
+                 cv_folds: int = 5) -> tuple[Any, FitReport]:
     """Body of :meth:`DiscretePreisach.fit` (``basis="relays"``) and :meth:`EverettPreisach.fit`
     (``basis="cells"``: each weight spread over its grid cell)."""
     if basis not in ("relays", "cells"):
@@ -247,15 +280,31 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             f"of {relays}x{relays} floats ({relays**2 * 8 / 2**30:.3g} GiB); 10 ... 40 levels resolve a measured loop "
             "to about its noise level")
     smoothing = nonnegative_float("smoothing", smoothing)
-    if input_range is None:
-        u_lo, u_hi = float(u_a[:n_fit].min()), float(u_a[:n_fit].max())
-    else:
+    if prior not in PRIORS:
+        raise ValueError(f"prior must be one of {', '.join(repr(p) for p in PRIORS)}, got {prior!r}")
+    if prior_weight is not None:
+        prior_weight = nonnegative_float("prior_weight", prior_weight)
+    cross_validate = prior == "pi" and prior_weight is None
+    if cross_validate and (isinstance(cv_folds, bool) or not isinstance(cv_folds, (int, np.integer)) or cv_folds < 2):
+        raise ValueError(f"cv_folds must be an integer >= 2, got {cv_folds!r}")
+    if input_range is not None:
         try:
             u_lo, u_hi = (float(v) for v in input_range)
         except (TypeError, ValueError):
             raise ValueError(f"input_range must be a pair (u_lo, u_hi) of numbers, got {input_range!r}") from None
         if not (math.isfinite(u_lo) and math.isfinite(u_hi) and u_hi > u_lo):
             raise ValueError(f"input_range must be finite with u_hi > u_lo, got {input_range!r}")
+    else:
+        u_lo, u_hi = float(u_a[:n_fit].min()), float(u_a[:n_fit].max())
+    # distinct relay states: a state changes only at a sample whose input crossed a threshold
+    thresholds = u_lo + (np.arange(n_levels) + 0.5) * (u_hi - u_lo) / n_levels
+    crossed = (np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="right")) != 0) | (
+        np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="left")) != 0)
+    changes = 1 + int(np.count_nonzero(crossed))
+    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, n_fit, basis, distinct_rows=changes,
+                                                    cv_folds=cv_folds if cross_validate else 0,
+                                                    cv_strengths=len(PRIOR_STRENGTHS)),
+               "use fewer levels (n_levels) or decimate the record (exudyn_atcm.io.measurements.preprocess)")
     alpha, beta, index = relay_grid(u_lo, u_hi, n_levels)
     edges = np.linspace(u_lo, u_hi, n_levels + 1)
     # all grid relays are off once the input is at or below the lowest threshold (for relays
@@ -274,17 +323,48 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             f"(sample {start}); at least {MIN_SAMPLES} are needed. Start the record at the input minimum."
         )
     scale = float(np.ptp(y_a[start:n_fit])) or 1.0
-    if basis == "relays":
-        gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
-    else:
-        gram, rhs, colsum, ysum, m = cell_gram(edges, index, u_a, y_a / scale, start, n_fit)
+    with single_blas_thread():  # see exudyn_atcm.hysteresis.nnls
+        if basis == "relays":
+            gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
+        else:
+            gram, rhs, colsum, ysum, m = cell_gram(edges, index, u_a, y_a / scale, start, n_fit)
     mean_s = colsum / m
     gram_c = gram - m * np.outer(mean_s, mean_s)
     rhs_c = rhs - mean_s * ysum
     d = _smoothness_matrix(index, n_levels)
-    dtd = d.T @ d
-    lam = smoothing * float(np.trace(gram_c)) / max(float(np.trace(dtd)), 1e-300)
-    weights = _nnls_normal(gram_c, rhs_c, lam * dtd)
+    dtd = (d.T @ d).tocsr()
+    lam = smoothing * float(np.trace(gram_c)) / max(float(dtd.diagonal().sum()), 1e-300)
+    prior_settings: dict = {"prior": prior}
+    if prior == "smooth":
+        weights = _nnls_normal(gram_c, rhs_c, lam * dtd)
+    else:
+        dp = along_lines_matrix(index, n_levels)
+        ptp_lap = (dp.T @ dp).tocsr()
+        strength = prior_weight
+        if cross_validate:
+            if (n_fit - start) < cv_folds * MIN_SAMPLES:
+                raise ValueError(f"cv_folds = {cv_folds} blocks of at least {MIN_SAMPLES} samples need {cv_folds * MIN_SAMPLES} "
+                                 f"fitted samples, got {n_fit - start}; give prior_weight or fewer folds")
+            bounds = np.linspace(start, n_fit, cv_folds + 1).round().astype(int)
+            folds = []
+            with single_blas_thread():
+                for a, b in zip(bounds[:-1], bounds[1:]):
+                    if basis == "relays":
+                        stats = relay_gram(alpha, beta, u_a, y_a / scale, int(a), int(b))
+                    else:
+                        stats = cell_gram(edges, index, u_a, y_a / scale, int(a), int(b))
+                    folds.append((*stats, float(np.sum((y_a[a:b] / scale) ** 2))))
+                strength, cv_table = cross_validate_strength(folds, dtd, smoothing, ptp_lap)
+            for row in cv_table:
+                row["cv_rms"] *= scale
+                row["cv_mse_se"] *= scale**2
+            prior_settings["cross_validation"] = {"folds": cv_folds, "rule": "strongest within one standard error",
+                                                  "table": cv_table}
+            notes.append(f"prior 'pi' (smoothness along alpha - beta): strength {strength:g} chosen by {cv_folds}-fold "
+                         "cross-validation (strongest within one standard error of the best)")
+        with single_blas_thread():
+            weights, lams, _ = solve_regularised(gram_c, rhs_c, [(smoothing, dtd), (strength, ptp_lap)])
+        prior_settings.update({"prior_weight": strength, "prior_weight_absolute": lams[1]})
     offset = (ysum / m - float(mean_s @ weights)) * scale
     weights = weights * scale
     never = colsum == 0.0
@@ -296,8 +376,8 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     report = make_report(
         model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
         settings={"n_levels": n_levels, "n_relays": int(alpha.size), "smoothing": smoothing,
-                  "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis},
-        notes=notes, output_unit=output_unit, fit_time=elapsed,
+                  "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis, **prior_settings},
+        notes=notes, output_unit=output_unit, fit_time=elapsed, coverage_levels=n_levels,
     )
     return model, report
 
@@ -312,6 +392,8 @@ def fit_prandtl_ishlinskii(cls: type, u: Any, y: Any, n: int, *, n_fit: int | No
     started = time.perf_counter()
     u_a, y_a, n_fit = check_record(u, y, n_fit)
     n = check_element_count("n", _levels_int("n", n), "plays")
+    check_cost(f"{cls.__name__}.fit", play_fit_cost(n, n_fit),
+               "use fewer plays (n; 10 ... 40 resolve a measured loop) or decimate the record")
     u_fit = u_a[:n_fit]
     span = float(np.ptp(u_fit))
     radii = span * np.arange(1, n) / (2.0 * n)
@@ -359,6 +441,8 @@ def fit_continuous(cls: type, u: Any, y: Any, *, n_fit: int | None = None,
 
     started = time.perf_counter()
     u_a, y_a, n_fit = check_record(u, y, n_fit)
+    check_cost(f"{cls.__name__}.fit", continuous_fit_cost(u_a.size),
+               "decimate the record (exudyn_atcm.io.measurements.preprocess)")
     u_fit, y_fit = u_a[:n_fit], y_a[:n_fit]
     u_min, u_max = float(u_fit.min()), float(u_fit.max())
     start = _first_near(u_fit, u_min, 1e-3 * (u_max - u_min))

@@ -15,6 +15,7 @@ import numpy as np
 
 from .._checks import finite_array, positive_int, same_length
 from ..physical_bounds import check_element_count
+from .fit_cost import check_cost, finite_squares, loop_fit_cost
 from .fit_report import make_report
 from .identification import nonnegative_float
 
@@ -100,14 +101,26 @@ def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: b
     return result, unreached
 
 
+#: Where ``from_loop`` puts the switching level of relay ``i = 1 … n`` (gain ``Δy``), in steps
+#: above ``y_min``: the paper's top of each step, or its middle.
+LEVEL_RULES = {"paper": 0.0, "centred": 0.5}
+
+
 def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance: float = 0.0,
-                       coverage: float = 0.9, report: bool = False, output_unit: str = "") -> Any:
+                       coverage: float = 0.9, report: bool = False, output_unit: str = "",
+                       levels: str = "paper") -> Any:
     """Body of :meth:`DiscretePreisach.from_loop` (see there for the rule)."""
     started = time.perf_counter()
+    if levels not in LEVEL_RULES:
+        raise ValueError(f"levels must be one of {', '.join(repr(k) for k in LEVEL_RULES)}, got {levels!r}")
     u_a = finite_array("u", u, min_length=2)
     y_a = finite_array("y", y, min_length=2)
     same_length(("u", "y"), (u_a, y_a))
     n = check_element_count("n", positive_int("n", n), "relays")
+    finite_squares("u", u_a)
+    finite_squares("y", y_a)
+    check_cost(f"{cls.__name__}.from_loop", loop_fit_cost(n, u_a.size),
+               "use fewer relays (n; the error on the loop is below one gain step (y_max - y_min)/n)")
     reversal_tolerance = nonnegative_float("reversal_tolerance", reversal_tolerance)
     coverage = nonnegative_float("coverage", coverage)
     if coverage > 1.0:
@@ -129,8 +142,10 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     if y_max <= y_min:
         raise ValueError(f"y must vary over the loop, got a constant {y_min!r}")
     gain = (y_max - y_min) / n
-    levels = y_min + gain * np.arange(1, n + 1)
-    levels[-1] = y_max
+    level_rule = levels
+    levels = y_min + gain * (np.arange(1, n + 1) - LEVEL_RULES[level_rule])
+    if level_rule == "paper":
+        levels[-1] = y_max
     alpha, up_missing = _crossings(u_up, y_up, levels, ascending=True)
     beta, down_missing = _crossings(u_dn, y_dn, levels, ascending=False)
     notes = []
@@ -176,6 +191,7 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     if not report:
         return model
     fit_report = make_report(model, u_a, y_a, u_a.size, 0, f"{cls.__name__}.from_loop",
-                             settings={"n": n, "reversal_tolerance": reversal_tolerance, "coverage": coverage},
+                             settings={"n": n, "reversal_tolerance": reversal_tolerance, "coverage": coverage,
+                                       "levels": level_rule},
                              notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started)
     return model, fit_report

@@ -10,7 +10,7 @@ import numpy as np
 
 from .style import axis_label, display_scale, new_figure, save_figure
 
-__all__ = ["plot_fit"]
+__all__ = ["plot_fit", "plot_model_choice"]
 
 
 def plot_fit(
@@ -94,3 +94,66 @@ def plot_fit(
         axes[0].set_title(f"{title}: fitted | held out")
     series = save_figure(fig, series_path)
     return [loop, series]
+
+
+def plot_model_choice(
+    path: str | os.PathLike,
+    choice: Any,
+    *,
+    input_name: str = "voltage",
+    input_unit: str = "V",
+    output_name: str = "displacement",
+    title: str = "",
+) -> Path:
+    """The ranked table of :func:`exudyn_atcm.hysteresis.identify` as a figure.
+
+    Left: held-out RMS error of each fitted family [% of the output range] (the chosen one
+    filled, the parameter count at each bar).  Right: the held-out part of the loop, measured
+    against the predictions of the chosen model and the two others ranked first.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        PNG file to write.
+    choice : ModelChoice
+        The result of :func:`~exudyn_atcm.hysteresis.identify`.
+    input_name, input_unit, output_name : str
+        Axis quantities (the output unit is the choice's).
+    title : str
+        Figure title.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    fitted = [c for c in choice.candidates if not c.failure]
+    u = np.asarray(choice.input, dtype=float)
+    y = np.asarray(choice.output, dtype=float)
+    k = choice.n_fit
+    factor, unit = display_scale(y, choice.output_unit or "m")
+    fig, axes = new_figure(1, 2, width=11.0, height=4.2)
+    ax = axes[0]
+    names = [c.label for c in fitted][::-1]
+    values = [c.held_out_rms_percent for c in fitted][::-1]
+    colours = ["C0" if c is choice.chosen else "0.75" for c in fitted][::-1]
+    bars = ax.barh(range(len(names)), values, color=colours)
+    for bar, c in zip(bars, fitted[::-1]):
+        ax.text(bar.get_width(), bar.get_y() + bar.get_height() / 2, f" {c.parameters} par.", va="center", fontsize=8)
+    ax.set_yticks(range(len(names)))
+    ax.set_yticklabels(names, fontsize=8)
+    ax.set_xlabel(axis_label("held-out RMS error", "% of range"))
+    ax.set_xlim(0.0, 1.25 * max(values))
+    ax.set_title(f"chosen: {choice.chosen.label}", fontsize=9)
+    ax = axes[1]
+    ax.plot(u[k:], factor * y[k:], ".", markersize=2, color="0.6", label="measured")
+    shown = [choice.chosen] + [c for c in fitted if c is not choice.chosen][:2]
+    for c in shown:
+        ax.plot(u[k:], factor * np.asarray(c.report.predicted)[k:], linewidth=1.0, label=c.label)
+    ax.set_xlabel(axis_label(input_name, input_unit))
+    ax.set_ylabel(axis_label(output_name, unit))
+    ax.set_title("held-out part", fontsize=9)
+    ax.legend(loc="upper left", fontsize=8)
+    if title:
+        fig.suptitle(title)
+    return save_figure(fig, path)

@@ -1,0 +1,312 @@
+"""Which hysteresis model a record supports: every family fitted and compared on held-out data.
+
+:func:`identify` fits the families the package has on the same fitted part of a record and
+predicts the same held-out part with each (the model runs over the whole record from its
+reset state, so the held-out part starts from the memory the fitted part left):
+
+* ``equal_gain``: :meth:`DiscretePreisach.from_loop` (the paper's Eq. 12); no continuous inverse
+  (staircase);
+* ``discrete``: :meth:`DiscretePreisach.fit` (relay grid); no continuous inverse (staircase);
+* ``everett``: :meth:`EverettPreisach.fit` (grid, each weight spread over its cell); inverse by
+  bisection;
+* ``prandtl_ishlinskii``: :meth:`PrandtlIshlinskii.fit`; analytic inverse;
+* ``continuous``: :meth:`ContinuousPreisach.fit` (the paper's power law, Eqs. 8-10); inverse by
+  bisection.
+
+The result, a :class:`ModelChoice`, ranks them by held-out RMS error (in % of the output range
+of the fitted part), with parameter count, fit time and whether a continuous inverse exists
+(:func:`exudyn_atcm.hysteresis.inverse.inverse_operator`: the staircase models reach only
+their step values), and names the chosen model: the one with the fewest parameters among those
+whose held-out RMS error is within ``1 + simpler_margin`` (default 1.1) of the best, so a model
+with more parameters has to predict clearly better to be chosen.  A family that cannot be fitted
+to the record (e.g. no full major-loop branch in the fitted part for ``equal_gain``) is listed
+with the reason instead of an error.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..io.atomic import write_json
+from .continuous import ContinuousPreisach
+from .discrete import DiscretePreisach
+from .everett import EverettPreisach
+from .fit_report import FitReport, make_report
+from .identification import check_record
+from .prandtl_ishlinskii import PrandtlIshlinskii
+
+__all__ = ["FAMILIES", "Candidate", "ModelChoice", "identify"]
+
+#: The families :func:`identify` knows, in the order they are fitted.
+FAMILIES = ("equal_gain", "discrete", "everett", "prandtl_ishlinskii", "continuous")
+
+_INVERSE = {"equal_gain": "none (staircase)", "discrete": "none (staircase)", "everett": "bisection",
+            "prandtl_ishlinskii": "analytic", "continuous": "bisection"}
+
+
+@dataclass
+class Candidate:
+    """One fitted family of a :class:`ModelChoice`.
+
+    Attributes
+    ----------
+    family : str
+        One of :data:`FAMILIES`.
+    label : str
+        Family and size, e.g. ``"everett (30 levels)"``.
+    held_out_rms_percent, fit_rms_percent : float
+        RMS error on the held-out and the fitted part, % of the output range of the fitted part
+        (NaN if the family could not be fitted).
+    parameters : int
+        Identified numbers: weights or thresholds, gains, offset, input range as they apply.
+    fit_time : float
+        Wall time of the fit [s].
+    invertible : bool
+        Whether a continuous inverse exists (``inverse`` says which).
+    inverse : str
+        ``"analytic"``, ``"bisection"`` or ``"none (staircase)"``.
+    model : HysteresisOperator or None
+        The identified operator.
+    report : FitReport or None
+        Its errors on both parts.
+    failure : str
+        Why the family could not be fitted (``""`` if it was).
+    """
+
+    family: str
+    label: str
+    held_out_rms_percent: float
+    fit_rms_percent: float
+    parameters: int
+    fit_time: float
+    invertible: bool
+    inverse: str
+    model: Any = field(default=None, repr=False)
+    report: FitReport | None = field(default=None, repr=False)
+    failure: str = ""
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-serialisable summary (without the model and the predicted series)."""
+        def number(v: float) -> float | None:
+            return None if math.isnan(v) else float(v)
+
+        return {"family": self.family, "label": self.label,
+                "held_out_rms [% of range]": number(self.held_out_rms_percent),
+                "fit_rms [% of range]": number(self.fit_rms_percent), "parameters": self.parameters,
+                "fit_time [s]": number(self.fit_time), "invertible": self.invertible, "inverse": self.inverse,
+                "failure": self.failure}
+
+
+@dataclass
+class ModelChoice:
+    """Families ranked by held-out error, and the chosen model (see the module).
+
+    Attributes
+    ----------
+    candidates : list of Candidate
+        Fitted families, best held-out RMS error first; families that failed at the end.
+    chosen : Candidate
+        The chosen one.
+    n_samples, n_fit : int
+        Record length and first held-out sample.
+    output_range : float
+        Output range of the fitted part, all its samples (output units): the one reference of
+        every candidate's ``%`` figures (a :class:`FitReport`'s own refers to its fitted samples).
+    output_unit : str
+        Unit of the output.
+    simpler_margin : float
+        The choice rule's margin (see the module).
+    input, output : numpy.ndarray
+        The record (for plots; each candidate's ``report.predicted`` is its prediction).
+    """
+
+    candidates: list
+    chosen: Candidate
+    n_samples: int
+    n_fit: int
+    output_range: float
+    output_unit: str = ""
+    simpler_margin: float = 0.1
+    input: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+    output: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+
+    @property
+    def model(self) -> Any:
+        """The chosen operator."""
+        return self.chosen.model
+
+    def candidate(self, family: str) -> Candidate:
+        """The candidate of ``family`` (``ValueError`` if it was not fitted)."""
+        for c in self.candidates:
+            if c.family == family:
+                return c
+        raise ValueError(f"family must be one of {[c.family for c in self.candidates]}, got {family!r}")
+
+    def to_text(self) -> str:
+        """The ranked table as fixed-width text."""
+        unit = f" {self.output_unit}" if self.output_unit else ""
+        lines = [
+            f"model choice on held-out data: fitted samples 0..{self.n_fit - 1}, held out {self.n_fit}..{self.n_samples - 1}, "
+            f"output range {self.output_range:.4g}{unit}",
+            f"{'rank':<5}{'model':<34}{'held-out RMS [%]':>17}{'fit RMS [%]':>12}{'parameters':>11}{'fit time [s]':>13}"
+            f"  {'invertible':<22}",
+        ]
+        for k, c in enumerate(self.candidates, start=1):
+            if c.failure:
+                lines.append(f"{'-':<5}{c.label:<34}  not fitted: {c.failure}")
+                continue
+            mark = " *" if c is self.chosen else ""
+            lines.append(f"{k:<5}{c.label + mark:<34}{c.held_out_rms_percent:>17.3f}{c.fit_rms_percent:>12.3f}"
+                         f"{c.parameters:>11d}{c.fit_time:>13.3g}  {('yes, ' if c.invertible else 'no, ') + c.inverse:<22}")
+        lines.append(f"* chosen: {self.chosen.label} (fewest parameters within {1 + self.simpler_margin:.3g}x "
+                     "the best held-out RMS error)")
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.to_text()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-serialisable contents."""
+        return {"chosen": self.chosen.family, "chosen_label": self.chosen.label, "n_samples": self.n_samples,
+                "n_fit": self.n_fit, "output_range": self.output_range, "output_unit": self.output_unit,
+                "simpler_margin": self.simpler_margin, "candidates": [c.to_dict() for c in self.candidates]}
+
+    def write_json(self, path: str | Path) -> Path:
+        """Write :meth:`to_dict` as JSON (atomically) and return the path."""
+        return write_json(path, self.to_dict())
+
+
+def _record_arrays(record: Any, y: Any) -> tuple[Any, Any, str, Any]:
+    """``u``, ``y``, the output unit and the time (or None) from arrays or a measured record."""
+    if y is None:
+        if not all(hasattr(record, a) for a in ("input", "output", "time")):
+            raise ValueError("identify needs u and y, or a measured record (exudyn_atcm.io.measurements.Record) "
+                             f"as its first argument, got {type(record).__name__} and y=None")
+        return record.input, record.output, getattr(record, "units", {}).get("output", ""), record.time
+    return record, y, "", None
+
+
+def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = None,
+             families: tuple[str, ...] = FAMILIES, n_levels: int = 30, n_plays: int = 20, n_relays: int = 20,
+             smoothing: float = 1e-3, prior: str = "pi", reversal_tolerance: float = 0.02, levels: str = "paper",
+             simpler_margin: float = 0.1, output_unit: str | None = None) -> ModelChoice:
+    """Fit every hysteresis family to a record and choose one by its held-out error.
+
+    Parameters
+    ----------
+    u : array_like or Record
+        Input samples in time order, or a measured record
+        (:class:`exudyn_atcm.io.measurements.Record`; then ``y`` is left out and the split is by
+        time).
+    y : array_like, optional
+        Output samples (omit with a record).
+    split : float, optional
+        Fraction of the record fitted (of the duration for a record, of the samples for
+        arrays), in ``(0, 1)``; the rest is held out.  Default 0.6.
+    n_fit : int, optional
+        First held-out sample, instead of ``split``.
+    families : tuple of str, optional
+        Which of :data:`FAMILIES` to fit (default all).
+    n_levels : int, optional
+        Grid levels of the ``discrete`` and ``everett`` fits.
+    n_plays : int, optional
+        Plays of the ``prandtl_ishlinskii`` fit.
+    n_relays : int, optional
+        Relays of the ``equal_gain`` model.
+    smoothing : float, optional
+        Regularisation of the grid fits.
+    prior : {"pi", "smooth"}, optional
+        Prior of the grid fits where the record says nothing (default ``"pi"``, its strength
+        cross-validated on the fitted part: see :mod:`exudyn_atcm.hysteresis.priors`).
+    reversal_tolerance : float, optional
+        Of the ``equal_gain`` construction (fraction of the input range; see ``from_loop``).
+    levels : {"paper", "centred"}, optional
+        Level rule of the ``equal_gain`` construction.
+    simpler_margin : float, optional
+        A model with more parameters is chosen only if its held-out RMS error is below
+        ``1 + simpler_margin`` times that of every simpler one within reach (default 0.1).
+    output_unit : str, optional
+        Unit of ``y`` (default: the record's, or ``""``).
+
+    Returns
+    -------
+    ModelChoice
+
+    Raises
+    ------
+    ValueError
+        For a bad record (see :func:`~exudyn_atcm.hysteresis.identification.check_record`), no
+        held-out part, an unknown family, or no family that could be fitted.
+    """
+    u_in, y_in, unit, t = _record_arrays(u, y)
+    unit = unit if output_unit is None else output_unit
+    u_a, y_a, _ = check_record(u_in, y_in)
+    if not families or any(f not in FAMILIES for f in families):
+        raise ValueError(f"families must be a non-empty selection of {FAMILIES}, got {families!r}")
+    if not (isinstance(simpler_margin, (int, float)) and 0.0 <= simpler_margin < 10.0):
+        raise ValueError(f"simpler_margin must be a number in [0, 10), got {simpler_margin!r}")
+    if n_fit is None:
+        if not (isinstance(split, (int, float)) and 0.0 < split < 1.0):
+            raise ValueError(f"split must be a fraction in (0, 1) (the rest is held out), got {split!r}")
+        if t is not None:
+            n_fit = int(np.searchsorted(t, t[0] + split * (t[-1] - t[0]), side="left"))
+        else:
+            n_fit = int(round(split * u_a.size))
+    if isinstance(n_fit, bool) or not isinstance(n_fit, (int, np.integer)) or not 10 <= n_fit < u_a.size:
+        raise ValueError(f"n_fit must be an integer in [10, {u_a.size - 1}] (a held-out part is needed), got {n_fit!r}")
+    n_fit = int(n_fit)
+
+    def fit_one(family: str) -> tuple[str, Any, FitReport, int]:
+        if family == "equal_gain":
+            model, fitted = DiscretePreisach.from_loop(u_a[:n_fit], y_a[:n_fit], n_relays, reversal_tolerance=reversal_tolerance,
+                                                       report=True, output_unit=unit, levels=levels)
+            low = np.flatnonzero(u_a[:n_fit] <= float(model.beta.min()))
+            start = int(low[0]) if low.size else 0
+            report = make_report(model, u_a, y_a, n_fit, start, "DiscretePreisach.from_loop", settings=fitted.settings,
+                                 notes=fitted.notes, output_unit=unit, fit_time=fitted.fit_time)
+            return f"equal_gain ({n_relays} relays, {levels})", model, report, 2 * n_relays + 2
+        if family in ("discrete", "everett"):
+            cls = DiscretePreisach if family == "discrete" else EverettPreisach
+            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, n_fit=n_fit, output_unit=unit, prior=prior)
+            return f"{family} ({n_levels} levels, {prior})", model, report, n_levels * (n_levels + 1) // 2 + 1
+        if family == "prandtl_ishlinskii":
+            model, report = PrandtlIshlinskii.fit(u_a, y_a, n_plays, n_fit=n_fit, output_unit=unit)
+            return f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1
+        model, report = ContinuousPreisach.fit(u_a, y_a, n_fit=n_fit, output_unit=unit)
+        return "continuous (power law)", model, report, 6
+
+    output_range = float(np.ptp(y_a[:n_fit]))  # one reference for every family's % figures
+    candidates = []
+    failed = []
+    for family in families:
+        started = time.perf_counter()
+        try:
+            label, model, report, parameters = fit_one(family)
+        except ValueError as exc:
+            failed.append(Candidate(family, family, math.nan, math.nan, 0, time.perf_counter() - started,
+                                    _INVERSE[family] != "none (staircase)", _INVERSE[family], failure=str(exc)))
+            continue
+        candidates.append(Candidate(
+            family, label, 100.0 * report.model_errors["held_out"]["rms"] / output_range,
+            100.0 * report.model_errors["fit"]["rms"] / output_range,
+            parameters, time.perf_counter() - started, _INVERSE[family] != "none (staircase)", _INVERSE[family],
+            model=model, report=report))
+    if not candidates:
+        raise ValueError("identify: no family could be fitted to the record: "
+                         + "; ".join(f"{c.family}: {c.failure}" for c in failed))
+    candidates.sort(key=lambda c: c.held_out_rms_percent)
+    best = candidates[0].held_out_rms_percent
+    within = [c for c in candidates if c.held_out_rms_percent <= (1.0 + simpler_margin) * best]
+    chosen = min(within, key=lambda c: (c.parameters, c.held_out_rms_percent))
+    if failed:
+        warnings.warn("identify: not fitted: " + "; ".join(f"{c.family} ({c.failure})" for c in failed),
+                      RuntimeWarning, stacklevel=2)
+    return ModelChoice(candidates + failed, chosen, int(u_a.size), n_fit, output_range, unit, float(simpler_margin),
+                       input=u_a, output=y_a)
