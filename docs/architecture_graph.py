@@ -9,7 +9,9 @@ import pathlib
 
 import matplotlib.pyplot as plt
 
-PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exudyn_atcm"
+import exudyn_atcm
+
+PACKAGE = pathlib.Path(exudyn_atcm.__file__).resolve().parent
 #: rows of the picture, bottom up (a folder imports only folders below or beside it)
 ROWS = [
     ["_checks / errors"],
