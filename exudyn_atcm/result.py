@@ -173,15 +173,15 @@ class Result(Mapping):
         plus one (numpy's ``skiprows`` counts comment lines too; ``len(header_comment_lines()) + 2``
         with the ``data_rows`` line).
 
-        Parameters
-        ----------
-        path : str or os.PathLike
-            Target file; missing parent directories are created.
-
         Whatever this method writes, :func:`~exudyn_atcm.csv_io.read_csv` reads back identically
         (names, units, every value bit for bit, parameters and info; numpy numbers and arrays as
         Python numbers and lists; non-finite values with ``allow_nonfinite=True``), or it
         refuses to write: see :mod:`exudyn_atcm.csv_format` for the rules.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Target file; missing parent directories are created.
 
         Raises
         ------
