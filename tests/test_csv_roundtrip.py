@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import struct
+import warnings
 
 import numpy as np
 import pytest
@@ -12,6 +13,7 @@ from hypothesis import strategies as st
 
 from exudyn_atcm.io import read_csv
 from exudyn_atcm.io.result import Result
+from exudyn_atcm.io.file_checks import SuspectFileWarning
 
 
 def _identical(a, b) -> bool:
@@ -51,7 +53,9 @@ def _check(result: Result, tmp_path_factory) -> bool:
     except ValueError:
         assert not path.exists()
         return False
-    back = read_csv(path, allow_nonfinite=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SuspectFileWarning)  # random [V] columns look like kV: beside the point here
+        back = read_csv(path, allow_nonfinite=True)
     _same_series(result, back)
     assert _identical(back.parameters, result.parameters), (back.parameters, result.parameters)
     back_info = dict(back.info)
@@ -100,7 +104,7 @@ _ordinary = st.none() | st.booleans() | st.integers(-10**6, 10**6) | st.floats(a
 
 @st.composite
 def _ordinary_result(draw):
-    names = draw(st.lists(_word.filter(lambda w: w.strip(".")), min_size=1, max_size=3, unique=True))
+    names = draw(st.lists(_word.filter(lambda w: w.strip(".") and w != "time"), min_size=1, max_size=3, unique=True))
     n = draw(st.integers(0, 5))
     series = {name: draw(st.lists(st.floats(allow_nan=False, allow_infinity=False), min_size=n, max_size=n)) for name in names}
     keys = st.builds(lambda w, u: f"{w} [{u}]" if u else w, _word.filter(lambda w: not w.startswith("info.") and w != "data_rows"), _unit)
@@ -161,6 +165,15 @@ def test_strings_that_look_like_other_values_are_quoted_and_read_back_as_strings
     assert back["note"] == "two\nlines" and back["list"] == "[1, 2]" and back["plain"] == "my case" and back["empty"] == ""
     assert back["number"] == 1.0 and back["none"] is None
     assert back["arr"] == [1.5, 2.0] and back["i"] == 3 and type(back["i"]) is int  # numpy as Python numbers and lists
+
+
+def test_a_time_series_that_goes_back_is_refused_and_one_that_repeats_is_written(tmp_path):
+    with pytest.raises(ValueError, match=r"series 'time' goes back from 1.0 to 0.5 at row 2; read_csv refuses"):
+        Result({"time": [0.0, 1.0, 0.5]}, {"time": "s"}).to_csv(tmp_path / "back.csv")
+    assert not (tmp_path / "back.csv").exists()
+    Result({"time": [0.0, 1.0, 1.0]}, {"time": "s"}).to_csv(tmp_path / "repeat.csv")
+    with pytest.warns(SuspectFileWarning, match="repeat the time"):
+        assert read_csv(tmp_path / "repeat.csv")["time"].tolist() == [0.0, 1.0, 1.0]
 
 
 def test_a_result_without_series_is_refused(tmp_path):

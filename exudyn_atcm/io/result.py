@@ -174,15 +174,15 @@ class Result(Mapping):
         plus one (numpy's ``skiprows`` counts comment lines too; ``len(header_comment_lines()) + 2``
         with the ``data_rows`` line).
 
-        Parameters
-        ----------
-        path : str or os.PathLike
-            Target file; missing parent directories are created.
-
         Whatever this method writes, :func:`~exudyn_atcm.read_csv` reads back identically
         (names, units, every value bit for bit, parameters and info; numpy numbers and arrays as
         Python numbers and lists; non-finite values with ``allow_nonfinite=True``), or it
         refuses to write: see :mod:`exudyn_atcm.io.csv_format` for the rules.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Target file; missing parent directories are created.
 
         Raises
         ------
@@ -190,12 +190,19 @@ class Result(Mapping):
             Before anything is written, naming the series or key: a name or unit holding ``,``,
             ``[``, ``]``, a line break or an invisible character; a parameter named
             ``data_rows`` or ``info.*``; a parameter or info value that would not read back as
-            itself (an arbitrary object).
+            itself (an arbitrary object); a ``time`` series that goes back.
         exudyn_atcm.io.atomic.WriteError
             (an ``OSError``) if the file cannot be written, naming the file and the reason.
         """
         comments = self.header_comment_lines()  # validates before the file is touched
         header = self.column_header()
+        if "time" in self._series and self._series["time"].size >= 2:
+            back = np.flatnonzero(np.diff(self._series["time"]) < 0.0)
+            if back.size:  # read_csv refuses a time series that goes back
+                i = int(back[0]) + 1
+                raise ValueError(f"series 'time' goes back from {float(self._series['time'][i - 1])!r} to "
+                                 f"{float(self._series['time'][i])!r} at row {i}; read_csv refuses such a file "
+                                 "(rename the series if it is not a time)")
         columns = [self._series[n].tolist() for n in self._series]
 
         def write(handle) -> None:
