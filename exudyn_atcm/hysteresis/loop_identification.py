@@ -12,6 +12,7 @@ import warnings
 from typing import Any
 
 import numpy as np
+from scipy.optimize import isotonic_regression
 
 from .._checks import finite_array, positive_int, same_length
 from ..physical_bounds import check_element_count
@@ -19,18 +20,10 @@ from .fit_cost import check_cost, finite_squares, loop_fit_cost
 from .fit_report import make_report
 from .identification import nonnegative_float
 
+
 def isotonic(values: np.ndarray) -> np.ndarray:
-    """Least-squares non-decreasing fit of ``values`` (pool-adjacent-violators algorithm)."""
-    means: list[float] = []
-    counts: list[int] = []
-    for v in values.tolist():
-        means.append(v)
-        counts.append(1)
-        while len(means) > 1 and means[-2] > means[-1]:
-            c = counts[-2] + counts[-1]
-            means[-2:] = [(means[-2] * counts[-2] + means[-1] * counts[-1]) / c]
-            counts[-2:] = [c]
-    return np.repeat(np.array(means), counts)
+    """Least-squares non-decreasing fit of ``values`` (``scipy.optimize.isotonic_regression``)."""
+    return isotonic_regression(np.asarray(values, dtype=float)).x
 
 
 def monotone_segments(u: np.ndarray, tolerance: float) -> list[tuple[int, int, bool]]:

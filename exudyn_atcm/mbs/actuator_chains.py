@@ -57,7 +57,7 @@ from exudyn import itemInterface as ii
 from ..cells import AncfCell, BeamCell, RigidCell, RitzCell, SixBarCell
 from .actuator_ancf import build_ancf
 from .actuator_beam import build_beam
-from .actuator_items import NOVIS, add_ground, hinge_with_spring, position_marker, rigid_body_2d, rotation_marker
+from .actuator_items import NOVIS, add_ground, hinge_with_spring, body_position_marker, rigid_body_2d, rotation_marker
 from .actuator_model import BuiltModel
 from .actuator_ritz import build_ritz
 from .actuator_tree import build_tree
@@ -138,8 +138,8 @@ def build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
         return lambda mbs_, t, itemNumber, lOffset: factor * model.uf_strain(t)
 
     # previous interface: markers (lower, upper) and rotation-coordinate marker
-    prev_lower = position_marker(mbs, ground, (0.0, 0.0))
-    prev_upper = position_marker(mbs, ground, (0.0, -e))
+    prev_lower = body_position_marker(mbs, ground, (0.0, 0.0))
+    prev_upper = body_position_marker(mbs, ground, (0.0, -e))
     prev_rot = gcoord
     passive_nodes = []
     last_if_node = None
@@ -167,20 +167,20 @@ def build_six_bar(SC, mbs, act, stroke_path) -> BuiltModel:
         nif, bif = rigid_body_2d(mbs, (x0 + lc, 0.0), share * m_if, share * j_if, com=(0.0, -0.5 * e))
         damp(nif, bif, share * m_if, share * j_if, (0.0, -0.5 * e))
         last_if_node = nif
-        if_lower = position_marker(mbs, bif, (0.0, 0.0))
-        if_upper = position_marker(mbs, bif, (0.0, -e))
+        if_lower = body_position_marker(mbs, bif, (0.0, 0.0))
+        if_upper = body_position_marker(mbs, bif, (0.0, -e))
         if_rot = rotation_marker(mbs, nif)
         p_rot = rotation_marker(mbs, npb)
         a1_rot = rotation_marker(mbs, nodes_a[0])
         a3_rot = rotation_marker(mbs, nodes_a[2])
         # lower revolute joints + torsion springs (passive layer)
-        mpl = position_marker(mbs, bp, (-0.5 * lc, 0.0))
-        mpr = position_marker(mbs, bp, (0.5 * lc, 0.0))
+        mpl = body_position_marker(mbs, bp, (-0.5 * lc, 0.0))
+        mpr = body_position_marker(mbs, bp, (0.5 * lc, 0.0))
         hinge_with_spring(mbs, (prev_lower, mpl), (prev_rot, p_rot), k_p, beta)
         hinge_with_spring(mbs, (mpr, if_lower), (p_rot, if_rot), k_p, beta)
         # upper revolute joints + torsion springs (active layer)
-        ma1 = position_marker(mbs, bodies_a[0], (-0.5 * la, 0.0))
-        ma3 = position_marker(mbs, bodies_a[2], (0.5 * la, 0.0))
+        ma1 = body_position_marker(mbs, bodies_a[0], (-0.5 * la, 0.0))
+        ma3 = body_position_marker(mbs, bodies_a[2], (0.5 * la, 0.0))
         hinge_with_spring(mbs, (prev_upper, ma1), (prev_rot, a1_rot), k_a, beta)
         hinge_with_spring(mbs, (ma3, if_upper), (a3_rot, if_rot), k_a, beta)
         # prismatic joints A1-A2 (motor) and A2-A3 (spring k1)
@@ -233,7 +233,7 @@ def build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
             return stiffness * (displacement - factor * model.uf_strain(t)) + damping * velocity
         return uf
 
-    prev_pos = position_marker(mbs, ground, (0.0, 0.0))
+    prev_pos = body_position_marker(mbs, ground, (0.0, 0.0))
     prev_rot = gcoord
     nodes = []
     for j in range(n):
@@ -242,8 +242,8 @@ def build_rigid(SC, mbs, act, stroke_path) -> BuiltModel:
         nd, bd = rigid_body_2d(mbs, ((j + 1.0) * lc, 0.0), m, j_com, com=(-0.5 * lc, y_com))
         damp(nd, bd, m, j_com, (-0.5 * lc, y_com))
         nodes.append(nd)
-        ml = position_marker(mbs, bd, (-lc, 0.0))
-        mr = position_marker(mbs, bd, (0.0, 0.0))
+        ml = body_position_marker(mbs, bd, (-lc, 0.0))
+        mr = body_position_marker(mbs, bd, (0.0, 0.0))
         rot = rotation_marker(mbs, nd)
         mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[prev_pos, ml], visualization=NOVIS))
         k = k_end if j == 0 else k_in

@@ -27,9 +27,9 @@ def rigid_body_2d(mbs, position, mass, inertia, com=(0.0, 0.0)):
     return node, body
 
 
-def position_marker(mbs, body, local):
-    """A ``MarkerBodyPosition`` at ``local`` [m] in body ``body``'s frame."""
-    return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body, localPosition=[local[0], local[1], 0.0]))
+def body_position_marker(mbs, body: int, local) -> int:
+    """A ``MarkerBodyPosition`` at ``local`` [m] in the frame of the body with item number ``body``."""
+    return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body, localPosition=[float(local[0]), float(local[1]), 0.0]))
 
 
 def rotation_marker(mbs, node):

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .actuator_items import NOVIS
+from .actuator_items import NOVIS, body_position_marker
 from .model import Body
 
 
@@ -27,7 +27,7 @@ def position_marker(mbs, body: Body, local) -> int:
     """A ``MarkerBodyPosition`` at ``local`` [m] in ``body``'s frame (a ``MarkerNodePosition`` at a beam node)."""
     if _at_node(body, local):
         return mbs.AddMarker(ii.MarkerNodePosition(nodeNumber=body.node))
-    return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0]))
+    return body_position_marker(mbs, body.item, local)
 
 
 def rigid_marker(mbs, body: Body, local) -> int:

@@ -22,15 +22,13 @@ from .._checks import positive_float, positive_int, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
-from ..model.damping import RayleighDamping, check_damping
+from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
 
 #: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
 CELL_TYPES = tuple(CELL_KINDS)
 #: The cells that carry a tip load (``tip_force``); ``"ritz"`` refuses one.
 TIP_LOAD_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)
 
-#: Default modal damping ratio of the first bending mode (stiffness-proportional damping).
-DEFAULT_DAMPING_RATIO = 0.02
 
 
 class BendingActuator:

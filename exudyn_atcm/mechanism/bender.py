@@ -14,7 +14,7 @@ from .._checks import finite_float, positive_float, positive_int, warn_implausib
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
-from ..model.damping import RayleighDamping, check_damping
+from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
 from .points import PointRef, check_name, unknown_point
 
 #: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
@@ -22,8 +22,6 @@ CELL_TYPES = tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_r
 #: Names of those that can also make a passive strip (``active=None``).
 PASSIVE_STRIP_CELLS = tuple(name for name in CELL_TYPES if not CELL_KINDS[name].needs_active_layer)
 ACTIVE_SIDES = ("right", "left")
-#: Default modal damping ratio of the first bending mode [-] (as for ``BendingActuator``).
-DEFAULT_DAMPING_RATIO = 0.02
 
 
 @dataclass(frozen=True)

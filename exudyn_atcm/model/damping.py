@@ -43,12 +43,17 @@ from dataclasses import dataclass
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
 
-__all__ = ["MASS_DAMPING_CELLS", "RayleighDamping", "check_damping", "damping_ratio_from_log_decrement",
+__all__ = ["DEFAULT_DAMPING_RATIO", "MASS_DAMPING_CELLS", "RayleighDamping", "check_damping", "damping_ratio_from_log_decrement",
            "log_decrement_from_damping_ratio"]
 
 #: The cells that realise the mass-proportional part ``alpha M`` exactly: every mass of theirs is
 #: a rigid body, which gets a force ``-alpha m v`` at its centre of mass and a torque
 #: ``-alpha J omega``.  The continuum cells (consistent mass matrices) refuse ``alpha > 0``.
+#: Default damping: this modal damping ratio of a bender's own first bending mode [-], realised as
+#: stiffness-proportional damping (2 % is an assumed, typical order of magnitude for fibre-composite
+#: laminates, not a value from the paper).
+DEFAULT_DAMPING_RATIO = 0.02
+
 MASS_DAMPING_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.realises_mass_damping)
 
 
