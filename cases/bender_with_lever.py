@@ -26,8 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm import theory as bt
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.mechanism import Bender, Link, Mechanism
 from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach

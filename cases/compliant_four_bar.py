@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.theory.four_bar import RigidFourBar
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.mechanism import Bender, Flexure, Link, Mechanism

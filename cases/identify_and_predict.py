@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm.io.atomic import write_json
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
 from exudyn_atcm.hysteresis.fit_report import make_report
 from exudyn_atcm.plots.identification import plot_fit

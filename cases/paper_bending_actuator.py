@@ -42,7 +42,7 @@ from exudyn_atcm.model.parameter_sets import PAPER_LOOP
 from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
 
 from exudyn_atcm.mechanism.actuator import CELL_TYPES, BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach

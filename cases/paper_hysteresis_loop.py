@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.plots.hysteresis import Curve, plot_loops, plot_time_series
 from exudyn_atcm.io.result import Result

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.plots.hysteresis import plot_time_series
 from exudyn_atcm.model.parameter_sets import PAPER_D33, PAPER_ELECTRODE_SPACING, PAPER_LOOP, paper_stroke_preisach
 from exudyn_atcm.plots.style import axis_label, display_scale, new_figure, save_figure

@@ -8,7 +8,7 @@ so each bender takes the free curvature +kappa over its first half and -kappa ov
 an S.  The voltage runs 0 -> +U_max -> -U_max -> 0 (within the MFC's -500 ... 1500 V rating),
 solved quasi-statically.
 
-Reference (:func:`exudyn_atcm.theory.beam.s_blade_end`): the S's free curvature integrates to
+Reference (:func:`exudyn_atcm.theory.beam_mechanisms.s_blade_end`): the S's free curvature integrates to
 zero, so the free shape ends with zero rotation and both blades' free end poses are the same
 translation: the coupler fits them without any force, for any deflection.  The coupler then
 translates by exactly ``(2 sin(kappa L/2)/kappa - L, 2 (1 - cos(kappa L/2))/kappa)`` and does not
@@ -30,8 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm import theory as bt
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.mechanism import Bender, Link, Mechanism, Segment
 from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
 from exudyn_atcm.plots.style import axis_label, new_figure, save_figure

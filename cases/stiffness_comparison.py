@@ -27,9 +27,9 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.mechanism.actuator import TIP_LOAD_CELLS, BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.plots.hysteresis import Curve, plot_loops
 from exudyn_atcm.model.materials import Layer

@@ -63,7 +63,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Result, static_sweep
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.plots.mechanism import animate_mechanism
 from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
 

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm.mechanism.actuator import BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.model.control import PIDController
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.hysteresis.feedforward import feedforward_program, linear_program

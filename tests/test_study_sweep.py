@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.cli import main
 from exudyn_atcm.study import GridError, run_study, sample_points, sweep
 from exudyn_atcm.study.table import column

@@ -23,7 +23,7 @@ import time
 from typing import IO
 
 from ..casework.error_report import report_error as _error
-from ..casework.case import CaseError, load_case
+from ..casework import CaseError, load_case
 
 __all__ = ["add_sweep_parser", "sweep_command", "add_optimize_parser", "optimize_command", "RunProgressBar"]
 

@@ -1,7 +1,7 @@
 """The points of a study: full grids, random or Latin-hypercube samples, explicit lists.
 
 Every function here returns a list of ``{name: value}`` dictionaries with values already
-checked against the case's declared :class:`~exudyn_atcm.casework.case.Parameter` (type, choices),
+checked against the case's declared :class:`~exudyn_atcm.casework.parameters.Parameter` (type, choices),
 in a fixed order: a full grid varies its *last* named parameter fastest (like nested
 ``for`` loops written in the order given), samples come in the order the generator draws
 them.  The order is the study's run order and the row order of its table, whatever engine
@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from ..casework.case import Case, CaseError, Parameter
+from ..casework import Case, CaseError, Parameter
 
 __all__ = [
     "GridError",

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..casework.case import Case, CaseError
+from ..casework import Case, CaseError
 from .store import case_fingerprint
 
 __all__ = ["CaseSpec", "case_spec", "execute_run", "SerialEngine", "ProcessEngine", "DaskEngine", "make_engine"]
@@ -102,7 +102,7 @@ def load_spec(spec: CaseSpec) -> Case:
         raise CaseError(f"{spec.path}: import failed: {type(exc).__name__}: {exc}") from exc
     case = module.__dict__.get("CASE")
     if not isinstance(case, Case):
-        raise CaseError(f"{spec.path}: defines no CASE = exudyn_atcm.casework.case.Case(...)")
+        raise CaseError(f"{spec.path}: defines no CASE = exudyn_atcm.casework.Case(...)")
     case.source = Path(spec.path)
     _LOADED[spec.fingerprint] = case
     return case

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..io.atomic import write_json
-from ..casework.case import Case, CaseOutput, load_case
+from ..casework import Case, CaseOutput, load_case
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns

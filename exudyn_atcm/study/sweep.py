@@ -1,6 +1,6 @@
 """Parameter studies: run a case over many points, in parallel, resumably.
 
->>> from exudyn_atcm.casework.case import load_case
+>>> from exudyn_atcm.casework import load_case
 >>> from exudyn_atcm.study import sweep
 >>> case = load_case("paper_stroke_table")
 >>> table = sweep(case, {"period": [1.0, 2.0], "points_per_period": [10, 20]}, out="out/study")  # doctest: +SKIP
@@ -20,7 +20,7 @@ from typing import Any
 
 from ..io.atomic import write_json
 from .._version import __version__
-from ..casework.case import Case, load_case, versions
+from ..casework import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
 from .store import RunStore, run_key
@@ -277,7 +277,7 @@ def sweep(
     Parameters
     ----------
     case : Case or str or os.PathLike
-        A loaded case (:func:`~exudyn_atcm.casework.case.load_case`) or its name or file.
+        A loaded case (:func:`~exudyn_atcm.casework.discovery.load_case`) or its name or file.
     grid : mapping of str to list or array, optional
         Full grid: every combination of the values (the last name varies fastest), e.g.
         ``{"n_cells": [2, 4, 8], "period": np.linspace(0.5, 2.0, 4)}``.

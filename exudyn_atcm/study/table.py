@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..io.atomic import write_text
-from ..casework.case import Case
+from ..casework import Case
 
 __all__ = ["Column", "table_columns", "to_table", "write_table_csv", "column", "unit_of"]
 
