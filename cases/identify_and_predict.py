@@ -26,14 +26,17 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.io.atomic import write_json
+from exudyn_atcm import Result, preprocess, read_record
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
-from exudyn_atcm.hysteresis.fit_report import make_report
-from exudyn_atcm.plots.identification import plot_fit
-from exudyn_atcm.io.measurements import preprocess, read_record
-from exudyn_atcm.hysteresis.reference_record import REFERENCE
-from exudyn_atcm.io.result import Result
+from exudyn_atcm.hysteresis import (
+    ContinuousPreisach,
+    DiscretePreisach,
+    EverettPreisach,
+    PrandtlIshlinskii,
+    REFERENCE,
+    make_report,
+)
+from exudyn_atcm.plots import plot_fit
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 
@@ -96,7 +99,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         scalars["held_out_rms_per_noise"] = (report.model_errors["held_out"]["rms"] / REFERENCE["noise [m]"], "-")
     notes = {name: r.to_dict() for name, r in reports.items()}
     if ctx.out_dir is not None:
-        written = write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json", report.to_dict())
+        written = report.write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json")
         notes["fit_report_file"] = written.name
     return CaseOutput(result, scalars, notes=notes)
 

@@ -17,6 +17,8 @@ from ..io.atomic import FILE_MODE, WriteError, describe_os_error, make_directory
 from .style import new_figure, save_figure
 from ..io.progress import report_task
 
+__all__ = ["plot_result", "plot_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator"]
+
 
 def _save(fig: Figure, path: str) -> str:
     save_figure(fig, path)
