@@ -52,6 +52,7 @@ from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import theory as bt
 from exudyn_atcm.mbs.eigen import constrained_eigenfrequencies
 from exudyn_atcm._version import __version__
+from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
@@ -299,10 +300,7 @@ def main(argv=None) -> int:
     payload = {"exudyn_atcm": __version__, "exudyn": exu.__version__, "python": platform.python_version(),
                "cpus": os.cpu_count(), "step_s": STEP, "period_s": PERIOD, "runs": runs, "table": table,
                "goals": goals}
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as handle:
-        json.dump(payload, handle, indent=2)
-    os.replace(tmp, path)
+    write_text(path, json.dumps(payload, indent=2))
     print(f"\nwrote {path}")
     return 0
 

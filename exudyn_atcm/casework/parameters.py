@@ -5,11 +5,12 @@ loaded or configured.
 
 from __future__ import annotations
 
-import difflib
 import math
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
+
+from .._text import close_names
 
 __all__ = ["Parameter", "Parameters", "CaseError", "closest", "json_value"]
 
@@ -24,10 +25,7 @@ class CaseError(ValueError):
 
 def closest(name: str, candidates: Sequence[str]) -> str:
     """`` (did you mean 'x'?)`` for the candidate closest to a misspelt ``name``, else ``""``."""
-    match = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
-    if not match:
-        lowered = {c.lower(): c for c in candidates}
-        match = [lowered[name.lower()]] if name.lower() in lowered else []
+    match = close_names(name, candidates, cutoff=0.6, ignore_case=True)
     return f" (did you mean {match[0]!r}?)" if match else ""
 
 

@@ -11,6 +11,7 @@ May import every description and result layer; never solves anything itself.
 
 from .cells import cell_figure, draw_rigid_chain, draw_six_bar_cell, height_exaggeration, paper_actuator, save_cell_drawing
 from .hysteresis import Curve, plot_loops, plot_relays, plot_time_series
+from .gif import save_gif
 from .identification import plot_fit
 from .mechanism import (
     BenderShape,
@@ -33,6 +34,7 @@ __all__ = [
     "Curve", "plot_loops", "plot_time_series", "plot_relays", "plot_fit",
     # results of the lone actuator
     "plot_result", "plot_actuator_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator",
+    "save_gif",
     # mechanisms
     "draw_mechanism", "plot_mechanism", "animate_mechanism", "plot_point_paths", "mechanism_shape", "MechanismShape",
     "BenderShape", "actuator_as_mechanism",

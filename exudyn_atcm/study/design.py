@@ -16,7 +16,6 @@ Grid specifications on the command line (:func:`parse_grid_spec`)::
 
 from __future__ import annotations
 
-import difflib
 import itertools
 import math
 from collections.abc import Iterable, Mapping, Sequence
@@ -24,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from .._text import close_names
 from ..casework import Case, CaseError, Parameter
 
 __all__ = [
@@ -52,7 +52,7 @@ def case_parameter(case: Case, name: str, what: str = "grid") -> Parameter:
     declared = _declared(case)
     if name in declared:
         return declared[name]
-    close = difflib.get_close_matches(name, list(declared), n=1, cutoff=0.5)
+    close = close_names(name, declared, cutoff=0.5)
     hint = f"; did you mean {close[0]!r}?" if close else ""
     names = ", ".join(declared) or "(none)"
     raise GridError(f"{what}: unknown parameter {name!r} for case {case.name}{hint} (parameters: {names})")
