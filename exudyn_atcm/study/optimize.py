@@ -56,7 +56,7 @@ class OptimizationResult:
         Whether the best design satisfies every constraint.
     output : CaseOutput or None
         The full run of the best design (files in ``out/best`` with ``out``).
-    history : DataFrame or structured array
+    history : StudyTable
         Every evaluation in order: the design variables, objective, constraint violation,
         status.
     evaluations : int

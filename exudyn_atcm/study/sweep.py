@@ -24,7 +24,7 @@ from ..casework import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
 from .store import RunStore, run_key
-from .table import Column, table_columns, to_table, write_table_csv
+from .table import Column, StudyTable, table_columns, to_table, write_table_csv
 
 __all__ = ["sweep", "run_study", "StudyResult", "study_points", "StudyProgress"]
 
@@ -38,8 +38,8 @@ class StudyResult:
 
     Attributes
     ----------
-    table : pandas.DataFrame or numpy structured array
-        One row per point (see :mod:`exudyn_atcm.study.table`).
+    table : StudyTable
+        One row per point (see :mod:`exudyn_atcm.study.table`); ``table.to_pandas()`` for a DataFrame.
     records : list of dict
         The run records in study order (``values``, ``status``, ``error``, ``scalars`` ...).
     columns : list of Column
@@ -60,7 +60,7 @@ class StudyResult:
         ``serial``, ``process`` or ``dask``.
     """
 
-    table: Any
+    table: StudyTable
     records: list[dict[str, Any]]
     columns: list[Column]
     varied: list[str]
@@ -311,11 +311,13 @@ def sweep(
     progress : callable, optional
         ``progress(done, total, failed)`` after each finished run.
     use_pandas : bool, optional
-        Force (True) or avoid (False) a DataFrame; default: a DataFrame if pandas is installed.
+        Deprecated (the table no longer depends on what is installed): ``True`` returns
+        ``table.to_pandas()``, ``False`` ``table.to_numpy()``, with a ``DeprecationWarning``.
 
     Returns
     -------
-    pandas.DataFrame or numpy.ndarray
+    StudyTable
+        The same type whatever is installed (``.to_pandas()``, ``.to_numpy()`` convert it).
         One row per point in the study's order: ``run [-]``, the case's parameters, its key
         scalars, ``status [-]``, ``error [-]``, ``wall_time [s]``, ``key [-]`` (all ``name [unit]``).
         Identical (bar wall times) whatever the engine or number of workers.
