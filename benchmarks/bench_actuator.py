@@ -30,6 +30,7 @@ import time
 import exudyn
 
 from exudyn_atcm._version import __version__
+from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
@@ -134,10 +135,7 @@ def main(argv=None) -> int:
         "repeats": repeats, "scaling": {str(k): v for k, v in scaling.items()}, "in_step_vs_table": pair,
         "goals": {k: {"value": v, "met": bool(ok)} for k, (v, ok) in goals.items()},
     }
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as handle:
-        json.dump(payload, handle, indent=2, default=float)
-    os.replace(tmp, path)
+    write_text(path, json.dumps(payload, indent=2, default=float))
     print(f"\nwrote {path}")
     return 0
 

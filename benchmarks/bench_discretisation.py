@@ -49,9 +49,10 @@ import numpy as np
 from exudyn import itemInterface as ii
 
 from exudyn_atcm.mbs import actuator_chains as builder
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.mbs.eigen import constrained_eigenfrequencies
 from exudyn_atcm._version import __version__
+from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
@@ -107,7 +108,7 @@ def small_drive() -> PiezoDrive:
 def modal_tip_angle(act: BendingActuator, times: np.ndarray, moments: np.ndarray, n_modes: int = 30) -> np.ndarray:
     """Tip rotation [rad] of the Euler-Bernoulli cantilever under the end moment ``moments(times)``.
 
-    :func:`exudyn_atcm.theory.beam.end_moment_tip_rotation` (30 modes, mode-acceleration form,
+    :func:`exudyn_atcm.theory.beam_dynamics.end_moment_tip_rotation` (30 modes, mode-acceleration form,
     stiffness-proportional damping as in the models), starting at rest in the static state of M(0).
     """
     return bt.end_moment_tip_rotation(act.bending_stiffness, act.mass_per_length, act.length,
@@ -299,10 +300,7 @@ def main(argv=None) -> int:
     payload = {"exudyn_atcm": __version__, "exudyn": exu.__version__, "python": platform.python_version(),
                "cpus": os.cpu_count(), "step_s": STEP, "period_s": PERIOD, "runs": runs, "table": table,
                "goals": goals}
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as handle:
-        json.dump(payload, handle, indent=2)
-    os.replace(tmp, path)
+    write_text(path, json.dumps(payload, indent=2))
     print(f"\nwrote {path}")
     return 0
 

@@ -46,7 +46,7 @@ import numpy as np
 
 from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm._version import __version__
-from exudyn_atcm.casework.case import find_case
+from exudyn_atcm.casework import find_case
 from exudyn_atcm.mechanism import Bender
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import Triangle

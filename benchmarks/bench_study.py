@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm._version import __version__
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import DaskEngine, ProcessEngine, SerialEngine, run_study
 
 HERE = Path(__file__).resolve().parent

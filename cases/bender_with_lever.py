@@ -25,15 +25,11 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.mechanism import Bender, Link, Mechanism
-from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
-from exudyn_atcm.model.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm.model.signals import Triangle
-from exudyn_atcm import simulate, static_sweep
+from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, simulate, static_sweep
+from exudyn_atcm import theory
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.model import Triangle, paper_strain_preisach
+from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 6, "-", "rigid cells of the bender"),
@@ -72,7 +68,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     result = simulate(mech, p.cycles * p.period, step=p.step, progress=ctx.progress,
                       record_every=p.record_every if p.record_every > 0.0 else None)
     end = np.stack([result["lever.end_x"], result["lever.end_y"]], axis=-1)
-    ref = np.stack(bt.rigid_extension_point(result["bender.tip_x"], result["bender.tip_y"],
+    ref = np.stack(theory.rigid_extension_point(result["bender.tip_x"], result["bender.tip_y"],
                                             result["bender.tip_angle"], a), axis=-1)
     travel = float(np.max(np.linalg.norm(end - end[0], axis=1)))
     scalars = {
@@ -84,12 +80,12 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     }
     # statics: the free shape (arc) plus the lever
     static = static_sweep(build_mechanism(p), list(p.static_voltages))
-    kappa = bt.free_curvature(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, WIDTH,
+    kappa = theory.free_curvature(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, WIDTH,
                               static["bender.strain"])
-    arc = np.array([bt.arc_point(float(k), L) for k in kappa])
-    arc_end = np.stack(bt.rigid_extension_point(arc[:, 0], arc[:, 1], kappa * L, a), axis=-1)
-    poly = np.array([[x[-1], y[-1]] for x, y in (bt.chain_polygon(float(k), L, p.n_cells) for k in kappa)])
-    poly_end = np.stack(bt.rigid_extension_point(poly[:, 0], poly[:, 1], kappa * L, a), axis=-1)
+    arc = np.array([theory.arc_point(float(k), L) for k in kappa])
+    arc_end = np.stack(theory.rigid_extension_point(arc[:, 0], arc[:, 1], kappa * L, a), axis=-1)
+    poly = np.array([[x[-1], y[-1]] for x, y in (theory.chain_polygon(float(k), L, p.n_cells) for k in kappa)])
+    poly_end = np.stack(theory.rigid_extension_point(poly[:, 0], poly[:, 1], kappa * L, a), axis=-1)
     static_end = np.stack([static["lever.end_x"], static["lever.end_y"]], axis=-1)
     static_travel = float(np.max(np.linalg.norm(static_end - np.array([L + a, 0.0]), axis=1)))
     scalars["static_error_arc"] = (float(np.max(np.linalg.norm(static_end - arc_end, axis=1))) / static_travel, "-")
@@ -115,7 +111,7 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     axes[0].set_ylabel(axis_label("voltage U", "V"))
     axes[1].plot(r["time"], r["bender.tip_y"] * 1e3, label="bender tip")
     axes[1].plot(r["time"], r["lever.end_y"] * 1e3, label=f"lever end (a = {p.lever * 1e3:g} mm)")
-    ref = bt.rigid_extension_point(r["bender.tip_x"], r["bender.tip_y"], r["bender.tip_angle"], p.lever)
+    ref = theory.rigid_extension_point(r["bender.tip_x"], r["bender.tip_y"], r["bender.tip_angle"], p.lever)
     axes[1].plot(r["time"], np.asarray(ref[1]) * 1e3, "k:", lw=1, label="tip + a (cos θ, sin θ)")
     axes[1].set_ylabel(axis_label("y", "mm"))
     axes[1].set_xlabel(axis_label("time t", "s"))

@@ -39,16 +39,12 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.theory.four_bar import RigidFourBar
+from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, PiezoDrive, Result, simulate, static_sweep
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
-from exudyn_atcm.mechanism import Bender, Flexure, Link, Mechanism
-from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
-from exudyn_atcm.model.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm.model.signals import Triangle
-from exudyn_atcm import simulate, static_sweep
+from exudyn_atcm.model import Triangle, paper_strain_preisach
+from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
+from exudyn_atcm.theory import RigidFourBar
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells of the crank bender"),

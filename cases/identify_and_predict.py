@@ -32,14 +32,18 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from exudyn_atcm.io.atomic import write_json
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii, identify
-from exudyn_atcm.hysteresis.fit_report import make_report
-from exudyn_atcm.plots.identification import plot_fit, plot_model_choice
-from exudyn_atcm.io.measurements import preprocess, read_record
-from exudyn_atcm.model.reference_record import REFERENCE
-from exudyn_atcm.io.result import Result
+from exudyn_atcm import Result, preprocess, read_record
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.hysteresis import (
+    ContinuousPreisach,
+    DiscretePreisach,
+    EverettPreisach,
+    PrandtlIshlinskii,
+    identify,
+    make_report,
+)
+from exudyn_atcm.model import REFERENCE
+from exudyn_atcm.plots import plot_fit, plot_model_choice
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 
@@ -130,7 +134,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             parameters={"record": str(path)},
         )
     if ctx.out_dir is not None:
-        written = write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json", report.to_dict())
+        written = report.write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json")
         notes["fit_report_file"] = written.name
     return CaseOutput(result, scalars, tables=tables, notes=notes)
 

@@ -42,14 +42,11 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.mechanism import Bender, Link, Mechanism
-from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
-from exudyn_atcm.model.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm import static_sweep
+from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, static_sweep
+from exudyn_atcm import theory
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.model import paper_strain_preisach
+from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 24, "-", "rigid cells per bender"),
@@ -103,13 +100,13 @@ def jaw(result: Result, name: str) -> np.ndarray:
 
 def curvature(p: Parameters, strain: np.ndarray) -> np.ndarray:
     """Free curvature [1/m] from the free strain (Timoshenko's bimetal formula, beam_theory)."""
-    return bt.free_curvature(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, p.width,
+    return theory.free_curvature(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, p.width,
                              np.asarray(strain))
 
 
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     L, d, a, c = p.length, p.half_spacing, p.jaw_reach, p.jaw_offset
-    ei = bt.composite_bending_stiffness(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, p.width)
+    ei = theory.composite_bending_stiffness(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, p.width)
     runs = {"free": (None, voltage_cycle(-500.0, p.n_steps)),
             "object": (p.object_stiffness, voltage_cycle(0.0, p.n_steps)),
             "stiff": (p.stiff_object, voltage_cycle(0.0, p.n_steps))}
@@ -128,11 +125,11 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     # free jaw against the arc + rigid jaw (lower bender: base (0, -d), bends towards +y)
     free = results["free"]
     kap = curvature(p, free["lower.strain"])
-    tip = np.array([bt.arc_point(float(k), L) for k in kap])
+    tip = np.array([theory.arc_point(float(k), L) for k in kap])
     theta = kap * L
     ref_jaw = np.stack([tip[:, 0] + a * np.cos(theta) - c * np.sin(theta),
                         -d + tip[:, 1] + a * np.sin(theta) + c * np.cos(theta)], axis=-1)
-    poly = np.array([[x[-1], y[-1]] for x, y in (bt.chain_polygon(float(k), L, p.n_cells) for k in kap)])
+    poly = np.array([[x[-1], y[-1]] for x, y in (theory.chain_polygon(float(k), L, p.n_cells) for k in kap)])
     poly_jaw = np.stack([poly[:, 0] + a * np.cos(theta) - c * np.sin(theta),
                          -d + poly[:, 1] + a * np.sin(theta) + c * np.cos(theta)], axis=-1)
     sim_jaw = jaw(free, "lower")
@@ -155,12 +152,12 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         force = stiffness * (2.0 * (d - c) - distance)
         recorded = -r["object.force"]
         kap = curvature(p, r["lower.strain"])
-        free_defl = bt.extension_free_deflection(kap, L, a)
-        ref_beam = bt.spring_contact_force(free_defl, bt.extension_compliance(ei, L, a), 2.0 * stiffness)
-        ref_chain = bt.spring_contact_force(free_defl, bt.rigid_chain_extension_compliance(ei, L, a, p.n_cells),
+        free_defl = theory.extension_free_deflection(kap, L, a)
+        ref_beam = theory.spring_contact_force(free_defl, theory.extension_compliance(ei, L, a), 2.0 * stiffness)
+        ref_chain = theory.spring_contact_force(free_defl, theory.rigid_chain_extension_compliance(ei, L, a, p.n_cells),
                                             2.0 * stiffness)
         peak = int(np.argmax(kap))
-        ref_large = bt.curved_cantilever_spring_force(float(kap[peak]), ei, L, (a, c), 2.0 * stiffness)
+        ref_large = theory.curved_cantilever_spring_force(float(kap[peak]), ei, L, (a, c), 2.0 * stiffness)
         scale = float(np.max(np.abs(ref_beam)))
         scalars[f"force_max_{label}"] = (float(force.max()), "N")
         scalars[f"force_column_difference_{label}"] = (float(np.max(np.abs(recorded - force))) / scale, "-")
@@ -170,7 +167,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         series.update({f"{label}.voltage": r["lower.voltage"], f"{label}.force": force,
                        f"{label}.force_closed_form": ref_beam, f"{label}.force_chain_closed_form": ref_chain})
     scalars["blocked_force_closed_form_1500V"] = (
-        bt.extension_blocked_force(ei, float(curvature(p, np.array([results["stiff"]["lower.strain"].max()]))[0]), L, a),
+        theory.extension_blocked_force(ei, float(curvature(p, np.array([results["stiff"]["lower.strain"].max()]))[0]), L, a),
         "N")
     units = {k: ("V" if k.endswith("voltage") else "N") for k in series}
     series.update({"free.voltage": free["lower.voltage"], "free.gap": gap,

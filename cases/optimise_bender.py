@@ -45,14 +45,10 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.mechanism.actuator import BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.model.drive import PiezoDrive
-from exudyn_atcm.model.materials import Layer
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm.io.result import Result
-from exudyn_atcm.solve import eigenfrequencies, solve_static
+from exudyn_atcm import BendingActuator, Layer, PiezoDrive, Result, eigenfrequencies, solve_static
+from exudyn_atcm import theory
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.plots import axis_label, new_figure, save_figure
 
 PARAMETERS = [
     Parameter("mode", "optimise", "-", "optimise the design, or evaluate one design", choices=("optimise", "evaluate")),
@@ -135,10 +131,10 @@ def evaluate(p: Parameters) -> dict[str, tuple[float, str]]:
         "thickness_ratio": (h1 / h2, "-"),
         "modulus_ratio": (e1 / e2, "-"),
         "length": (probe.length, "m"),
-        "work_beam_theory": (bt.actuator_work(e1, h1, e2, h2, b, strain, probe.length), "J"),
-        "first_frequency_beam_theory": (bt.first_bending_frequency(bt.composite_bending_stiffness(e1, h1, e2, h2, b),
-                                                                   bt.mass_per_length(p.passive_density, h1, p.active_density, h2, b), probe.length), "Hz"),
-        "thickness_ratio_beam_theory": (bt.optimal_thickness_ratio(e1 / e2), "-"),
+        "work_beam_theory": (theory.actuator_work(e1, h1, e2, h2, b, strain, probe.length), "J"),
+        "first_frequency_beam_theory": (theory.first_bending_frequency(theory.composite_bending_stiffness(e1, h1, e2, h2, b),
+                                                                   theory.mass_per_length(p.passive_density, h1, p.active_density, h2, b), probe.length), "Hz"),
+        "thickness_ratio_beam_theory": (theory.optimal_thickness_ratio(e1 / e2), "-"),
         "blocked_force_solves": (float(solves), "-"),
     }
 
@@ -164,7 +160,7 @@ def optimise(p: Parameters, ctx: RunContext) -> CaseOutput:
     design = best.design
     n_ratio = design["passive_modulus"] / p.active_modulus
     t_opt = design["passive_thickness"] / p.active_thickness
-    t_theory = bt.optimal_thickness_ratio(n_ratio)
+    t_theory = theory.optimal_thickness_ratio(n_ratio)
     scalars = {
         "thickness_ratio_optimum": (t_opt, "-"),
         "thickness_ratio_beam_theory": (t_theory, "-"),
@@ -234,7 +230,7 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     n = int(s["n_cells_optimum"])
     strain = 460e-12 * p.voltage / 0.5e-3
     chain = 1.0 + 1.0 / (2.0 * n * n) if p.cell == "rigid" else 1.0
-    work = [bt.actuator_work(e1, ti * p.active_thickness, p.active_modulus, p.active_thickness, p.width, strain, n * p.cell_length) / chain for ti in t]
+    work = [theory.actuator_work(e1, ti * p.active_thickness, p.active_modulus, p.active_thickness, p.width, strain, n * p.cell_length) / chain for ti in t]
     ax.plot(t, np.array(work) * 1e3, "-", label="beam theory (with the chain's compliance factor)")
     ax.axvline(s["thickness_ratio_beam_theory"], color="k", linestyle="--", linewidth=1.0, label="closed-form optimum t*")
     ax.plot([s["thickness_ratio_optimum"]], [s["work_optimum"] * 1e3], "*", markersize=12, label="optimiser")

@@ -38,25 +38,27 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.model.parameter_sets import PAPER_LOOP
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-
-from exudyn_atcm.mechanism.actuator import CELL_TYPES, BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.model.drive import PiezoDrive
-from exudyn_atcm.model.materials import Layer
-from exudyn_atcm.model.parameter_sets import paper_strain_preisach
-from exudyn_atcm.plots.mechanism import actuator_as_mechanism, animate_mechanism, plot_mechanism
-from exudyn_atcm.plots.result import plot_time_series, plot_tip_vs_voltage
-from exudyn_atcm.model.signals import Triangle
-from exudyn_atcm.solve import simulate
+from exudyn_atcm import BendingActuator, Layer, PiezoDrive, simulate
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.cells import CELL_KINDS
+from exudyn_atcm.model import PAPER_LOOP, Triangle, paper_strain_preisach
+from exudyn_atcm.plots import (
+    actuator_as_mechanism,
+    animate_mechanism,
+    axis_label,
+    new_figure,
+    plot_actuator_time_series,
+    plot_mechanism,
+    plot_tip_vs_voltage,
+    save_figure,
+)
 
 PARAMETERS = [
     Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),
     Parameter("cycles", 3, "-", "number of input periods simulated (last_cycle_change needs >= 3)"),
     Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
               "ritz: n_cells assumed modes of the whole bender)",
-              choices=CELL_TYPES),
+              choices=tuple(CELL_KINDS)),
     Parameter("n_cells", 3, "-", "number of cells"),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
@@ -201,7 +203,7 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     """
     out_dir = Path(out_dir)
     prefix = f"{out_dir / output.case}_"
-    files = [Path(plot_time_series(output.result, prefix + "time_series.png")),
+    files = [Path(plot_actuator_time_series(output.result, prefix + "time_series.png")),
              Path(plot_tip_vs_voltage(output.result, prefix + "tip_vs_voltage.png"))]
     mechanism, drawn = actuator_as_mechanism(build(p), output.result, name="actuator")
     if p.cell == "ritz":  # one continuous beam: its segments' mean rotations are drawn, not cells

@@ -18,12 +18,11 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm import Result
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import DiscretePreisach
-from exudyn_atcm.plots.hysteresis import Curve, plot_loops, plot_relays, plot_time_series
-from exudyn_atcm.model.parameter_sets import paper_stroke_preisach
-from exudyn_atcm.io.result import Result
-from exudyn_atcm.model.signals import PiecewiseLinear
+from exudyn_atcm.model import PiecewiseLinear, paper_stroke_preisach
+from exudyn_atcm.plots import Curve, plot_loops, plot_relays, plot_time_series
 
 PARAMETERS = [
     Parameter("n_relays", 6, "-", "number of equal-gain relays (the paper: 6)"),

@@ -18,11 +18,11 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm import Result
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
-from exudyn_atcm.plots.hysteresis import Curve, plot_loops, plot_time_series
-from exudyn_atcm.io.result import Result
-from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.model import Triangle
+from exudyn_atcm.plots import Curve, plot_loops, plot_time_series
 
 PARAMETERS = [
     Parameter("u_min", -500.0, "V", "lower voltage of the loop U_min"),

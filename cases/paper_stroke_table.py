@@ -19,12 +19,10 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.plots.hysteresis import plot_time_series
-from exudyn_atcm.model.parameter_sets import PAPER_D33, PAPER_ELECTRODE_SPACING, PAPER_LOOP, paper_stroke_preisach
-from exudyn_atcm.plots.style import axis_label, display_scale, new_figure, save_figure
-from exudyn_atcm.io.result import Result
-from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm import Result
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.model import PAPER_D33, PAPER_ELECTRODE_SPACING, PAPER_LOOP, Triangle, paper_stroke_preisach
+from exudyn_atcm.plots import axis_label, display_scale, new_figure, plot_time_series, save_figure
 
 PARAMETERS = [
     Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),

@@ -8,7 +8,7 @@ so each bender takes the free curvature +kappa over its first half and -kappa ov
 an S.  The voltage runs 0 -> +U_max -> -U_max -> 0 (within the MFC's -500 ... 1500 V rating),
 solved quasi-statically.
 
-Reference (:func:`exudyn_atcm.theory.beam.s_blade_end`): the S's free curvature integrates to
+Reference (:func:`exudyn_atcm.theory.beam_mechanisms.s_blade_end`): the S's free curvature integrates to
 zero, so the free shape ends with zero rotation and both blades' free end poses are the same
 translation: the coupler fits them without any force, for any deflection.  The coupler then
 translates by exactly ``(2 sin(kappa L/2)/kappa - L, 2 (1 - cos(kappa L/2))/kappa)`` and does not
@@ -29,13 +29,10 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Layer, PiezoDrive, Result
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.mechanism import Bender, Link, Mechanism, Segment
-from exudyn_atcm.plots.mechanism import animate_mechanism, plot_mechanism
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm import static_sweep
+from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, Segment, static_sweep
+from exudyn_atcm import theory
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)"),
@@ -84,8 +81,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     result = static_sweep(mech, {"lower.1": volts, "lower.2": -volts, "upper.1": volts, "upper.2": -volts})
     ctx.progress(1, 1)
     strain = result["lower.1.strain"]
-    kappa = bt.free_curvature(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, p.width, strain)
-    ends = np.array([bt.s_blade_end(float(k), L) for k in kappa])
+    kappa = theory.free_curvature(CFC.youngs_modulus, CFC.thickness, MFC.youngs_modulus, MFC.thickness, p.width, strain)
+    ends = np.array([theory.s_blade_end(float(k), L) for k in kappa])
     ref = ends - np.array([L, 0.0])
     # the rigid-cell chain: joints on the arcs' inscribed polygons, end scaled by (k Lc/2)/sin(k Lc/2)
     half_cell = 0.5 * kappa * L / (2 * p.n_cells)
@@ -93,7 +90,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     ref_chain = ends * polygon[:, None] - np.array([L, 0.0])
     p0 = np.array(mech.position("coupler.P"))
     sim = np.stack([result["coupler.P_x"], result["coupler.P_y"]], axis=-1) - p0
-    small = bt.s_blade_deflection_linear(kappa, L)
+    small = theory.s_blade_deflection_linear(kappa, L)
     biggest = float(np.max(np.linalg.norm(ref, axis=1)))
     scalars = {
         "translation_error": (float(np.max(np.linalg.norm(sim - ref, axis=1))) / biggest, "-"),

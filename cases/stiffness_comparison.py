@@ -27,19 +27,16 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.mechanism.actuator import TIP_LOAD_CELLS, BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.model.drive import PiezoDrive
-from exudyn_atcm.plots.hysteresis import Curve, plot_loops
-from exudyn_atcm.model.materials import Layer
-from exudyn_atcm.io.result import Result
-from exudyn_atcm.solve import eigenfrequencies, solve_static
+from exudyn_atcm import BendingActuator, Layer, PiezoDrive, Result, eigenfrequencies, solve_static
+from exudyn_atcm import theory
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.cells import CELL_KINDS
+from exudyn_atcm.plots import Curve, plot_loops
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "number of cells"),
     Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
-              "not ritz, which refuses the tip force of the compliance run)", choices=TIP_LOAD_CELLS),
+              "not ritz, which refuses the tip force of the compliance run)", choices=tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
     Parameter("width", 28e-3, "m", "width b of both layers"),
     Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness"),
@@ -69,11 +66,11 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     voltages = np.linspace(0.0, p.voltage, p.n_voltages)
 
     ei = {
-        "composite": bt.composite_bending_stiffness(p.E1, p.h1, p.E2, p.h2, p.width),
-        "paper": bt.paper_bending_stiffness(p.E1, p.h1, p.E2, p.h2, p.width),
+        "composite": theory.composite_bending_stiffness(p.E1, p.h1, p.E2, p.h2, p.width),
+        "paper": theory.paper_bending_stiffness(p.E1, p.h1, p.E2, p.h2, p.width),
     }
-    curvature_fn = {"composite": bt.free_curvature, "paper": bt.paper_free_curvature}
-    mu = bt.mass_per_length(p.rho1, p.h1, p.rho2, p.h2, p.width)
+    curvature_fn = {"composite": theory.free_curvature, "paper": theory.paper_free_curvature}
+    mu = theory.mass_per_length(p.rho1, p.h1, p.rho2, p.h2, p.width)
 
     series: dict[str, np.ndarray] = {"voltage": voltages}
     units = {"voltage": "V"}
@@ -88,8 +85,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             tip_x.append(r["tip_x"][0])
             tip_y.append(r["tip_y"][0])
             angle.append(r["tip_angle"][0])
-            kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, bt.piezo_strain(float(u)))
-            ax, ay = bt.arc_point(kappa, length)
+            kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, theory.piezo_strain(float(u)))
+            ax, ay = theory.arc_point(kappa, length)
             arc_x.append(float(ax))
             arc_y.append(float(ay))
             ctx.progress(k + 1 + (p.n_voltages if model == "paper" else 0), 2 * p.n_voltages)
@@ -97,14 +94,14 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             series[f"{name}_{model}"] = np.asarray(values)
             units[f"{name}_{model}"] = "rad" if name == "tip_angle" else "m"
 
-        kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, bt.piezo_strain(p.voltage))
+        kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, theory.piezo_strain(p.voltage))
         unloaded = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(0.0), cell=p.cell, stiffness=model)
         loaded = solve_static(unloaded, voltage=0.0, tip_force=(0.0, p.tip_force))
         compliance = float(loaded["tip_y"][0]) / p.tip_force
         factor = {
-            "rigid": lambda: bt.rigid_chain_compliance_factor(p.n_cells),
-            "six-bar": lambda: bt.six_bar_chain_compliance_factor(p.n_cells, unloaded.spring_share),
-            "beam": lambda: bt.beam_element_compliance_factor(p.n_cells),
+            "rigid": lambda: theory.rigid_chain_compliance_factor(p.n_cells),
+            "six-bar": lambda: theory.six_bar_chain_compliance_factor(p.n_cells, unloaded.spring_share),
+            "beam": lambda: theory.beam_element_compliance_factor(p.n_cells),
             "ancf": lambda: 1.0,  # cubic elements: the cantilever's cubic deflection exactly
         }[p.cell]()
         f1 = float(eigenfrequencies(unloaded, n=1)[0])
@@ -118,10 +115,10 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
                 f"tip_y_{model}": (tip_y[-1], "m"),
                 f"arc_tip_y_{model}": (arc_y[-1], "m"),
                 f"compliance_{model}": (compliance, "m/N"),
-                f"compliance_theory_{model}": (bt.tip_compliance(ei[model], length), "m/N"),
-                f"compliance_chain_theory_{model}": (bt.tip_compliance(ei[model], length) * factor, "m/N"),
+                f"compliance_theory_{model}": (theory.tip_compliance(ei[model], length), "m/N"),
+                f"compliance_chain_theory_{model}": (theory.tip_compliance(ei[model], length) * factor, "m/N"),
                 f"f1_{model}": (f1, "Hz"),
-                f"f1_theory_{model}": (bt.first_bending_frequency(ei[model], mu, length), "Hz"),
+                f"f1_theory_{model}": (theory.first_bending_frequency(ei[model], mu, length), "Hz"),
             }
         )
     elastica_force = p.elastica_alpha * ei["composite"] / length**2

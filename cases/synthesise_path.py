@@ -63,9 +63,8 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Result, static_sweep
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.plots.mechanism import animate_mechanism
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, save_figure
 
 
 def _four_bar_module():

@@ -29,18 +29,11 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm.mechanism.actuator import BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.model.control import PIDController
-from exudyn_atcm.model.drive import PiezoDrive
-from exudyn_atcm.model.feedforward import feedforward_program, linear_program
+from exudyn_atcm import BendingActuator, Layer, PIDController, PiezoDrive, Result, read_record, simulate
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import EverettPreisach
-from exudyn_atcm.model.materials import Layer
-from exudyn_atcm.io.measurements import read_record
-from exudyn_atcm.plots.style import axis_label, new_figure, save_figure
-from exudyn_atcm.model.reference_record import reference_preisach
-from exudyn_atcm.io.result import Result
-from exudyn_atcm.solve import simulate
+from exudyn_atcm.model import feedforward_program, linear_program, reference_preisach
+from exudyn_atcm.plots import axis_label, new_figure, save_figure
 
 RECORD = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 CELL_LENGTH = 29e-3  # m, the cell of the record's stroke

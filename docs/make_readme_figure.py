@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 
 import exudyn_atcm as atcm
-from exudyn_atcm.plots.cells import save_cell_drawing
-from exudyn_atcm.model.parameter_sets import paper_strain_preisach, paper_stroke_preisach
-from exudyn_atcm.plots.style import new_figure, save_figure
-from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.plots import save_cell_drawing
+from exudyn_atcm.model import paper_strain_preisach, paper_stroke_preisach
+from exudyn_atcm.plots import new_figure, save_figure
+from exudyn_atcm.model import Triangle
 
 
 def main() -> Path:

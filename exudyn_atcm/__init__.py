@@ -6,7 +6,7 @@
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
 ``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``add_to``), results and files
-(``Result``, ``read_csv``, ``read_record``), closed loop (``PIDController``), the errors
+(``Result``, ``read_csv``, ``read_record``, ``preprocess``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
 ``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
 else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
@@ -21,7 +21,7 @@ from .model.control import PIDController
 from .io.result import read_csv
 from .model.drive import PiezoDrive
 from .model.materials import Layer
-from .io.measurements import read_record
+from .io.measurements import preprocess, read_record
 from .model.damping import RayleighDamping
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .io.result import Result
@@ -54,6 +54,7 @@ __all__ = [
     "SimulationInterrupted",
     "read_csv",
     "read_record",
+    "preprocess",
     "PIDController",
 ]
 

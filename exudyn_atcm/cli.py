@@ -26,7 +26,7 @@ import sys
 import warnings
 from collections.abc import Sequence
 
-from .casework import case as _cases
+from . import casework as _cases
 from .casework.error_report import report_error as _error
 from .casework.termination import StopSignal, stop_signals_as_interrupt
 
@@ -110,14 +110,12 @@ def _list(cases_dir: str | None) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from .casework.regression import run_suite
-
     if args.update_references and not (args.reason and args.reason.strip()):
         return _error("--update-references needs --reason TEXT (why the references change; it is recorded)", args.debug, 2)
     if args.reason and not args.update_references:
         return _error("--reason is only used with --update-references", args.debug, 2)
     try:
-        report = run_suite(
+        report = _cases.run_suite(
             args.suite,
             args.out,
             quick=args.quick,

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer

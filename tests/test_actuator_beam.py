@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.solve import eigenfrequencies, simulate, solve_static

@@ -15,7 +15,7 @@ import pytest
 from scipy.integrate import quad
 
 from exudyn_atcm.mbs import actuator_chains as builder
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.mbs.eigen import exudyn_eigenfrequencies
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.solve import static_equilibrium, eigenfrequencies

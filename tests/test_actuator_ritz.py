@@ -20,7 +20,7 @@ from numpy.polynomial import legendre
 from scipy.linalg import eigh
 from scipy.special import sh_legendre
 
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.theory import ritz_beam as rb
 
 EI, MU, L = 0.0493, 0.2, 0.087  # N m^2, kg/m, m: the order of the paper's actuator
@@ -420,7 +420,7 @@ def test_fig12_case_runs_with_ritz_from_the_command_line(tmp_path):
 
 
 def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
-    from exudyn_atcm.casework.case import CaseError, load_case
+    from exudyn_atcm.casework import CaseError, load_case
     from exudyn_atcm.model.materials import Layer
     from exudyn_atcm.mechanism import Bender
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from exudyn_atcm.mbs import actuator_chains as builder
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.signals import Triangle
 from exudyn_atcm.solve import eigenfrequencies, simulate, solve_static

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from exudyn_atcm.casework.case import case_files, find_case
+from exudyn_atcm.casework import case_files, find_case
 
 from _cli_helpers import CASES, cli
 
@@ -12,7 +12,7 @@ from _cli_helpers import CASES, cli
 _MARKING = '''"""A case found in someone else's archive."""
 from pathlib import Path
 Path(__file__).with_suffix(".ran").write_text("executed\\n")
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter
+from exudyn_atcm.casework import Case, CaseOutput, Parameter
 from exudyn_atcm.io.result import Result
 
 def run(p, ctx):

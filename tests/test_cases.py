@@ -11,7 +11,7 @@ import exudyn
 import numpy as np
 import pytest
 
-from exudyn_atcm.casework.case import Case, CaseError, CaseOutput, Parameter, case_dirs, find_case, load_case
+from exudyn_atcm.casework import Case, CaseError, CaseOutput, Parameter, case_dirs, find_case, load_case
 from exudyn_atcm.io import read_csv
 
 from _cli_helpers import CASES, cli, run
@@ -319,7 +319,7 @@ def test_load_case_refuses_a_file_without_case(tmp_path):
     with pytest.raises(CaseError, match="defines no CASE"):
         load_case(wrong)
     broken = tmp_path / "broken.py"
-    broken.write_text("from exudyn_atcm.casework.case import Case\nimport no_such_module_xyz\nCASE = None\n")
+    broken.write_text("from exudyn_atcm.casework import Case\nimport no_such_module_xyz\nCASE = None\n")
     with pytest.raises(CaseError, match="import failed"):
         load_case(broken)
 

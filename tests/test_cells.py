@@ -20,7 +20,7 @@ from exudyn_atcm.cells import CELL_KINDS, CellKind, RigidCell, BeamCell, cell_ki
 from exudyn_atcm.mbs import solver_settings
 from exudyn_atcm.mbs.cells import add_actuator_cells, add_mechanism_bender
 from exudyn_atcm.plots.mechanism import plot_mechanism
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exudyn_atcm"
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)

@@ -157,7 +157,7 @@ def test_cases_are_shipped_with_the_package(tmp_path):
 
 
 def test_list_with_no_cases_fails(monkeypatch, capsys):
-    import exudyn_atcm.casework.case as cases
+    import exudyn_atcm.casework as cases
 
     monkeypatch.setattr(cases, "list_cases", lambda cases_dir=None: [])
     assert main(["list"]) == 1
@@ -193,7 +193,7 @@ def test_output_directory_that_cannot_be_made_is_named(tmp_path):
 
 INTERRUPTING_CASE = '''"""A case whose voltage program is interrupted (Ctrl-C) at t = 0.02 s."""
 from exudyn_atcm.mechanism.actuator import BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter
+from exudyn_atcm.casework import Case, CaseOutput, Parameter
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach

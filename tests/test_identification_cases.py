@@ -9,7 +9,7 @@ import json
 import numpy as np
 import pytest
 
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.io.measurements import read_record
 from exudyn_atcm.model.reference_record import REFERENCE, reference_samples
 

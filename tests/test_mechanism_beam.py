@@ -30,8 +30,8 @@ import exudyn_atcm as atcm
 from exudyn_atcm.plots.mechanism import plot_mechanism
 from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment,
                          eigenfrequencies, simulate, solve_static, static_sweep)
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm import theory as bt
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.mbs import solver_settings
 from exudyn_atcm.plots.mechanism_shapes import mechanism_shape
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach

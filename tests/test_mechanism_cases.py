@@ -10,8 +10,8 @@ import warnings
 
 import pytest
 
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm import theory as bt
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.model.parameter_sets import PAPER_LOOP
 
 from _cli_helpers import CASES, run

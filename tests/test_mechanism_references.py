@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm.theory import beam as bt
+from exudyn_atcm import theory as bt
 from exudyn_atcm.theory.four_bar import (
     RigidFourBar,
     branch_of,

@@ -11,7 +11,7 @@ import exudyn
 import pytest
 
 from exudyn_atcm.io import read_csv
-from exudyn_atcm.casework.regression import load_suite, run_suite
+from exudyn_atcm.casework import load_suite, run_suite
 from exudyn_atcm.io.result import Result
 
 from _cli_helpers import CASES, REPO, cli

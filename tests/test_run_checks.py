@@ -33,7 +33,7 @@ def _messages(record) -> list[str]:
 
 
 def _fig12_case():
-    from exudyn_atcm.casework.case import load_case
+    from exudyn_atcm.casework import load_case
 
     return load_case(CASES / "paper_bending_actuator.py")
 

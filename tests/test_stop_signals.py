@@ -48,7 +48,7 @@ import time
 from pathlib import Path
 
 from exudyn_atcm.mechanism.actuator import BendingActuator
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter
+from exudyn_atcm.casework import Case, CaseOutput, Parameter
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import run_study
 from exudyn_atcm.study.lock import StudyLockedError, TableLock
 from exudyn_atcm.study.store import RunStore, record_problem

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from exudyn_atcm.theory import beam as bt
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm import theory as bt
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import GridError, optimize
 
 from _cli_helpers import CASES

@@ -14,9 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.cli import main
-from exudyn_atcm.study import GridError, run_study, sample_points, sweep
+from exudyn_atcm.study import GridError, StudyTable, run_study, sample_points, sweep
 from exudyn_atcm.study.table import column
 
 from _cli_helpers import env
@@ -57,10 +57,63 @@ def test_full_grid_table_has_closed_form_scalars_units_and_order(synthetic, tmp_
     assert [float(r[rows[0].index("y [m]")]) for r in rows[1:]] == column(table, "y").tolist()
 
 
-def test_structured_array_without_pandas(synthetic):
-    array = sweep(synthetic, {"x": [1.0, 2.0]}, workers=1, use_pandas=False)
-    assert isinstance(array, np.ndarray) and array.dtype.names[1] == "x [m]"
-    np.testing.assert_array_equal(array["y [m]"], np.array([1.0, 4.0]) + 2)
+def test_one_table_type_with_its_conversions(synthetic):
+    table = sweep(synthetic, {"x": [1.0, 2.0]}, workers=1)
+    assert type(table) is StudyTable
+    assert len(table) == 2 and table.columns[:2] == ["run [-]", "x [m]"] and table.units["y [m]"] == "m"
+    np.testing.assert_array_equal(table["y [m]"], np.array([1.0, 4.0]) + 2)  # y = a x^2 + n with the defaults a = 1, n = 2
+    np.testing.assert_array_equal(table["y"], table["y [m]"])
+    assert table[["x [m]", "y"]].columns == ["x [m]", "y [m]"]
+    array = table.to_numpy()
+    assert isinstance(array, np.ndarray) and array.dtype.names == tuple(table.columns)
+    np.testing.assert_array_equal(array["y [m]"], table["y [m]"])
+    assert not table.drop(columns=["wall_time [s]"]).equals(table) and table.equals(table[table.columns])
+    with pytest.raises(ValueError, match=r"no column 'w' in the table; columns: run \[-\], x \[m\]"):
+        table["w"]
+    with pytest.warns(DeprecationWarning, match="use_pandas is deprecated"):
+        legacy = sweep(synthetic, {"x": [1.0, 2.0]}, workers=1, use_pandas=False)
+    assert isinstance(legacy, np.ndarray) and legacy.dtype.names[1] == "x [m]"
+
+
+def test_to_pandas_keeps_values_and_units(synthetic):
+    pd = pytest.importorskip("pandas")
+    table = sweep(synthetic, {"x": [1.0, 2.0], "mode": ["plain", "other"]}, workers=1)
+    frame = table.to_pandas()
+    assert isinstance(frame, pd.DataFrame) and list(frame.columns) == table.columns
+    assert frame.attrs["units"] == table.units
+    for header in table.columns:
+        assert frame[header].tolist() == table[header].tolist()
+
+
+WITHOUT_PANDAS = """
+import sys
+sys.modules["pandas"] = None  # an import of pandas now raises ImportError, as if it were not installed
+import numpy as np
+from exudyn_atcm.casework import load_case
+from exudyn_atcm.study import StudyTable, column, run_study, sweep
+case = load_case(sys.argv[1])
+table = sweep(case, {"x": [0.0, 0.5, 1.0], "n": [1, 5]}, fixed={"a": 2.0}, workers=1)
+assert type(table) is StudyTable, type(table)
+x, n = column(table, "x"), column(table, "n")
+assert np.array_equal(column(table, "y"), 2.0 * x**2 + n)
+assert list(table.columns[:3]) == ["run [-]", "x [m]", "n [-]"]
+assert table.drop(columns=["wall_time [s]"]).equals(
+    run_study(case, {"x": [0.0, 0.5, 1.0], "n": [1, 5]}, fixed={"a": 2.0}, workers=1).table.drop(columns=["wall_time [s]"]))
+try:
+    table.to_pandas()
+except ImportError as exc:
+    print("ImportError:", exc)
+"""
+
+
+def test_same_type_without_pandas(tmp_path):
+    """With pandas blocked in a fresh interpreter, sweep and run_study return the same StudyTable and
+    everything but to_pandas works (the two tests that needed pandas before run this way here)."""
+    proc = subprocess.run([sys.executable, "-c", WITHOUT_PANDAS, str(SYNTHETIC)], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert proc.stdout.strip() == ("ImportError: StudyTable.to_pandas needs pandas, which is not installed "
+                                   "(pip install pandas); table[name] and table.to_numpy() work without it")
 
 
 def test_same_table_with_one_two_workers_and_dask(synthetic, tmp_path):

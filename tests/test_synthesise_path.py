@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_atcm.casework.case import load_case
+from exudyn_atcm.casework import load_case
 
 from _cli_helpers import CASES
 

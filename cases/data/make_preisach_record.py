@@ -7,7 +7,7 @@ Run: python cases/data/make_preisach_record.py
 
 from pathlib import Path
 
-from exudyn_atcm.model.reference_record import write_reference_record
+from exudyn_atcm.model import write_reference_record
 
 if __name__ == "__main__":
     print(write_reference_record(Path(__file__).with_name("preisach_record.csv")))

@@ -5,7 +5,7 @@ from exudyn import itemInterface as ii
 
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import add_post_step
-from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.model import Triangle
 
 cfc = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
 mfc = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)

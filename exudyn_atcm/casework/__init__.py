@@ -1,5 +1,51 @@
 """Case scripts (declared parameters, one run function, standard outputs), the regression suite
 and the command line's error reports.
 
+The face: ``from exudyn_atcm.casework import Case, CaseOutput, Parameter`` is all a case file
+needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
+
+* :mod:`~exudyn_atcm.casework.parameters`: :class:`Parameter`, :class:`Parameters`, :class:`CaseError`;
+* :mod:`~exudyn_atcm.casework.outputs`: :class:`RunContext`, :class:`CaseOutput`, :func:`versions`;
+* :mod:`~exudyn_atcm.casework.case`: :class:`Case`, running and reporting from the command line;
+* :mod:`~exudyn_atcm.casework.discovery`: :func:`case_dirs`, :func:`list_cases`, :func:`find_case`,
+  :func:`load_case`;
+* :mod:`~exudyn_atcm.casework.regression` (with :mod:`~exudyn_atcm.casework.metrics`): the
+  regression suite, :func:`run_suite`.
+
 May import everything below it; :mod:`exudyn_atcm.study` and the command line build on it.
 """
+
+from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_report
+from .discovery import CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, list_cases, load_case
+from .metrics import MetricRow
+from .outputs import CaseOutput, RunContext, versions
+from .parameters import CaseError, Parameter, Parameters, closest
+from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
+
+__all__ = [
+    "Case",
+    "CaseOutput",
+    "Parameter",
+    "Parameters",
+    "RunContext",
+    "CaseError",
+    "RunFunction",
+    "PlotFunction",
+    "versions",
+    "case_dirs",
+    "list_cases",
+    "find_case",
+    "case_files",
+    "load_case",
+    "add_run_options",
+    "run_and_report",
+    "closest",
+    "ENV_CASES",
+    "CASE_MARKERS",
+    "MetricRow",
+    "SuiteReport",
+    "default_suite_dir",
+    "load_suite",
+    "run_suite",
+    "ENV_SUITE",
+]

@@ -11,9 +11,11 @@ effect), ``commit(u)`` (accept ``u``), ``reset()``, ``apply(u_series)`` and
   output), e.g. from :meth:`EverettPreisach.fit`;
 * :class:`PrandtlIshlinskii`: play operators with the analytic inverse.
 
-Identification from records: :mod:`exudyn_atcm.hysteresis.identification`, and
-:func:`identify` (every family fitted and ranked on held-out data); inverses:
-:mod:`exudyn_atcm.hysteresis.inverse`.
+Identification from records: :mod:`exudyn_atcm.hysteresis.identification` (fit reports:
+:func:`make_report`), and :func:`identify` (every family fitted and ranked on held-out data);
+inverses: :func:`inverse_operator` (:mod:`exudyn_atcm.hysteresis.inverse`).  Feed-forward
+programs and the synthetic reference record build on voltage programs and live in
+:mod:`exudyn_atcm.model`.
 """
 
 from .base import HysteresisOperator
@@ -24,6 +26,10 @@ from .prandtl_ishlinskii import PrandtlIshlinskii
 from .model_choice import ModelChoice, identify
 from .staircase import StaircasePreisach
 
+# the operators above are bound first: feedforward and reference_record build voltage programs of
+# exudyn_atcm.model.signals (model's face imports hysteresis.continuous, never this face)from .fit_report import FitReport, error_measures, make_report
+from .inverse import inverse_operator
+
 __all__ = [
     "HysteresisOperator",
     "StaircasePreisach",
@@ -33,4 +39,8 @@ __all__ = [
     "PrandtlIshlinskii",
     "ModelChoice",
     "identify",
+    "inverse_operator",
+    "FitReport",
+    "error_measures",
+    "make_report",
 ]

@@ -166,24 +166,25 @@ class BisectionInverse(HysteresisOperator):
 
 
 class ShiftedPIInverse(HysteresisOperator):
-    """Analytic inverse of ``y = offset + P[u]`` (``P`` a Prandtl-Ishlinskii operator): ``u = P⁻¹[y − offset]``.
+    """Analytic inverse of ``y = offset + P[u]`` (``P`` a Prandtl-Ishlinskii operator): ``u = P⁻¹[y − offset]``,
+    that is :meth:`PrandtlIshlinskii.inverse` with the bookkeeping of the other inverses (``clip_count``).
 
     Every output is reachable (a PI operator with ``p0 > 0`` is unbounded), so nothing is clipped.
     """
 
     def __init__(self, model: PrandtlIshlinskii) -> None:
         self.offset = model.offset
-        self._inverse = PrandtlIshlinskii(model.radii, model.weights, model.p0).inverse()
+        self._inverse = model.inverse()
         self.clip_count = 0
         self.largest_clip = 0.0
 
     def evaluate(self, y: float) -> float:
         """Input producing ``y`` from the committed memory."""
-        return self._inverse.evaluate(check_input(y) - self.offset)
+        return self._inverse.evaluate(check_input(y))
 
     def commit(self, y: float) -> float:
         """Commit the input producing ``y``."""
-        return self._inverse.commit(check_input(y) - self.offset)
+        return self._inverse.commit(check_input(y))
 
     def reset(self) -> None:
         """Both the inverse and (implicitly) the forward plays at rest."""

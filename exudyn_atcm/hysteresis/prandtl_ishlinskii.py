@@ -12,10 +12,10 @@ from .base import HysteresisOperator, check_input
 
 
 class PrandtlIshlinskii(HysteresisOperator):
-    r"""Prandtl-Ishlinskii operator ``y = offset + p0·u + Σ_j p_j·z_j``.
+    r"""Prandtl-Ishlinskii operator ``y = offset + p0·v + Σ_j p_j·z_j`` of ``v = u − input_offset``.
 
     Each play operator of radius ``r_j`` follows
-    :math:`z_j(t) = \max(u - r_j, \min(u + r_j, z_j(t^-)))`.
+    :math:`z_j(t) = \max(v - r_j, \min(v + r_j, z_j(t^-)))`.
 
     Parameters
     ----------
@@ -27,15 +27,18 @@ class PrandtlIshlinskii(HysteresisOperator):
         Weight of the input itself (the play of radius 0).
     offset : float, optional
         Output added to the sum (default 0; set by :meth:`fit` for measured outputs).
+    input_offset : float, optional
+        Input at which the plays are at rest, subtracted from every input (default 0; the
+        :meth:`inverse` of an operator with an ``offset`` has it).
 
     Notes
     -----
     Initial state (after :meth:`reset`): every play at ``z_j = 0``, the usual initial
     condition of the PI literature (the plays are at rest for a history that starts at
-    ``u = 0``); not a negative saturation, which a PI operator does not have.
+    ``u = input_offset``); not a negative saturation, which a PI operator does not have.
     """
 
-    def __init__(self, radii: Any, weights: Any, p0: float, offset: float = 0.0) -> None:
+    def __init__(self, radii: Any, weights: Any, p0: float, offset: float = 0.0, input_offset: float = 0.0) -> None:
         r = finite_array("radii", radii, min_length=0)
         p = finite_array("weights", weights, min_length=0)
         same_length(("radii", "weights"), (r, p))
@@ -50,6 +53,7 @@ class PrandtlIshlinskii(HysteresisOperator):
         self.weights = p.copy()
         self.p0 = finite_float("p0", p0)
         self.offset = finite_float("offset", offset)
+        self.input_offset = finite_float("input_offset", input_offset)
         self.reset()
 
     def reset(self) -> None:
@@ -79,14 +83,14 @@ class PrandtlIshlinskii(HysteresisOperator):
 
     def evaluate(self, u: float) -> float:
         """Output for input ``u`` from the committed play states; nothing is changed."""
-        u = check_input(u)
-        return self.offset + self.p0 * u + float(self.weights @ self._plays(u))
+        v = check_input(u) - self.input_offset
+        return self.offset + self.p0 * v + float(self.weights @ self._plays(v))
 
     def commit(self, u: float) -> float:
         """Accept input ``u``: update the play states and return the output."""
-        u = check_input(u)
-        self._z = self._plays(u)
-        self._y = self.offset + self.p0 * u + float(self.weights @ self._z)
+        v = check_input(u) - self.input_offset
+        self._z = self._plays(v)
+        self._y = self.offset + self.p0 * v + float(self.weights @ self._z)
         return self._y
 
     def inverse(self) -> "PrandtlIshlinskii":
@@ -96,21 +100,16 @@ class PrandtlIshlinskii(HysteresisOperator):
         :math:`\hat p_0 = 1/p_0`,
         :math:`\hat p_j = -p_j / (P_j P_{j-1})`,
         :math:`\hat r_j = p_0 r_j + \sum_{i \le j} p_i (r_j - r_i)`.
-        Starting both from the reset state, ``inverse().apply(apply(u)) == u``.
+        The offsets swap: the inverse of ``y = c + P[u − d]`` is ``u = d + P⁻¹[y − c]``, so the
+        inverse has ``input_offset = c`` and ``offset = d`` (a fitted model, whose ``offset`` is
+        the output at rest, inverts with its offset included).  Starting both from the reset
+        state, ``inverse().apply(apply(u)) == u``.
 
         Raises
         ------
         ValueError
-            If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible),
-            or ``offset != 0`` (the inverse of ``y = offset + P[u]`` is ``P⁻¹[y − offset]``,
-            whose plays do not start at rest for the input ``y``: use
-            :func:`exudyn_atcm.hysteresis.inverse.inverse_operator`, which shifts the input).
+            If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible).
         """
-        if self.offset != 0.0:
-            raise ValueError(
-                f"inverse() needs offset == 0, got offset = {self.offset!r}; use "
-                "exudyn_atcm.hysteresis.inverse.inverse_operator(model), which subtracts the offset"
-            )
         radii, weights = self.radii, self.weights
         p0 = self.p0 + float(weights[radii == 0.0].sum())
         keep = radii > 0.0
@@ -126,10 +125,11 @@ class PrandtlIshlinskii(HysteresisOperator):
         inv_radii = p0 * radii + np.array(
             [float(np.sum(weights[: j + 1] * (radii[j] - radii[: j + 1]))) for j in range(radii.size)]
         )
-        return PrandtlIshlinskii(inv_radii, inv_weights, 1.0 / p0)
+        return PrandtlIshlinskii(inv_radii, inv_weights, 1.0 / p0, offset=self.input_offset, input_offset=self.offset)
 
     def __repr__(self) -> str:
-        extra = f", offset={self.offset!r}" if self.offset else ""
+        extra = (f", offset={self.offset!r}" if self.offset else "") + (
+            f", input_offset={self.input_offset!r}" if self.input_offset else "")
         return (f"PrandtlIshlinskii(radii={self.radii.tolist()!r}, weights={self.weights.tolist()!r}, "
                 f"p0={self.p0!r}{extra})")
 

@@ -1,4 +1,5 @@
-"""Atomic file writes: a temporary file in the target directory, then ``os.replace``."""
+"""Atomic file writes: a temporary file in the target directory, then ``os.replace`` (:func:`atomic_path`,
+the one place of the package that does this; text, JSON, figures and GIFs all go through it)."""
 
 from __future__ import annotations
 
@@ -6,9 +7,13 @@ import errno
 import json
 import os
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
+
+__all__ = ["atomic_path", "write_atomic", "write_text", "write_json", "make_directory", "describe_os_error",
+           "WriteError", "FILE_MODE"]
 
 
 def _file_mode() -> int:
@@ -57,21 +62,22 @@ def make_directory(path: str | os.PathLike, what: str = "output directory") -> P
     return directory
 
 
-def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, binary: bool = False,
-                 make_dirs: bool = False) -> Path:
-    """Write ``path`` through ``writer(handle)`` so that readers never see a partial file.
+@contextmanager
+def atomic_path(path: str | os.PathLike, *, make_dirs: bool = False) -> Iterator[Path]:
+    """A temporary file beside ``path`` to write to; renamed over ``path`` when the block ends without error.
 
-    The data goes to a temporary file in the same directory, which is renamed over ``path``
-    (``os.replace``) once complete; on any error the temporary file is removed.
+    The one way the package writes files (text, JSON, CSV, figures, GIF animations): readers never
+    see a partial file.  The temporary file is created in the target directory with the usual
+    permissions (not ``mkstemp``'s 0600) and renamed over ``path`` (``os.replace``) once the
+    ``with`` block is complete; on any error it is removed.
+
+    >>> with atomic_path(target) as tmp:          # doctest: +SKIP
+    ...     image.save(tmp, format="GIF")
 
     Parameters
     ----------
     path : str or os.PathLike
         Target file.
-    writer : callable
-        Writes the content to the open handle.
-    binary : bool, optional
-        Open the handle in binary mode.
     make_dirs : bool, optional
         Create missing parent directories (otherwise a missing directory is a ``ValueError``).
 
@@ -95,12 +101,10 @@ def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, 
         fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=target.suffix, dir=directory)
     except OSError as exc:
         raise WriteError(f"cannot write {os.fspath(path)!r} into {str(directory)!r}: {describe_os_error(exc)}") from None
+    os.close(fd)
     try:
         os.chmod(tmp, FILE_MODE)  # mkstemp makes 0600 files; give the usual permissions
-        mode = "wb" if binary else "w"
-        kwargs: dict[str, Any] = {} if binary else {"encoding": "utf-8", "newline": "\n"}
-        with os.fdopen(fd, mode, **kwargs) as handle:
-            writer(handle)
+        yield Path(tmp)
         os.replace(tmp, target)
     except BaseException as exc:
         try:
@@ -110,7 +114,38 @@ def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, 
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
             raise WriteError(f"cannot write {os.fspath(path)!r}: {describe_os_error(exc)}") from None
         raise
-    return target
+
+
+def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, binary: bool = False,
+                 make_dirs: bool = False) -> Path:
+    """Write ``path`` through ``writer(handle)`` so that readers never see a partial file.
+
+    The handle is opened on :func:`atomic_path`'s temporary file (text: UTF-8, ``\\n`` line ends).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Target file.
+    writer : callable
+        Writes the content to the open handle.
+    binary : bool, optional
+        Open the handle in binary mode.
+    make_dirs : bool, optional
+        Create missing parent directories (otherwise a missing directory is a ``ValueError``).
+
+    Raises
+    ------
+    ValueError
+        If the directory does not exist and ``make_dirs`` is false.
+    WriteError
+        If the file cannot be written; the message names ``path`` and the reason (not the
+        temporary file).
+    """
+    kwargs: dict[str, Any] = {} if binary else {"encoding": "utf-8", "newline": "\n"}
+    with atomic_path(path, make_dirs=make_dirs) as tmp:
+        with open(tmp, "wb" if binary else "w", **kwargs) as handle:
+            writer(handle)
+    return Path(path)
 
 
 def write_text(path: str | os.PathLike, text: str) -> Path:

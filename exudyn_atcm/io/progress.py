@@ -36,9 +36,22 @@ def no_progress(t: float, t_end: float) -> None:
     """A progress callback that does nothing."""
 
 
-def format_duration(seconds: float) -> str:
-    """``"42 s"``, ``"3 min 05 s"`` or ``"2 h 07 min"``."""
+def format_duration(seconds: float, *, rough: bool = False) -> str:
+    """A duration [s] as text: ``"42 s"``, ``"3 min 05 s"`` or ``"2 h 07 min"``.
+
+    With ``rough`` (for estimates, whose seconds mean nothing): ``"42 s"`` below 2 min,
+    ``"14 min"`` below 2 h, else ``"2.5 h"``.
+
+    >>> format_duration(185.0), format_duration(840.0, rough=True), format_duration(9000.0, rough=True)
+    ('3 min 05 s', '14 min', '2.5 h')
+    """
     seconds = max(0.0, float(seconds))
+    if rough:
+        if seconds < 120.0:
+            return f"{seconds:.0f} s"
+        if seconds < 7200.0:
+            return f"{seconds / 60.0:.0f} min"
+        return f"{seconds / 3600.0:.1f} h"
     if seconds < 60.0:
         return f"{seconds:.0f} s"
     if seconds < 3600.0:

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from .._text import close_names
 from .atomic import write_atomic
 from .._version import __version__
 from .csv_files import read_table
@@ -88,15 +89,13 @@ class Result(Mapping):
 
     def _missing(self, name: Any) -> KeyError:
         """KeyError for an unknown series, with the closest name (a unit or component prefix is a common slip)."""
-        import difflib
-
         text = str(name)
         bare = text.split(" [", 1)[0].strip()
         if bare != text and bare in self._series:  # "b.tip_y [m]" as in a CSV header
             return KeyError(f"no series {name!r} (series names carry no unit: use {bare!r}, and "
                             f"result.unit({bare!r}) for its unit); available: {', '.join(self._series)}")
         guesses = [n for n in self._series if n.endswith("." + bare)]  # "tip_y" -> "b.tip_y"
-        guesses += [n for n in difflib.get_close_matches(bare, list(self._series), n=2, cutoff=0.75) if n not in guesses]
+        guesses += [n for n in close_names(bare, self._series, n=2, cutoff=0.75) if n not in guesses]
         hint = f" (did you mean {' or '.join(repr(g) for g in guesses[:3])}?)" if guesses else ""
         return KeyError(f"no series {name!r}{hint}; available: {', '.join(self._series)}")
 

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable
 from dataclasses import dataclass
+
+from .._text import close_names
 
 #: Reserved component name of the ground (the fixed frame).
 GROUND = "ground"
@@ -18,7 +19,7 @@ class MechanismError(ValueError):
 
 def closest(name: str, candidates: Iterable[str]) -> str:
     """A ``"; did you mean 'x'?"`` hint for a misspelt name (empty if nothing is close)."""
-    matches = difflib.get_close_matches(str(name), [str(c) for c in candidates], n=1, cutoff=0.5)
+    matches = close_names(name, candidates, cutoff=0.5)
     return f"; did you mean {matches[0]!r}?" if matches else ""
 
 

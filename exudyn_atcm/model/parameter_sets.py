@@ -7,7 +7,7 @@ free strain (stroke / cell length), which serves cells of any length.
 
 from __future__ import annotations
 
-from ..hysteresis import ContinuousPreisach
+from ..hysteresis.continuous import ContinuousPreisach
 
 PAPER_CITATION = (
     "D. Margineanu, E.-C. Lovasz, N. Modler: Multibody System Simulation of Hysteresis Effect by "

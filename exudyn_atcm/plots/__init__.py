@@ -1,5 +1,43 @@
 """Plots and drawings (matplotlib, headless Agg): results, hysteresis loops, identified models,
 mechanisms and their animations, cell drawings, one plot style.
 
+The face (``from exudyn_atcm.plots import plot_mechanism, new_figure``) exports what cases and users
+draw with; ``plot_time_series`` is the general one of :mod:`~exudyn_atcm.plots.hysteresis` (groups of
+series), the lone actuator's voltage/stroke/tip panel is ``plot_actuator_time_series``
+(:func:`exudyn_atcm.plots.result.plot_time_series`).
+
 May import every description and result layer; never solves anything itself.
 """
+
+from .cells import cell_figure, draw_rigid_chain, draw_six_bar_cell, height_exaggeration, paper_actuator, save_cell_drawing
+from .hysteresis import Curve, plot_loops, plot_relays, plot_time_series
+from .gif import save_gif
+from .identification import plot_fit
+from .mechanism import (
+    BenderShape,
+    MechanismShape,
+    actuator_as_mechanism,
+    animate_mechanism,
+    draw_mechanism,
+    mechanism_shape,
+    plot_mechanism,
+    plot_point_paths,
+)
+from .result import animate_actuator, chain_shape, plot_result, plot_shapes, plot_tip_vs_voltage
+from .result import plot_time_series as plot_actuator_time_series
+from .style import COLORS, STYLE, axis_label, display_scale, new_figure, save_figure
+
+__all__ = [
+    # style
+    "STYLE", "COLORS", "new_figure", "axis_label", "display_scale", "save_figure",
+    # curves and hysteresis loops
+    "Curve", "plot_loops", "plot_time_series", "plot_relays", "plot_fit",
+    # results of the lone actuator
+    "plot_result", "plot_actuator_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator",
+    "save_gif",
+    # mechanisms
+    "draw_mechanism", "plot_mechanism", "animate_mechanism", "plot_point_paths", "mechanism_shape", "MechanismShape",
+    "BenderShape", "actuator_as_mechanism",
+    # cell drawings
+    "cell_figure", "save_cell_drawing", "draw_six_bar_cell", "draw_rigid_chain", "paper_actuator", "height_exaggeration",
+]

@@ -32,13 +32,11 @@ from __future__ import annotations
 
 import math
 import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
-from ..io.atomic import FILE_MODE
 from ..mechanism import Bender, Flexure, Link, Mechanism
 from ..mechanism.connections import Pin, Slider, Weld
 from .mechanism_shapes import (
@@ -49,6 +47,7 @@ from .mechanism_shapes import (
     actuator_as_mechanism,
     mechanism_shape,
 )
+from .gif import save_gif
 from .style import COLORS, axis_label, new_figure, save_figure
 
 __all__ = [
@@ -343,8 +342,6 @@ def animate_mechanism(
     title : str, optional
         Title prefix (default: the mechanism's name).
     """
-    from PIL import Image
-
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
         raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
@@ -376,27 +373,7 @@ def animate_mechanism(
         ax.set_title(f"{head} ({_scale_text(scale)})\n{_time_text(result, row)}", fontsize=8)
         return ()
 
-    # each frame is drawn once on the Agg canvas; the layout of the first frame is kept
-    images = []
-    for k in range(len(rows)):
-        draw(k)
-        fig.canvas.draw()
-        if k == 0:
-            fig.set_layout_engine("none")
-        rgba = np.asarray(fig.canvas.buffer_rgba())
-        images.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.Palette.ADAPTIVE, colors=128))
-    fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
-    os.close(fd)
-    try:
-        os.chmod(tmp, FILE_MODE)
-        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
-                       duration=int(round(1000.0 / fps)), loop=0)
-        os.replace(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return Path(target)
+    return save_gif(fig, draw, len(rows), target, fps=fps)
 
 
 def plot_point_paths(

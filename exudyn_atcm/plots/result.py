@@ -7,15 +7,17 @@ calling this module never selects or opens a GUI backend.
 from __future__ import annotations
 
 import os
-import tempfile
 from typing import Sequence
 
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..io.atomic import FILE_MODE, WriteError, describe_os_error, make_directory
+from ..io.atomic import make_directory
+from .gif import save_gif
 from .style import new_figure, save_figure
 from ..io.progress import report_task
+
+__all__ = ["plot_result", "plot_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator"]
 
 
 def _save(fig: Figure, path: str) -> str:
@@ -103,8 +105,6 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
     fps : int, optional
         Frames per second of the GIF, ``>= 1``.
     """
-    from matplotlib.animation import FuncAnimation, PillowWriter
-
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
         raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
@@ -132,30 +132,10 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
         label.set_text(f"t = {result['time'][rows[k]]:.3f} s   U = {result['voltage'][rows[k]]:.0f} V")
         return chain, trace, label
 
-    animation = FuncAnimation(fig, draw, frames=len(shapes), blit=False)
-    target = os.fspath(path)
-    directory = os.path.dirname(os.path.abspath(target))
-    if not os.path.isdir(directory):
-        raise ValueError(f"path must be in an existing directory, got {target!r}")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=".gif", dir=directory)
-    except OSError as exc:
-        raise WriteError(f"cannot write {target!r} into {directory!r}: {describe_os_error(exc)}") from None
-    os.close(fd)
-    try:
-        os.chmod(tmp, FILE_MODE)
-        total = len(shapes)
-        report_task("GIF frames", 0, total)
-        animation.save(tmp, writer=PillowWriter(fps=fps),
-                       progress_callback=lambda done, _n: report_task("GIF frames", done + 1, total))
-        os.replace(tmp, target)
-    except BaseException as exc:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        if isinstance(exc, OSError) and not isinstance(exc, WriteError):
-            raise WriteError(f"cannot write {target!r}: {describe_os_error(exc)}") from None
-        raise
-    return target
+    total = len(shapes)
+    report_task("GIF frames", 0, total)
+    save_gif(fig, draw, total, path, fps=fps, progress=lambda done, n: report_task("GIF frames", done, n))
+    return os.fspath(path)
 
 
 def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:

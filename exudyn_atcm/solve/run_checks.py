@@ -58,6 +58,7 @@ import numpy as np
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from .interrupts import InterruptGuard, SimulationInterrupted, WallClock, is_interrupt
+from ..io.progress import format_duration
 
 __all__ = [
     "MIN_STEPS_PER_FEATURE",
@@ -332,14 +333,6 @@ def estimate_run_time(cell: str | CellKind, n_cells: int, n_steps: int) -> float
     return None if per_step is None else n_steps * per_step
 
 
-def _duration_text(seconds: float) -> str:
-    if seconds < 120.0:
-        return f"{seconds:.0f} s"
-    if seconds < 7200.0:
-        return f"{seconds / 60.0:.0f} min"
-    return f"{seconds / 3600.0:.1f} h"
-
-
 def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: float | None = None,
                  parts: str | None = None, stacklevel: int = 4) -> float | None:
     """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
@@ -353,7 +346,7 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
     if estimate is not None and estimate > limit:
         per_step = estimate / max(n_steps, 1)
         warnings.warn(
-            f"this run is predicted to take about {_duration_text(estimate)} ({n_steps} steps of "
+            f"this run is predicted to take about {format_duration(estimate, rough=True)} ({n_steps} steps of "
             f"{parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, "
             "measured). For a quicker answer use a larger step (within the voltage program's limits), fewer cells or a shorter t_end; "
             "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",

@@ -1,7 +1,7 @@
 """Parameter studies and design optimisation of cases, on one machine or on a Dask cluster.
 
 * :func:`sweep` / :func:`run_study`: a case over a full grid, samples or a list of points;
-  a table of parameters and key scalars; every finished run stored, so studies resume.
+  a :class:`StudyTable` of parameters and key scalars (the same type whatever is installed); every finished run stored, so studies resume.
 * :func:`optimize`: scipy.optimize over a case's parameters, evaluations run by the same
   engines and stored the same way.
 * Engines (:mod:`exudyn_atcm.study.engines`): this process, a process pool (default), Dask.
@@ -14,7 +14,7 @@ from .engines import DaskEngine, ProcessEngine, SerialEngine, make_engine
 from .store import RunStore, run_key
 from .optimize import METHODS, OptimizationResult, optimize
 from .sweep import StudyResult, run_study, study_points, sweep
-from .table import column, unit_of
+from .table import StudyTable, column, unit_of
 
 __all__ = [
     "sweep",
@@ -23,6 +23,7 @@ __all__ = [
     "METHODS",
     "run_study",
     "StudyResult",
+    "StudyTable",
     "study_points",
     "GridError",
     "full_grid",

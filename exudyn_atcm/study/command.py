@@ -28,7 +28,7 @@ from collections.abc import Sequence
 from typing import IO
 
 from ..casework.error_report import report_error as _error
-from ..casework.case import CaseError, load_case
+from ..casework import CaseError, load_case
 from ..casework.termination import StopSignal, stop_signals_as_interrupt
 from .lock import StudyLockedError
 

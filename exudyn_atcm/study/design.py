@@ -1,7 +1,7 @@
 """The points of a study: full grids, random or Latin-hypercube samples, explicit lists.
 
 Every function here returns a list of ``{name: value}`` dictionaries with values already
-checked against the case's declared :class:`~exudyn_atcm.casework.case.Parameter` (type, choices),
+checked against the case's declared :class:`~exudyn_atcm.casework.parameters.Parameter` (type, choices),
 in a fixed order: a full grid varies its *last* named parameter fastest (like nested
 ``for`` loops written in the order given), samples come in the order the generator draws
 them.  The order is the study's run order and the row order of its table, whatever engine
@@ -16,7 +16,6 @@ Grid specifications on the command line (:func:`parse_grid_spec`)::
 
 from __future__ import annotations
 
-import difflib
 import itertools
 import math
 from collections.abc import Iterable, Mapping, Sequence
@@ -24,7 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from ..casework.case import Case, CaseError, Parameter
+from .._text import close_names
+from ..casework import Case, CaseError, Parameter
 
 __all__ = [
     "GridError",
@@ -52,7 +52,7 @@ def case_parameter(case: Case, name: str, what: str = "grid") -> Parameter:
     declared = _declared(case)
     if name in declared:
         return declared[name]
-    close = difflib.get_close_matches(name, list(declared), n=1, cutoff=0.5)
+    close = close_names(name, declared, cutoff=0.5)
     hint = f"; did you mean {close[0]!r}?" if close else ""
     names = ", ".join(declared) or "(none)"
     raise GridError(f"{what}: unknown parameter {name!r} for case {case.name}{hint} (parameters: {names})")

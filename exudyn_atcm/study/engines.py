@@ -36,7 +36,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..casework.case import Case, CaseError
+from ..casework import Case, CaseError
 from ..casework.termination import STOP_SIGNALS
 from .parent_watch import end_with_parent
 from .store import case_fingerprint
@@ -106,7 +106,7 @@ def load_spec(spec: CaseSpec) -> Case:
         raise CaseError(f"{spec.path}: import failed: {type(exc).__name__}: {exc}") from exc
     case = module.__dict__.get("CASE")
     if not isinstance(case, Case):
-        raise CaseError(f"{spec.path}: defines no CASE = exudyn_atcm.casework.case.Case(...)")
+        raise CaseError(f"{spec.path}: defines no CASE = exudyn_atcm.casework.Case(...)")
     case.source = Path(spec.path)
     _LOADED[spec.fingerprint] = case
     return case

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..io.atomic import make_directory, write_json
-from ..casework.case import Case, CaseOutput, load_case
+from ..casework import Case, CaseOutput, load_case
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
@@ -56,7 +56,7 @@ class OptimizationResult:
         Whether the best design satisfies every constraint.
     output : CaseOutput or None
         The full run of the best design (files in ``out/best`` with ``out``).
-    history : DataFrame or structured array
+    history : StudyTable
         Every evaluation in order: the design variables, objective, constraint violation,
         status.
     evaluations : int

@@ -1,6 +1,6 @@
 """Plots of a study table: a scalar against one parameter, and a heat map over two.
 
-Both take the table returned by :func:`~exudyn_atcm.study.sweep` (DataFrame or structured
+Both take the table returned by :func:`~exudyn_atcm.study.sweep` (a :class:`~exudyn_atcm.study.table.StudyTable`, or a DataFrame or structured
 array) and write a PNG atomically through :mod:`exudyn_atcm.plots.style`.  Failed runs
 (NaN scalars) are left out of lines and shown as blank cells in heat maps.  When further
 parameters vary, only the rows at the first value of each of them are plotted (the title
@@ -54,7 +54,7 @@ def plot_scalar(
 
     Parameters
     ----------
-    table : DataFrame or structured array
+    table : StudyTable
         A study table.
     scalar, x, by : str
         Column names (with or without the ``[unit]``).

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..casework.case import Case
+from ..casework import Case
 from .sweep import run_study
 from .table import Column
 

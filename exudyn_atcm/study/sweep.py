@@ -1,6 +1,6 @@
 """Parameter studies: run a case over many points, in parallel, resumably.
 
->>> from exudyn_atcm.casework.case import load_case
+>>> from exudyn_atcm.casework import load_case
 >>> from exudyn_atcm.study import sweep
 >>> case = load_case("paper_stroke_table")
 >>> table = sweep(case, {"period": [1.0, 2.0], "points_per_period": [10, 20]}, out="out/study")  # doctest: +SKIP
@@ -21,12 +21,12 @@ from typing import Any
 
 from ..io.atomic import make_directory, write_json
 from .._version import __version__
-from ..casework.case import Case, load_case, versions
+from ..casework import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
 from .lock import TableLock
 from .store import RunStore, run_key
-from .table import Column, table_columns, to_table, write_table_csv
+from .table import Column, StudyTable, table_columns, to_table, write_table_csv
 
 __all__ = ["sweep", "run_study", "StudyResult", "study_points", "StudyProgress"]
 
@@ -40,8 +40,8 @@ class StudyResult:
 
     Attributes
     ----------
-    table : pandas.DataFrame or numpy structured array
-        One row per point (see :mod:`exudyn_atcm.study.table`).
+    table : StudyTable
+        One row per point (see :mod:`exudyn_atcm.study.table`); ``table.to_pandas()`` for a DataFrame.
     records : list of dict
         The run records in study order (``values``, ``status``, ``error``, ``scalars`` ...).
     columns : list of Column
@@ -62,7 +62,7 @@ class StudyResult:
         ``serial``, ``process`` or ``dask``.
     """
 
-    table: Any
+    table: StudyTable
     records: list[dict[str, Any]]
     columns: list[Column]
     varied: list[str]
@@ -298,7 +298,7 @@ def sweep(
     Parameters
     ----------
     case : Case or str or os.PathLike
-        A loaded case (:func:`~exudyn_atcm.casework.case.load_case`) or its name or file.
+        A loaded case (:func:`~exudyn_atcm.casework.discovery.load_case`) or its name or file.
     grid : mapping of str to list or array, optional
         Full grid: every combination of the values (the last name varies fastest), e.g.
         ``{"n_cells": [2, 4, 8], "period": np.linspace(0.5, 2.0, 4)}``.
@@ -332,11 +332,13 @@ def sweep(
     progress : callable, optional
         ``progress(done, total, failed)`` after each finished run.
     use_pandas : bool, optional
-        Force (True) or avoid (False) a DataFrame; default: a DataFrame if pandas is installed.
+        Deprecated (the table no longer depends on what is installed): ``True`` returns
+        ``table.to_pandas()``, ``False`` ``table.to_numpy()``, with a ``DeprecationWarning``.
 
     Returns
     -------
-    pandas.DataFrame or numpy.ndarray
+    StudyTable
+        The same type whatever is installed (``.to_pandas()``, ``.to_numpy()`` convert it).
         One row per point in the study's order: ``run [-]``, the case's parameters, its key
         scalars, ``status [-]``, ``error [-]``, ``wall_time [s]``, ``key [-]`` (all ``name [unit]``).
         Identical (bar wall times) whatever the engine or number of workers.

@@ -15,7 +15,7 @@ import time
 import uuid
 from pathlib import Path
 
-from exudyn_atcm.casework.case import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.io.result import Result
 
 PARAMETERS = [

@@ -1,0 +1,205 @@
+"""Declared parameters of a case: :class:`Parameter` (name, default, unit, help, choices) and the
+typed values of one run, :class:`Parameters`; :class:`CaseError` for a case that cannot be found,
+loaded or configured.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from .._text import close_names
+
+__all__ = ["Parameter", "Parameters", "CaseError", "closest", "json_value"]
+
+_TYPES = ("float", "int", "bool", "str", "floats")
+_TRUE = {"true", "yes", "on", "1"}
+_FALSE = {"false", "no", "off", "0"}
+
+
+class CaseError(ValueError):
+    """A case could not be found, loaded or configured (message is one line)."""
+
+
+def closest(name: str, candidates: Sequence[str]) -> str:
+    """`` (did you mean 'x'?)`` for the candidate closest to a misspelt ``name``, else ``""``."""
+    match = close_names(name, candidates, cutoff=0.6, ignore_case=True)
+    return f" (did you mean {match[0]!r}?)" if match else ""
+
+
+# ----------------------------------------------------------------------------- parameters
+def _infer_type(default: Any) -> str:
+    if isinstance(default, bool):
+        return "bool"
+    if isinstance(default, int):
+        return "int"
+    if isinstance(default, float):
+        return "float"
+    if isinstance(default, str):
+        return "str"
+    if isinstance(default, (tuple, list)) and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) for v in default
+    ):
+        return "floats"
+    raise ValueError(
+        f"default must be a float, int, bool, str or tuple of floats, got {default!r} "
+        f"of type {type(default).__name__}"
+    )
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One declared parameter of a case.
+
+    Parameters
+    ----------
+    name : str
+        Identifier used in ``--set NAME=VALUE`` and as ``p.name`` in the run function.
+    default : float, int, bool, str or tuple of float
+        Default value; its Python type fixes the parameter's type (``1.0`` is a float,
+        ``1`` an int, a tuple of numbers is a comma-separated list of floats).  A list
+        parameter whose default is the empty tuple ``()`` also accepts an empty value
+        (``--set NAME=`` or ``()``), which then means the same as its default (the help
+        text says what, e.g. "empty: from the reference design"); any other list parameter
+        needs at least one number.
+    unit : str
+        SI unit of the value (``"-"`` if unit-free).
+    help : str
+        One-line description.
+    choices : tuple, optional
+        Allowed values (for ``str`` parameters, typically).
+    """
+
+    name: str
+    default: Any
+    unit: str = "-"
+    help: str = ""
+    choices: tuple | None = None
+    kind: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.isidentifier():
+            raise ValueError(f"name must be a Python identifier, got {self.name!r}")
+        object.__setattr__(self, "kind", _infer_type(self.default))
+        if self.kind == "floats":
+            object.__setattr__(self, "default", tuple(float(v) for v in self.default))
+        if self.choices is not None:
+            object.__setattr__(self, "choices", tuple(self.choices))
+            if self.default not in self.choices:
+                raise ValueError(f"default of {self.name!r} must be one of {self.choices}, got {self.default!r}")
+
+    def describe(self) -> str:
+        """``name = default [unit] (type): help``."""
+        default = ",".join(repr(v) for v in self.default) if self.kind == "floats" else repr(self.default)
+        choices = f", one of {'/'.join(map(str, self.choices))}" if self.choices else ""
+        return f"{self.name} = {default} [{self.unit}] ({self.kind}{choices}): {self.help}"
+
+    def parse(self, text: str) -> Any:
+        """Convert the text of ``--set NAME=TEXT`` to the parameter's type.
+
+        Raises
+        ------
+        ValueError
+            If the text is not a value of the parameter's type (or not one of the choices).
+        """
+        raw = text.strip()
+        try:
+            if self.kind == "float":
+                value: Any = float(raw)
+            elif self.kind == "int":
+                value = int(raw)
+            elif self.kind == "bool":
+                low = raw.lower()
+                if low not in _TRUE | _FALSE:
+                    raise ValueError
+                value = low in _TRUE
+            elif self.kind == "floats":
+                value = tuple(float(v) for v in raw.split(",") if v.strip() != "")
+                if not value and not self._empty_allowed():
+                    raise ValueError
+            else:
+                value = text
+        except ValueError:
+            raise ValueError(f"{self.name} must be {self._kind_text()}, got {text!r}") from None
+        return self.check(value)
+
+    def check(self, value: Any) -> Any:
+        """Check a Python value for this parameter and return it (ints accepted for floats)."""
+        ok = True
+        if self.kind == "float":
+            ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+            value = float(value) if ok else value
+        elif self.kind == "int":
+            ok = isinstance(value, int) and not isinstance(value, bool)
+        elif self.kind == "bool":
+            ok = isinstance(value, bool)
+        elif self.kind == "str":
+            ok = isinstance(value, str)
+        elif self.kind == "floats":
+            try:
+                value = tuple(float(v) for v in value)
+                ok = all(math.isfinite(v) for v in value) and (len(value) > 0 or self._empty_allowed())
+            except (TypeError, ValueError):
+                ok = False
+        if not ok:
+            raise ValueError(f"{self.name} must be {self._kind_text()}, got {value!r}")
+        if self.choices is not None and value not in self.choices:
+            raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.choices))}, got {value!r}")
+        return value
+
+    def _empty_allowed(self) -> bool:
+        return self.kind == "floats" and len(self.default) == 0
+
+    def _kind_text(self) -> str:
+        if self._empty_allowed():
+            return f"comma-separated finite real numbers [{self.unit}], or empty"
+        return {
+            "float": f"a finite real number [{self.unit}]",
+            "int": "an integer",
+            "bool": "true or false",
+            "str": "a string",
+            "floats": f"comma-separated finite real numbers [{self.unit}]",
+        }[self.kind]
+
+
+class Parameters(Mapping):
+    """The resolved, typed parameter values of one run: ``p.name`` or ``p["name"]``."""
+
+    def __init__(self, declared: Sequence[Parameter], values: Mapping[str, Any]) -> None:
+        self._declared = {d.name: d for d in declared}
+        self._values = dict(values)
+
+    def __getitem__(self, name: str) -> Any:
+        return self._values[name]
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self._values[name]
+        except KeyError:
+            raise AttributeError(f"no parameter {name!r}; declared: {', '.join(self._values)}") from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._values)
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def unit(self, name: str) -> str:
+        """Unit of parameter ``name``."""
+        return self._declared[name].unit
+
+    def with_units(self) -> dict[str, Any]:
+        """``{"name [unit]": value}``, as written into CSV metadata."""
+        return {f"{n} [{self._declared[n].unit}]": json_value(v) for n, v in self._values.items()}
+
+    def __repr__(self) -> str:
+        return "Parameters(" + ", ".join(f"{k}={v!r}" for k, v in self._values.items()) + ")"
+
+
+def json_value(value: Any) -> Any:
+    """A parameter value as written to JSON and CSV metadata: tuples (``floats`` parameters) as lists."""
+    return list(value) if isinstance(value, tuple) else value
