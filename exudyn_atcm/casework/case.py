@@ -52,7 +52,7 @@ different files is taken from the first and a ``RuntimeWarning`` names both
 Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
 CSV and JSON marked ``partial``), the message says ``interrupted at t = ... s``, and the exit
 status is 130.  ``SIGTERM`` (``timeout``, batch schedulers, ``docker stop``) and ``SIGHUP`` are
-handled the same way (:mod:`exudyn_atcm.termination`): ``stopped by SIGTERM at t = ... s``,
+handled the same way (:mod:`exudyn_atcm.casework.termination`): ``stopped by SIGTERM at t = ... s``,
 exit status 143 (129 for ``SIGHUP``).
 """
 
