@@ -73,14 +73,20 @@ def _branch(u: np.ndarray, y: np.ndarray, segments: list, rising: bool) -> tuple
     return u_b, isotonic(y[idx][order])
 
 
-def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: bool) -> tuple[np.ndarray, list]:
-    """Input where a monotone branch first reaches each level walking in its direction; unreached levels listed."""
+def _crossings(u: np.ndarray, y: np.ndarray, levels: np.ndarray, *, ascending: bool,
+               tolerance: float = 0.0) -> tuple[np.ndarray, list]:
+    """Input where a monotone branch first reaches each level walking in its direction; unreached levels listed.
+
+    A level counts as reached within ``tolerance`` (the round-off of the branch averaging: a
+    staircase's flat top, averaged over several segments, may fall short of its level by a few
+    ulps).
+    """
     if not ascending:  # walk the descending branch from u_max downwards
         u, y = u[::-1], y[::-1]
     result = np.empty(levels.size)
     unreached = []
     for j, level in enumerate(levels.tolist()):
-        reached = y >= level if ascending else y <= level
+        reached = y >= level - tolerance if ascending else y <= level + tolerance
         if not reached.any():
             result[j] = u[-1]
             unreached.append(j)
@@ -139,8 +145,9 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     levels = y_min + gain * (np.arange(1, n + 1) - LEVEL_RULES[level_rule])
     if level_rule == "paper":
         levels[-1] = y_max
-    alpha, up_missing = _crossings(u_up, y_up, levels, ascending=True)
-    beta, down_missing = _crossings(u_dn, y_dn, levels, ascending=False)
+    # levels reached within round-off of the averaging count as reached (1e-9 of a gain)
+    alpha, up_missing = _crossings(u_up, y_up, levels, ascending=True, tolerance=1e-9 * gain)
+    beta, down_missing = _crossings(u_dn, y_dn, levels, ascending=False, tolerance=1e-9 * gain)
     notes = []
     n_up = sum(1 for s in major if s[2])
     n_down = len(major) - n_up
