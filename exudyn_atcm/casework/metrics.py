@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from ..plots.style import axis_label, display_scale, new_figure, save_figure
+
 __all__ = ["MetricRow", "compare_benchmark"]
 
 
@@ -120,8 +122,6 @@ def compare_benchmark(bench: dict[str, Any], output: Any, reference: dict[str, A
 
 
 def _plot_channel(path: Path, bid: str, base: str, base_unit: str, channel: str, unit: str, x_ref, y_ref, x_new, y_new, error, ok: bool) -> Path:
-    from ..plots.style import axis_label, display_scale, new_figure, save_figure
-
     path.parent.mkdir(parents=True, exist_ok=True)
     fig, (ax, ax_err) = new_figure(2, sharex=True, height=4.8)
     factor, shown = display_scale(np.concatenate([y_ref, y_new]), unit)

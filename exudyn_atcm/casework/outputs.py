@@ -14,6 +14,7 @@ from typing import Any
 from .._version import __version__
 from ..io.progress import ProgressCallback, no_progress
 from ..io.result import Result
+from ..mbs.solver_runs import exudyn_version
 from .parameters import Parameters, json_value
 
 __all__ = ["RunContext", "CaseOutput", "versions"]
@@ -132,8 +133,6 @@ def versions() -> dict[str, str]:
     import numpy
 
     try:
-        from ..mbs.solver_runs import exudyn_version
-
         exu = exudyn_version()
     except Exception:  # pragma: no cover - exudyn is a dependency
         exu = "unavailable"

@@ -26,8 +26,7 @@ from .prandtl_ishlinskii import PrandtlIshlinskii
 from .model_choice import ModelChoice, identify
 from .staircase import StaircasePreisach
 
-# the operators above are bound first: feedforward and reference_record build voltage programs of
-# exudyn_atcm.model.signals (model's face imports hysteresis.continuous, never this face)from .fit_report import FitReport, error_measures, make_report
+from .fit_report import FitReport, error_measures, make_report
 from .inverse import inverse_operator
 
 __all__ = [

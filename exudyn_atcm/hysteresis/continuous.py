@@ -7,6 +7,7 @@ from typing import Any
 
 from .._checks import finite_float
 from .staircase import StaircasePreisach
+from .identification import fit_continuous
 
 
 class ContinuousPreisach(StaircasePreisach):
@@ -140,8 +141,6 @@ class ContinuousPreisach(StaircasePreisach):
         -----
         The samples before the input first reaches its minimum are left out.
         """
-        from .identification import fit_continuous
-
         return fit_continuous(cls, u, y, n_fit=n_fit, output_unit=output_unit)
 
     def ascending(self, u: float) -> float:

@@ -12,6 +12,8 @@ from .._checks import finite_array, finite_float, same_length
 from ..physical_bounds import check_element_count
 from ._dominance import DominanceSums
 from .staircase import StaircasePreisach
+from .identification import fit_discrete
+from .loop_identification import identify_from_loop
 
 
 class DiscretePreisach(StaircasePreisach):
@@ -209,8 +211,6 @@ class DiscretePreisach(StaircasePreisach):
             each direction spanning ``coverage`` of the range, a constant output, or branches
             that cross by more than the tolerance (not a hysteresis loop).
         """
-        from .loop_identification import identify_from_loop
-
         return identify_from_loop(cls, u, y, n, reversal_tolerance=reversal_tolerance, coverage=coverage,
                                   report=report, output_unit=output_unit, levels=levels)
 
@@ -295,8 +295,6 @@ class DiscretePreisach(StaircasePreisach):
         Samples before the input first comes down to the lowest threshold are left out: until
         then the relays' states depend on the history before the record.
         """
-        from .identification import fit_discrete
-
         return fit_discrete(cls, u, y, n_levels, smoothing=smoothing, n_fit=n_fit, input_range=input_range,
                             output_unit=output_unit, prior=prior, prior_weight=prior_weight, cv_folds=cv_folds)
 

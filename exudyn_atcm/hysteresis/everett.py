@@ -24,6 +24,7 @@ import numpy as np
 
 from .._checks import finite_array, finite_float, same_length
 from .staircase import StaircasePreisach
+from .identification import fit_discrete
 
 __all__ = ["EverettPreisach"]
 
@@ -120,8 +121,6 @@ class EverettPreisach(StaircasePreisach):
         -------
         (EverettPreisach, FitReport)
         """
-        from .identification import fit_discrete
-
         return fit_discrete(cls, u, y, n_levels, basis="cells", **options)
 
     def _k(self, a: float, b: float) -> float:

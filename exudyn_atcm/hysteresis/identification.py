@@ -27,15 +27,14 @@ import time
 from typing import Any
 
 import numpy as np
-import scipy.sparse
 
 from .._checks import finite_array, same_length
 from ..physical_bounds import check_element_count
 from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_cost, play_fit_cost
 from .fit_report import FitReport, make_report
-from .nnls import nnls_gram, single_blas_thread
+from .nnls import single_blas_thread
 from .priors import PRIOR_STRENGTHS, PRIORS, along_lines_matrix, cross_validate_strength, solve_regularised
-from .staircase import StaircasePreisach
+from .relay_gram import cell_gram, nnls_normal, relay_grid, relay_gram, smoothness_matrix
 
 #: Fewest samples accepted by the least-squares fits.
 MIN_SAMPLES = 10
@@ -95,169 +94,6 @@ def nonnegative_float(name: str, value: Any) -> float:
 def _first_near(u: np.ndarray, target: float, tolerance: float) -> int:
     hits = np.flatnonzero(np.abs(u - target) <= tolerance)
     return int(hits[0]) if hits.size else u.size
-
-
-# ------------------------------------------------------------------------------ relay grid
-
-def relay_grid(u_lo: float, u_hi: float, n_levels: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Relays of a regular grid on the Preisach triangle.
-
-    The input range is cut into ``n_levels`` cells of width ``h``; the thresholds sit at the
-    cell centres ``v_k = u_lo + (k + 1/2) h``.  One relay per pair ``alpha = v_i >= beta = v_j``:
-    ``n_levels (n_levels + 1) / 2`` relays, those on the diagonal (``alpha == beta``) giving the
-    reversible part.
-
-    Returns
-    -------
-    alpha, beta : numpy.ndarray
-        Thresholds of each relay.
-    index : numpy.ndarray
-        ``(i, j)`` grid indices of each relay, shape ``(n_relays, 2)``.
-    """
-    h = (u_hi - u_lo) / n_levels
-    levels = u_lo + (np.arange(n_levels) + 0.5) * h
-    i, j = np.tril_indices(n_levels)
-    return levels[i], levels[j], np.column_stack([i, j])
-
-
-def _smoothness_matrix(index: np.ndarray, n_levels: int) -> Any:
-    """First differences between neighbouring grid cells (along alpha and along beta), sparse."""
-    position = -np.ones((n_levels, n_levels), dtype=int)
-    position[index[:, 0], index[:, 1]] = np.arange(index.shape[0])
-    first, second = [], []
-    for di, dj in ((1, 0), (0, 1)):
-        ni, nj = index[:, 0] + di, index[:, 1] + dj
-        ok = (ni < n_levels) & (nj <= ni)
-        first.append(np.flatnonzero(ok))
-        second.append(position[ni[ok], nj[ok]])
-    a = np.concatenate(first)
-    b = np.concatenate(second)
-    rows = np.arange(a.size)
-    return scipy.sparse.csr_matrix(
-        (np.r_[np.ones(a.size), -np.ones(a.size)], (np.r_[rows, rows], np.r_[a, b])),
-        shape=(a.size, index.shape[0]))
-
-
-def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
-               chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
-    """Normal equations of ``y ≈ c + S w`` over samples ``start .. stop - 1``.
-
-    ``S[k, r]`` is the state of relay ``r`` after sample ``k`` of ``u`` from all relays off
-    (relay rule of Mayergoyz 2003: on if ``u >= alpha``, else off if ``u <= beta``, else
-    unchanged).  Returns ``S^T S``, ``S^T y``, the column sums of ``S``, ``sum(y)`` and the
-    number of samples.  ``S`` is never stored whole: a record's relay states repeat (the same
-    staircase memory is reached again and again), so each distinct row is kept once, as bits,
-    with its count and the sum of its samples' outputs, and ``S^T S`` is accumulated from the
-    distinct rows in chunks (exactly the same sums, a few hundred rows instead of thousands).
-    """
-    seen: dict[bytes, int] = {}
-    packed: list[np.ndarray] = []
-    counts: list[int] = []
-    sums: list[float] = []
-    state = np.zeros(alpha.size, dtype=bool)
-    for k in range(stop):
-        v = u[k]
-        state = (v >= alpha) | (state & (v > beta))
-        if k < start:
-            continue
-        bits = np.packbits(state)
-        key = bits.tobytes()
-        row = seen.get(key)
-        if row is None:
-            seen[key] = len(packed)
-            packed.append(bits)
-            counts.append(1)
-            sums.append(float(y[k]))
-        else:
-            counts[row] += 1
-            sums[row] += float(y[k])
-    n_r = alpha.size
-    gram = np.zeros((n_r, n_r))
-    rhs = np.zeros(n_r)
-    colsum = np.zeros(n_r)
-    count_a = np.asarray(counts, dtype=float)
-    sum_a = np.asarray(sums, dtype=float)
-    for first in range(0, len(packed), chunk):
-        block = np.unpackbits(np.asarray(packed[first:first + chunk]), axis=1, count=n_r).astype(float)
-        c = count_a[first:first + chunk]
-        gram += (block * c[:, None]).T @ block
-        rhs += block.T @ sum_a[first:first + chunk]
-        colsum += block.T @ c
-    return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
-
-
-class _CellFractions(StaircasePreisach):
-    """Vector-valued Preisach operator: the share of each grid cell's spread relays that is on.
-
-    The output after each input is the vector ``F`` with ``EverettPreisach output = offset +
-    weights · F`` (the Everett function is linear in the cell weights, so the staircase memory
-    works on vectors as on numbers).
-    """
-
-    def __init__(self, edges: np.ndarray, index: np.ndarray) -> None:
-        self._low = edges[:-1]
-        self._width = np.diff(edges)
-        self._i, self._j = index[:, 0], index[:, 1]
-        self._diagonal = self._i == self._j
-        self._y_reset = np.zeros(index.shape[0])
-        super().__init__()
-
-    def _k_rising(self, a: float, b: float) -> np.ndarray:
-        s = np.clip((a - self._low) / self._width, 0.0, 1.0)
-        r = np.clip((b - self._low) / self._width, 0.0, 1.0)
-        off = s[self._i] * (1.0 - r[self._j])
-        on_diagonal = np.maximum(s[self._i] - r[self._i], 0.0) ** 2
-        return np.where(self._diagonal, on_diagonal, off)
-
-    _k_falling = _k_rising
-
-
-def cell_gram(edges: np.ndarray, index: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
-              chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
-    """As :func:`relay_gram` for relays spread over their grid cells (see :class:`EverettPreisach`)."""
-    fractions = _CellFractions(edges, index)
-
-    def rows():
-        for k in range(stop):
-            yield fractions.commit(float(u[k]))
-
-    return _gram(rows(), index.shape[0], y, start, stop, chunk)
-
-
-def _gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chunk: int) -> tuple:
-    gram = np.zeros((n_r, n_r))
-    rhs = np.zeros(n_r)
-    colsum = np.zeros(n_r)
-    block = np.empty((chunk, n_r))
-    block_y = np.empty(chunk)
-    filled = 0
-
-    def flush(count: int) -> None:
-        s = block[:count]
-        gram[:] += s.T @ s
-        rhs[:] += s.T @ block_y[:count]
-        colsum[:] += s.sum(axis=0)
-
-    for k, state in enumerate(rows):
-        if k >= start:
-            block[filled] = state
-            block_y[filled] = y[k]
-            filled += 1
-            if filled == chunk:
-                flush(filled)
-                filled = 0
-    if filled:
-        flush(filled)
-    return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
-
-
-def _nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: Any) -> np.ndarray:
-    """``argmin_{w >= 0} w^T (G + R) w - 2 b^T w`` by block principal pivoting (:mod:`.nnls`)."""
-    matrix = gram + (regulariser.toarray() if scipy.sparse.issparse(regulariser) else regulariser)
-    ridge = 1e-10 * max(float(np.trace(matrix)) / matrix.shape[0], 1e-300)
-    matrix[np.diag_indices_from(matrix)] += ridge
-    weights, _ = nnls_gram(matrix, rhs)
-    return weights
 
 
 # ------------------------------------------------------------------------------ Preisach fit
@@ -331,12 +167,12 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     mean_s = colsum / m
     gram_c = gram - m * np.outer(mean_s, mean_s)
     rhs_c = rhs - mean_s * ysum
-    d = _smoothness_matrix(index, n_levels)
+    d = smoothness_matrix(index, n_levels)
     dtd = (d.T @ d).tocsr()
     lam = smoothing * float(np.trace(gram_c)) / max(float(dtd.diagonal().sum()), 1e-300)
     prior_settings: dict = {"prior": prior}
     if prior == "smooth":
-        weights = _nnls_normal(gram_c, rhs_c, lam * dtd)
+        weights = nnls_normal(gram_c, rhs_c, lam * dtd)
     else:
         dp = along_lines_matrix(index, n_levels)
         ptp_lap = (dp.T @ dp).tocsr()

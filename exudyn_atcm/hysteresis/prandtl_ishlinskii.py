@@ -9,6 +9,7 @@ import numpy as np
 from .._checks import finite_array, finite_float, same_length
 from ..physical_bounds import check_element_count
 from .base import HysteresisOperator, check_input
+from .identification import fit_prandtl_ishlinskii
 
 
 class PrandtlIshlinskii(HysteresisOperator):
@@ -170,6 +171,4 @@ class PrandtlIshlinskii(HysteresisOperator):
         The samples before the input has come within ``Δu/(2n)`` of both its minimum and its
         maximum are left out (the play states depend on the history before the record).
         """
-        from .identification import fit_prandtl_ishlinskii
-
         return fit_prandtl_ishlinskii(cls, u, y, n, n_fit=n_fit, output_unit=output_unit)
