@@ -51,7 +51,7 @@ from exudyn import itemInterface as ii
 from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import theory as bt
 from exudyn_atcm.mbs.eigen import constrained_eigenfrequencies
-from exudyn_atcm._version import __version__
+from exudyn_atcm import __version__
 from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive

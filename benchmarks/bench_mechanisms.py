@@ -45,7 +45,7 @@ import exudyn
 import numpy as np
 
 from exudyn_atcm.io.atomic import write_json
-from exudyn_atcm._version import __version__
+from exudyn_atcm import __version__
 from exudyn_atcm.casework import find_case
 from exudyn_atcm.mechanism import Bender
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach

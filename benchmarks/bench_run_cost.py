@@ -22,7 +22,7 @@ import time
 
 import exudyn
 
-from exudyn_atcm._version import __version__
+from exudyn_atcm import __version__
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm._version import __version__
+from exudyn_atcm import __version__
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import DaskEngine, ProcessEngine, SerialEngine, run_study
 

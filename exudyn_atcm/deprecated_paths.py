@@ -1,4 +1,4 @@
-"""Module paths that moved in 0.9 (the role folders), kept importable for one release.
+"""Module paths that moved in 0.2 (the role folders), kept importable for one release (until 0.3).
 
 Importing an old path (``exudyn_atcm.simulation``, ``exudyn_atcm.beam_theory``, ...) returns the
 module at its new place and warns :class:`DeprecationWarning` naming the new path.  The one

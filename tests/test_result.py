@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import exudyn
-from exudyn_atcm._version import __version__
+from exudyn_atcm import __version__
 from exudyn_atcm.io import read_csv
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.io.result import Result
