@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from exudyn_atcm._text import close_names
+from exudyn_atcm.suggestions import close_names
 from exudyn_atcm.io.atomic import WriteError, atomic_path, write_text
 from exudyn_atcm.io.progress import format_duration
 from exudyn_atcm.plots import new_figure, save_gif
@@ -139,7 +139,7 @@ def _calls(path: pathlib.Path) -> set[str]:
 
 @pytest.mark.parametrize("marker, home", [
     ("mkstemp", "io/atomic.py"), ("replace", "io/atomic.py"),           # temp file, then os.replace
-    ("difflib", "_text.py"), ("get_close_matches", "_text.py"),          # closest-name suggestion
+    ("difflib", "suggestions.py"), ("get_close_matches", "suggestions.py"),          # closest-name suggestion
     ("PillowWriter", None), ("FuncAnimation", None),                     # GIFs: plots/gif.py only
 ])
 def test_each_job_has_one_home(marker, home):

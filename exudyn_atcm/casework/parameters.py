@@ -10,7 +10,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from .._text import close_names
+from ..suggestions import close_names
 
 __all__ = ["Parameter", "Parameters", "CaseError", "closest", "json_value"]
 

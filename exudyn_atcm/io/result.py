@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from .._text import close_names
+from ..suggestions import close_names
 from .atomic import write_atomic
 from .._version import __version__
 from .csv_files import read_table

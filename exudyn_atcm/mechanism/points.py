@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from .._text import close_names
+from ..suggestions import close_names
 
 #: Reserved component name of the ground (the fixed frame).
 GROUND = "ground"

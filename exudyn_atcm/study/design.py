@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from .._text import close_names
+from ..suggestions import close_names
 from ..casework import Case, CaseError, Parameter
 
 __all__ = [

@@ -1,4 +1,4 @@
-"""Text helpers shared by every layer's messages: the closest-name suggestion for a misspelt name.
+"""The closest-name suggestion for a misspelt name, shared by every layer's messages.
 
 Like :mod:`exudyn_atcm._checks`, this module imports nothing of the package, so any layer may use it.
 """
