@@ -12,9 +12,10 @@ import matplotlib.pyplot as plt
 import exudyn_atcm
 
 PACKAGE = pathlib.Path(exudyn_atcm.__file__).resolve().parent
+BOTTOM = "_checks, errors, physical_bounds, suggestions"
 #: rows of the picture, bottom up (a folder imports only folders below or beside it)
 ROWS = [
-    ["_checks / errors"],
+    [BOTTOM],
     ["io", "theory"],
     ["hysteresis", "cells"],
     ["model"],
@@ -25,7 +26,7 @@ ROWS = [
     ["study"],
     ["cli"],
 ]
-TOP_LEVEL = {"_checks": "_checks / errors", "errors": "_checks / errors", "cli": "cli"}
+TOP_LEVEL = {"_checks": BOTTOM, "errors": BOTTOM, "physical_bounds": BOTTOM, "suggestions": BOTTOM, "cli": "cli"}
 
 
 def folder_of(module: str) -> str | None:
