@@ -39,7 +39,8 @@ PARAMETERS = [
     Parameter("period", 0.5, "s", "period of the triangle voltage"),
     Parameter("cycles", 1, "-", "voltage periods simulated"),
     Parameter("step", 1e-4, "s", "time step"),
-    Parameter("record_every", 1e-3, "s", "recording interval (0: every step); the solution is the same, the files smaller"),
+    Parameter("record_every", 1e-3, "s", "recording interval [s] (0: every step); the solution is the same, the files "
+              "smaller; the scalars come from the record (an interval coarser than the program is warned about)"),
     Parameter("static_voltages", (0.0, 500.0, 1000.0, 1500.0), "V", "voltages of the static check (rising)"),
     Parameter("animation", True, "-", "also write a GIF of the moving bender and lever"),
 ]

@@ -64,7 +64,8 @@ PARAMETERS = [
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
     Parameter("damping", 0.02, "-", "modal damping ratio of the first bending mode"),
     Parameter("step", 1e-4, "s", "time step"),
-    Parameter("record_every", 1e-3, "s", "recording interval (0: every step); the solution is the same, the files smaller"),
+    Parameter("record_every", 1e-3, "s", "recording interval [s] (0: every step); the solution is the same, the files "
+              "smaller; the scalars come from the record (an interval coarser than the program is warned about)"),
     Parameter("animation", True, "-", "also write a GIF animation of the actuator"),
 ]
 

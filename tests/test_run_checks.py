@@ -372,6 +372,7 @@ def test_fig12_case_output_is_thinned_and_matches_every_step_run(tmp_path):
     np.testing.assert_array_equal(out.result["tip_y"], every.result["tip_y"][::10])
 
 
+@pytest.mark.filterwarnings("ignore:record_every = .* keeps only:RuntimeWarning")  # thinned on purpose
 def test_asynchronous_ctrl_c_during_the_solver_stops_cleanly():
     """A real Ctrl-C arrives while Exudyn's C++ solver runs: ``_thread.interrupt_main`` raises
     ``KeyboardInterrupt`` in the main thread at its next Python code, i.e. inside a solver hook

@@ -25,7 +25,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..mechanism.points import MechanismError
-from .run_checks import check_step_against_frequency, check_step_against_program, warn_if_long
+from .run_checks import check_record_interval, check_step_against_frequency, check_step_against_program, warn_if_long
 
 if TYPE_CHECKING:
     from ..mbs.model import MechanismModel
@@ -100,8 +100,11 @@ def _per_cell(kind: CellKind) -> float:
     return (kind.estimate_step_cost(11) or 0.0) - (kind.estimate_step_cost(10) or 0.0)
 
 
-def check_steps(mech: Mechanism, grid: Any, t_end: float) -> None:
+def check_steps(mech: Mechanism, grid: Any, t_end: float, schedule: Any = None) -> None:
     """Step checks against every drive's voltage program and the lowest bender frequency; run-time estimate.
+
+    With the run's recording ``schedule``, also the recording interval against every program
+    (:func:`~exudyn_atcm.solve.run_checks.check_record_interval`).
 
     Drives sharing one program object (segments driven by one PiezoDrive) are checked once,
     named together.
@@ -112,6 +115,7 @@ def check_steps(mech: Mechanism, grid: Any, t_end: float) -> None:
     for program, names in shared.values():
         label = "drive " + ", ".join(names) if len(names) == 1 else "drives " + ", ".join(names)
         check_step_against_program(program, grid.step, t_end, what=f"the voltage program of {label}", stacklevel=5)
+        check_record_interval(program, schedule, t_end, what=f"the voltage program of {label}", stacklevel=5)
     frequency, which = lowest_first_frequency(mech)
     check_step_against_frequency(grid.step, frequency, what=which, stacklevel=5)
     cell, parts = cost_parts(mech)

@@ -193,7 +193,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`.
     """
     t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
-    check_steps(mech, grid, t_end)
+    check_steps(mech, grid, t_end, schedule)
     model = mb.build(mech)
     feedback = feedback_controllers(mech, model)
     observers = [(c, measurement_reader(model, column)) for c, column in feedback]

@@ -72,6 +72,8 @@ __all__ = [
     "snap_time",
     "snap_times",
     "check_step_against_program",
+    "check_record_interval",
+    "MIN_RECORDS_PER_FEATURE",
     "corners_on_grid",
     "check_step_against_frequency",
     "estimate_run_time",
@@ -91,6 +93,10 @@ COMFORTABLE_STEPS_PER_FEATURE = 20
 SLOW_PROGRAM_FACTOR = 100.0
 #: Fewer steps per period of the first eigenfrequency than this give a warning.
 MIN_STEPS_PER_MODE_PERIOD = 10
+#: Fewer recorded instants per feature of the voltage program than this give a warning: the
+#: record (and extremes or crossings computed from it) can miss a ramp's peak by up to
+#: ``1/(2n)`` of its swing, 5 % at 10.
+MIN_RECORDS_PER_FEATURE = 10
 #: A run predicted to take longer than this [s] of wall time is announced with a warning.
 LONG_RUN_SECONDS = 60.0
 
@@ -271,6 +277,57 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
         )
 
 
+def check_record_interval(program: Any, schedule: Any, t_end: float, *, what: str = "the voltage program",
+                          stacklevel: int = 4) -> None:
+    """Warn when ``record_every`` keeps fewer than :data:`MIN_RECORDS_PER_FEATURE` instants per program feature.
+
+    The solution is computed on every step whatever the recording interval, but the record
+    (its plots, and every extreme, crossing or cycle figure computed from it) sees only the
+    recorded instants: a coarse interval misses peaks and shifts crossings.
+
+    Parameters
+    ----------
+    program : object
+        The voltage program (checked if it has ``shortest_feature``, as for
+        :func:`check_step_against_program`).
+    schedule : RecordingSchedule or None
+        The run's recording schedule (``None`` or every step: nothing to check).
+    t_end : float
+        End time of the run [s].
+    what : str
+        How the program is named in the message.
+
+    Warns
+    -----
+    RuntimeWarning
+        Naming the interval as given (seconds or steps), the feature, and the largest
+        interval that keeps :data:`MIN_RECORDS_PER_FEATURE` instants per feature.
+    """
+    if schedule is None or schedule.every_step:
+        return
+    shortest = getattr(program, "shortest_feature", None)
+    if not callable(shortest):
+        return
+    feature = shortest(t_end)
+    if feature is None:
+        return
+    duration, description = feature
+    interval = schedule.interval if schedule.interval is not None else schedule.steps * schedule.step
+    per_feature = duration / interval
+    if per_feature < MIN_RECORDS_PER_FEATURE:
+        given = (f"{schedule.interval!r} s" if schedule.interval is not None
+                 else f"{schedule.steps} steps ({interval:.6g} s)")
+        warnings.warn(
+            f"record_every = {given} keeps only {per_feature:.3g} recorded instants across the shortest feature of "
+            f"{what}, {description} lasting {duration:.6g} s: the solution is computed on every step, but the record "
+            f"and every extreme, crossing or cycle figure computed from it can miss peaks by up to "
+            f"{min(50.0 / per_feature, 100.0):.2g} % of a ramp's swing. Record at most "
+            f"{duration / MIN_RECORDS_PER_FEATURE:.6g} s apart (or every step)",
+            RuntimeWarning,
+            stacklevel=stacklevel,
+        )
+
+
 def corners_on_grid(program: Any, step: float, t_end: float) -> bool:
     """Whether every corner of a piecewise-linear ``program`` before ``t_end`` lies on the step grid.
 
@@ -348,7 +405,8 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
         warnings.warn(
             f"this run is predicted to take about {format_duration(estimate, rough=True)} ({n_steps} steps of "
             f"{parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, "
-            "measured). For a quicker answer use a larger step (within the voltage program's limits), fewer cells or a shorter t_end; "
+            "measured). For a quicker answer use a larger step (within the voltage program's limits), fewer cells "
+            "or a shorter t_end; "
             "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",
             RuntimeWarning,
             stacklevel=stacklevel,

@@ -1,0 +1,63 @@
+"""A recording interval coarser than the voltage program warns (issue 17, part 1, second bullet).
+
+The solution does not depend on ``record_every``, but the record and every scalar computed from
+it do.  Reference: a triangle of period T has ramps of T/2; with ``record_every = r`` the record
+holds (T/2)/r instants per ramp, and a ramp's peak can fall up to r/2 between two of them.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import exudyn_atcm as atcm
+from exudyn_atcm.casework import load_case
+from exudyn_atcm.model import Triangle
+from exudyn_atcm.solve.run_checks import MIN_RECORDS_PER_FEATURE
+
+from _cli_helpers import CASES
+
+CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
+MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)
+PERIOD = 0.2  # s: ramps of 0.1 s
+
+
+def actuator():
+    return atcm.BendingActuator(4, 0.087 / 4, 28e-3, CFC, MFC, atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD)),
+                                cell="rigid")
+
+
+@pytest.mark.parametrize("record_every, quoted", [(0.02, r"record_every = 0\.02 s keeps only 5 "),
+                                                 (200, r"record_every = 200 steps \(0\.02 s\) keeps only 5 ")])
+def test_a_coarse_recording_interval_warns_quoting_it(record_every, quoted):
+    with pytest.warns(RuntimeWarning, match=quoted + r"recorded instants across the shortest feature") as record:
+        r = atcm.simulate(actuator(), 0.2, step=1e-4, record_every=record_every)
+    assert [w for w in record if "record_every" in str(w.message)][0].filename == __file__
+    # the record then misses the peak: the largest recorded voltage is below the program's 1500 V
+    assert r["voltage"].max() <= 1500.0
+
+
+def test_an_interval_resolving_the_program_is_silent_and_keeps_the_peak():
+    interval = 0.1 / MIN_RECORDS_PER_FEATURE  # exactly the limit: 10 instants per ramp
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = atcm.simulate(actuator(), 0.2, step=1e-4, record_every=interval)
+    assert r["voltage"].max() == pytest.approx(1500.0, rel=1e-12)
+
+
+def test_a_mechanism_run_names_the_drive():
+    b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4,
+                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD)))
+    lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
+    mech = atcm.Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A"))
+    with pytest.warns(RuntimeWarning, match=r"record_every = 0\.05 s keeps only 2 .* the voltage program of drive 'crank'"):
+        atcm.simulate(mech, 0.2, step=1e-4, record_every=0.05)
+
+
+def test_the_issue_example_now_warns():
+    """``--set record_every=10`` on the Fig. 12 case kept two instants and reported a wrong maximum, silently."""
+    case = load_case(CASES / "paper_bending_actuator.py")
+    with pytest.warns(RuntimeWarning, match=r"record_every = 10\.0 s keeps only 0\.05 recorded instants"):
+        case.run({"cell": "rigid", "cycles": 1, "record_every": 10.0})
