@@ -73,6 +73,7 @@ __all__ = [
     "snap_times",
     "check_step_against_program",
     "check_record_interval",
+    "program_feature",
     "MIN_RECORDS_PER_FEATURE",
     "corners_on_grid",
     "check_step_against_frequency",
@@ -208,6 +209,16 @@ def snap_times(times, step: float) -> np.ndarray:
 
 # ------------------------------------------------------------------------------ step checks
 
+def program_feature(program: Any, t_end: float) -> tuple[float, str] | None:
+    """``(duration [s], description)`` of the program's shortest feature before ``t_end``.
+
+    ``None`` for a program without ``shortest_feature`` (plain callables, constants) or without
+    a feature before ``t_end``.
+    """
+    shortest = getattr(program, "shortest_feature", None)
+    return shortest(t_end) if callable(shortest) else None
+
+
 def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program",
                                stacklevel: int = 4) -> None:
     """Refuse or warn when ``step`` resolves the program's shortest feature too coarsely.
@@ -238,10 +249,7 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
         shortest feature lasts more than :data:`SLOW_PROGRAM_FACTOR` times ``t_end`` (a period
         or ramp time in milliseconds?).
     """
-    shortest = getattr(program, "shortest_feature", None)
-    if not callable(shortest):
-        return
-    feature = shortest(t_end)
+    feature = program_feature(program, t_end)
     if feature is None:
         return
     duration, description = feature
@@ -305,10 +313,7 @@ def check_record_interval(program: Any, schedule: Any, t_end: float, *, what: st
     """
     if schedule is None or schedule.every_step:
         return
-    shortest = getattr(program, "shortest_feature", None)
-    if not callable(shortest):
-        return
-    feature = shortest(t_end)
+    feature = program_feature(program, t_end)
     if feature is None:
         return
     duration, description = feature
