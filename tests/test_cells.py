@@ -65,6 +65,12 @@ def test_unknown_cells_are_refused_naming_the_value_and_the_kinds(bad):
         actuator(bad)
 
 
+@pytest.mark.parametrize("typed, meant", [("Rigid", "rigid"), ("sixbar", "six-bar"), ("beams", "beam")])
+def test_a_misspelt_cell_name_is_refused_with_the_closest_kind(typed, meant):
+    with pytest.raises(ValueError, match=rf"got '{typed}' \(did you mean '{meant}'\?\)"):
+        actuator(typed)
+
+
 def test_no_package_code_compares_cell_names():
     """Outside cells/ no module compares a ``.cell`` (or ``cell``) with a string literal."""
     offenders = []

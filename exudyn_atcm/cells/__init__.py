@@ -7,13 +7,14 @@ compares cell names; it asks the cell object (``cell.carries_tip_load``, ``cell.
 :mod:`exudyn_atcm.mbs.cells` by class, so a subclass defined outside the package is realised
 like its parent.
 
-May import: nothing of the package but its argument checks (no Exudyn, no solving).
+May import: :mod:`exudyn_atcm.theory` and the top-level helpers (no Exudyn, no solving).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from ..suggestions import close_names
 from .ancf import AncfCell
 from .base import END_BODY, END_CHAIN, END_NODE, CellKind
 from .beam import BeamCell
@@ -46,4 +47,6 @@ def cell_kind(value: Any, parameter: str = "cell") -> CellKind:
         return value
     if isinstance(value, str) and value in CELL_KINDS:
         return CELL_KINDS[value]
-    raise ValueError(f"{parameter} must be one of {tuple(CELL_KINDS)} or a CellKind, got {value!r}")
+    hint = close_names(value, CELL_KINDS, ignore_case=True) if isinstance(value, str) else []
+    raise ValueError(f"{parameter} must be one of {tuple(CELL_KINDS)} or a CellKind, got {value!r}"
+                     + (f" (did you mean {hint[0]!r}?)" if hint else ""))
