@@ -22,6 +22,7 @@ from .._checks import positive_float, positive_int, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
+from .damped import MaterialDamped
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
 
 #: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
@@ -30,8 +31,7 @@ CELL_TYPES = tuple(CELL_KINDS)
 TIP_LOAD_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)
 
 
-
-class BendingActuator:
+class BendingActuator(MaterialDamped):
     """Two-layer piezo bending actuator as a chain of ``n_cells`` simulation cells.
 
     Parameters
@@ -244,22 +244,6 @@ class BendingActuator:
         """First bending frequency of the continuous beam with this ``EI`` and mass [Hz]."""
         return self.laminate.first_frequency(self.length)
 
-    @property
-    def rayleigh_damping(self) -> RayleighDamping:
-        """The actuator's Rayleigh coefficients: the material damping given, or ``beta = 2 zeta / omega_1``
-        (``alpha = 0``) for a damping ratio ``zeta``."""
-        ratio = None if isinstance(self.damping, RayleighDamping) else self.damping
-        return self.laminate.rayleigh_damping(self.length, ratio)
-
-    @property
-    def stiffness_damping_factor(self) -> float:
-        """``beta`` [s]: every spring with stiffness ``k`` gets damping ``beta k`` (``2 zeta / omega_1`` for a ratio)."""
-        return self.rayleigh_damping.beta
-
-    @property
-    def mass_damping_factor(self) -> float:
-        """``alpha`` [1/s]: every mass ``m`` gets the damping force ``-alpha m v`` (0 for a damping ratio)."""
-        return self.rayleigh_damping.alpha
 
     # ------------------------------------------------------------------ description
     def parameters(self) -> dict[str, Any]:

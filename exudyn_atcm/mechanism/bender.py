@@ -15,6 +15,7 @@ from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
+from .damped import MaterialDamped
 from .points import PointRef, check_name, unknown_point
 
 #: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
@@ -62,7 +63,7 @@ def _pair(name: str, value: Any) -> tuple[float, float]:
     return finite_float(f"{name}[0]", x), finite_float(f"{name}[1]", y)
 
 
-class Bender:
+class Bender(MaterialDamped):
     """A piezo bender (or a passive textile strip) as a component of a planar mechanism.
 
     Parameters
@@ -227,23 +228,6 @@ class Bender:
         """+1 if a positive free strain bends counter-clockwise (active layer on the right), else -1."""
         return 1.0 if self.active_side == "right" else -1.0
 
-    @property
-    def rayleigh_damping(self) -> RayleighDamping:
-        """The bender's Rayleigh coefficients: the material damping given, or ``beta = 2 zeta / omega_1``
-        of the whole bender as a cantilever for a damping ratio ``zeta`` (``alpha = 0``)."""
-        ratio = None if isinstance(self.damping, RayleighDamping) else self.damping
-        return self.laminate.rayleigh_damping(self.length, ratio)
-
-    @property
-    def stiffness_damping_factor(self) -> float:
-        """``beta`` [s]: every spring or element of stiffness ``k`` gets the damping ``beta k``
-        (``2 zeta / omega_1`` of the whole bender as a cantilever for a damping ratio ``zeta``)."""
-        return self.rayleigh_damping.beta
-
-    @property
-    def mass_damping_factor(self) -> float:
-        """``alpha`` [1/s]: every mass ``m`` gets the damping force ``-alpha m v`` (0 for a damping ratio)."""
-        return self.rayleigh_damping.alpha
 
     # ------------------------------------------------------------------ points and drives
     @property

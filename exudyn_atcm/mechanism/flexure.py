@@ -14,12 +14,13 @@ from ..model.materials import PLAUSIBLE_RANGES, Layer
 from ..model.damping import RayleighDamping, check_damping
 from .bender import DEFAULT_DAMPING_RATIO, Bender
 from .link import point_pair
+from .damped import MaterialDamped
 from .points import MechanismError, PointRef, check_name, unknown_point
 
 FLEXURE_MODELS = ("prbm", "cells")
 
 
-class Flexure:
+class Flexure(MaterialDamped):
     """A passive flexure hinge (a straight strip of one material) between two points.
 
     Parameters
@@ -137,22 +138,6 @@ class Flexure:
         """PRBM rigid segments: base side ``(1 - gamma) L`` and tip side ``gamma L`` [m]."""
         return (1.0 - self.gamma) * self.length, self.gamma * self.length
 
-    @property
-    def rayleigh_damping(self) -> RayleighDamping:
-        """The strip's Rayleigh coefficients: the material damping given, or ``beta = 2 zeta / omega_1``
-        of the strip as a cantilever (``alpha = 0``) for a damping ratio ``zeta``."""
-        ratio = None if isinstance(self.damping, RayleighDamping) else self.damping
-        return self.laminate.rayleigh_damping(self.length, ratio)
-
-    @property
-    def stiffness_damping_factor(self) -> float:
-        """``beta`` [s] (damping ``beta K`` on its spring; ``2 zeta / omega_1`` of the strip for a ratio)."""
-        return self.rayleigh_damping.beta
-
-    @property
-    def mass_damping_factor(self) -> float:
-        """``alpha`` [1/s]: every mass ``m`` gets the damping force ``-alpha m v`` (0 for a damping ratio)."""
-        return self.rayleigh_damping.alpha
 
     @property
     def points(self) -> dict[str, tuple[float, float]]:
