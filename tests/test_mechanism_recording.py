@@ -1,10 +1,12 @@
-"""A thinned mechanism record closes with the last accepted step, read once after the run.
+"""A thinned mechanism record closes with the last accepted step.
 
-The mechanism path does not copy the state (coordinates, spring and stop forces) on every step
-that ``record_every`` skips; it reads the last accepted step's state after the solve
-(:func:`exudyn_atcm.solve.mechanism_solve.simulate`).  That is right only where Exudyn leaves that
-state behind, so the first tests measure what Exudyn 1.13 leaves after each way a run can
-end, against the coordinates copied in the post-step hook of the last accepted step:
+The mechanism path writes every accepted step's state into a preallocated block in the
+post-step hook (:class:`exudyn_atcm.solve.step_record.StepRecord`), so the last accepted step
+is at hand when the run ends however it ends.  An earlier version read that state after the
+solve instead; the first tests keep what was measured then about what Exudyn 1.13 leaves
+behind after each way a run can end (a fact about Exudyn that any code reading the state
+after a run relies on), against the coordinates copied in the post-step hook of the last
+accepted step:
 
 * normal end, a post-step hook returning False, a Newton failure at the minimum step: the
   current state is the last accepted one;
@@ -29,7 +31,6 @@ from exudyn_atcm.mbs import builder as mb
 from exudyn_atcm.mbs import loads as mbs_loads
 from exudyn_atcm.mbs import solver_runs as runs
 from exudyn_atcm.mbs import solver_settings
-from exudyn_atcm.mbs.recording import restore_start_of_step
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.solve.run_checks import SimulationInterrupted
 from exudyn_atcm.model.signals import Triangle
@@ -172,6 +173,13 @@ def test_exudyn_start_of_step_is_the_step_before_after_a_pre_step_stop():
     assert np.max(np.abs(current - states[-2][0])) > 1e-6
     restore_start_of_step(model)
     np.testing.assert_array_equal(np.array(model.coordinates()), states[-2][0])
+
+
+def restore_start_of_step(model) -> None:
+    """Make Exudyn's state at the start of the last computed step the current state."""
+    data = model.mbs.systemData
+    state = data.GetSystemState(configuration=exu.ConfigurationType.StartOfStep)
+    data.SetSystemState(systemStateList=state, configuration=exu.ConfigurationType.Current)
 
 
 # ----------------------------------------------------------------------------- end to end

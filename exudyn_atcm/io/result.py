@@ -33,6 +33,9 @@ class Result(Mapping):
         Parameters of the run (names may carry units in brackets); written to CSV headers.
     info : mapping, optional
         Run statistics and versions (e.g. ``exudyn_version``, ``rejected_steps``).
+    every_step : Result, optional
+        The light columns at every accepted solver step, for a run whose record is thinned
+        (see :attr:`every_step`); default: this result itself.
 
     Examples
     --------
@@ -57,6 +60,7 @@ class Result(Mapping):
         units: Mapping[str, str],
         parameters: Mapping[str, Any] | None = None,
         info: Mapping[str, Any] | None = None,
+        every_step: "Result | None" = None,
     ) -> None:
         data: dict[str, np.ndarray] = {}
         length = None
@@ -79,6 +83,22 @@ class Result(Mapping):
         self._units = {n: str(units[n]) for n in data}
         self.parameters: dict[str, Any] = dict(parameters or {})
         self.info: dict[str, Any] = dict(info or {})
+        if every_step is not None and not isinstance(every_step, Result):
+            raise ValueError(f"every_step must be a Result or None, got {type(every_step).__name__}")
+        self._every_step = every_step
+
+    @property
+    def every_step(self) -> "Result":
+        """The light columns at every accepted solver step (this result when every step is recorded).
+
+        A run recorded with ``record_every`` keeps only some instants in its columns (and files);
+        the solver's every accepted step is still kept for the columns scalars are computed from
+        (a lone actuator: ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
+        ``tip_angle``; a mechanism: every column but the cell angles).  Extremes, crossings and
+        last-cycle figures computed from ``result.every_step`` are the same for any recording
+        interval.  Not written to files.
+        """
+        return self if self._every_step is None else self._every_step
 
     # Mapping interface ---------------------------------------------------------------
     def __getitem__(self, name: str) -> np.ndarray:

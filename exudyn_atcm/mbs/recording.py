@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from typing import Callable
 
-import exudyn as exu
 import numpy as np
 
 from . import solver_runs as runs
@@ -53,19 +52,55 @@ class Rows:
                            np.array(self.forces).reshape(len(self.times), -1), info, base=base)
 
 
-def restore_start_of_step(model: MechanismModel) -> None:
-    """Make the state at the start of the last computed step the model's current state.
+class RowLayout:
+    """Where time, voltages, strains, coordinates and forces sit in one flat row of floats.
 
-    Exudyn keeps the state at the start of every step (``ConfigurationType.StartOfStep``):
-    the last step it accepted before the one it computed last.  When a run stops because
-    a pre-step hook returned ``False``, Exudyn still completes that step and calls the
-    post-step hook; a caller that did not accept it (an interrupt caught by
-    :class:`~exudyn_atcm.solve.run_checks.InterruptGuard`) closes its record with this state
-    (measured with Exudyn 1.13; see ``tests/test_mechanism_recording.py``).
+    A mechanism run records each accepted step as one row ``t, volts (one per source), strains
+    (one per source), ODE2 coordinates, spring and stop forces``
+    (:class:`~exudyn_atcm.solve.step_record.StepRecord`); this object cuts rows back into
+    those parts and makes the :class:`Result` of them.
     """
-    data = model.mbs.systemData
-    state = data.GetSystemState(configuration=exu.ConfigurationType.StartOfStep)
-    data.SetSystemState(systemStateList=state, configuration=exu.ConfigurationType.Current)
+
+    def __init__(self, model: MechanismModel) -> None:
+        self.model = model
+        self.n_sources = len(model.sources)
+        self.n_coordinates = len(model.coordinates())
+        self.n_forces = len(model.spring_items)
+        self.width = 1 + 2 * self.n_sources + self.n_coordinates + self.n_forces
+        self._every_names: list[str] | None = None
+        self._every_units: list[str] | None = None
+
+    def parts(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``(times, volts, strains, q, forces)`` of ``rows`` (views)."""
+        ns, nq = self.n_sources, self.n_coordinates
+        return (rows[:, 0], rows[:, 1:1 + ns], rows[:, 1 + ns:1 + 2 * ns], rows[:, 1 + 2 * ns:1 + 2 * ns + nq],
+                rows[:, 1 + 2 * ns + nq:])
+
+    def result(self, rows: np.ndarray, times: np.ndarray, info: dict, every_step: Result | None = None) -> Result:
+        """The :class:`Result` of ``rows`` with the (snapped) ``times`` [s]."""
+        _, volts, strains, q, forces = self.parts(rows)
+        return make_result(self.model, times, volts, strains, q, forces, info, every_step=every_step)
+
+    def every_step_columns(self, rows: np.ndarray, times: np.ndarray) -> np.ndarray:
+        """Every column but the cell angles, of ``rows`` with ``times`` [s], as a 2-D array."""
+        _, volts, strains, q, forces = self.parts(rows)
+        with np.errstate(all="ignore"):  # checked for finite values when the run's result is made
+            r = make_result(self.model, times, volts, strains, q, forces, {}, check_finite=False)
+        if self._every_names is None:
+            self._every_names = [n for n in r if ".cell_angle_" not in n]
+            self._every_units = [r.unit(n) for n in self._every_names]
+        return np.column_stack([r[n] for n in self._every_names])
+
+    def every_step_result(self, columns: np.ndarray, info: dict) -> Result:
+        """The :class:`Result` of the stacked :meth:`every_step_columns`."""
+        names, units = self._every_names or [], self._every_units or []
+        for k, name in enumerate(names):
+            if not np.all(np.isfinite(columns[:, k])):
+                bad = int(np.argmax(~np.isfinite(columns[:, k])))
+                raise SolverError(f"the solution contains a non-finite {name} at accepted step {bad} "
+                                  f"(t = {columns[bad, 0]!r} s); the solver diverged. Try a smaller step or more cells.")
+        return Result({n: columns[:, k] for k, n in enumerate(names)}, dict(zip(names, units)),
+                      parameters=self.model.mechanism.parameters(), info=info)
 
 
 def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarray], float]:
@@ -115,7 +150,8 @@ def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarr
 
 
 def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, strains: np.ndarray, q: np.ndarray,
-                forces: np.ndarray, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
+                forces: np.ndarray, info: dict, base: tuple[str, str] = ("time", "s"),
+                every_step: Result | None = None, check_finite: bool = True) -> Result:
     """The :class:`Result` of recorded rows (columns as in the module documentation).
 
     ``base`` is the first column's name and unit: ``("time", "s")`` for a time series,
@@ -160,8 +196,8 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
         series[f"{name}.force"], units[f"{name}.force"] = forces[:, k], "N"
     info = dict(info)
     info.setdefault("exudyn_version", runs.exudyn_version())
-    result = Result(series, units, parameters=mech.parameters(), info=info)
-    for name in result:
+    result = Result(series, units, parameters=mech.parameters(), info=info, every_step=every_step)
+    for name in (result if check_finite else ()):
         values = result[name]
         if values.size and not np.all(np.isfinite(values)):
             bad = int(np.argmax(~np.isfinite(values)))

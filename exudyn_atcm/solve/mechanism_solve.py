@@ -22,7 +22,7 @@ from ..mbs import builder as mb
 from ..mbs import linear
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
-from ..mbs.recording import Rows, measurement_reader, restore_start_of_step
+from ..mbs.recording import RowLayout, Rows, measurement_reader
 from ..mechanism.actuator import BendingActuator
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import CELL_TYPES as BENDER_CELLS
@@ -30,7 +30,8 @@ from ..mechanism.bender import Bender
 from ..mechanism.points import MechanismError, closest
 from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers
 from ..io.result import Result
-from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time
+from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time, snap_times
+from .step_record import StepRecord
 from .mechanism_static import VoltageSpec, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from ..errors import SolverError
@@ -214,17 +215,27 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
     solver_settings.apply_user_settings(sim_settings, settings)
-    rows = Rows(model)
+    layout = RowLayout(model)
     clock = WallClock(progress, t_end) if progress is not None else None
     guard = InterruptGuard()
-    # the last accepted step when the schedule skipped it: (t, volts, strains, Exudyn's post-step
-    # count then); its state is read once after the run (close_record), not copied every step
-    pending: list[Any] = []
-    counts = {"accepted": 0, "post_calls": 0}
-    # extremes over every accepted step (the record may be thinned), for the range checks
     n_src = len(sources)
+    # extremes over every accepted step (the record may be thinned), for the range checks
     extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
 
+    def block_extremes(block: np.ndarray) -> None:
+        _, volts, strains, _, _ = layout.parts(block)
+        np.minimum(extremes[0], volts.min(axis=0), out=extremes[0])
+        np.maximum(extremes[1], volts.max(axis=0), out=extremes[1])
+        np.minimum(extremes[2], strains.min(axis=0), out=extremes[2])
+        np.maximum(extremes[3], strains.max(axis=0), out=extremes[3])
+
+    def every_step_columns(block: np.ndarray) -> np.ndarray:
+        return layout.every_step_columns(block, snap_times(block[:, 0], grid.step))
+
+    record = StepRecord(layout.width, schedule.take, on_block=block_extremes,
+                        reduce=None if schedule.every_step else every_step_columns)
+    read_forces = model.connector_forces if layout.n_forces else None
+    coordinates = model.coordinates
     user_errors: list[ValueError] = []
 
     def pre_step(t: float) -> None:
@@ -237,57 +248,27 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
 
     def post_step(t: float) -> None:
         committed = [s.commit(t) for s in sources]
-        counts["accepted"] += 1
-        t = snap_time(t, grid.step)  # recorded times on the step grid, as for an actuator
-        volts = np.array([u for u, _ in committed])
-        strains = np.array([e for _, e in committed])
-        np.minimum(extremes[0], volts, out=extremes[0])
-        np.maximum(extremes[1], volts, out=extremes[1])
-        np.minimum(extremes[2], strains, out=extremes[2])
-        np.maximum(extremes[3], strains, out=extremes[3])
-        if schedule.take(t):
-            rows.add(t, volts, strains)
-            pending.clear()
+        volts = [u for u, _ in committed]
+        strains = [e for _, e in committed]
+        if read_forces is None:
+            record.add(t, volts, strains, coordinates())
         else:
-            pending[:] = [(t, volts, strains, counts["post_calls"])]
-        for controller, read in observers:
-            controller.observe(t, read(strains))
-        if clock is not None:
-            clock(t)
+            record.add(t, volts, strains, coordinates(), read_forces())
+        if observers or clock is not None:
+            t = snap_time(t, grid.step)  # observed times on the step grid, as recorded
+            for controller, read in observers:
+                controller.observe(t, read(np.array(strains)))
+            if clock is not None:
+                clock(t)
 
-    guarded_post = guard.wrap(post_step)
-
-    def counted_post(t: float) -> bool:
-        counts["post_calls"] += 1  # every step Exudyn accepted, also one the guard no longer passes on
-        return guarded_post(t)
-
-    def close_record(aborted: bool) -> None:
-        """Add the last accepted step if the schedule skipped it, reading its state now.
-
-        After a normal end or a post-step hook returning False, Exudyn's current state is the
-        last accepted step's.  After an interrupt caught in the pre-step hook Exudyn completes
-        one more step that was not accepted here, and after an exception in a user function
-        (``aborted``) the current state can be a Newton iterate: in both cases the state at
-        the start of Exudyn's last step is the last accepted one (verified with Exudyn 1.13 in
-        tests/test_mechanism_recording.py).
-        """
-        if not pending:
-            return
-        t, volts, strains, calls = pending.pop()
-        if aborted or counts["post_calls"] == calls + 1:
-            restore_start_of_step(model)
-        elif counts["post_calls"] != calls:  # not expected: Exudyn stops after at most one more step
-            return
-        rows.add(t, volts, strains)
-
-    stats, aborted = None, False
+    stats = None
     try:
-        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), counted_post)
+        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(post_step))
     except runs.ExudynFailure as exc:
         if user_errors:
             raise user_errors[0] from None
         if not is_interrupt(exc):
-            last = pending[0][0] if pending else rows.last_time()
+            last = snap_time(float(record.last[0]), grid.step) if record.last is not None else 0.0
             raise SolverError(
                 f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
                 f"t = {last:.6g} s, step {grid.step:g} s): generalized-alpha with Newton (absolute "
@@ -295,24 +276,33 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
                 f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
                 f"{exc}. Try a smaller step, a slower voltage program, more cells, or check that the mechanism is "
                 "not locked (mechanism.degrees_of_freedom()).") from exc
-        guard.interrupted = aborted = True
-    close_record(aborted)
-    accepted = max(counts["accepted"] - 1, 0)
+        guard.interrupted = True
+    # every accepted step's row was written by the post-step hook (the guard stops passing steps
+    # on after an interrupt), so the last row is the last accepted step: it closes the record
+    record.close()
+    accepted = max(record.accepted - 1, 0)
     info = run_info(grid, accepted, schedule, stats,
                     hysteresis_evaluations=sum(s.evaluations for s in sources))
+    info["recorded_channels"] = layout.width - 1  # floats per accepted step besides the time
     for controller, column in feedback:
         report_controller(controller, info, f"the controller observing {column!r}")
         info["controller"]["measurement"] = column
-    if counts["accepted"] and n_src:
+    if record.accepted and n_src:
         check_drive_ranges(model, extremes[:2], extremes[2:])
+    rows = record.rows()
+    every = record.every_step()
+    every_step = layout.every_step_result(every, info) if every is not None else None
+    result = layout.result(rows, snap_times(rows[:, 0], grid.step), info, every_step) if len(rows) else None
     if guard.interrupted:
-        t_stop = rows.last_time()
+        t_stop = float(result["time"][-1]) if result is not None else 0.0
         info["partial"] = True
         info["interrupted_at [s]"] = t_stop
         info.setdefault("attempted_steps", accepted)
         info.setdefault("rejected_steps", 0)
-        raise SimulationInterrupted(t_stop, rows.result(info) if rows.times else None)
-    return rows.result(info)
+        if result is not None:
+            result.info.update(info)
+        raise SimulationInterrupted(t_stop, result)
+    return result
 
 
 def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -> np.ndarray:

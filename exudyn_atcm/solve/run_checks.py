@@ -290,8 +290,9 @@ def check_record_interval(program: Any, schedule: Any, t_end: float, *, what: st
     """Warn when ``record_every`` keeps fewer than :data:`MIN_RECORDS_PER_FEATURE` instants per program feature.
 
     The solution is computed on every step whatever the recording interval, but the record
-    (its plots, and every extreme, crossing or cycle figure computed from it) sees only the
-    recorded instants: a coarse interval misses peaks and shifts crossings.
+    (its files and plots, and any extreme, crossing or cycle figure computed from its columns)
+    sees only the recorded instants: a coarse interval misses peaks and shifts crossings.
+    :attr:`Result.every_step <exudyn_atcm.Result.every_step>` keeps every accepted step for such figures.
 
     Parameters
     ----------
@@ -325,8 +326,9 @@ def check_record_interval(program: Any, schedule: Any, t_end: float, *, what: st
         warnings.warn(
             f"record_every = {given} keeps only {per_feature:.3g} recorded instants across the shortest feature of "
             f"{what}, {description} lasting {duration:.6g} s: the solution is computed on every step, but the record "
-            f"and every extreme, crossing or cycle figure computed from it can miss peaks by up to "
-            f"{min(50.0 / per_feature, 100.0):.2g} % of a ramp's swing. Record at most "
+            f"(its files and plots, and any extreme, crossing or cycle figure computed from its columns) can miss "
+            f"peaks by up to {min(50.0 / per_feature, 100.0):.2g} % of a ramp's swing (result.every_step keeps every "
+            f"accepted step for such figures). Record at most "
             f"{duration / MIN_RECORDS_PER_FEATURE:.6g} s apart (or every step)",
             RuntimeWarning,
             stacklevel=stacklevel,

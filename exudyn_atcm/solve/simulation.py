@@ -328,6 +328,7 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
         guard.interrupted = True
     accepted = max(recorder.accepted - 1, 0)
     info = run_info(grid, accepted, schedule, stats, stroke_path=stroke_path)
+    info["recorded_channels"] = recorder.rows.width - 1  # floats per accepted step besides the time
     if isinstance(source, InStepStrain):
         info["hysteresis_evaluations"] = source.evaluations
     u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
@@ -341,7 +342,7 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
         info["interrupted_at [s]"] = t_stop
         info.setdefault("attempted_steps", accepted)
         info.setdefault("rejected_steps", 0)
-        partial = recorder.result(actuator, info) if recorder.n_rows or recorder._pending else None
+        partial = recorder.result(actuator, info) if recorder.n_rows else None
         raise SimulationInterrupted(t_stop, partial)
     result = recorder.result(actuator, info)
     actuator.cell.check_run(result, actuator, stacklevel=4)  # the caller of simulate

@@ -1,0 +1,219 @@
+"""The package's Python work per solver step, against Exudyn's own floor, and the memory of a long record.
+
+For each system (the lone actuator of the paper's Fig. 12 with rigid cells; the compliant
+four-bar, one drive; the micro-gripper, two drives; 8 rigid cells per bender) one run of
+``t_sim`` at step 1e-4 s through the paper's continuous Preisach loop, with the package's
+pre-step and post-step hooks timed from the inside (``time.perf_counter`` around each call;
+the instrumentation itself adds about 0.1 us per call):
+
+* ``pre [us/step]``: the hooks before every attempted step (voltage, hysteresis trial, strains
+  written into the model), per attempted step;
+* ``post [us/step]``: the hooks after every accepted step (hysteresis commit, recording), per
+  accepted step;
+* ``budget [us/step]``: the goal of 10 us per drive plus 2 us per recorded channel (the floats
+  written per step: time, voltage and strain per drive, the coordinates the result needs,
+  spring forces);
+* ``run [s/s]``: the whole run's wall time per simulated second; ``exudyn [s/s]`` the same
+  minus the hooks' time (Exudyn's own work, Newton iterations included).
+
+Exudyn's floor: a system with one point mass on a linear spring and trivial ``PreStep`` and
+``PostStep`` Python functions (``return True``), integrated with the same solver settings and
+step: the cheapest a run with Python hooks can be.
+
+``--memory`` measures, in child processes, the peak resident memory added by recording every
+step of a long run of the Fig. 12 actuator (default 20 s, 200,001 rows, six-bar cells): peak RSS of
+the run minus the peak RSS of the same process after a 0.01 s run.
+
+Usage: ``python benchmarks/bench_step_overhead.py [--t-sim 0.2] [--repeats 3] [--memory [--memory-t 20]]``.
+Prints a table and writes JSON to ``benchmarks/results/`` (git-ignored).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import os
+import platform
+import resource
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import exudyn
+import numpy as np
+
+from exudyn_atcm import __version__, simulate
+from exudyn_atcm.io.atomic import write_json
+from exudyn_atcm.mbs import solver_runs
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_mechanisms as bm  # noqa: E402 - the mechanisms of the mechanism benchmark
+
+RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
+STEP = 1e-4  # s
+CELLS = 8
+
+
+class HookTimer:
+    """``solver_runs.run_dynamic`` with its two hooks timed from the inside."""
+
+    def __init__(self) -> None:
+        self.pre = self.post = 0.0
+        self.pre_calls = self.post_calls = 0
+        self._original = solver_runs.run_dynamic
+
+    def __enter__(self) -> "HookTimer":
+        original = self._original
+
+        def timed_run(model, settings, pre_step, post_step):
+            def pre(t):
+                start = time.perf_counter()
+                try:
+                    return pre_step(t)
+                finally:
+                    self.pre += time.perf_counter() - start
+                    self.pre_calls += 1
+
+            def post(t):
+                start = time.perf_counter()
+                try:
+                    return post_step(t)
+                finally:
+                    self.post += time.perf_counter() - start
+                    self.post_calls += 1
+
+            return original(model, settings, None if pre_step is None else pre, post)
+
+        solver_runs.run_dynamic = timed_run
+        return self
+
+    def __exit__(self, *exc) -> None:
+        solver_runs.run_dynamic = self._original
+
+
+def actuator(n_cells: int, cell: str):
+    module = bm.case_module("paper_bending_actuator")
+    return module.build(module.CASE.resolve({"cell": cell, "n_cells": n_cells}))
+
+
+SYSTEMS = {
+    "actuator": (lambda: actuator(3, "rigid"), 1),
+    "four_bar": (lambda: bm.four_bar(CELLS, "rigid"), 1),
+    "gripper": (lambda: bm.gripper(CELLS, "rigid"), 2),
+}
+
+
+def channels(result) -> int:
+    """Floats recorded per step: the width of the recorder's row minus the time."""
+    return int(result.info.get("recorded_channels", 0))
+
+
+def measure(build, t_sim: float) -> dict:
+    system = build()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        with HookTimer() as timer:
+            start = time.perf_counter()
+            result = simulate(system, t_sim, step=STEP)
+            wall = time.perf_counter() - start
+    hooks = timer.pre + timer.post
+    return {"run_s_per_s": wall / t_sim, "exudyn_s_per_s": (wall - hooks) / t_sim,
+            "pre_us": 1e6 * timer.pre / max(timer.pre_calls, 1), "post_us": 1e6 * timer.post / max(timer.post_calls, 1),
+            "attempted": timer.pre_calls, "accepted": timer.post_calls, "channels": channels(result)}
+
+
+def exudyn_floor(t_sim: float) -> float:
+    """Wall seconds per simulated second of a one-mass Exudyn system with trivial Python hooks."""
+    import exudyn.itemInterface as ii  # noqa: PLC0415 - only the floor system needs Exudyn's items
+
+    from exudyn_atcm.mbs import solver_settings  # noqa: PLC0415
+
+    SC = exudyn.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(ii.ObjectGround())
+    node = mbs.AddNode(ii.NodePoint2D(referenceCoordinates=[0.0, 0.0]))
+    mass = mbs.AddObject(ii.MassPoint2D(mass=1.0, nodeNumber=node))
+    m0 = mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
+    m1 = mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=mass, localPosition=[0.0, 0.0, 0.0]))
+    mbs.AddObject(ii.CartesianSpringDamper(markerNumbers=[m0, m1], stiffness=[1e3, 1e3, 0.0], damping=[1.0, 1.0, 0.0]))
+    mbs.AddLoad(ii.LoadForceVector(markerNumber=m1, loadVector=[1.0, 0.0, 0.0]))
+    mbs.SetPreStepUserFunction(lambda mbs_, t: True)
+    mbs.SetPostStepUserFunction(lambda mbs_, t: True)
+    mbs.Assemble()
+    settings = solver_settings.dynamic_settings(t_sim, STEP)
+    start = time.perf_counter()
+    exudyn.SolveDynamic(mbs, settings, showHints=False)
+    return (time.perf_counter() - start) / t_sim
+
+
+def memory_child(t_sim: float) -> None:
+    """Run the Fig. 12 actuator recording every step for ``t_sim`` s; print the peak RSS [MB] before and after."""
+    module = bm.case_module("paper_bending_actuator")
+    p = module.CASE.resolve({})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        simulate(module.build(p), 0.01, step=p.step)
+        before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+        result = simulate(module.build(p), t_sim, step=p.step)
+    after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    print(f"{before} {after} {result.n_rows} {sum(result[n].nbytes for n in result) / 2**20}")
+
+
+def memory(t_sim: float) -> dict:
+    out = subprocess.run([sys.executable, __file__, "--memory-child", str(t_sim)], check=True, capture_output=True,
+                         text=True, env={**os.environ, "MPLBACKEND": "Agg"})
+    before, after, rows, result_mb = (float(v) for v in out.stdout.split()[-4:])
+    return {"t_sim_s": t_sim, "rows": int(rows), "peak_added_MB": after - before, "result_columns_MB": result_mb}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description="exudyn_atcm per-step overhead benchmark")
+    parser.add_argument("--t-sim", type=float, default=0.2, help="simulated time per run [s] (default 0.2)")
+    parser.add_argument("--repeats", type=int, default=3, help="runs per system, best taken (default 3)")
+    parser.add_argument("--memory", action="store_true", help="also measure the memory of a long every-step record")
+    parser.add_argument("--memory-t", type=float, default=20.0, help="simulated time of the memory run [s]")
+    parser.add_argument("--memory-child", type=float, default=None, help=argparse.SUPPRESS)
+    parser.add_argument("--out", default=RESULTS)
+    args = parser.parse_args(argv)
+    if args.memory_child is not None:
+        memory_child(args.memory_child)
+        return 0
+    print(f"exudyn_atcm {__version__}, exudyn {exudyn.__version__}, python {platform.python_version()}, "
+          f"{os.cpu_count()} cpus; step {STEP:g} s, {args.t_sim:g} s simulated, best of {args.repeats}")
+    header = (f"{'system':>9} | {'drives':>6} | {'channels':>8} | {'pre [us/step]':>13} | {'post [us/step]':>14} | "
+              f"{'budget [us/step]':>16} | {'run [s/s]':>9} | {'exudyn [s/s]':>12}")
+    print(header)
+    print("-" * len(header))
+    table = {}
+    for name, (build, drives) in SYSTEMS.items():
+        runs = [measure(build, args.t_sim) for _ in range(args.repeats)]
+        best = min(runs, key=lambda r: r["pre_us"] + r["post_us"])
+        best["run_s_per_s"] = min(r["run_s_per_s"] for r in runs)
+        best["exudyn_s_per_s"] = min(r["exudyn_s_per_s"] for r in runs)
+        best["drives"] = drives
+        best["budget_us"] = 10.0 * drives + 2.0 * best["channels"]
+        table[name] = best
+        print(f"{name:>9} | {drives:>6} | {best['channels']:>8} | {best['pre_us']:>13.2f} | {best['post_us']:>14.2f} | "
+              f"{best['budget_us']:>16.1f} | {best['run_s_per_s']:>9.3f} | {best['exudyn_s_per_s']:>12.3f}")
+    floor = min(exudyn_floor(args.t_sim) for _ in range(args.repeats))
+    print(f"Exudyn's floor (one mass, trivial Python hooks): {floor:.4f} s/s")
+    out = {"exudyn_atcm": __version__, "exudyn": exudyn.__version__, "python": platform.python_version(),
+           "cpus": os.cpu_count(), "step_s": STEP, "t_sim_s": args.t_sim, "repeats": args.repeats,
+           "systems": table, "exudyn_floor_s_per_s": floor}
+    if args.memory:
+        mem = memory(args.memory_t)
+        out["memory"] = mem
+        print(f"every-step record of {mem['t_sim_s']:g} s ({mem['rows']} rows): peak memory added "
+              f"{mem['peak_added_MB']:.1f} MB; the result's columns {mem['result_columns_MB']:.1f} MB")
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    path = Path(args.out) / f"bench_step_overhead_{stamp}.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_json(path, out)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
