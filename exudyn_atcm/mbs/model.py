@@ -130,16 +130,24 @@ class MechanismModel:
     load_factor: float = 1.0
     time: float = 0.0
     uf_strain: Any = None
+    _torque_matrix: np.ndarray | None = None  # rows: the torque_loads' coefficients per source
+    _written_factor: float | None = None       # load factor at which every load was last written
 
     # ------------------------------------------------------------------ actuation and loads
     def set_strains(self, strains: np.ndarray) -> None:
         """Write the free strains of every source [-] into the actuation torques (and follower loads)."""
-        self.strains = np.asarray(strains, dtype=float)
-        for load, coef in self.torque_loads:
-            self.mbs.SetLoadParameter(load, "loadVector", [0.0, 0.0, float(coef @ self.strains)])
+        self.strains = strains = np.asarray(strains, dtype=float)
+        if self.torque_loads:
+            if self._torque_matrix is None or len(self._torque_matrix) != len(self.torque_loads):
+                self._torque_matrix = np.array([coef for _, coef in self.torque_loads], dtype=float)
+            torques = self._torque_matrix @ strains
+            set_load = self.mbs.SetLoadParameter
+            for (load, _), torque in zip(self.torque_loads, torques.tolist()):
+                set_load(load, "loadVector", [0.0, 0.0, torque])
         for item, factor, source in self.motor_offsets:
-            self.mbs.SetObjectParameter(item, "offset", factor * float(self.strains[source]))
-        self._write_loads()
+            self.mbs.SetObjectParameter(item, "offset", factor * float(strains[source]))
+        if self.loads:
+            self._write_loads(varying_only=True)
 
     def set_path(self, start: np.ndarray, end: np.ndarray, ramp_loads: bool) -> None:
         """Static path: strains go from ``start`` to ``end`` with the path parameter; loads ramp if asked."""
@@ -163,9 +171,18 @@ class MechanismModel:
         self.time = t
         self._write_loads()
 
-    def _write_loads(self) -> None:
+    def _write_loads(self, varying_only: bool = False) -> None:
+        """Write every load at the current time, strains and load factor.
+
+        ``varying_only``: skip the constant loads (a fixed value, not a follower of a free
+        end) when they were last written at the current load factor (the per-step call).
+        """
         f = self.load_factor
+        skip_constant = varying_only and self._written_factor == f
+        self._written_factor = f
         for rec in self.loads:
+            if skip_constant and not callable(rec.value) and rec.free_end is None:
+                continue
             value = rec.at(self.time)
             if rec.kind == "torque":
                 self.mbs.SetLoadParameter(rec.load, "loadVector", [0.0, 0.0, f * value[0]])
