@@ -30,7 +30,8 @@ from ..mechanism.bender import Bender
 from ..mechanism.points import MechanismError, closest
 from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers
 from ..io.result import Result
-from .run_checks import InterruptGuard, SimulationInterrupted, WallClock, snap_time, snap_times
+from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
+from .dynamic_run import integrate, mark_partial
 from .step_record import StepRecord
 from .mechanism_static import VoltageSpec, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
@@ -217,7 +218,6 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     solver_settings.apply_user_settings(sim_settings, settings)
     layout = RowLayout(model)
     clock = WallClock(progress, t_end) if progress is not None else None
-    guard = InterruptGuard()
     n_src = len(sources)
     # extremes over every accepted step (the record may be thinned), for the range checks
     extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
@@ -261,22 +261,12 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             if clock is not None:
                 clock(t)
 
-    stats = None
-    try:
-        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(post_step))
-    except runs.ExudynFailure as exc:
-        if user_errors:
-            raise user_errors[0] from None
-        if not is_interrupt(exc):
-            last = snap_time(float(record.last[0]), grid.step) if record.last is not None else 0.0
-            raise SolverError(
-                f"time integration of mechanism {mech.name!r} failed at t = {exc.time:.6g} s (last accepted step at "
-                f"t = {last:.6g} s, step {grid.step:g} s): generalized-alpha with Newton (absolute "
-                f"tolerance {sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
-                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
-                f"{exc}. Try a smaller step, a slower voltage program, more cells, or check that the mechanism is "
-                "not locked (mechanism.degrees_of_freedom()).") from exc
-        guard.interrupted = True
+    stats, interrupted = integrate(
+        model, sim_settings, pre_step, post_step, what=f"mechanism {mech.name!r}", step=grid.step,
+        last_time=lambda: snap_time(float(record.last[0]), grid.step) if record.last is not None else 0.0,
+        user_errors=user_errors,
+        advice="Try a smaller step, a slower voltage program, more cells, or check that the mechanism is not locked "
+               "(mechanism.degrees_of_freedom()).")
     # every accepted step's row was written by the post-step hook (the guard stops passing steps
     # on after an interrupt), so the last row is the last accepted step: it closes the record
     record.close()
@@ -293,12 +283,9 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     every = record.every_step()
     every_step = layout.every_step_result(every, info) if every is not None else None
     result = layout.result(rows, snap_times(rows[:, 0], grid.step), info, every_step) if len(rows) else None
-    if guard.interrupted:
+    if interrupted:
         t_stop = float(result["time"][-1]) if result is not None else 0.0
-        info["partial"] = True
-        info["interrupted_at [s]"] = t_stop
-        info.setdefault("attempted_steps", accepted)
-        info.setdefault("rejected_steps", 0)
+        mark_partial(info, t_stop, accepted)
         if result is not None:
             result.info.update(info)
         raise SimulationInterrupted(t_stop, result)

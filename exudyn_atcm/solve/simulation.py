@@ -34,8 +34,8 @@ from .keywords import keyword_signature, legacy_positional
 from .actuator_record import ActuatorRecorder, make_result
 from .actuator_static import static_equilibrium
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
+from .dynamic_run import integrate, mark_partial
 from .run_checks import (
-    InterruptGuard,
     SimulationInterrupted,
     check_step_against_frequency,
     check_record_interval,
@@ -302,30 +302,12 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
     model.adjust_settings(sim_settings)
     solver_settings.apply_user_settings(sim_settings, settings)
     recorder = ActuatorRecorder(model, source, progress, t_end, step=grid.step, schedule=schedule)
-    guard = InterruptGuard()
-
-    if stroke_path != "user_function":
-        def pre_step(t: float) -> None:
-            model.set_strain(source.trial(t))
-    else:
-        pre_step = None
-    stats = None
-    try:
-        stats = runs.run_dynamic(model, sim_settings, guard.wrap(pre_step), guard.wrap(recorder.post_step))
-    except runs.ExudynFailure as exc:
-        if not is_interrupt(exc):
-            t_fail = exc.time
-            last = recorder.last_time()
-            raise SolverError(
-                f"time integration of the {actuator.cell} actuator with {actuator.n_cells} cells failed at "
-                f"t = {t_fail:.6g} s (last accepted step at t = {last:.6g} s, step {grid.step:g} s): "
-                f"generalized-alpha with Newton (absolute tolerance "
-                f"{sim_settings.timeIntegration.newton.absoluteTolerance:g}) did not converge even after "
-                f"reducing the step size down to {sim_settings.timeIntegration.minimumStepSize:g} s. Exudyn said: "
-                f"{exc}. Try a smaller step, a slower voltage program, more cells for large deflections, or a "
-                f"looser tolerance via settings={{'timeIntegration.newton.absoluteTolerance': 1e-7}}."
-            ) from exc
-        guard.interrupted = True
+    pre_step = (lambda t: model.set_strain(source.trial(t))) if stroke_path != "user_function" else None
+    stats, interrupted = integrate(
+        model, sim_settings, pre_step, recorder.post_step, what=f"the {actuator.cell} actuator with "
+        f"{actuator.n_cells} cells", step=grid.step, last_time=recorder.last_time,
+        advice="Try a smaller step, a slower voltage program, more cells for large deflections, or a looser "
+               "tolerance via settings={'timeIntegration.newton.absoluteTolerance': 1e-7}.")
     accepted = max(recorder.accepted - 1, 0)
     info = run_info(grid, accepted, schedule, stats, stroke_path=stroke_path)
     info["recorded_channels"] = recorder.rows.width - 1  # floats per accepted step besides the time
@@ -336,14 +318,10 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
         actuator.drive.check_voltage_range(u_low, u_high)
     if controller is not None:
         report_controller(controller, info)
-    if guard.interrupted:
+    if interrupted:
         t_stop = recorder.last_time()
-        info["partial"] = True
-        info["interrupted_at [s]"] = t_stop
-        info.setdefault("attempted_steps", accepted)
-        info.setdefault("rejected_steps", 0)
-        partial = recorder.result(actuator, info) if recorder.n_rows else None
-        raise SimulationInterrupted(t_stop, partial)
+        mark_partial(info, t_stop, accepted)
+        raise SimulationInterrupted(t_stop, recorder.result(actuator, info) if recorder.n_rows else None)
     result = recorder.result(actuator, info)
     actuator.cell.check_run(result, actuator, stacklevel=4)  # the caller of simulate
     if recorder.strain_low <= recorder.strain_high:
