@@ -16,9 +16,10 @@ from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import PiecewiseLinear, Triangle
 from exudyn_atcm.model.strain_sources import TableStrain
 from exudyn_atcm.errors import SolverError
-from exudyn_atcm.solve import simulate
+from exudyn_atcm.solve import simulate, solve_static, static_sweep
 
 from _actuator_geometries import REF_A
+from test_mechanism_solve import bender, cantilever, four_bar
 
 CREEP = Creep([0.01, 0.1], [0.05, 0.08])
 pytestmark = pytest.mark.filterwarnings("ignore:step = .* resolves the shortest feature:RuntimeWarning")
@@ -131,3 +132,29 @@ def test_table_strain_and_static_strain_of_a_timed_operator():
     # held for ever: the operator's static output times the long-term gain 1.13
     assert drive.static_strain(1500.0) == pytest.approx(1.13 * float(paper_strain_preisach().apply([1500.0])[-1]),
                                                         rel=1e-14)
+
+
+@pytest.mark.filterwarnings("ignore:step = .* resolves the first bending mode:RuntimeWarning")
+def test_in_step_creep_and_lag_in_a_closed_four_bar_despite_rejected_steps():
+    # the mechanism path uses the same strain source: the crank's strain is the offline replay
+    op = WithDynamics(paper_strain_preisach(), CREEP, RateLag(0.005))
+    m = four_bar(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=op))
+    # one Newton iteration: the lag smooths the strain so much that two would not reject (27 rejected)
+    r = simulate(m, 0.06, step=2e-3, settings={**REJECTING, "timeIntegration.newton.maxIterations": 1})
+    assert r.info["rejected_steps"] > 0
+    replay = WithDynamics(paper_strain_preisach(), CREEP, RateLag(0.005)).apply(r["crank.voltage"], r["time"])
+    np.testing.assert_allclose(r["crank.strain"], replay, rtol=0, atol=1e-15)
+
+
+def test_static_solve_takes_the_fully_crept_strain_and_a_static_sweep_refuses():
+    h1 = float(paper_strain_preisach().apply([1500.0])[-1])
+    act = REF_A.actuator(PiezoDrive(1500.0, hysteresis=WithDynamics(paper_strain_preisach(), CREEP)), cell="rigid")
+    # the same strain from a linear drive (d33 U / t_IDE = 1.13 h1) gives the same equilibrium
+    linear = REF_A.actuator(PiezoDrive(1500.0, d33=1.13 * h1 * 0.5e-3 / 1500.0, electrode_spacing=0.5e-3), cell="rigid")
+    crept, same = solve_static(act), solve_static(linear)
+    assert crept["strain"][0] == pytest.approx(1.13 * h1, rel=1e-14)
+    for name in ("tip_x", "tip_y", "tip_angle"):
+        assert crept[name][0] == pytest.approx(same[name][0], rel=1e-12)
+    b = bender(drive=PiezoDrive(0.0, hysteresis=WithDynamics(paper_strain_preisach(), CREEP)))
+    with pytest.raises(ValueError, match="t is required"):
+        static_sweep(cantilever(b), [0.0, 500.0])

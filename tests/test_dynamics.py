@@ -185,3 +185,19 @@ def test_rate_lag_model_inverse_cancels_hysteresis_creep_and_lag(rate_fit):
     u_plain = inverse_operator(model.operator).apply(wanted / model.lags.static_gain)
     err_plain = np.sqrt(np.mean((truth.apply(u_plain, t) - wanted) ** 2)) / np.ptp(wanted)
     assert err < 1e-3 < 0.1 * err_plain
+
+
+def test_lags_one_per_decade_follow_a_logarithmic_creep_law():
+    # y = 1 + 0.05 log10(1 + t / 0.01 s) over 0 ... 100 s (log-spaced samples): a sum of lags whose time
+    # constants are spread one per decade (0.01 ... 100 s) follows it within 0.55 % of the creep
+    # (measured; two decades per lag: 5.8 %, the time constants fitted too: 0.39 %)
+    t = np.concatenate([[0.0], np.geomspace(1e-3, 100.0, 400)])
+    y = 1.0 + 0.05 * np.log10(1.0 + t / 0.01)
+    creep_amount = y[-1] - y[0]
+    errors = {}
+    for n, fit in ((5, False), (3, False), (5, True)):
+        creep, step, _ = creep_from_step(t, y, tau=np.geomspace(0.01, 100.0, n), fit_tau=fit)
+        errors[n, fit] = np.max(np.abs(step * creep.step_response(t) - y)) / creep_amount
+    assert errors[5, False] < 0.01
+    assert errors[3, False] > 0.03
+    assert errors[5, True] < errors[5, False]
