@@ -20,9 +20,10 @@ inverse of the discretised creep (:meth:`Creep.inverse_response`), so a feedforw
 can cancel both.  The lags are integrated exactly for an ``h`` linear between samples (any
 sample spacing).
 
-Scope: these are offline models (records and programs with their sample times).  The solver
-step evaluates rate-independent operators only (``evaluate(u)``/``commit(u)`` carry no time),
-so a creep model is not yet evaluated inside :func:`exudyn_atcm.simulate`.
+Scope: these are offline models (records and programs with their sample times).  In the
+solver step (inside :func:`exudyn_atcm.simulate`) a creep law is evaluated by
+:class:`~exudyn_atcm.hysteresis.dynamics.WithDynamics`, which uses the same exact lag update;
+identification from a step record: :func:`~exudyn_atcm.hysteresis.dynamics_fit.creep_from_step`.
 """
 
 from __future__ import annotations

@@ -142,10 +142,15 @@ class PiezoDrive:
 
         Without hysteresis this is :meth:`linear_strain`.  A rate-independent operator
         gives the same output for any monotone path from the reset state to ``voltage``,
-        so the ramp is applied as one input.
+        so the ramp is applied as one input.  An operator with creep or a rate lag
+        (``static_output``, :class:`~exudyn_atcm.hysteresis.dynamics.WithDynamics`) gives the fully
+        crept strain: the voltage held for ever.
         """
         if self.hysteresis is None:
             return self.linear_strain(voltage)
+        static = getattr(self.hysteresis, "static_output", None)
+        if callable(static):
+            return float(static(float(voltage)))
         return float(self.hysteresis.apply([float(voltage)])[-1])
 
     def check_voltage_range(self, u_low: float, u_high: float, *, what: str | None = None,

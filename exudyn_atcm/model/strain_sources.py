@@ -3,7 +3,9 @@
 :class:`InStepStrain` evaluates the drive's hysteresis operator inside the step: a trial from
 the committed memory for every attempted step (``trial(t)``, cached per ``t``) and a commit
 only for accepted steps (``commit(t)``, called from the post-step hook, which Exudyn calls for
-accepted steps only).  :class:`TableStrain` is the paper's approach (its Fig. 9): the
+accepted steps only).  An operator with ``time_dependent = True`` (creep and rate lags,
+:class:`~exudyn_atcm.hysteresis.dynamics.WithDynamics`) gets the step's time as well:
+``evaluate(u, t)`` from its committed time and state, ``commit(u, t)``.  :class:`TableStrain` is the paper's approach (its Fig. 9): the
 hysteresis applied offline to the voltage program on a time grid, the motor following the
 table.  Both are plain Python (no Exudyn); the actuator and the mechanism paths use them.
 """
@@ -27,6 +29,7 @@ class InStepStrain:
     def __init__(self, drive) -> None:
         self.drive = drive
         self.hysteresis = drive.hysteresis
+        self._timed = bool(getattr(self.hysteresis, "time_dependent", False))
         self._t = None
         self._u = 0.0
         self._strain = 0.0
@@ -44,7 +47,7 @@ class InStepStrain:
             if self.hysteresis is None:
                 strain = self.drive.linear_strain(u)
             else:
-                strain = float(self.hysteresis.evaluate(u))
+                strain = float(self.hysteresis.evaluate(u, t) if self._timed else self.hysteresis.evaluate(u))
                 self.evaluations += 1
             self._t, self._u, self._strain = t, u, strain
         return self._strain
@@ -60,7 +63,7 @@ class InStepStrain:
         if self.hysteresis is None:
             strain = self.drive.linear_strain(u)
         else:
-            strain = float(self.hysteresis.commit(u))
+            strain = float(self.hysteresis.commit(u, t) if self._timed else self.hysteresis.commit(u))
         # the next trial at this t (none in normal operation) must see the new memory
         self._t = None
         return u, strain
@@ -90,6 +93,8 @@ class TableStrain:
         volts = np.array([drive.voltage_at(t) for t in times])
         if drive.hysteresis is None:
             strains = drive.linear_strain(volts)
+        elif getattr(drive.hysteresis, "time_dependent", False):
+            strains = drive.hysteresis.apply(volts, times)
         else:
             strains = drive.hysteresis.apply(volts)
         return cls(times, volts, strains)
