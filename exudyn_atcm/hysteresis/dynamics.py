@@ -328,6 +328,15 @@ class WithDynamics(HysteresisOperator):
         finally:
             self.restore(saved)
 
+    def commit_held(self, u: float) -> float:
+        """Accept input ``u`` held for ever (a point of a quasi-static sweep): the operator's memory
+        is updated and the lags settle at its new output; returns the fully crept output."""
+        h = float(self.operator.commit(check_input(u)))
+        self._h = h
+        self._z = np.full(self.lags.tau.size, h)
+        self._y = self.lags.static_gain * h
+        return self._y
+
     def static_output(self, u: float) -> float:
         """Output after ``u`` is reached by a monotone ramp from the reset state and held for ever (fully crept)."""
         h = float(self.operator.apply([check_input(u)])[-1])

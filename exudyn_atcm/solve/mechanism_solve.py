@@ -163,7 +163,9 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
     for drive in model.sources:
         if drive.hysteresis is not None:
             drive.hysteresis.reset()
-    strain_table = np.array([[d.linear_strain(u) if d.hysteresis is None else float(d.hysteresis.commit(u))
+    # each point is held for ever: an operator with creep or a rate lag gives its fully crept output
+    strain_table = np.array([[d.linear_strain(u) if d.hysteresis is None
+                              else float(getattr(d.hysteresis, "commit_held", d.hysteresis.commit)(u))
                               for d, u in zip(model.sources, volts)] for volts in source_table])
     strain_table = strain_table.reshape(source_table.shape)
     check_drive_ranges(model, source_table, strain_table, stacklevel=3)
