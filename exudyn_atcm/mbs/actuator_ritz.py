@@ -92,10 +92,6 @@ class RitzModel(BuiltModel):
         # theta(L) = sum q_i phi_i(1) = q_1
         return x, y, q[:, 0].copy(), q @ self._segments.T
 
-    def recorded_coordinates(self) -> np.ndarray:
-        """A copy of all ODE2 coordinates: the node's ``q`` are the whole system's, in order."""
-        return self.mbs.systemData.GetODE2Coordinates()
-
     def read_state(self, q: np.ndarray, strain: float) -> tuple:
         x, y, a, cells = self.states_from_records(np.asarray(q)[self.record_indices][None, :], None)
         return float(x[0]), float(y[0]), float(a[0]), cells[0]
@@ -103,7 +99,7 @@ class RitzModel(BuiltModel):
     def finish_indices(self) -> None:
         self.node_index = self.mbs.GetNodeODE2Index(self._node)
         total = len(self.mbs.systemData.GetODE2Coordinates())
-        if self.node_index != 0 or total != self.n_cells:  # recorded_coordinates reads them all
+        if self.node_index != 0 or total != self.n_cells:  # the recorder reads them all
             raise RuntimeError(f"ritz model: expected the node's {self.n_cells} coordinates to be the system's "
                                f"only ODE2 coordinates, found {total} starting at {self.node_index}")
         self.tip_indices = self.record_indices

@@ -18,7 +18,7 @@ from ..mbs import solver_runs as runs
 from ..mechanism.actuator import BendingActuator
 from ..model.recording import RecordingSchedule
 from .run_checks import WallClock, snap_time, snap_times
-from .step_record import StepRecord
+from .step_record import StepRecord, check_view
 
 __all__ = ["ActuatorRecorder", "make_result", "warn_coarse_cells", "cell_rotation", "MAX_CELL_ROTATION",
            "STANDARD_UNITS"]
@@ -57,8 +57,11 @@ class ActuatorRecorder:
         self.controller = getattr(getattr(source, "drive", None), "controller", None)
         self.index = model.record_indices
         index = self.index
-        # q[record_indices] after every accepted step; a model may offer a quicker read
-        self._read = getattr(model, "recorded_coordinates", None) or (lambda: model.coordinates()[index])
+        # q[record_indices] after every accepted step, read through one view of Exudyn's coordinate
+        # vector taken before the run (it stays in place during a run; checked when the result is made)
+        self._view = view = model.coordinates()
+        whole = index.size == view.size and np.array_equal(index, np.arange(view.size))
+        self._read = (lambda: view) if whole else (lambda: view[index])
         self.progress = WallClock(progress, t_end) if progress is not None else None
         self.t_end = t_end
         self.step = step
@@ -87,7 +90,7 @@ class ActuatorRecorder:
             t = self._snap(t)
             if self.controller is not None:
                 # closed loop: the controller observes the accepted step's tip deflection
-                self.controller.observe(t, self.model.read_state(self.model.coordinates(), strain)[1])
+                self.controller.observe(t, self.model.read_state(self._view, strain)[1])
             if self.progress is not None:
                 self.progress(t)
 
@@ -125,6 +128,7 @@ class ActuatorRecorder:
 
     def result(self, actuator: BendingActuator, info: dict) -> Result:
         self.close()
+        check_view(self._view, self.model.coordinates())
         columns, angles = self._columns(self.rows.rows())
         every = self.rows.every_step()
         every_step = None

@@ -32,7 +32,7 @@ from .mechanism_checks import check_drive_ranges, check_steps, feedback_controll
 from ..io.result import Result
 from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
-from .step_record import StepRecord
+from .step_record import StepRecord, check_view
 from .mechanism_static import VoltageSpec, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from ..errors import SolverError
@@ -237,7 +237,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     record = StepRecord(layout.width, schedule.take, on_block=block_extremes,
                         reduce=None if schedule.every_step else every_step_columns)
     read_forces = model.connector_forces if layout.n_forces else None
-    coordinates = model.coordinates
+    q_view = model.coordinates()  # Exudyn's coordinate vector stays in place during a run (checked after it)
     user_errors: list[ValueError] = []
 
     def pre_step(t: float) -> None:
@@ -253,9 +253,9 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         volts = [u for u, _ in committed]
         strains = [e for _, e in committed]
         if read_forces is None:
-            record.add(t, volts, strains, coordinates())
+            record.add(t, volts, strains, q_view)
         else:
-            record.add(t, volts, strains, coordinates(), read_forces())
+            record.add(t, volts, strains, q_view, read_forces())
         if observers or clock is not None:
             t = snap_time(t, grid.step)  # observed times on the step grid, as recorded
             for controller, read in observers:
@@ -272,6 +272,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     # every accepted step's row was written by the post-step hook (the guard stops passing steps
     # on after an interrupt), so the last row is the last accepted step: it closes the record
     record.close()
+    check_view(q_view, model.coordinates())
     accepted = max(record.accepted - 1, 0)
     info = run_info(grid, accepted, schedule, stats,
                     hysteresis_evaluations=sum(s.evaluations for s in sources))

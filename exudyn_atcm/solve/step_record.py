@@ -30,7 +30,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["StepRecord", "BLOCK_ROWS", "SPILL_BYTES"]
+__all__ = ["StepRecord", "check_view", "BLOCK_ROWS", "SPILL_BYTES"]
 
 #: Rows per preallocated block.
 BLOCK_ROWS = 4096
@@ -196,3 +196,15 @@ class StepRecord:
     def n_kept(self) -> int:
         """Rows in the record so far (without the block not yet flushed)."""
         return self._kept_rows + self._spilled_rows
+
+
+def check_view(view: np.ndarray, fresh: np.ndarray) -> None:
+    """Refuse a record read through a view of Exudyn's coordinates that no longer is Exudyn's vector.
+
+    Exudyn 1.13 keeps the current coordinates in one vector for the whole run
+    (``tests/test_step_record_view.py``); should a later version move it, the record would be
+    stale, so this raises instead of returning it.
+    """
+    if not np.shares_memory(view, fresh):
+        raise RuntimeError("Exudyn moved its coordinate vector during the run, so the recorded states are stale; "
+                           "this Exudyn version is not supported by the recorder (exudyn==1.13.* is)")
