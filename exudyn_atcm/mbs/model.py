@@ -132,6 +132,7 @@ class MechanismModel:
     uf_strain: Any = None
     _torque_matrix: np.ndarray | None = None  # rows: the torque_loads' coefficients per source
     _written_factor: float | None = None       # load factor at which every load was last written
+    _connector_plan: list | None = None         # (Exudyn item, stop normal or None) per spring and stop
 
     # ------------------------------------------------------------------ actuation and loads
     def set_strains(self, strains: np.ndarray) -> None:
@@ -256,17 +257,21 @@ class MechanismModel:
 
     def connector_forces(self) -> list[float]:
         """Force [N] of every spring (tension positive) and stop (compression positive) now."""
-        normals = {s.name: s.normal for s in self.mechanism.stops}
+        if self._connector_plan is None or len(self._connector_plan) != len(self.spring_items):
+            normals = {s.name: tuple(map(float, s.normal)) for s in self.mechanism.stops}
+            self._connector_plan = [(item, normals.get(name)) for name, item in self.spring_items.items()]
+        get = self.mbs.GetObjectOutput
+        force_type, displacement_type = exu.OutputVariableType.Force, exu.OutputVariableType.Displacement
         out = []
-        for name, item in self.spring_items.items():
-            force = self.mbs.GetObjectOutput(item, exu.OutputVariableType.Force)
-            if name in normals:
-                nx, ny = normals[name]
-                out.append(-float(force[0] * nx + force[1] * ny))
+        for item, normal in self._connector_plan:
+            force = get(item, force_type)
+            if normal is not None:
+                out.append(-float(force[0] * normal[0] + force[1] * normal[1]))
             else:
                 # Exudyn's spring force vector points from marker 0 to marker 1 under tension
-                d = np.asarray(self.mbs.GetObjectOutput(item, exu.OutputVariableType.Displacement), dtype=float)
-                out.append(float(np.dot(force, d) / np.linalg.norm(d)))
+                d = get(item, displacement_type)
+                along = sum(float(f) * float(x) for f, x in zip(force, d))
+                out.append(along / math.sqrt(sum(float(x) * float(x) for x in d)))
         return out
 
     def resolve_indices(self) -> None:
