@@ -55,6 +55,10 @@ class CellKind:
         (``None``: not measured; no run-time estimate).
     limits : str
         Known limits, stated in the documentation.
+    static_tolerances : (float, float) or None
+        Absolute [SI: N, N m] and relative Newton tolerances of a static solve of a chain of
+        these cells, when the package defaults (absolute 1e-8) are not right for it
+        (``None``: the defaults, or what the Exudyn builder sets).
     """
 
     name: ClassVar[str] = ""
@@ -67,6 +71,7 @@ class CellKind:
     realises_mass_damping: ClassVar[bool] = False
     cost_per_step: ClassVar[tuple[float, float, float] | None] = None
     limits: ClassVar[str] = ""
+    static_tolerances: ClassVar[tuple[float, float] | None] = None
 
     def mechanism_refusal(self) -> str | None:
         """Why a bender of this kind cannot be part of a :class:`~exudyn_atcm.Mechanism` (``None``: it can)."""

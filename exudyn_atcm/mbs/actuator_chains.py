@@ -94,6 +94,9 @@ def build(actuator, tip_force=(0.0, 0.0), stroke_path: str = "prestep") -> Built
         if mbs.GetObject(i)["objectType"] == "ConnectorCoordinateSpringDamper":
             model.springs.append((i, float(mbs.GetObjectParameter(i, "stiffness")), "damping"))
     mbs.Assemble()
+    tolerances = actuator.cell.static_tolerances
+    if tolerances is not None and model.static_absolute_tolerance is None:
+        model.static_absolute_tolerance, model.static_relative_tolerance = tolerances
     if hasattr(model, "finish_indices"):
         model.finish_indices()
         return model

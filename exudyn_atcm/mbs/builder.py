@@ -430,6 +430,12 @@ def build(mechanism: Mechanism) -> MechanismModel:
     mbs = SC.AddSystem()
     model = add_mechanism(mbs, mechanism)
     model.SC = SC
+    # static tolerances of the cells when every bender's kind sets them (rigid: relative to the
+    # deformation) and no part of the model set its own (beam elements' round-off floor)
+    kinds = {b.cell for b in mechanism.benders}
+    tolerances = {k.static_tolerances for k in kinds}
+    if len(tolerances) == 1 and None not in tolerances and model.static_relative_tolerance is None:
+        model.static_absolute_tolerance, model.static_relative_tolerance = tolerances.pop()
     mbs.Assemble()
     model.resolve_indices()
     n = len(model.sources)

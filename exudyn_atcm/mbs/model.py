@@ -121,6 +121,7 @@ class MechanismModel:
     # override (the attributes the shared solver runs of mbs.solver_runs read)
     newton_tolerance_floor: float = 0.0
     static_relative_tolerance: float | None = None
+    static_absolute_tolerance: float | None = None
     group_of_component: dict[str, str] = field(default_factory=dict)  # link / prbm segment -> body key
     # state of the actuation path (see set_path / set_strain)
     strains: np.ndarray | None = None
