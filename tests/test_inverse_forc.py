@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from exudyn_atcm.model.feedforward import feedforward_program
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, PrandtlIshlinskii
+from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
 from exudyn_atcm.hysteresis.identification import relay_grid
 from exudyn_atcm.hysteresis.inverse import BisectionInverse, inverse_operator
 from exudyn_atcm.model.signals import ForcProgram
@@ -117,3 +117,35 @@ def test_everett_inverse_is_exact_for_reachable_outputs():
     u = [inverse.commit(y) for y in wanted]
     # continuous output: bisection to 2e-9 of the input range, slope at most ~6 per input unit
     np.testing.assert_allclose(model.apply(u), wanted, atol=1e-7 * total)
+
+
+def _everett_with_offset():
+    """An Everett model on a 6-cell grid with a positive density and an offset (as a fit gives)."""
+    edges = np.linspace(-1.0, 1.0, 7)
+    alpha, beta, _ = relay_grid(-1.0, 1.0, 6)
+    return EverettPreisach(edges, alpha, beta, 0.5 + alpha - beta, offset=-2.0)
+
+
+@pytest.mark.parametrize("make, wanted, tolerance", [
+    # continuous: bisection to 1e-9 of the input range (see above)
+    (lambda: PAPER, WANTED, 1e-12),
+    # Everett: piecewise-bilinear, continuous in the input: reached to the bisection's tolerance
+    (_everett_with_offset, -2.0 + np.array([0.0, 2.0, 0.5, 1.5, 0.2, 3.0, 1.0]), 1e-8),
+])
+def test_every_preisach_model_has_an_inverse_method(make, wanted, tolerance):
+    """``model.inverse()`` (issue 14 part 5) is the bisection inverse, offset included."""
+    model = make()
+    u = model.inverse().apply(wanted)
+    np.testing.assert_allclose(model.apply(u), wanted, rtol=0, atol=tolerance)
+    np.testing.assert_array_equal(u, inverse_operator(model).apply(wanted))
+
+
+def test_discrete_inverse_method_equals_the_bisection_inverse():
+    alpha, beta, _ = relay_grid(-1.0, 1.0, 8)
+    model = DiscretePreisach(alpha, beta, 1.0 + alpha - beta, offset=3.0)
+    wanted = 3.0 + np.array([0.0, 20.0, 5.0, 15.0, 1.0, 30.0])
+    inverse = model.inverse(input_range=(-1.5, 1.5))
+    assert isinstance(inverse, BisectionInverse)
+    np.testing.assert_array_equal(inverse.apply(wanted), BisectionInverse(model, (-1.5, 1.5)).apply(wanted))
+    # the staircase output is reached to within one relay weight (the largest is 1 + 2 = 3)
+    assert np.max(np.abs(model.apply(inverse.apply(wanted)) - wanted)) <= 3.0

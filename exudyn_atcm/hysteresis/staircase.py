@@ -27,6 +27,7 @@ import math
 from typing import Any
 
 from .base import HysteresisOperator, check_input
+from .bisection import BisectionInverse
 
 _INF = math.inf
 
@@ -169,6 +170,27 @@ class StaircasePreisach(HysteresisOperator):
     def reversal_points(self) -> list[tuple[float, float]]:
         """The surviving dominant extrema ``(input, output)``, oldest first (no sentinels)."""
         return list(zip(self._values[2:], self._outputs[2:]))
+
+    def inverse(self, input_range: tuple[float, float] | None = None) -> BisectionInverse:
+        """The inverse operator: input the wanted output, output the input that produces it.
+
+        Bisection on the input from the forward model's committed memory
+        (:class:`~exudyn_atcm.hysteresis.bisection.BisectionInverse`, which keeps its own copy
+        of this model, reset); the model's offset is included, so a fitted model inverts as
+        it is.  Outputs beyond what ``input_range`` can reach are clipped with a warning.
+
+        Parameters
+        ----------
+        input_range : (float, float), optional
+            Allowed inputs (e.g. the drive's voltage limits [V]); default: the range over
+            which the output changes.
+
+        Returns
+        -------
+        BisectionInverse
+            Starting, like this model after :meth:`reset`, from the reset state.
+        """
+        return BisectionInverse(self, input_range)
 
     # -- stepping ----------------------------------------------------------------------
     # evaluate and commit are one body (_staircase_step below) with the memory update

@@ -1,0 +1,148 @@
+"""Inverse of a Preisach model by bisection on its input (see :mod:`exudyn_atcm.hysteresis.inverse`).
+
+:class:`BisectionInverse` works for any operator whose output, from a fixed memory, does not
+decrease as the input grows (a Preisach model with a non-negative density); every Preisach
+model's :meth:`~exudyn_atcm.hysteresis.staircase.StaircasePreisach.inverse` returns one.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import warnings
+from typing import Any
+
+from .._checks import finite_float
+from .base import HysteresisOperator, check_input
+
+__all__ = ["BisectionInverse", "default_input_range"]
+
+
+def default_input_range(model: Any) -> tuple[float, float]:
+    """Input range over which a Preisach model's output changes (beyond it, it saturates)."""
+    edges = getattr(model, "edges", None)
+    if edges is not None:  # EverettPreisach
+        return float(edges[0]), float(edges[-1])
+    if getattr(model, "alpha", None) is not None and getattr(model, "beta", None) is not None:  # DiscretePreisach
+        # just below the lowest switch-off threshold every relay is off (also one with alpha == beta)
+        lo, hi = float(model.beta.min()), float(model.alpha.max())
+        return lo - 1e-6 * max(hi - lo, abs(lo), 1.0), hi
+    if getattr(model, "u_min", None) is not None and getattr(model, "u_max", None) is not None:  # ContinuousPreisach
+        return model.u_min, model.u_max
+    raise ValueError(
+        f"input_range must be given for a {type(model).__name__}; the default is known for DiscretePreisach "
+        "and ContinuousPreisach only"
+    )
+
+
+class BisectionInverse(HysteresisOperator):
+    """Inverse of a monotone hysteresis operator by bisection on the input.
+
+    Parameters
+    ----------
+    model : hysteresis operator
+        The forward model (copied: the original and its memory are not touched).  From any
+        memory, its output must not decrease as the input grows (a Preisach model with
+        non-negative weights).
+    input_range : (float, float), optional
+        Inputs allowed ``(u_lo, u_hi)`` (e.g. the drive's voltage limits).  Default: the range
+        over which the model's output changes.
+    tolerance : float, optional
+        Bisection stops when the input bracket is this narrow (input units).  Default
+        ``1e-9 × (u_hi − u_lo)``.
+
+    Notes
+    -----
+    Initial state (after :meth:`reset`): the forward model reset.  :attr:`output` is the
+    last committed input ``u`` (``nan`` after a reset).
+    """
+
+    def __init__(self, model: Any, input_range: tuple[float, float] | None = None, tolerance: float | None = None) -> None:
+        for method in ("evaluate", "commit", "reset", "checkpoint", "restore"):
+            if not callable(getattr(model, method, None)):
+                raise ValueError(f"model must be a hysteresis operator with {method}(), got {type(model).__name__}")
+        self.model = copy.deepcopy(model)
+        if input_range is None:
+            input_range = default_input_range(model)
+        try:
+            u_lo, u_hi = (finite_float("input_range", v) for v in input_range)
+        except TypeError:
+            raise ValueError(f"input_range must be a pair (u_lo, u_hi), got {input_range!r}") from None
+        if not u_hi > u_lo:
+            raise ValueError(f"input_range must have u_hi > u_lo, got {input_range!r}")
+        self.u_lo, self.u_hi = u_lo, u_hi
+        self.tolerance = 1e-9 * (u_hi - u_lo) if tolerance is None else finite_float("tolerance", tolerance)
+        if self.tolerance <= 0.0:
+            raise ValueError(f"tolerance must be > 0, got {tolerance!r}")
+        self.reset()
+
+    def reset(self) -> None:
+        """Reset the forward model; clip counters to zero."""
+        self.model.reset()
+        self._u = math.nan
+        self.clip_count = 0
+        self.largest_clip = 0.0
+
+    def checkpoint(self) -> tuple:
+        """Snapshot of the forward memory and the last input."""
+        return (self.model.checkpoint(), self._u)
+
+    def restore(self, snapshot: Any) -> None:
+        """Put back a memory returned by :meth:`checkpoint`."""
+        memory, u = snapshot
+        self.model.restore(memory)
+        self._u = u
+
+    @property
+    def output(self) -> float:
+        """Input ``u`` [input units] committed last."""
+        return self._u
+
+    def reachable(self) -> tuple[float, float]:
+        """Outputs reachable from the committed memory: ``(model(u_lo), model(u_hi))``."""
+        return float(self.model.evaluate(self.u_lo)), float(self.model.evaluate(self.u_hi))
+
+    def _solve(self, y: float) -> tuple[float, float]:
+        """Input for the wanted output ``y``, and how far ``y`` lies outside the reachable range."""
+        f = self.model.evaluate
+        lo, hi = self.u_lo, self.u_hi
+        y_lo, y_hi = float(f(lo)), float(f(hi))
+        if y >= y_hi:
+            return hi, y - y_hi
+        if y <= y_lo:
+            return lo, y - y_lo
+        # invariant: f(lo) < y <= f(hi)
+        while hi - lo > self.tolerance:
+            mid = 0.5 * (lo + hi)
+            y_mid = float(f(mid))
+            if y_mid < y:
+                lo, y_lo = mid, y_mid
+            else:
+                hi, y_hi = mid, y_mid
+        return (hi if y_hi - y <= y - y_lo else lo), 0.0
+
+    def evaluate(self, y: float) -> float:
+        """Input that produces ``y`` from the committed memory (clipped silently: trial only)."""
+        return self._solve(check_input(y))[0]
+
+    def commit(self, y: float) -> float:
+        """Commit the input producing ``y``; warn if ``y`` was unreachable and had to be clipped."""
+        y = check_input(y)
+        u, excess = self._solve(y)
+        if excess != 0.0:
+            y_lo, y_hi = self.reachable()
+            self.clip_count += 1
+            self.largest_clip = max(self.largest_clip, abs(excess))
+            warnings.warn(
+                f"wanted output {y!r} is outside the range [{y_lo!r}, {y_hi!r}] reachable with inputs in "
+                f"[{self.u_lo!r}, {self.u_hi!r}] from the present memory: clipped by {abs(excess):.6g} "
+                f"(output units) to the input {u!r}",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+        self.model.commit(u)
+        self._u = u
+        return u
+
+    def __repr__(self) -> str:
+        return f"BisectionInverse({self.model!r}, input_range=({self.u_lo!r}, {self.u_hi!r}))"
