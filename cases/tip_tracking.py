@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PIDController, PiezoDrive, Result, read_record, simulate
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.hysteresis import EverettPreisach
 from exudyn_atcm.model import feedforward_program, linear_program, reference_preisach
 from exudyn_atcm.plots import axis_label, new_figure, save_figure
@@ -116,9 +116,10 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     drives = {"linear": linear, "feedforward": feedforward, "pid": pid(None), "pid_feedforward": pid(feedforward)}
     results = {}
-    for k, (name, voltage) in enumerate(drives.items()):
-        results[name] = simulate(build(p, voltage), p.duration, step=p.step,
-                                 progress=lambda t, t_end, k=k: ctx.progress(k * t_end + t, 4 * t_end))
+    # four simulations of the same actuator: announced once as a whole, one progress display across them
+    with ctx.plan([PlannedRun(probe, p.duration, p.step, label=LABELS[name]) for name in drives]) as plan:
+        for k, (name, voltage) in enumerate(drives.items()):
+            results[name] = simulate(build(p, voltage), p.duration, step=p.step, progress=plan.progress(k))
 
     t = results["linear"]["time"]
     target = wanted(t)
