@@ -88,6 +88,35 @@ def test_a_planned_run_is_announced_once_before_its_first_simulation(dear_steps)
     assert message.split("). ", 1)[1] == single[1][1].split("). ", 1)[1]
 
 
+def test_a_plan_slower_than_predicted_says_so_once_with_the_remaining_time(dear_steps, monkeypatch):
+    clock = {"now": 0.0}
+    monkeypatch.setattr(run_plan, "perf_counter", lambda: clock["now"])
+    events: list[tuple] = []
+
+    def run(p, ctx):
+        act = _actuator()
+        with ctx.plan([PlannedRun(act, T_END, STEP)] * 3) as plan:  # 100 s predicted for each
+            for k in range(3):
+                clock["now"] = 300.0 * k  # each simulation takes 300 s: 3 times its prediction
+                events.append(("start", k))
+                r = simulate(act, T_END, step=STEP, progress=plan.progress(k))
+        return CaseOutput(r)
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        if "predicted" in str(message):
+            events.append(("warned", str(message)))
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        warnings.showwarning = show
+        Case("slow", "Three slow simulations.", [], run).run()
+    assert [e[0] for e in events] == ["warned", "start", "start", "warned", "start"]  # once up front, once on pace
+    assert events[0][1].startswith("this run is predicted to take about 5 min (3 simulations")
+    assert events[3][1].startswith("the first 1 of 3 simulations took 5 min 00 s, 3 times their prediction of "
+                                   "1 min 40 s (")
+    assert "the remaining 2 are predicted to take about 10 min more" in events[3][1]  # 2 x 100 s x 3
+
+
 def test_a_short_plan_stays_quiet_and_unknown_costs_are_said():
     quiet = RunPlan([PlannedRun(_actuator(), T_END, STEP)] * 3)  # measured cost: well under a minute
     assert not quiet.announced and quiet.estimate == pytest.approx(
@@ -161,7 +190,7 @@ def test_tip_tracking_announces_its_four_simulations_once(monkeypatch):
     with warnings.catch_warnings(record=True) as record:
         warnings.simplefilter("always")
         tip_tracking.CASE.run({"duration": 0.05, "settle": 0.0})
-    announced = [str(w.message) for w in record if "predicted to take" in str(w.message)]
+    announced = [str(w.message) for w in record if str(w.message).startswith("this run is predicted to take")]
     assert len(announced) == 1
     assert "(4 simulations: 4 x 250 steps of 3 rigid cells at ~" in announced[0]
 
