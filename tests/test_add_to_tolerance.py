@@ -41,6 +41,7 @@ def _system(with_floor: bool = True):
     settings = exu.SimulationSettings()  # Exudyn's defaults: absolute Newton tolerance 1e-10
     settings.timeIntegration.endTime = 0.05
     settings.timeIntegration.numberOfSteps = 50
+    settings.solution.file.write = False  # no solution/ folder in the working directory
     return SC, mbs, handle, settings
 
 
