@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, PiezoDrive, Result, simulate, static_sweep
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
@@ -191,7 +191,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.dynamic_period > 0.0:
         # the same mechanism in time: the paper's triangle wave, hysteresis in the solver step
         dyn_mech = build_mechanism(p, strain_laws(p.exponents)["hysteresis"], Triangle(500.0, 1000.0, p.dynamic_period))
-        dyn = simulate(dyn_mech, p.dynamic_period, step=p.step)
+        with ctx.plan([PlannedRun(dyn_mech, p.dynamic_period, p.step, label="dynamic run")]) as plan:
+            dyn = simulate(dyn_mech, p.dynamic_period, step=p.step, progress=plan.progress(0))
         p_dyn = np.stack([dyn["coupler.P_x"], dyn["coupler.P_y"]], axis=-1)
         dyn_ref = four_bar.coupler_point_from_crank_tip(pivot(dyn, dyn_mech, "hinge_B"))
         scalars["reference_error_dynamic"] = (float(np.max(np.linalg.norm(p_dyn - dyn_ref, axis=1))) / travel, "-")

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PIDController, PiezoDrive, Result, read_record, simulate
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.hysteresis import EverettPreisach
 from exudyn_atcm.model import feedforward_program, linear_program, reference_preisach
 from exudyn_atcm.plots import axis_label, new_figure, save_figure
@@ -96,13 +96,17 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         value = p.tip_mean + sum(a * np.sin(2 * math.pi * f * t) for a, f in zip(p.tip_amplitudes, p.frequencies))
         return float(value) if value.ndim == 0 else value
 
+    # four simulations of the same actuator: announced once as a whole, before the preparation
+    # (the feedforward program of a long duration takes a while), one progress display across them
+    probe = build(p, 0.0)
+    plan = ctx.plan([PlannedRun(probe, p.duration, p.step, label=LABELS[name]) for name in METHODS])
+
     # the designer's model: identified from the noisy record, then expressed as strain
     record = read_record(RECORD, time="time", input="voltage", output="displacement")
     stroke_model, report = EverettPreisach.fit(record.input, record.output, p.n_levels)
     model = EverettPreisach(stroke_model.edges, stroke_model.alpha, stroke_model.beta,
                             stroke_model.weights / CELL_LENGTH, offset=stroke_model.offset / CELL_LENGTH)
 
-    probe = build(p, 0.0)
     times = np.arange(0.0, p.duration + 0.5 * p.sample_time, p.sample_time)
     strain_wanted = strain_for_tip(probe, wanted(times))
     slope = report.linear_model["a"] / CELL_LENGTH
@@ -116,9 +120,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     drives = {"linear": linear, "feedforward": feedforward, "pid": pid(None), "pid_feedforward": pid(feedforward)}
     results = {}
-    for k, (name, voltage) in enumerate(drives.items()):
-        results[name] = simulate(build(p, voltage), p.duration, step=p.step,
-                                 progress=lambda t, t_end, k=k: ctx.progress(k * t_end + t, 4 * t_end))
+    with plan:
+        for k, (name, voltage) in enumerate(drives.items()):
+            results[name] = simulate(build(p, voltage), p.duration, step=p.step, progress=plan.progress(k))
 
     t = results["linear"]["time"]
     target = wanted(t)

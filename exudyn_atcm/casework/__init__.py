@@ -5,7 +5,9 @@ The face: ``from exudyn_atcm.casework import Case, CaseOutput, Parameter`` is al
 needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
 
 * :mod:`~exudyn_atcm.casework.parameters`: :class:`Parameter`, :class:`Parameters`, :class:`CaseError`;
-* :mod:`~exudyn_atcm.casework.outputs`: :class:`RunContext`, :class:`CaseOutput`, :func:`versions`;
+* :mod:`~exudyn_atcm.casework.outputs`: :class:`RunContext`, :class:`CaseOutput`, :func:`versions`
+  (and, from :mod:`exudyn_atcm.solve.run_plan`, :class:`PlannedRun` / :class:`RunPlan` for a run of
+  several simulations);
 * :mod:`~exudyn_atcm.casework.case`: :class:`Case`, running and reporting from the command line;
 * :mod:`~exudyn_atcm.casework.discovery`: :func:`case_dirs`, :func:`list_cases`, :func:`find_case`,
   :func:`load_case`;
@@ -18,7 +20,7 @@ May import everything below it; :mod:`exudyn_atcm.study` and the command line bu
 from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_report
 from .discovery import CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, list_cases, load_case
 from .metrics import MetricRow
-from .outputs import CaseOutput, RunContext, versions
+from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
 from .parameters import CaseError, Parameter, Parameters, closest
 from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
 
@@ -28,6 +30,8 @@ __all__ = [
     "Parameter",
     "Parameters",
     "RunContext",
+    "PlannedRun",
+    "RunPlan",
     "CaseError",
     "RunFunction",
     "PlotFunction",

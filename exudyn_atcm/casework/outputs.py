@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import platform
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -15,6 +15,7 @@ from .._version import __version__
 from ..io.progress import ProgressCallback, no_progress
 from ..io.result import Result
 from ..mbs.solver_runs import exudyn_version
+from ..solve.run_plan import PlannedRun, RunPlan
 from .parameters import Parameters, json_value
 
 __all__ = ["RunContext", "CaseOutput", "versions"]
@@ -41,6 +42,21 @@ class RunContext:
     out_dir: Path | None = None
     plot: bool = True
     progress: ProgressCallback = no_progress
+
+    def plan(self, runs: Sequence[PlannedRun]) -> RunPlan:
+        """Declare the simulations of a run made of several, before the first starts.
+
+        Announces the run once (``RuntimeWarning``) when their summed estimate exceeds a minute,
+        in the wording of a single simulation's announcement; inside the returned plan's ``with``
+        block the simulations do not announce themselves again, and ``plan.progress(k)`` is the
+        ``progress`` of simulation ``k``, reporting the fraction of the whole run on
+        :attr:`progress` (see :mod:`exudyn_atcm.solve.run_plan`)::
+
+            with ctx.plan([PlannedRun(actuator, t_end, step)] * 4) as plan:
+                for k in range(4):
+                    simulate(..., progress=plan.progress(k))
+        """
+        return RunPlan(runs, self.progress, stacklevel=3)
 
 
 @dataclass

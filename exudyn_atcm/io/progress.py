@@ -4,9 +4,12 @@ A case passes ``ctx.progress`` (a :class:`ProgressBar` or a no-op) to anything t
 how far the simulated time has come, as ``progress(t, t_end)`` with both in seconds;
 :func:`~exudyn_atcm.solve.simulation.simulate` calls it every 1 % of ``t_end`` and at least every
 0.5 s of wall time, so a run whose simulated time crawls still shows life.  Work after the
-simulation (plots, GIF frames) reports through :func:`report_task`, which reaches the bar made
-active with :func:`reporting` (the case runner does this), so the display does not fall silent
-after 100 %.
+simulation (plots, GIF frames) reports through :func:`report_task` (every GIF frame of
+:func:`~exudyn_atcm.plots.gif.save_gif`) and :func:`count_task` (every figure of
+:func:`~exudyn_atcm.plots.style.save_figure`), which reach the bar made active with
+:func:`reporting` (the case runner does this), so the display does not fall silent after 100 %.
+A run of several simulations reports the fraction of the whole through
+:meth:`ProgressBar.stage` (:class:`~exudyn_atcm.solve.run_plan.RunPlan`).
 
 The bar appears only when the stream is a terminal and the run has lasted ``delay`` seconds
 of wall time, so short runs and redirected output stay clean.  It is our own ~100 lines
@@ -23,7 +26,7 @@ import time
 from collections.abc import Iterator
 from typing import IO, Any, Protocol
 
-__all__ = ["ProgressCallback", "ProgressBar", "no_progress", "report_task", "reporting", "format_duration"]
+__all__ = ["ProgressCallback", "ProgressBar", "no_progress", "report_task", "count_task", "reporting", "format_duration"]
 
 
 class ProgressCallback(Protocol):
@@ -124,17 +127,39 @@ class ProgressBar:
         elapsed = now - self._start
         self._draw(f"{self._bar(share)} {100 * share:3.0f}% t = {t:.4g} / {t_end:.4g} s  {self._timing(elapsed, share)}", now)
 
-    def task(self, label: str, done: int, total: int) -> None:
-        """Report work after the simulation: ``label done/total`` (e.g. plots, GIF frames)."""
-        if not self.enabled or total <= 0:
+    def task(self, label: str, done: int, total: int | None) -> None:
+        """Report work after the simulation: ``label done/total`` (e.g. plots, GIF frames).
+
+        ``total`` ``None``: open-ended work (figures written one by one), drawn as ``label: done``.
+        """
+        if not self.enabled or (total is not None and total <= 0):
             return
         now = time.perf_counter()
         if label != self._task:
             self._task, self._task_start = label, now
-        if not self._ready(now, final=done >= total):
+        if not self._ready(now, final=total is not None and done >= total):
+            return
+        elapsed = now - self._task_start
+        if total is None:
+            self._draw(f"{label}: {done}  {format_duration(elapsed)} elapsed", now)
             return
         share = min(max(done / total, 0.0), 1.0)
-        self._draw(f"{self._bar(share)} {label} {done}/{total}  {self._timing(now - self._task_start, share)}", now)
+        self._draw(f"{self._bar(share)} {label} {done}/{total}  {self._timing(elapsed, share)}", now)
+
+    def stage(self, label: str, share: float, detail: str = "") -> None:
+        """Report a run of several parts: ``share`` of the whole done, in part ``label`` (e.g. ``simulation 2/4``).
+
+        The elapsed time and the ETA are those of the whole run
+        (:class:`~exudyn_atcm.solve.run_plan.RunPlan` calls this).
+        """
+        if not self.enabled:
+            return
+        now = time.perf_counter()
+        share = min(max(float(share), 0.0), 1.0)
+        if not self._ready(now, final=share >= 1.0):
+            return
+        text = f"{label}: {detail}" if detail else label
+        self._draw(f"{self._bar(share)} {100 * share:3.0f}% {text}  {self._timing(now - self._start, share)}", now)
 
     def close(self) -> None:
         """End the bar's line if anything was drawn."""
@@ -146,21 +171,41 @@ class ProgressBar:
 
 
 _ACTIVE: contextvars.ContextVar[Any] = contextvars.ContextVar("exudyn_atcm_progress", default=None)
+_COUNTS: contextvars.ContextVar[dict | None] = contextvars.ContextVar("exudyn_atcm_progress_counts", default=None)
 
 
 @contextlib.contextmanager
 def reporting(progress: Any) -> Iterator[None]:
     """Make ``progress`` (an object with ``task(label, done, total)``) receive :func:`report_task` calls."""
     token = _ACTIVE.set(progress)
+    counts = _COUNTS.set({})
     try:
         yield
     finally:
+        _COUNTS.reset(counts)
         _ACTIVE.reset(token)
 
 
-def report_task(label: str, done: int, total: int) -> None:
-    """Report ``done`` of ``total`` units of the work ``label`` to the active progress display, if any."""
+def report_task(label: str, done: int, total: int | None) -> None:
+    """Report ``done`` of ``total`` units of the work ``label`` to the active progress display, if any.
+
+    ``total`` ``None`` for open-ended work (see :func:`count_task`).
+    """
     active = _ACTIVE.get()
     task = getattr(active, "task", None)
     if task is not None:
         task(label, done, total)
+
+
+def count_task(label: str) -> int:
+    """One more unit of open-ended work ``label`` (e.g. a figure written); reports the count so far.
+
+    The count starts at 0 in each :func:`reporting` block; outside one nothing is reported and 0
+    is returned.
+    """
+    counts = _COUNTS.get()
+    if counts is None:
+        return 0
+    counts[label] = counts.get(label, 0) + 1
+    report_task(label, counts[label], None)
+    return counts[label]

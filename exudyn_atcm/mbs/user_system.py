@@ -25,6 +25,7 @@ from .builder import add_mechanism
 from .hooks import add_post_step, add_pre_step
 from .items import position_marker, rigid_marker
 from .model import MechanismModel
+from .tolerance_floor import ToleranceFloor
 from .recording import make_result
 
 #: Key in ``mbs.variables``: the component names already added by :func:`add_to`.
@@ -48,8 +49,9 @@ class MechanismHandle:
     newton_tolerance_floor : float
         Smallest absolute Newton tolerance [N, N m] the added items can reach: the stiff axis of
         beam cells (``cell="beam"``) leaves a round-off residual of about ``eps (a1 + a2) L/L_c``;
-        set ``simulationSettings.timeIntegration.newton.absoluteTolerance`` (and the static
-        solver's) to at least this value, or Newton may fail to converge (0 without beam cells).
+        ``exudyn.SolveDynamic`` / ``SolveStatic`` with a smaller ``newton.absoluteTolerance`` get it raised to
+        this value for the running solver, with a ``RuntimeWarning``
+        (:class:`~exudyn_atcm.mbs.tolerance_floor.ToleranceFloor`); 0 without beam cells.
     """
 
     def __init__(self, mechanism: Mechanism, model: MechanismModel, sources: list) -> None:
@@ -216,6 +218,8 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
         handle._record(t, [s.commit(t) for s in sources])
         return True
 
+    if handle.newton_tolerance_floor > 0.0:  # beam cells: raise a user's solve's tolerance to what they reach
+        add_pre_step(mbs, ToleranceFloor(handle.newton_tolerance_floor))
     add_pre_step(mbs, pre_step)
     add_post_step(mbs, post_step)
     added.extend(sorted(names))

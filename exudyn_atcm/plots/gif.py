@@ -14,6 +14,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..io.atomic import atomic_path
+from ..io.progress import report_task
 
 __all__ = ["save_gif"]
 
@@ -42,7 +43,10 @@ def save_gif(fig: Figure, draw: Callable[[int], object], n_frames: int, path: st
     colors : int, optional
         Palette size per frame, 2 to 256.
     progress : callable, optional
-        ``progress(done, total)`` after each frame.
+        ``progress(done, total)`` after each frame.  Whether given or not, the frames are also
+        reported to the active progress display as ``GIF frames done/total``
+        (:func:`~exudyn_atcm.io.progress.report_task`), from ``0/total`` before the first frame to
+        ``total/total`` after the last.
 
     Returns
     -------
@@ -61,6 +65,7 @@ def save_gif(fig: Figure, draw: Callable[[int], object], n_frames: int, path: st
     if not os.path.isdir(os.path.dirname(os.path.abspath(target))):
         raise ValueError(f"path must be in an existing directory, got {target!r}")
     images = []
+    report_task("GIF frames", 0, n_frames)
     for k in range(n_frames):
         draw(k)
         fig.canvas.draw()
@@ -68,6 +73,7 @@ def save_gif(fig: Figure, draw: Callable[[int], object], n_frames: int, path: st
             fig.set_layout_engine("none")
         rgba = np.asarray(fig.canvas.buffer_rgba())
         images.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.Palette.ADAPTIVE, colors=colors))
+        report_task("GIF frames", k + 1, n_frames)
         if progress is not None:
             progress(k + 1, n_frames)
     with atomic_path(target) as tmp:

@@ -133,8 +133,7 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
         return chain, trace, label
 
     total = len(shapes)
-    report_task("GIF frames", 0, total)
-    save_gif(fig, draw, total, path, fps=fps, progress=lambda done, n: report_task("GIF frames", done, n))
+    save_gif(fig, draw, total, path, fps=fps)  # reports the frames to the active progress display
     return os.fspath(path)
 
 

@@ -23,6 +23,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from ..io.atomic import write_atomic
+from ..io.progress import count_task
 
 __all__ = ["STYLE", "new_figure", "axis_label", "display_scale", "save_figure"]
 
@@ -102,5 +103,11 @@ def display_scale(values: Sequence[float] | np.ndarray, unit: str) -> tuple[floa
 
 
 def save_figure(fig: Figure, path: str | os.PathLike) -> Path:
-    """Save ``fig`` as PNG at ``path`` atomically and return the path."""
-    return write_atomic(path, lambda handle: fig.savefig(handle, format="png", dpi=STYLE["savefig.dpi"]), binary=True)
+    """Save ``fig`` as PNG at ``path`` atomically and return the path.
+
+    Counts the figure on the active progress display (``figures written: n``,
+    :func:`~exudyn_atcm.io.progress.count_task`).
+    """
+    written = write_atomic(path, lambda handle: fig.savefig(handle, format="png", dpi=STYLE["savefig.dpi"]), binary=True)
+    count_task("figures written")
+    return written

@@ -58,7 +58,7 @@ import numpy as np
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from .interrupts import InterruptGuard, SimulationInterrupted, WallClock, is_interrupt
-from ..io.progress import format_duration
+from .long_runs import is_announced, long_run_message
 
 __all__ = [
     "MIN_STEPS_PER_FEATURE",
@@ -401,21 +401,17 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
                  parts: str | None = None, stacklevel: int = 4) -> float | None:
     """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
 
+    Quiet inside :func:`~exudyn_atcm.solve.long_runs.announced_up_front` (a run of several
+    simulations announced as a whole by :class:`~exudyn_atcm.solve.run_plan.RunPlan`).
+
     ``limit`` defaults to :data:`LONG_RUN_SECONDS`.  ``parts`` describes the model in the
     message (default ``"{n_cells} {cell} cells"``; a mechanism counts the cells of all its
     benders and flexures and its links).
     """
     limit = LONG_RUN_SECONDS if limit is None else limit
     estimate = estimate_run_time(cell, n_cells, n_steps)
-    if estimate is not None and estimate > limit:
+    if estimate is not None and estimate > limit and not is_announced():  # a plan announced the whole run
         per_step = estimate / max(n_steps, 1)
-        warnings.warn(
-            f"this run is predicted to take about {format_duration(estimate, rough=True)} ({n_steps} steps of "
-            f"{parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, "
-            "measured). For a quicker answer use a larger step (within the voltage program's limits), fewer cells "
-            "or a shorter t_end; "
-            "record_every reduces the memory; Ctrl-C stops the run and keeps what was computed",
-            RuntimeWarning,
-            stacklevel=stacklevel,
-        )
+        detail = f"{n_steps} steps of {parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, measured"
+        warnings.warn(long_run_message(estimate, detail), RuntimeWarning, stacklevel=stacklevel)
     return estimate
