@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_float
-from ..errors import SolverError
+from .static_fallback import equilibrium_with_fallback
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
@@ -102,41 +102,24 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
         load_steps = int(min(400, max(4, math.ceil(rot / 0.05))))
     settings = solver_settings.static_settings(load_steps)
     settings.staticSolver.useLoadFactor = from_reference
-    try:
-        runs.run_static(model, settings, lambda f: f)
-        return "static"
-    except runs.ExudynFailure as exc:
-        first = exc
-    model.set_path(start, end, ramp_loads=from_reference)
-    if from_reference:
-        runs.reset_to_reference(model)
-    else:
-        model.set_strain(0.0)
-    try:
-        change = runs.run_relaxation(model, 1.0, 0.5 * omega1, 2.0 / omega1)
-    except runs.ExudynFailure as exc:
-        raise SolverError(
-            f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge. Tried: Exudyn's static "
-            f"solver with {load_steps} load steps (stopped at load factor {first.time:.4g}: {first}), then dynamic "
-            f"relaxation (stopped at {exc.time:.3g} of its ramp: {exc}). Expected rotation about {rot:.3g} rad. "
-            "Use more cells, reduce the loads, check that the mechanism is not locked, or pass load_steps.") from exc
-    relaxed = np.array(model.coordinates())
-    runs.set_current_as_initial(model, zero_velocity=True)
-    model.load_factor = 1.0
-    model.set_path(end, end, ramp_loads=False)
-    polish = solver_settings.static_settings(1)
-    polish.staticSolver.useLoadFactor = False
-    try:
-        runs.run_static(model, polish, lambda f: f)
-        return "relaxation+static"
-    except runs.ExudynFailure:
-        pass
-    tol = 1e-9 * mech.size
-    if change <= tol:
-        runs.set_current_coordinates(model, relaxed)
-        return "relaxation"
-    raise SolverError(
-        f"static equilibrium ({what}) of mechanism {mech.name!r} did not converge: Exudyn's static solver stopped "
-        f"at load factor {first.time:.4g} ({first}); dynamic relaxation still moved by {change:.3g} m over its last "
-        f"period (accepted: {tol:.3g} m) and the static polish failed. Use more cells, reduce the loads, or pass "
-        "more load_steps.")
+
+    def relaxation() -> None:
+        model.set_path(start, end, ramp_loads=from_reference)
+        if from_reference:
+            runs.reset_to_reference(model)
+        else:
+            model.set_strain(0.0)
+
+    def polish() -> None:
+        model.load_factor = 1.0
+        model.set_path(end, end, ramp_loads=False)
+        last = solver_settings.static_settings(1)
+        last.staticSolver.useLoadFactor = False
+        runs.run_static(model, last, lambda f: f)
+
+    return equilibrium_with_fallback(
+        model, static=lambda: runs.run_static(model, settings, lambda f: f), relaxation=relaxation, relax_target=1.0,
+        omega1=omega1, polish=polish, size=mech.size, subject=f"mechanism {mech.name!r}", what=what,
+        load_steps=load_steps,
+        advice=f"Expected rotation about {rot:.3g} rad. Use more cells, reduce the loads, check that the mechanism is "
+               "not locked, or pass load_steps.")
