@@ -24,7 +24,7 @@ class RigidCell(CellKind):
     cost_per_step = (20e-6, 1e-6, 0.12e-6)
     # the torque-actuated chain is nearly linear in its rotations: with the absolute tolerance 1e-8
     # Newton stopped after its first step at small voltages, missing ~19 % of the second-order
-    # shortening of a 60 mm 16-cell bender at 20 V (tests/test_static_tolerance.py); a tolerance
+    # shortening of a 60 mm 16-cell bender at 20 V (tests/test_solver_tolerances.py); a tolerance
     # relative to the step's first residual scales with the deformation (converges in 1-3 steps
     # from 20 V to 1500 V and 3 to 40 cells, and in the four-bar and the gripper)
     static_tolerances = (1e-14, 1e-10)
