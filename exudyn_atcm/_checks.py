@@ -63,6 +63,17 @@ def finite_array(name: str, value: Any, *, min_length: int = 1) -> np.ndarray:
     return array
 
 
+def sample_times(name: str, t: Any, n: int) -> np.ndarray:
+    """``t`` as a strictly increasing array of ``n`` finite sample times [s], or ``ValueError`` naming ``name``."""
+    t_a = finite_array(name, t)
+    if t_a.size != n:
+        raise ValueError(f"{name} must have one time per sample ({n}), got {t_a.size}")
+    if t_a.size > 1 and np.any(np.diff(t_a) <= 0.0):
+        k = int(np.argmax(np.diff(t_a) <= 0.0)) + 1
+        raise ValueError(f"{name} must be strictly increasing, got {name}[{k}] = {float(t_a[k])!r} after {float(t_a[k - 1])!r}")
+    return t_a
+
+
 def same_length(names: tuple[str, ...], arrays: tuple[np.ndarray, ...]) -> None:
     """Raise ``ValueError`` unless all arrays have the same length."""
     lengths = [len(a) for a in arrays]

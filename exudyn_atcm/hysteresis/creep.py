@@ -34,19 +34,9 @@ from typing import Any, Callable
 import numpy as np
 from scipy.optimize import nnls
 
-from .._checks import finite_array, same_length
+from .._checks import finite_array, same_length, sample_times
 
 __all__ = ["Creep", "CreepHysteresis"]
-
-
-def _times(name: str, t: Any, n: int) -> np.ndarray:
-    t_a = finite_array(name, t)
-    if t_a.size != n:
-        raise ValueError(f"{name} must have one time per sample ({n}), got {t_a.size}")
-    if t_a.size > 1 and np.any(np.diff(t_a) <= 0.0):
-        k = int(np.argmax(np.diff(t_a) <= 0.0)) + 1
-        raise ValueError(f"{name} must be strictly increasing, got {name}[{k}] = {float(t_a[k])!r} after {float(t_a[k - 1])!r}")
-    return t_a
 
 
 def _lag_states(h: np.ndarray, t: np.ndarray, tau: np.ndarray) -> np.ndarray:
@@ -96,13 +86,13 @@ class Creep:
     def response(self, h: Any, t: Any) -> np.ndarray:
         """Output ``y`` for the hysteresis output ``h`` sampled at times ``t`` [s] (at rest at ``h[0]``)."""
         h_a = finite_array("h", h)
-        t_a = _times("t", t, h_a.size)
+        t_a = sample_times("t", t, h_a.size)
         return h_a + _lag_states(h_a, t_a, self.tau) @ self.c
 
     def inverse_response(self, y: Any, t: Any) -> np.ndarray:
         """The ``h`` whose :meth:`response` is ``y`` (exact inverse of the discretised lags)."""
         y_a = finite_array("y", y)
-        t_a = _times("t", t, y_a.size)
+        t_a = sample_times("t", t, y_a.size)
         h = np.empty_like(y_a)
         c, tau = self.c, self.tau
         h[0] = y_a[0] / self.long_term_gain
@@ -134,7 +124,7 @@ class Creep:
         h_a = finite_array("h", h)
         y_a = finite_array("y", y)
         same_length(("h", "y"), (h_a, y_a))
-        t_a = _times("t", t, h_a.size)
+        t_a = sample_times("t", t, h_a.size)
         if tau is None:
             if isinstance(n_lags, bool) or not isinstance(n_lags, int) or n_lags < 1:
                 raise ValueError(f"n_lags must be an integer >= 1, got {n_lags!r}")
@@ -201,7 +191,7 @@ class CreepHysteresis:
         u_a = finite_array("u", u)
         y_a = finite_array("y", y)
         same_length(("u", "y"), (u_a, y_a))
-        t_a = _times("t", t, u_a.size)
+        t_a = sample_times("t", t, u_a.size)
         if isinstance(rounds, bool) or not isinstance(rounds, int) or rounds < 1:
             raise ValueError(f"rounds must be an integer >= 1, got {rounds!r}")
         creep = Creep([1.0], [0.0])

@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_float
+from .._checks import finite_array, finite_float, positive_float, sample_times
 from .base import HysteresisOperator, check_input
 from .creep import Creep
 
@@ -51,16 +51,6 @@ def lag_step(z: np.ndarray, h_old: float, h_new: float, dt: float, tau: np.ndarr
     ramp = one_minus_a / x
     # exact: z₁ = a z + h₁ − a h₀ − (h₁ − h₀)(τ/Δt)(1 − a)
     return z + (h_old - z) * one_minus_a + (h_new - h_old) * (1.0 - ramp)
-
-
-def _times(name: str, t: Any, n: int) -> np.ndarray:
-    t_a = finite_array(name, t)
-    if t_a.size != n:
-        raise ValueError(f"{name} must have one time per sample ({n}), got {t_a.size}")
-    if t_a.size > 1 and np.any(np.diff(t_a) <= 0.0):
-        k = int(np.argmax(np.diff(t_a) <= 0.0)) + 1
-        raise ValueError(f"{name} must be strictly increasing, got {name}[{k}] = {float(t_a[k])!r} after {float(t_a[k - 1])!r}")
-    return t_a
 
 
 class LagSum:
@@ -120,7 +110,7 @@ class LagSum:
         first sample; between samples ``h`` is linear.
         """
         h_a = finite_array("h", h)
-        t_a = _times("t", t, h_a.size)
+        t_a = sample_times("t", t, h_a.size)
         z = np.full(self.tau.size, h_a[0] if rest is None else finite_float("rest", rest))
         y = np.empty_like(h_a)
         y[0] = self.d * h_a[0] + float(self.g @ z)
@@ -145,7 +135,7 @@ class LagSum:
             If ``d = 0`` and ``y[0]`` is not the rest output.
         """
         y_a = finite_array("y", y)
-        t_a = _times("t", t, y_a.size)
+        t_a = sample_times("t", t, y_a.size)
         h = np.empty_like(y_a)
         if self.d == 0.0:
             r = float(y_a[0] / self.static_gain) if rest is None else finite_float("rest", rest)
@@ -320,7 +310,7 @@ class WithDynamics(HysteresisOperator):
         u_a = finite_array("u_series", u_series, min_length=0)
         if t is None:
             raise ValueError(f"t is required: {type(self).__name__}.apply(u_series, t) needs the sample times [s]")
-        t_a = _times("t", t, u_a.size) if u_a.size else np.zeros(0)
+        t_a = sample_times("t", t, u_a.size) if u_a.size else np.zeros(0)
         saved = self.checkpoint()
         try:
             self.reset()
