@@ -24,8 +24,11 @@ Modelling choices (an expert's, stated):
 * hysteresis in the step: ``evaluate(u)`` (a trial from the committed memory) in ``PreStep``,
   ``commit(u)`` in ``PostStep`` (accepted steps only), one operator per bender; the voltage is
   a plain-float triangle (the same volts as ``Triangle(500, 1000, 0.5)``);
-* record: the tracked body's node coordinates copied each accepted step into a preallocated
-  array (``record="array"``), or an Exudyn ``SensorBody`` stored internally (``record="sensor"``);
+* record: an Exudyn ``SensorBody`` of the tracked point stored internally (``record="sensor"``,
+  the default), or the tracked body's node coordinates copied in ``PostStep`` into a
+  preallocated array (``record="array"``).  Measured on 2026-11-26 (shared 2-core machine,
+  four-bar, 4 elements, 0.5 s, 8 interleaved runs each): the sensor 1.06 s/s best, the array
+  1.20 s/s; both give the same path to the last bit;
 * initial state: static equilibrium at ``U(0)`` (load factor ramp), then time integration with
   the package's dynamic settings (copied below), step 1e-4 s.
 """
@@ -151,7 +154,7 @@ def gripper_numbers() -> Numbers:
 class HandBuilt:
     """One hand-built Exudyn system of ``numbers`` with ``n`` GE beam elements per bender."""
 
-    def __init__(self, numbers: Numbers, n: int, record: str = "array") -> None:
+    def __init__(self, numbers: Numbers, n: int, record: str = "sensor") -> None:
         self.numbers, self.n, self.record = numbers, n, record
         self.SC = exu.SystemContainer()
         mbs = self.mbs = self.SC.AddSystem()
@@ -348,7 +351,7 @@ class HandBuilt:
 NUMBERS = {"four_bar": four_bar_numbers, "gripper": gripper_numbers}
 
 
-def run(mechanism: str, n: int, t_end: float, step: float = STEP, record: str = "array") -> tuple[float, np.ndarray,
+def run(mechanism: str, n: int, t_end: float, step: float = STEP, record: str = "sensor") -> tuple[float, np.ndarray,
                                                                                                   np.ndarray]:
     """Wall time [s] (build, initial equilibrium, integration), times [s] and tracked path [m] of one run."""
     numbers = NUMBERS[mechanism]()  # reading the case is not timed (a user's script has the numbers)
