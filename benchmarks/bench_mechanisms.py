@@ -30,8 +30,8 @@ and for the same mechanism built by hand in Exudyn (``benchmarks/handbuilt.py``:
 elements, the same in-step hysteresis, no package layer), all interleaved, best of
 ``--repeats``; per accuracy target (1e-2, 1e-3, 1e-4) the cheapest configuration of each model,
 its speed-up over the hand-built one, and Exudyn's empty-step floor
-(``bench_step_overhead.exudyn_floor``) with the four-bar's ratio to it.  ``--large-step 1e-3``
-adds the package's rigid cells at that step.  Default 0.5 s simulated (one voltage period).
+(``bench_step_overhead.exudyn_floor``) with the four-bar's ratio to it.  ``--large-step 5e-4,1e-3``
+runs every model at those steps too (each row names its step).  Default 0.5 s simulated (one voltage period).
 
 ``--record-every N`` runs only :func:`record_every_cost`: both mechanisms recording every step
 against every ``N``-th step, and the cost of the copy a skipped step made before the record was
@@ -199,8 +199,8 @@ def main(argv=None) -> int:
     parser.add_argument("--targets", action="store_true",
                         help="only the cost at equal accuracy against the hand-built GE beam models and "
                              "Exudyn's floor (mechanism_targets.py; --cells default 2,4,8,16,32, --t-sim 0.5)")
-    parser.add_argument("--large-step", type=float, default=None,
-                        help="with --targets: also the package's rigid cells at this step [s] (e.g. 1e-3)")
+    parser.add_argument("--large-step", default=None,
+                        help="with --targets: also run every model at these steps [s] (comma list, e.g. 5e-4,1e-3)")
     args = parser.parse_args(argv)
     if args.targets:
         import mechanism_targets  # noqa: PLC0415 - it imports this module (its mechanisms and paths)
@@ -208,7 +208,8 @@ def main(argv=None) -> int:
         mechanism_targets.targets_table(
             t_sim=0.5 if args.t_sim is None else args.t_sim, repeats=args.repeats,
             cells=None if args.cells is None else [int(c) for c in args.cells.split(",") if c.strip()],
-            reference_cells=args.reference_cells, large_step=args.large_step, out=args.out)
+            reference_cells=args.reference_cells, out=args.out,
+            large_step=None if args.large_step is None else [float(h) for h in args.large_step.split(",") if h.strip()])
         return 0
     args.t_sim = 0.2 if args.t_sim is None else args.t_sim
     args.cells = "2,4,8,16" if args.cells is None else args.cells

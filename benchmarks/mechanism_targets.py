@@ -6,10 +6,10 @@ Run as ``python benchmarks/bench_mechanisms.py --targets [--t-sim 0.5] [--repeat
 Models, per mechanism (the compliant four-bar, the micro-gripper):
 
 * ``package rigid``: the case's mechanism with rigid cells, ``simulate`` (step 1e-4 s; with
-  ``--large-step`` also at that step);
+  ``--large-step`` also at those steps);
 * ``package beam``: the same with geometrically exact beam cells;
 * ``hand-built GE``: :mod:`handbuilt` (``ObjectBeamGeometricallyExact2D`` elements, the same
-  in-step hysteresis, no package layer), step 1e-4 s.
+  in-step hysteresis, no package layer), step 1e-4 s (and the ``--large-step`` steps).
 
 Accuracy: the tracked point's largest distance from the package's reference run
 (``--reference-cells`` beam elements per bender, step 1e-4 s) relative to its largest travel
@@ -70,12 +70,17 @@ def path_error(times, path, ref_times, ref_path) -> float:
 
 
 def targets_table(t_sim: float = 0.5, repeats: int = 3, cells=None, reference_cells: int = 64,
-                  large_step: float | None = None, out: str | os.PathLike | None = None) -> dict:
-    """Measure the ladders, print the tables and the goals, write JSON; returns the JSON's content."""
+                  large_step=None, out: str | os.PathLike | None = None) -> dict:
+    """Measure the ladders, print the tables and the goals, write JSON; returns the JSON's content.
+
+    ``large_step``: further steps [s] (a sequence) at which every model runs too; each row of
+    the table names its step, and the speed-ups are over the hand-built model's cheapest run
+    at any step.
+    """
     cells = list(LADDER if cells is None else cells)
-    models = [("package rigid", "rigid", bm.STEP), ("package beam", "beam", bm.STEP), (HAND, "beam", bm.STEP)]
-    if large_step is not None:
-        models.append(("package rigid", "rigid", float(large_step)))
+    steps = [bm.STEP] + [float(h) for h in (large_step or ())]
+    models = [(label, cell, h) for h in steps
+              for label, cell in (("package rigid", "rigid"), ("package beam", "beam"), (HAND, "beam"))]
     key = lambda m: f"{m[0]} @ {m[2]:g} s"  # noqa: E731
     print(f"exudyn_atcm {__version__}, exudyn {exudyn.__version__}, python {platform.python_version()}, "
           f"{os.cpu_count()} cpus; {t_sim:g} s simulated per run (triangle -500 ... 1500 V, period 0.5 s), "
@@ -131,7 +136,8 @@ def targets_table(t_sim: float = 0.5, repeats: int = 3, cells=None, reference_ce
                 ok = [(b["cost_s_per_s"], int(n), b) for n, b in ladder.items()
                       if "failed" not in b and b["path_error"] <= target]
                 cheapest[label] = min(ok, key=lambda r: r[0]) if ok else None
-            hand = cheapest.get(key(models[2]))
+            hands = [c for label, c in cheapest.items() if label.startswith(HAND) and c is not None]
+            hand = min(hands, key=lambda r: r[0]) if hands else None
             for label, c in cheapest.items():
                 row = {"cells": None, "cost_s_per_s": None, "path_error": None, "speedup_over_hand_built": None,
                        "ratio_to_floor": None}
@@ -149,14 +155,14 @@ def targets_table(t_sim: float = 0.5, repeats: int = 3, cells=None, reference_ce
     goals = {}
     for name in bm.MECHANISMS:
         rows = table["0.001"][name]
-        pkg = [(r["cost_s_per_s"], label) for label, r in rows.items() if label != key(models[2]) and r["cells"]]
-        hand = rows[key(models[2])]["cost_s_per_s"]
+        pkg = [(r["cost_s_per_s"], label) for label, r in rows.items() if not label.startswith(HAND) and r["cells"]]
+        hand = [(r["cost_s_per_s"], label) for label, r in rows.items() if label.startswith(HAND) and r["cells"]]
         if pkg and hand:
-            cost, label = min(pkg)
+            (cost, label), (hand_cost, hand_label) = min(pkg), min(hand)
             goals[f"{name}: package >= 5x faster than hand-built GE at path error 1e-3"] = {
-                "value": hand / cost, "met": hand / cost >= 5.0, "model": label}
+                "value": hand_cost / cost, "met": hand_cost / cost >= 5.0, "model": f"{label} vs {hand_label}"}
     rows = table["0.001"]["four_bar"]
-    pkg = [(r["cost_s_per_s"], label) for label, r in rows.items() if label != key(models[2]) and r["cells"]]
+    pkg = [(r["cost_s_per_s"], label) for label, r in rows.items() if not label.startswith(HAND) and r["cells"]]
     if pkg:
         cost, label = min(pkg)
         goals["four_bar: package cost <= 10x Exudyn's floor (at path error 1e-3)"] = {
