@@ -24,6 +24,15 @@ rigid run at least as accurate.
 Usage: ``python benchmarks/bench_mechanisms.py [--t-sim 0.2] [--repeats 3] [--cells 2,4,8,16]
 [--reference-cells 64]``.  Prints a table and writes JSON to ``benchmarks/results/`` (git-ignored).
 
+``--targets`` runs only ``mechanism_targets.targets_table`` (issue 15, part 3): for each mechanism a ladder of
+cells per bender (``--cells``, default 2,4,8,16,32 there) for the package's rigid and beam cells
+and for the same mechanism built by hand in Exudyn (``benchmarks/handbuilt.py``: GE beam
+elements, the same in-step hysteresis, no package layer), all interleaved, best of
+``--repeats``; per accuracy target (1e-2, 1e-3, 1e-4) the cheapest configuration of each model,
+its speed-up over the hand-built one, and Exudyn's empty-step floor
+(``bench_step_overhead.exudyn_floor``) with the four-bar's ratio to it.  ``--large-step 5e-4,1e-3``
+runs every model at those steps too (each row names its step).  Default 0.5 s simulated (one voltage period).
+
 ``--record-every N`` runs only :func:`record_every_cost`: both mechanisms recording every step
 against every ``N``-th step, and the cost of the copy a skipped step made before the record was
 closed by reading the last step's state once after the run.
@@ -177,16 +186,33 @@ def record_every_cost(t_sim: float = 0.2, repeats: int = 3, n_cells: int = 4, ev
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description="exudyn_atcm mechanism benchmark")
-    parser.add_argument("--t-sim", type=float, default=0.2, help="simulated time per run [s] (default 0.2)")
+    parser.add_argument("--t-sim", type=float, default=None,
+                        help="simulated time per run [s] (default 0.2; 0.5 with --targets)")
     parser.add_argument("--repeats", type=int, default=3, help="runs per point, best taken (default 3)")
-    parser.add_argument("--cells", default="2,4,8,16", help="cells per bender (default 2,4,8,16)")
+    parser.add_argument("--cells", default=None, help="cells per bender (default 2,4,8,16; 2,4,8,16,32 with --targets)")
     parser.add_argument("--reference-cells", type=int, default=64,
                         help="beam elements per bender of the reference run (default 64)")
     parser.add_argument("--out", default=RESULTS)
     parser.add_argument("--record-every", type=int, default=None, metavar="N",
                         help="only compare a record of every N-th step with the every-step record "
                              "(record_every_cost, with the first value of --cells)")
+    parser.add_argument("--targets", action="store_true",
+                        help="only the cost at equal accuracy against the hand-built GE beam models and "
+                             "Exudyn's floor (mechanism_targets.py; --cells default 2,4,8,16,32, --t-sim 0.5)")
+    parser.add_argument("--large-step", default=None,
+                        help="with --targets: also run every model at these steps [s] (comma list, e.g. 5e-4,1e-3)")
     args = parser.parse_args(argv)
+    if args.targets:
+        import mechanism_targets  # noqa: PLC0415 - it imports this module (its mechanisms and paths)
+
+        mechanism_targets.targets_table(
+            t_sim=0.5 if args.t_sim is None else args.t_sim, repeats=args.repeats,
+            cells=None if args.cells is None else [int(c) for c in args.cells.split(",") if c.strip()],
+            reference_cells=args.reference_cells, out=args.out,
+            large_step=None if args.large_step is None else [float(h) for h in args.large_step.split(",") if h.strip()])
+        return 0
+    args.t_sim = 0.2 if args.t_sim is None else args.t_sim
+    args.cells = "2,4,8,16" if args.cells is None else args.cells
     if args.record_every is not None:
         record_every_cost(args.t_sim, args.repeats, int(args.cells.split(",")[0]), args.record_every, args.out)
         return 0
