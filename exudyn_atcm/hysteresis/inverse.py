@@ -31,6 +31,7 @@ from .base import HysteresisOperator, check_input
 from .continuous import ContinuousPreisach
 from .discrete import DiscretePreisach
 from .prandtl_ishlinskii import PrandtlIshlinskii
+from ..errors import OutOfReachWarning
 
 __all__ = ["BisectionInverse", "ShiftedPIInverse", "inverse_operator"]
 
@@ -154,7 +155,7 @@ class BisectionInverse(HysteresisOperator):
                 f"wanted output {y!r} is outside the range [{y_lo!r}, {y_hi!r}] reachable with inputs in "
                 f"[{self.u_lo!r}, {self.u_hi!r}] from the present memory: clipped by {abs(excess):.6g} "
                 f"(output units) to the input {u!r}",
-                RuntimeWarning,
+                OutOfReachWarning,
                 stacklevel=2,
             )
         self.model.commit(u)

@@ -18,6 +18,7 @@ from ..mbs import solver_runs as runs
 from ..mechanism.actuator import BendingActuator
 from ..model.recording import RecordingSchedule
 from .run_checks import WallClock, snap_time, snap_times
+from ..errors import AccuracyWarning
 
 __all__ = ["ActuatorRecorder", "make_result", "warn_coarse_cells", "MAX_CELL_ROTATION", "STANDARD_UNITS"]
 
@@ -169,6 +170,6 @@ def warn_coarse_cells(actuator: BendingActuator, angles: np.ndarray) -> None:
             f"a cell of the {actuator.cell} actuator turns by {per_cell:.3g} rad relative to its "
             f"neighbour (more than {MAX_CELL_ROTATION} rad): with {actuator.n_cells} cells the chain is a "
             "coarse discretisation of the bent actuator; use more cells",
-            RuntimeWarning,
+            AccuracyWarning,
             stacklevel=3,
         )
