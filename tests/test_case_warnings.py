@@ -104,3 +104,15 @@ def test_an_optimisation_warns_once_for_all_its_designs(optimise_bender):
         optimise_bender.run({"voltage": 5000.0, "maxiter": 1, "popsize": 2, "check_nonlinear": False}, plot=False)
     messages = [str(w.message) for w in record]
     assert len(messages) == 1 and messages[0].startswith("voltage=5000 V: the voltage program spans 5000 ... 5000 V")
+
+
+def test_a_loop_beyond_the_rating_is_warned_before_the_model_refuses_it():
+    # u_max = 5000 V with the paper's 500 V precision point gives r1 < 1 (not a loop): the refusal follows
+    # the warning that names the typed voltages against the rating (-500 ... +1500 V)
+    case = load_case(CASES / "paper_hysteresis_loop.py")
+    with pytest.warns(InputRangeWarning) as record, pytest.raises(ValueError, match="r1 must be >= 1"):
+        case.run({"u_max": 5000.0}, plot=False)
+    messages = [str(w.message) for w in record]
+    assert len(messages) == 1 and messages[0].startswith(
+        "u_min=-500 V, u_max=5000 V: the voltage program spans -500 ... 5000 V: they reach 5000 V, 3500 V above "
+        "the MFC's rated range -500 ... 1500 V"), messages
