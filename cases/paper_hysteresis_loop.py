@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Result
+from exudyn_atcm import PiezoDrive, Result
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.model import Triangle
@@ -50,6 +50,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         raise ValueError(f"samples_per_period must be an even integer >= 2, got {p.samples_per_period}")
     if p.cycles < 1:
         raise ValueError(f"cycles must be >= 1, got {p.cycles}")
+    # the loop's voltages as given, against the MFC's rating (and the kV check), before the model is built
+    PiezoDrive(0.0).check_voltage_range(min(p.u_min, p.u_max), max(p.u_min, p.u_max), stacklevel=2,
+                                        what=f"u_min={p.u_min:g} V, u_max={p.u_max:g} V")
     exact = ContinuousPreisach.from_points(p.u_min, p.u_max, p.x_min, p.x_max, p.u_m, p.x_m1, p.x_m2)
     rounded = ContinuousPreisach(p.u_min, p.u_max, p.x_min, p.x_max, p.r1_rounded, p.r2_rounded)
     signal = Triangle(0.5 * (p.u_min + p.u_max), 0.5 * (p.u_max - p.u_min), p.period)

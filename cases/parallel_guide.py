@@ -56,7 +56,9 @@ def build_mechanism(p: Parameters) -> Mechanism:
     L, h = p.length, p.spacing
     mech = Mechanism("parallel_guide")
     for name, y in (("lower", 0.0), ("upper", h)):
-        segments = [Segment(L / 2, p.n_cells, PiezoDrive(0.0)), Segment(L / 2, p.n_cells, PiezoDrive(0.0))]
+        # no rating of their own: the voltage the user gave is checked once per run, in run()
+        segments = [Segment(L / 2, p.n_cells, PiezoDrive(0.0, rated_range=None)),
+                    Segment(L / 2, p.n_cells, PiezoDrive(0.0, rated_range=None))]
         mech.add(Bender(name, width=p.width, passive=CFC, active=MFC, segments=segments, base=(0.0, y),
                           cell=p.cell))
         mech.ground(f"{name}.base")
@@ -77,6 +79,9 @@ def voltage_program(u_max: float, n_steps: int) -> np.ndarray:
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     L = p.length
     volts = voltage_program(p.voltage, p.n_steps)
+    # the voltage the user gave, against the MFC's rating (and the kV check): once per run, not once per drive
+    PiezoDrive(p.voltage).check_voltage_range(-abs(p.voltage), abs(p.voltage), stacklevel=2,
+                                              what=f"voltage={p.voltage:g} V (the segments at +U and -U)")
     mech = build_mechanism(p)
     result = static_sweep(mech, {"lower.1": volts, "lower.2": -volts, "upper.1": volts, "upper.2": -volts})
     ctx.progress(1, 1)

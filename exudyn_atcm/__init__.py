@@ -7,7 +7,8 @@ Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``Bendi
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
 ``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``add_to``), results and files
 (``Result``, ``read_csv``, ``read_record``, ``preprocess``), closed loop (``PIDController``), the errors
-(``MechanismError``, ``SolverError``, ``SimulationInterrupted``) and the submodules
+(``MechanismError``, ``SolverError``, ``SimulationInterrupted``), the warning categories (``AtcmWarning``
+and its subclasses, see :mod:`exudyn_atcm.errors`) and the submodules
 ``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
 else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
 ``exudyn_atcm.model.feedforward``, ...): see the API reference.
@@ -29,6 +30,8 @@ from .solve import SimulationInterrupted
 from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep
 from .mbs import add_to
+from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
+                     RunCostWarning, SetupWarning, SuspectFileWarning)
 
 __all__ = [
     "__version__",
@@ -56,6 +59,14 @@ __all__ = [
     "read_record",
     "preprocess",
     "PIDController",
+    "AtcmWarning",
+    "InputRangeWarning",
+    "AccuracyWarning",
+    "OutOfReachWarning",
+    "RunCostWarning",
+    "SetupWarning",
+    "SuspectFileWarning",
+    "AtcmDeprecationWarning",
 ]
 
 

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from .errors import InputRangeWarning
+
 
 def _short(value: Any) -> str:
     text = repr(value)
@@ -99,6 +101,6 @@ def warn_implausible(name: str, value: float, kind: str, owner: str, *, stacklev
             f"{owner}: {name} = {float(value)!r} {unit} is outside the plausible range "
             f"{'|value| <= ' if low == 0.0 else f'{low:g} ... '}{high:g} {unit}; is it {mistake}? "
             "All values are SI units",
-            RuntimeWarning,
+            InputRangeWarning,
             stacklevel=stacklevel,
         )

@@ -14,6 +14,8 @@ import importlib.util
 import sys
 import warnings
 
+from .errors import AtcmDeprecationWarning
+
 #: old module path -> new module path (both below ``exudyn_atcm``)
 MOVED = {
     "_atomic": "io.atomic",
@@ -82,7 +84,7 @@ class MovedModuleFinder(importlib.abc.MetaPathFinder):
             return None
         if old not in SILENT:
             warnings.warn(f"{fullname} moved to {_PACKAGE}.{new}; the old path goes away in the next release "
-                          f"(import from {_PACKAGE} or {_PACKAGE}.{new})", DeprecationWarning, stacklevel=2)
+                          f"(import from {_PACKAGE} or {_PACKAGE}.{new})", AtcmDeprecationWarning, stacklevel=2)
         return importlib.util.spec_from_loader(fullname, _AliasLoader(fullname, f"{_PACKAGE}.{new}"))
 
 

@@ -12,6 +12,7 @@ import warnings
 import pytest
 
 from exudyn_atcm.casework import load_case
+from exudyn_atcm.errors import AtcmWarning, InputRangeWarning
 
 from _cli_helpers import CASES
 
@@ -37,3 +38,81 @@ def test_a_voltage_beyond_the_rating_is_warned_once_quoting_it(optimise_bender):
     messages = [str(w.message) for w in record if issubclass(w.category, RuntimeWarning)]
     assert len(messages) == 1, messages
     assert "voltage=5000 V" in messages[0] and "rated range -500 ... 1500 V" in messages[0]
+
+
+# ----------------------------------------------------------------------------- every case, once, as typed
+#: Every case with settings that keep it cheap (about 25 s in all, measured on an idle machine). Cases
+#: listed with no settings run on their defaults; the others are shortened (fewer cycles, a rigid
+#: chain, no animation) in ways that change no check the defaults pass.
+CHEAP = {
+    "paper_stroke_table": {},
+    "paper_hysteresis_loop": {},
+    "paper_discrete_preisach": {},
+    "stiffness_comparison": {},
+    "identify_and_predict": {},
+    "parallel_guide": {},
+    "micro_gripper": {},
+    "bender_with_lever": {"animation": False},
+    "compliant_four_bar": {"animation": False},
+    "optimise_bender": {"maxiter": 3, "check_nonlinear": False},
+    "paper_bending_actuator": {"cycles": 1, "cell": "rigid", "animation": False},
+    "tip_tracking": {"duration": 1.0},
+    "synthesise_path": {"mode": "evaluate"},
+}
+
+
+def test_every_case_is_listed():
+    assert sorted(CHEAP) == sorted(p.stem for p in CASES.glob("*.py") if p.stem != "__init__")
+
+
+@pytest.mark.parametrize("name", sorted(CHEAP))
+def test_no_package_warning_on_the_defaults(name):
+    case = load_case(CASES / f"{name}.py")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AtcmWarning)
+        case.run(CHEAP[name], plot=False)
+
+
+@pytest.mark.parametrize("name, settings, quoted", [
+    # one value typed, one warning quoting it (the ramp's or the segments' voltages used to warn one by one:
+    # 2000, 3000, 4000 and 5000 V twice each; four drives each)
+    ("stiffness_comparison", {"voltage": 5000.0}, "voltage=5000 V (the ramp 0 ... 5000 V): the voltage program spans "
+                                                  "0 ... 5000 V: they reach 5000 V, 3500 V above the MFC's rated range"),
+    ("parallel_guide", {"voltage": 5000.0}, "voltage=5000 V (the segments at +U and -U): the voltage program spans "
+                                            "-5000 ... 5000 V: they reach 5000 V, 3500 V above and reach -5000 V, "
+                                            "4500 V below the MFC's rated range -500 ... 1500 V"),
+    # a voltage typed in kV: quoted as typed (the ramp's first solve used to report 0.3 V, optimise_bender's
+    # internal solve 0.0015 V)
+    ("stiffness_comparison", {"voltage": 1.5}, "voltage=1.5 V (the ramp 0 ... 1.5 V): the voltage program peaks at "
+                                               "|U| = 1.5 V, below 3 V"),
+    ("parallel_guide", {"voltage": 1.5}, "voltage=1.5 V (the segments at +U and -U): the voltage program peaks at "
+                                         "|U| = 1.5 V, below 3 V"),
+    ("optimise_bender", {"mode": "evaluate", "voltage": 1.5}, "voltage=1.5 V: the voltage program peaks at |U| = 1.5 V"),
+])
+def test_a_voltage_typed_is_warned_once_quoting_it(name, settings, quoted):
+    with pytest.warns(InputRangeWarning) as record:
+        load_case(CASES / f"{name}.py").run(settings, plot=False)
+    messages = [str(w.message) for w in record]
+    assert len(messages) == 1 and messages[0].startswith(quoted), messages
+    advice = "multiply it by 1000" if settings["voltage"] == 1.5 else "(rated_range of the PiezoDrive)"
+    assert advice in messages[0]
+
+
+def test_an_optimisation_warns_once_for_all_its_designs(optimise_bender):
+    # every design the optimiser evaluates is a run of the same case with the same voltage: one warning
+    with pytest.warns(InputRangeWarning) as record:
+        optimise_bender.run({"voltage": 5000.0, "maxiter": 1, "popsize": 2, "check_nonlinear": False}, plot=False)
+    messages = [str(w.message) for w in record]
+    assert len(messages) == 1 and messages[0].startswith("voltage=5000 V: the voltage program spans 5000 ... 5000 V")
+
+
+def test_a_loop_beyond_the_rating_is_warned_before_the_model_refuses_it():
+    # u_max = 5000 V with the paper's 500 V precision point gives r1 < 1 (not a loop): the refusal follows
+    # the warning that names the typed voltages against the rating (-500 ... +1500 V)
+    case = load_case(CASES / "paper_hysteresis_loop.py")
+    with pytest.warns(InputRangeWarning) as record, pytest.raises(ValueError, match="r1 must be >= 1"):
+        case.run({"u_max": 5000.0}, plot=False)
+    messages = [str(w.message) for w in record]
+    assert len(messages) == 1 and messages[0].startswith(
+        "u_min=-500 V, u_max=5000 V: the voltage program spans -500 ... 5000 V: they reach 5000 V, 3500 V above "
+        "the MFC's rated range -500 ... 1500 V"), messages

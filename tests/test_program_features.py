@@ -14,6 +14,7 @@ import warnings
 import numpy as np
 import pytest
 
+from exudyn_atcm.errors import AccuracyWarning
 from exudyn_atcm import PiezoDrive
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import PiecewiseLinear
@@ -76,5 +77,8 @@ def test_program_with_corners_on_the_step_grid_is_sampled_exactly_and_accepted()
     assert r["voltage"].max() == pytest.approx(1000.0, abs=1e-9)
     np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(r["voltage"]), atol=1e-15)
     # the same program with a step whose grid misses its corners is refused
-    with pytest.raises(ValueError, match=r"too coarse"):
-        simulate(act, 0.03, step=0.007)
+    # (0.007 s does not divide 0.03 s: warned, and the step used, 0.03 / 5 s, is quoted with the one given)
+    with pytest.warns(AccuracyWarning, match=r"step = 0\.007 s does not divide t_end = 0\.03 s"):
+        with pytest.raises(ValueError, match=r"step = 0\.007 s \(used: 0\.006 s, so that it divides t_end = 0\.03 s\) "
+                                             r"is too coarse"):
+            simulate(act, 0.03, step=0.007)

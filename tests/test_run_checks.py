@@ -13,6 +13,7 @@ import warnings
 import numpy as np
 import pytest
 
+from exudyn_atcm.errors import AccuracyWarning
 from exudyn_atcm.solve import run_checks
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, PrandtlIshlinskii
@@ -67,8 +68,12 @@ def test_shortest_features_of_the_signals():
 def test_coarse_but_allowed_step_warns_and_fine_step_is_silent():
     act = REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.2), hysteresis=paper_strain_preisach()), cell="rigid")
     # ramp 0.1 s; step 0.01 s gives 10 steps per ramp: allowed (>= 4) but below 20
-    with pytest.warns(RuntimeWarning, match=r"only 10 steps: peaks can be missed by up to 5 %"):
+    with pytest.warns(AccuracyWarning) as record:
         simulate(act, 0.02, step=0.01 / 1.0)
+    texts = _messages(record)
+    assert any("only 10 steps: peaks can be missed by up to 5 %" in t for t in texts), texts
+    # and the first mode, f1 = 35.97 Hz (period 0.0278 s), gets 2.78 steps: the second warning of this step
+    assert len(texts) == 2 and any("with only 2.78 steps" in t for t in texts), texts
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         simulate(act, 0.002, step=1e-4)  # 1000 steps per ramp, f1 period 0.028 s / 1e-4 s: no warning
@@ -101,8 +106,13 @@ def test_case_csv_states_the_step_used(tmp_path):
     # period 20 s: 0.3 s steps resolve the 10 s ramps; 20 / 0.3 = 66.7 -> 67 steps of 20/67 s
     from exudyn_atcm.io import read_csv
 
-    with pytest.warns(RuntimeWarning, match="does not divide"):
+    with pytest.warns(AccuracyWarning) as record:
         _fig12_case().run({"step": 0.3, "period": 20.0, "cycles": 1}, out_dir=tmp_path, plot=False)
+    texts = _messages(record)
+    assert len(texts) == 2 and "step = 0.3 s does not divide t_end = 20.0 s" in texts[0], texts
+    # the step is too coarse for the first mode (f1 = 35.97 Hz): quoted as given, with the step used
+    assert texts[1].startswith("step = 0.3 s (used: 0.298507 s, so that it divides t_end = 20 s) resolves the "
+                               "first bending mode"), texts
     data = read_csv(tmp_path / "paper_bending_actuator.csv")
     assert data.info["step [s]"] == 20.0 / 67.0
     assert data.info["step_requested [s]"] == 0.3

@@ -9,12 +9,14 @@ programs that must stay silent are the package's own small-deflection program (a
 
 from __future__ import annotations
 
+import re
 import warnings
 
 import numpy as np
 import pytest
 
 from exudyn_atcm import Bender, BendingActuator, Layer, Mechanism, PiezoDrive, simulate, solve_static, static_sweep
+from exudyn_atcm.errors import InputRangeWarning
 from exudyn_atcm.model.drive import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE
 from exudyn_atcm.solve.run_checks import SLOW_PROGRAM_FACTOR
 from exudyn_atcm.model.signals import Constant, PiecewiseLinear, Sine, Triangle
@@ -100,29 +102,34 @@ def test_cli_set_of_a_case_voltage_in_kv_warns(tmp_path):
     proc = cli(["run", "parallel_guide", "--set", "voltage=0.5", "--set", "animation=false", "--no-plot",
                 "--out", "o"], tmp_path)
     assert proc.returncode == 0, proc.stderr
-    # the case drives four segments with +-0.5 V: one warning per drive, each naming it
+    # the case drives four segments with +-0.5 V from one value typed: one warning quoting it (issue 17:
+    # once per run, as typed; it was one warning per drive)
     hits = [line for line in proc.stderr.splitlines() if KV in line]
-    assert len(hits) == 4 and all("peaks at |U| = 0.5 V" in h for h in hits)
+    assert len(hits) == 1 and hits[0].startswith("warning: voltage=0.5 V (the segments at +U and -U):")
+    assert "peaks at |U| = 0.5 V" in hits[0]
     proc = cli(["run", "parallel_guide", "--set", "animation=false", "--no-plot", "--out", "o"], tmp_path)
     assert proc.returncode == 0 and KV not in proc.stderr
 
 
 # ----------------------------------------------------------------------------- ms
 
-@pytest.mark.parametrize("program, feature, swing", [
+@pytest.mark.parametrize("program, feature, swing, also", [
     # a 500 ms period written as 500 (s): the triangle rises from -500 V at 4 * 1000 V / 500 s
-    (Triangle(500.0, 1000.0, 500.0), 250.0, 4 * 1000.0 * 0.2 / 500.0),
-    (Sine(500.0, 1000.0, 500.0), 250.0, 1000.0 * np.sin(2 * np.pi * 0.2 / 500.0)),
-    # a 300 ms ramp to 1500 V written as 300 (s)
-    (PiecewiseLinear([0.0, 300.0], [0.0, 1500.0]), 300.0, 1500.0 * 0.2 / 300.0),
+    (Triangle(500.0, 1000.0, 500.0), 250.0, 4 * 1000.0 * 0.2 / 500.0, None),
+    (Sine(500.0, 1000.0, 500.0), 250.0, 1000.0 * np.sin(2 * np.pi * 0.2 / 500.0), None),
+    # a 300 ms ramp to 1500 V written as 300 (s): in 0.2 s it reaches 1 V, which the kV check reports too
+    (PiecewiseLinear([0.0, 300.0], [0.0, 1500.0]), 300.0, 1500.0 * 0.2 / 300.0, r"peaks at \|U\| = 1 V, below 3 V"),
 ])
-def test_period_or_ramp_in_ms_warns(program, feature, swing):
+def test_period_or_ramp_in_ms_warns(program, feature, swing, also):
     t_end = 0.2
     assert feature > SLOW_PROGRAM_FACTOR * t_end
-    with pytest.warns(RuntimeWarning, match=r"hardly changes during the run") as record:
+    with pytest.warns(InputRangeWarning) as record:  # all of them: the test checks each below
         r = simulate(actuator(program), t_end, step=1e-3)
-    msg = _messages(record, "hardly changes")[0]
+    msg = _messages(record, "hardly changes during the run")[0]
     assert f"lasts {feature:g} s" in msg and "divide them by 1000" in msg
+    others = [str(w.message) for w in record if "hardly changes" not in str(w.message)]
+    assert len(others) == (0 if also is None else 1), others
+    assert also is None or re.search(also, others[0])
     # what the run sees of the program: a few volts of its 2000 V swing
     assert np.ptp(r["voltage"]) == pytest.approx(swing, rel=1e-9)
 

@@ -46,7 +46,7 @@ checkout beside the package, and the example cases installed with the package
 from any directory of any installation.  The current directory is searched only when asked
 (``--cases-dir cases``, or a path such as ``cases/my_case.py``): running the command line
 inside someone else's unpacked archive does not execute its files.  A name found in two
-different files is taken from the first and a ``RuntimeWarning`` names both
+different files is taken from the first and a warning (:class:`~exudyn_atcm.errors.SetupWarning`) names both
 (:func:`~exudyn_atcm.casework.discovery.case_files`).
 
 Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
@@ -74,6 +74,7 @@ from ..io.result import Result
 from ..solve.run_checks import SimulationInterrupted
 from .outputs import CaseOutput, RunContext, versions
 from .parameters import CaseError, Parameter, Parameters, closest
+from .run_warnings import warnings_once
 from .termination import StopSignal, stop_signals_as_interrupt
 
 __all__ = ["Case", "RunFunction", "PlotFunction", "add_run_options", "run_and_report"]
@@ -216,6 +217,12 @@ class Case:
         -------
         CaseOutput
             With ``case``, ``parameters``, ``wall_time`` and ``files`` filled in.
+
+        Warns
+        -----
+        AtcmWarning
+            Each distinct warning of the run (same category and text) is shown once, however
+            often the case's solves issue it (:func:`~exudyn_atcm.casework.run_warnings.warnings_once`).
         """
         params = self.resolve(values)
         directory = Path(out_dir) if out_dir is not None else None
@@ -223,7 +230,7 @@ class Case:
             make_directory(directory)
         ctx = RunContext(self.name, directory, bool(plot and directory is not None), progress or no_progress)
         start = time.perf_counter()
-        with reporting(ctx.progress):
+        with reporting(ctx.progress), warnings_once():  # each distinct warning once per run
             try:
                 output = self._run(params, ctx)
             except SimulationInterrupted as exc:

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from .case import Case
 from .parameters import CaseError, closest
+from ..errors import SetupWarning
 
 __all__ = ["ENV_CASES", "CASE_MARKERS", "case_dirs", "case_files", "list_cases", "find_case", "load_case"]
 
@@ -100,7 +101,7 @@ def find_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
             warnings.warn(
                 f"case {text!r} is found in {len(found)} different files: using {found[0]} (the first in the search "
                 f"order --cases-dir, ${ENV_CASES}, the package's cases); not using {', '.join(str(f) for f in found[1:])}",
-                RuntimeWarning, stacklevel=3,
+                SetupWarning, stacklevel=3,
             )
         return found[0]
     stems = [p.stem for p in list_cases(cases_dir)]

@@ -13,6 +13,7 @@ import warnings
 from typing import Any
 
 from .._checks import finite_float
+from ..errors import OutOfReachWarning
 from .base import HysteresisOperator, check_input
 
 __all__ = ["BisectionInverse", "default_input_range"]
@@ -137,7 +138,7 @@ class BisectionInverse(HysteresisOperator):
                 f"wanted output {y!r} is outside the range [{y_lo!r}, {y_hi!r}] reachable with inputs in "
                 f"[{self.u_lo!r}, {self.u_hi!r}] from the present memory: clipped by {abs(excess):.6g} "
                 f"(output units) to the input {u!r}",
-                RuntimeWarning,
+                OutOfReachWarning,
                 stacklevel=2,
             )
         self.model.commit(u)

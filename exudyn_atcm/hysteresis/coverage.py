@@ -23,6 +23,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import AccuracyWarning
+
 __all__ = ["TriangleCoverage", "reversal_curves"]
 
 
@@ -120,7 +122,7 @@ class TriangleCoverage:
                 f"the input's reversal curves (its minor loops) cross {100 * share:.0f} % of Preisach-triangle cells "
                 f"that the fitted record never crossed (it covered {100 * self.fraction:.1f} % of the triangle): the "
                 "model's output there rests on the fit's prior, not on data; measure minor loops or FORCs there",
-                RuntimeWarning, stacklevel=2)
+                AccuracyWarning, stacklevel=2)
         return share
 
     def to_dict(self) -> dict[str, Any]:

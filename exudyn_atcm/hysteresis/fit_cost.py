@@ -24,6 +24,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import RunCostWarning
+
 __all__ = ["LIMITS", "FLOP_RATE", "CostEstimate", "check_cost", "grid_fit_cost", "play_fit_cost",
            "continuous_fit_cost", "loop_fit_cost", "finite_squares"]
 
@@ -75,7 +77,7 @@ def check_cost(method: str, estimate: CostEstimate, advice: str) -> None:
             f"{LIMITS['refuse_seconds']:.3g} s (exudyn_atcm.hysteresis.fit_cost.LIMITS); {advice}")
     if estimate.seconds > limit_s:
         warnings.warn(f"{method} will take {estimate.text()}, more than {limit_s:.3g} s; {advice}",
-                      RuntimeWarning, stacklevel=4)
+                      RunCostWarning, stacklevel=4)
 
 
 def grid_fit_cost(n_levels: int, n_samples: int, basis: str = "relays",

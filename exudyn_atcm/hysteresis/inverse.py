@@ -15,7 +15,7 @@ inverse's own copy of the forward model, so the two memories stay together.
   :meth:`~PrandtlIshlinskii.inverse`, with the offset subtracted) and bisection otherwise.
 
 Unreachable outputs (beyond what the input range can produce from the present memory) are
-clipped to the nearest reachable output, with a ``RuntimeWarning`` saying by how much, when
+clipped to the nearest reachable output, with an :class:`~exudyn_atcm.errors.OutOfReachWarning` saying by how much, when
 they are committed; :attr:`BisectionInverse.clip_count` and ``largest_clip`` keep count.
 """
 

@@ -19,6 +19,7 @@ from ..physical_bounds import check_element_count
 from .fit_cost import check_cost, finite_squares, loop_fit_cost
 from .fit_report import make_report
 from .identification import nonnegative_float
+from ..errors import AccuracyWarning
 
 
 def isotonic(values: np.ndarray) -> np.ndarray:
@@ -167,7 +168,7 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
             text = (f"the {kind} branch never reaches the level(s) y = "
                     f"{', '.join(f'{levels[j]:.6g}' for j in missing)}; those relays switch at {where}")
             notes.append(text)
-            warnings.warn(f"from_loop: {text}", RuntimeWarning, stacklevel=3)
+            warnings.warn(f"from_loop: {text}", AccuracyWarning, stacklevel=3)
     cross = alpha < beta
     if cross.any():
         allowed = reversal_tolerance * span
@@ -186,7 +187,7 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
         text = (f"{int(cross.sum())} level(s) where the averaged branches cross by at most {float(depth[i]):.4g} "
                 "input units (noise): switch-on and -off put at their mean")
         notes.append(text)
-        warnings.warn(f"from_loop: {text}", RuntimeWarning, stacklevel=3)
+        warnings.warn(f"from_loop: {text}", AccuracyWarning, stacklevel=3)
     model = cls(alpha, beta, np.full(n, gain), offset=y_min)
     if not report:
         return model

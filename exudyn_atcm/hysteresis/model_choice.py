@@ -41,6 +41,7 @@ from .everett import EverettPreisach
 from .fit_report import FitReport, make_report
 from .identification import check_record
 from .prandtl_ishlinskii import PrandtlIshlinskii
+from ..errors import SetupWarning
 
 __all__ = ["FAMILIES", "Candidate", "ModelChoice", "identify"]
 
@@ -307,6 +308,6 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
     chosen = min(within, key=lambda c: (c.parameters, c.held_out_rms_percent))
     if failed:
         warnings.warn("identify: not fitted: " + "; ".join(f"{c.family} ({c.failure})" for c in failed),
-                      RuntimeWarning, stacklevel=2)
+                      SetupWarning, stacklevel=2)
     return ModelChoice(candidates + failed, chosen, int(u_a.size), n_fit, output_range, unit, float(simpler_margin),
                        input=u_a, output=y_a)

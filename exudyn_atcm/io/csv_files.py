@@ -20,7 +20,7 @@ states (cut off or appended to), a file that ends inside its last line when it h
 ``data_rows`` line (cut inside a number: ``-4e-06`` cut to ``-4e-0`` would read as -4), a
 ``time`` column that goes back, header names with invisible characters, and non-finite numbers
 (``nan``, ``inf``, ``1e400``) unless ``allow_nonfinite=True``.  A
-:class:`~exudyn_atcm.io.file_checks.SuspectFileWarning` is given for a file without ``data_rows``
+:class:`~exudyn_atcm.errors.SuspectFileWarning` is given for a file without ``data_rows``
 whose last line has no line end (possibly cut off), repeated times, and a ``[V]`` column that
 peaks below 3 V (kilovolts?).  A byte-order mark at the start of the file is not part of the
 text (``utf-8-sig``).  The rules the writer and the reader share are in

@@ -2,7 +2,8 @@
 
 A file that reads without a syntax error can still give wrong numbers.  These checks look for
 the ways that happens in practice and refuse (``ValueError``) or warn
-(:class:`SuspectFileWarning`) with what to change:
+(:class:`~exudyn_atcm.errors.SuspectFileWarning`, defined in :mod:`exudyn_atcm.errors` and
+imported here) with what to change:
 
 * a file cut inside its last line (an interrupted copy, download or write): the last line has
   no line end, and its last number may be a prefix of the real one (``-4e-06`` cut to
@@ -22,17 +23,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from .csv_format import invisible_characters
+from ..errors import SuspectFileWarning
 from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE
 
 __all__ = ["SuspectFileWarning", "warn_unterminated_last_line", "check_volt_column", "check_times", "check_header_names"]
-
-
-class SuspectFileWarning(RuntimeWarning):
-    """A data file was read, but part of it looks wrong (possibly cut off, a kV column labelled V, ...).
-
-    The message names the file, the line or column and what to check.  Turn it into an error
-    with ``warnings.simplefilter("error", SuspectFileWarning)`` in scripts that must not go on.
-    """
 
 
 def warn_unterminated_last_line(name: str, line_number: int, line: str, *, stacklevel: int = 3) -> None:

@@ -305,7 +305,7 @@ def read_csv(path: str | os.PathLike, *, allow_nonfinite: bool = False) -> Resul
 
     Warns
     -----
-    exudyn_atcm.io.file_checks.SuspectFileWarning
+    exudyn_atcm.errors.SuspectFileWarning
         A file without ``data_rows`` whose last line has no line end (possibly cut inside its
         last number), repeated times, or a ``[V]`` column peaking below 3 V (kilovolts?).
 

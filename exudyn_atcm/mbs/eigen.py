@@ -46,6 +46,8 @@ import exudyn as exu
 import numpy as np
 from scipy.linalg import eigh, svd
 
+from ..errors import AccuracyWarning
+
 __all__ = ["constrained_eigenfrequencies", "exudyn_eigenfrequencies", "tangent_system"]
 
 
@@ -184,7 +186,7 @@ def constrained_eigenfrequencies(mbs, n: int, *, relative_step: float = 1e-7,
             f"constrained eigenfrequencies: the state is not a static equilibrium (largest residual "
             f"{worst:.3g} N or N m, accepted {residual_tolerance:g}); the frequencies are those of the "
             "linearisation about a non-equilibrium state",
-            RuntimeWarning, stacklevel=2)
+            AccuracyWarning, stacklevel=2)
     if Cq.shape[0]:
         U, sv, _ = svd(Cq.T)  # columns of U beyond the rank span the null space of Cq
         rank = int(np.sum(sv > singular_values_tolerance * max(sv.max(), 1e-300)))
@@ -203,7 +205,7 @@ def constrained_eigenfrequencies(mbs, n: int, *, relative_step: float = 1e-7,
         warnings.warn(
             f"constrained eigenfrequencies: {int(np.sum(w2 < 0))} of the lowest {n} eigenvalues of the "
             "tangent stiffness are negative: the equilibrium is unstable (buckled); those are returned "
-            "as negative frequencies", RuntimeWarning, stacklevel=2)
+            "as negative frequencies", AccuracyWarning, stacklevel=2)
     freqs = np.sign(w2) * np.sqrt(np.abs(w2)) / (2.0 * math.pi)
     if return_modes:
         return freqs, N @ vecs

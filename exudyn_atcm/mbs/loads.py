@@ -11,6 +11,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.points import GROUND
 from .items import NOVIS, position_marker, rigid_marker
 from .model import LoadRecord, MechanismModel
+from ..errors import SetupWarning
 
 
 def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
@@ -25,7 +26,7 @@ def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
         body = model.bodies[key]
         if body.node is None:
             warnings.warn(f"force {f.name!r} acts at {f.point}, which is welded to the ground: it has no effect",
-                          RuntimeWarning, stacklevel=4)
+                          SetupWarning, stacklevel=4)
             continue
         if f.follower:  # a body-fixed load needs the marker's orientation
             marker = rigid_marker(mbs, body, local)
@@ -40,7 +41,7 @@ def add_loads(mbs, mech: Mechanism, model: MechanismModel) -> None:
         body = model.bodies[key]
         if body.node is None:
             warnings.warn(f"torque {t.name!r} acts on {t.component!r}, which is welded to the ground: no effect",
-                          RuntimeWarning, stacklevel=4)
+                          SetupWarning, stacklevel=4)
             continue
         marker = rigid_marker(mbs, body, (0.0, 0.0))
         load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))

@@ -26,6 +26,8 @@ from __future__ import annotations
 import warnings
 from typing import Any
 
+from ..errors import SetupWarning
+
 __all__ = ["SOLVER_KEYS", "ToleranceFloor"]
 
 #: Keys of ``mbs.sys`` under which Exudyn's solve functions store their solver object.
@@ -74,7 +76,7 @@ class ToleranceFloor:
                 f"absolute tolerance cannot be checked against the floor {self.floor:.3g} of the beam cells "
                 "(handle.newton_tolerance_floor); set simulationSettings.timeIntegration.newton.absoluteTolerance "
                 "(and staticSolver.newton.absoluteTolerance) to at least that, or Newton may fail to converge",
-                RuntimeWarning, stacklevel=2)
+                SetupWarning, stacklevel=2)
         return True
 
     def _raise(self, key: str, solver: Any) -> None:
@@ -92,4 +94,4 @@ class ToleranceFloor:
                 f"smallest residual the beam cells can reach (handle.newton_tolerance_floor); raised to "
                 f"{self.floor:.3g} for the running solver (your settings object is unchanged). Set "
                 f"simulationSettings.{which}.newton.absoluteTolerance = handle.newton_tolerance_floor to silence this",
-                RuntimeWarning, stacklevel=2)
+                SetupWarning, stacklevel=2)

@@ -27,6 +27,7 @@ from .items import position_marker, rigid_marker
 from .model import MechanismModel
 from .tolerance_floor import ToleranceFloor
 from .recording import make_result
+from ..errors import SetupWarning
 
 #: Key in ``mbs.variables``: the component names already added by :func:`add_to`.
 ADDED_VARIABLE = "exudyn_atcm.added_components"
@@ -199,7 +200,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
                 f"mbs.Set{which.capitalize()}StepUserFunction was probably called after add_to and replaced it, so "
                 f"{'the benders are not actuated' if which == 'pre' else 'the hysteresis memory is never committed'}. "
                 "Add your own functions with exudyn_atcm.mbs.add_pre_step(mbs, f) / add_post_step(mbs, f) instead",
-                RuntimeWarning, stacklevel=2)
+                SetupWarning, stacklevel=2)
 
     def pre_step(mbs_, t: float) -> bool:
         calls["pre_since_post"] += 1

@@ -16,6 +16,7 @@ from .bender import DEFAULT_DAMPING_RATIO, Bender
 from .link import point_pair
 from .damped import MaterialDamped
 from .points import MechanismError, PointRef, check_name, unknown_point
+from ..errors import InputRangeWarning
 
 FLEXURE_MODELS = ("prbm", "cells")
 
@@ -91,7 +92,7 @@ class Flexure(MaterialDamped):
             value = getattr(self, pname)
             if not low <= value <= high:
                 warnings.warn(f"{owner}: {pname} = {value!r} {unit} is outside the plausible range {low:g} ... "
-                              f"{high:g} {unit}; is it {mistake}? All values are SI units", RuntimeWarning, stacklevel=2)
+                              f"{high:g} {unit}; is it {mistake}? All values are SI units", InputRangeWarning, stacklevel=2)
 
     @property
     def length(self) -> float:

@@ -27,6 +27,7 @@ import warnings
 from typing import Any, Callable, Union
 
 from .._checks import finite_float, positive_float
+from ..errors import AccuracyWarning
 
 __all__ = ["Controller", "PIDController"]
 
@@ -177,7 +178,7 @@ class PIDController(Controller):
                         f"(at t = {t:g} s): the controller samples only at accepted solver steps, so its integral "
                         f"and derivative (computed with sample_time) are off by that ratio. Use a sample_time that "
                         f"is a multiple of the solver step (step <= {self.sample_time:g} s)",
-                        RuntimeWarning, stacklevel=2)
+                        AccuracyWarning, stacklevel=2)
         self._last_t = t
         error = float(self._setpoint(t)) - y
         # conditional integration: not while limited in the direction the error pushes

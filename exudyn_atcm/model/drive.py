@@ -9,6 +9,7 @@ from typing import Any, Callable, Union
 
 from .._checks import finite_float, positive_float
 from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE, check_physical
+from ..errors import InputRangeWarning
 
 VoltageProgram = Union[float, Callable[[float], float]]
 
@@ -184,7 +185,7 @@ class PiezoDrive:
             warnings.warn(
                 (f"{what}: " if what else "") + f"the voltage program spans {u_low:g} ... {u_high:g} V: "
                 + "; ".join(problems),
-                RuntimeWarning,
+                InputRangeWarning,
                 stacklevel=stacklevel,
             )
         self._check_tiny_program(u_low, u_high, what, stacklevel + 1)
@@ -208,7 +209,7 @@ class PiezoDrive:
                 f"{self.rated_range[0]:g} ... {self.rated_range[1]:g} V), so its response is about "
                 f"{peak / rated:.2g} of that at the rating. The drive takes volts: if the program is in kV, "
                 "multiply it by 1000",
-                RuntimeWarning,
+                InputRangeWarning,
                 stacklevel=stacklevel,
             )
 
@@ -259,6 +260,6 @@ def _check_strain_magnitude(value: float, what: str, stacklevel: int) -> None:
             f"{what} reaches a free strain of {value:.3g}, more than {PLAUSIBLE_STRAIN:g} (1 %); piezo "
             "layers reach about 1e-3 (the paper's MFC: 1.38e-3 at 1500 V). Check the units: the drive "
             "expects strain [-], not a stroke in micrometres or a strain in percent",
-            RuntimeWarning,
+            InputRangeWarning,
             stacklevel=stacklevel,
         )

@@ -17,6 +17,7 @@ import numpy as np
 from .._checks import finite_array, same_length
 from ..hysteresis.inverse import inverse_operator
 from .signals import PiecewiseLinear
+from ..errors import OutOfReachWarning
 
 __all__ = ["feedforward_program", "linear_program"]
 
@@ -62,7 +63,7 @@ def feedforward_program(
         warnings.warn(
             f"feedforward: {info['clipped_samples']} of {y.size} wanted outputs are not reachable within the "
             f"input range; clipped by at most {info['largest_clip']:.6g} (output units)",
-            RuntimeWarning,
+            OutOfReachWarning,
             stacklevel=2,
         )
     return PiecewiseLinear(t, volts), info
@@ -91,7 +92,7 @@ def linear_program(slope: float, intercept: float, times: Any, wanted: Any,
             warnings.warn(
                 f"linear inversion: {info['clipped_samples']} of {y.size} voltages outside {input_range} V; "
                 f"clipped (output off by at most {info['largest_clip']:.6g})",
-                RuntimeWarning,
+                OutOfReachWarning,
                 stacklevel=2,
             )
         volts = clipped

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from .._checks import positive_float
 from ..physical_bounds import check_physical
+from ..errors import InputRangeWarning
 
 #: Plausible ranges (SI) of a layer's values; outside them a ``RuntimeWarning`` suggests a unit
 #: mistake.  Thickness: textile and piezo layers are 10 µm ... 10 mm thick (0.2 means
@@ -66,7 +67,7 @@ class Layer:
                 warnings.warn(
                     f"Layer {name} = {value!r} {unit} is outside the plausible range {low:g} ... {high:g} {unit} "
                     f"for a laminate layer; is it {mistake}? All values are SI units",
-                    RuntimeWarning,
+                    InputRangeWarning,
                     stacklevel=4,
                 )
 

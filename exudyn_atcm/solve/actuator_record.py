@@ -19,6 +19,7 @@ from ..mechanism.actuator import BendingActuator
 from ..model.recording import RecordingSchedule
 from .run_checks import WallClock, snap_time, snap_times
 from .step_record import StepRecord, check_view
+from ..errors import AccuracyWarning
 
 __all__ = ["ActuatorRecorder", "make_result", "warn_coarse_cells", "cell_rotation", "MAX_CELL_ROTATION",
            "STANDARD_UNITS"]
@@ -209,6 +210,6 @@ def warn_coarse_cells(actuator: BendingActuator, per_cell: float) -> None:
             f"a cell of the {actuator.cell} actuator turns by {per_cell:.3g} rad relative to its "
             f"neighbour (more than {MAX_CELL_ROTATION} rad): with {actuator.n_cells} cells the chain is a "
             "coarse discretisation of the bent actuator; use more cells",
-            RuntimeWarning,
+            AccuracyWarning,
             stacklevel=3,
         )

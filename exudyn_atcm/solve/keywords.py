@@ -15,6 +15,8 @@ import inspect
 import warnings
 from typing import Any, Callable, TypeVar
 
+from ..errors import AtcmDeprecationWarning
+
 __all__ = ["legacy_positional", "keyword_signature"]
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -51,7 +53,7 @@ def legacy_positional(function: str, legacy: tuple, given: dict[str, Any], defau
             raise TypeError(f"{function}() got multiple values for argument {name!r}")
         out[name] = value
     warnings.warn(f"{function}(): pass {', '.join(f'{n}=' for n in used)} by keyword (positional use goes away in "
-                  "the next release)", DeprecationWarning, stacklevel=3)
+                  "the next release)", AtcmDeprecationWarning, stacklevel=3)
     return out
 
 

@@ -114,10 +114,10 @@ def check_steps(mech: Mechanism, grid: Any, t_end: float, schedule: Any = None) 
         shared.setdefault(id(drive.voltage), (drive.voltage, []))[1].append(repr(name))
     for program, names in shared.values():
         label = "drive " + ", ".join(names) if len(names) == 1 else "drives " + ", ".join(names)
-        check_step_against_program(program, grid.step, t_end, what=f"the voltage program of {label}", stacklevel=5)
+        check_step_against_program(program, grid, t_end, what=f"the voltage program of {label}", stacklevel=5)
         check_record_interval(program, schedule, t_end, what=f"the voltage program of {label}", stacklevel=5)
     frequency, which = lowest_first_frequency(mech)
-    check_step_against_frequency(grid.step, frequency, what=which, stacklevel=5)
+    check_step_against_frequency(grid, frequency, what=which, stacklevel=5)
     cell, parts = cost_parts(mech)
     warn_if_long(cell, parts, grid.n_steps, parts=f"{parts} cells and bodies ({cell} cells)", stacklevel=5)
 

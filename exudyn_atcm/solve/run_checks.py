@@ -59,6 +59,7 @@ import numpy as np
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from .interrupts import InterruptGuard, SimulationInterrupted, WallClock, is_interrupt
 from .long_runs import is_announced, long_run_message
+from ..errors import AccuracyWarning, InputRangeWarning, RunCostWarning
 
 __all__ = [
     "MIN_STEPS_PER_FEATURE",
@@ -122,6 +123,21 @@ class TimeGrid:
         """True when the step used differs from the requested one."""
         return self.step != self.requested_step
 
+    def describe(self) -> str:
+        """The step for messages, as the user gave it: ``step = 0.3 s (used: 0.25 s, so that it
+        divides t_end = 1 s)`` when adjusted, else ``step = 0.25 s``."""
+        if not self.adjusted:
+            return f"step = {self.step:.6g} s"
+        return (f"step = {self.requested_step!r} s (used: {self.step:.6g} s, so that it divides "
+                f"t_end = {self.t_end:.6g} s)")
+
+
+def _step_used(step: float | TimeGrid) -> tuple[float, str]:
+    """The step used [s] and its text in messages (the requested step too, for a grid)."""
+    if isinstance(step, TimeGrid):
+        return step.step, step.describe()
+    return step, f"step = {step:.6g} s"
+
 
 def time_grid(t_end: float, step: float, *, warn: bool = True, stacklevel: int = 4) -> TimeGrid:
     """Equal steps that end exactly at ``t_end``.
@@ -152,7 +168,7 @@ def time_grid(t_end: float, step: float, *, warn: bool = True, stacklevel: int =
             f"step = {step!r} s does not divide t_end = {t_end!r} s ({ratio:.6g} steps); the run uses "
             f"{n} steps of {used:.6g} s, and that step is recorded (info 'step [s]'). Choose a step "
             f"that divides t_end (e.g. {t_end / n:.6g} or {t_end / max(n - 1, 1):.6g} s) to silence this",
-            RuntimeWarning,
+            AccuracyWarning,
             stacklevel=stacklevel,
         )
     return TimeGrid(t_end, used, n, step)
@@ -219,8 +235,8 @@ def program_feature(program: Any, t_end: float) -> tuple[float, str] | None:
     return shortest(t_end) if callable(shortest) else None
 
 
-def check_step_against_program(program: Any, step: float, t_end: float, *, what: str = "the voltage program",
-                               stacklevel: int = 4) -> None:
+def check_step_against_program(program: Any, step: float | TimeGrid, t_end: float, *,
+                               what: str = "the voltage program", stacklevel: int = 4) -> None:
     """Refuse or warn when ``step`` resolves the program's shortest feature too coarsely.
 
     Parameters
@@ -229,8 +245,9 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
         A voltage program; checked only if it has ``shortest_feature(t_end)`` (every
         :mod:`exudyn_atcm.model.signals` object), which returns ``(duration [s], description)`` or
         ``None``.  Plain callables and constants are not checked.
-    step : float
-        Step used [s].
+    step : float or TimeGrid
+        Step used [s], or the run's :class:`TimeGrid` (then the messages quote the step as
+        given and the step used, see :meth:`TimeGrid.describe`).
     t_end : float
         End time of the run [s]; only features before it count.
     what : str
@@ -249,6 +266,7 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
         shortest feature lasts more than :data:`SLOW_PROGRAM_FACTOR` times ``t_end`` (a period
         or ramp time in milliseconds?).
     """
+    step, step_given = _step_used(step)
     feature = program_feature(program, t_end)
     if feature is None:
         return
@@ -259,7 +277,7 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
             f"{duration:.6g} s, {duration / t_end:.3g} times t_end = {t_end:.6g} s, so the run covers at most "
             f"{100.0 * t_end / duration:.2g} % of it. Times are in seconds: if the program's times or period are "
             "in milliseconds, divide them by 1000",
-            RuntimeWarning,
+            InputRangeWarning,
             stacklevel=stacklevel,
         )
     if corners_on_grid(program, step, t_end):
@@ -267,7 +285,7 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
     per_feature = duration / step
     if per_feature < MIN_STEPS_PER_FEATURE:
         raise ValueError(
-            f"step = {step:.6g} s is too coarse for {what}: its shortest feature, {description}, lasts "
+            f"{step_given} is too coarse for {what}: its shortest feature, {description}, lasts "
             f"{duration:.6g} s, only {per_feature:.3g} steps; the solver would sample the program "
             f"{per_feature:.3g} times across it and miss its peaks and reversals (a flat or distorted "
             f"response). Use step <= {duration / MIN_STEPS_PER_FEATURE:.6g} s (at least "
@@ -276,11 +294,11 @@ def check_step_against_program(program: Any, step: float, t_end: float, *, what:
         )
     if per_feature < COMFORTABLE_STEPS_PER_FEATURE:
         warnings.warn(
-            f"step = {step:.6g} s resolves the shortest feature of {what}, {description} lasting "
+            f"{step_given} resolves the shortest feature of {what}, {description} lasting "
             f"{duration:.6g} s, with only {per_feature:.3g} steps: peaks can be missed by up to "
             f"{50.0 / per_feature:.2g} % of a ramp's swing. For {COMFORTABLE_STEPS_PER_FEATURE} steps per "
             f"feature use step <= {duration / COMFORTABLE_STEPS_PER_FEATURE:.6g} s",
-            RuntimeWarning,
+            AccuracyWarning,
             stacklevel=stacklevel,
         )
 
@@ -330,7 +348,7 @@ def check_record_interval(program: Any, schedule: Any, t_end: float, *, what: st
             f"peaks by up to {min(50.0 / per_feature, 100.0):.2g} % of a ramp's swing (result.every_step keeps every "
             f"accepted step for such figures). Record at most "
             f"{duration / MIN_RECORDS_PER_FEATURE:.6g} s apart (or every step)",
-            RuntimeWarning,
+            AccuracyWarning,
             stacklevel=stacklevel,
         )
 
@@ -355,31 +373,32 @@ def corners_on_grid(program: Any, step: float, t_end: float) -> bool:
     return bool(np.all(np.abs(corners - k * step) <= 1e-9 * max(step, 1e-300) + 1e-12 * np.abs(corners)))
 
 
-def check_step_against_frequency(step: float, frequency: float, *, what: str = "the first bending mode",
+def check_step_against_frequency(step: float | TimeGrid, frequency: float, *, what: str = "the first bending mode",
                                  stacklevel: int = 4) -> None:
     """Warn when ``step`` [s] gives fewer than :data:`MIN_STEPS_PER_MODE_PERIOD` steps per ``1/frequency``.
 
     Parameters
     ----------
-    step : float
-        Step used [s].
+    step : float or TimeGrid
+        Step used [s], or the run's :class:`TimeGrid` (as in :func:`check_step_against_program`).
     frequency : float
         Eigenfrequency [Hz] (e.g. :attr:`BendingActuator.first_frequency_estimate`); not
         checked if not finite and positive.
     what : str
         How the mode is named in the message.
     """
+    step, step_given = _step_used(step)
     if not (frequency > 0.0 and math.isfinite(frequency)):
         return
     period = 1.0 / frequency
     per_period = period / step
     if per_period < MIN_STEPS_PER_MODE_PERIOD:
         warnings.warn(
-            f"step = {step:.6g} s resolves {what} (f1 = {frequency:.4g} Hz, period {period:.4g} s) with "
+            f"{step_given} resolves {what} (f1 = {frequency:.4g} Hz, period {period:.4g} s) with "
             f"only {per_period:.3g} steps: generalized-alpha damps it numerically and lengthens its "
             f"period, so its vibrations are lost (acceptable for a quasi-static answer only). For the "
             f"dynamics use step <= {period / (2 * MIN_STEPS_PER_MODE_PERIOD):.4g} s",
-            RuntimeWarning,
+            AccuracyWarning,
             stacklevel=stacklevel,
         )
 
@@ -413,5 +432,5 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
     if estimate is not None and estimate > limit and not is_announced():  # a plan announced the whole run
         per_step = estimate / max(n_steps, 1)
         detail = f"{n_steps} steps of {parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, measured"
-        warnings.warn(long_run_message(estimate, detail), RuntimeWarning, stacklevel=stacklevel)
+        warnings.warn(long_run_message(estimate, detail), RunCostWarning, stacklevel=stacklevel)
     return estimate

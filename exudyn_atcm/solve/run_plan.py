@@ -40,6 +40,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Callable
 
+from ..errors import RunCostWarning
 from ..io.progress import format_duration
 from ..mechanism.assembly import Mechanism
 from .long_runs import announced_up_front, long_run_message
@@ -171,7 +172,7 @@ class RunPlan:
         self.announced = self.estimate is not None and self.estimate > limit
         if self.announced:
             warnings.warn(long_run_message(self.estimate, self._describe(details, len(known))),
-                          RuntimeWarning, stacklevel=stacklevel)
+                          RunCostWarning, stacklevel=stacklevel)
         self._scope: Any = None
         self._limit = limit
         self._entered: float | None = None
@@ -216,7 +217,7 @@ class RunPlan:
             f"{format_duration(predicted)} (the prediction counts the cells' solver cost only, not a hysteresis "
             f"operator or controller evaluated in every step); the remaining {n - k} are predicted to take about "
             f"{format_duration(remaining, rough=True)} more. Ctrl-C stops the run and keeps what was computed",
-            RuntimeWarning, stacklevel=4)
+            RunCostWarning, stacklevel=4)
 
     def __exit__(self, *exc: Any) -> None:
         scope, self._scope = self._scope, None

@@ -22,6 +22,7 @@ from typing import Any
 from .._checks import positive_float
 from ..model.recording import RecordingSchedule, recording_schedule
 from .run_checks import TimeGrid, time_grid
+from ..errors import OutOfReachWarning
 
 __all__ = ["DEFAULT_STEP", "prepare_run", "run_info", "report_controller"]
 
@@ -92,7 +93,7 @@ def report_controller(controller: Any, info: dict, what: str = "the controller",
             f"{limited} of {summary.get('samples')} samples (largest excess "
             f"{summary.get('largest_excess [V]', float('nan')):.4g} V): the wanted deflection is "
             "partly out of reach",
-            RuntimeWarning,
+            OutOfReachWarning,
             stacklevel=stacklevel,
         )
 

@@ -270,9 +270,9 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
     """
     t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
     force = _check_force(tip_force)
-    check_step_against_program(actuator.drive.voltage, grid.step, t_end)
+    check_step_against_program(actuator.drive.voltage, grid, t_end)
     check_record_interval(actuator.drive.voltage, schedule, t_end)
-    check_step_against_frequency(grid.step, actuator.first_frequency_estimate)
+    check_step_against_frequency(grid, actuator.first_frequency_estimate)
     warn_if_long(actuator.cell, actuator.n_cells, grid.n_steps)
     controller = getattr(actuator.drive, "controller", None)
     if controller is not None:

@@ -21,6 +21,7 @@ from typing import Any
 
 from ..io.atomic import describe_os_error, make_directory, write_json
 from .._version import __version__
+from ..errors import SetupWarning
 
 __all__ = ["RunStore", "run_key", "case_fingerprint", "record_problem"]
 
@@ -144,7 +145,7 @@ class RunStore:
     @staticmethod
     def _unusable(path: Path, reason: str) -> None:
         warnings.warn(f"run store record {str(path)!r} cannot be used: {reason}; the run is executed again "
-                      "and the record replaced", RuntimeWarning, stacklevel=4)
+                      "and the record replaced", SetupWarning, stacklevel=4)
 
     def save(self, record: Mapping[str, Any]) -> Path:
         """Write ``record`` (which holds its ``key``) atomically; returns the file."""

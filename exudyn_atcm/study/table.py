@@ -28,6 +28,7 @@ import numpy as np
 
 from ..io.atomic import write_text
 from ..casework import Case
+from ..errors import AtcmDeprecationWarning
 
 __all__ = ["Column", "StudyTable", "table_columns", "to_table", "write_table_csv", "column", "unit_of"]
 
@@ -208,7 +209,7 @@ def to_table(columns: Sequence[Column], *, use_pandas: bool | None = None) -> An
     if use_pandas is None:
         return table
     warnings.warn("use_pandas is deprecated: studies return a StudyTable whatever is installed; "
-                  "use table.to_pandas() or table.to_numpy()", DeprecationWarning, stacklevel=3)
+                  "use table.to_pandas() or table.to_numpy()", AtcmDeprecationWarning, stacklevel=3)
     return table.to_pandas() if use_pandas else table.to_numpy()
 
 

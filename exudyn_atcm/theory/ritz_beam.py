@@ -47,6 +47,8 @@ import warnings
 import numpy as np
 from numpy.polynomial import legendre
 
+from ..errors import AccuracyWarning
+
 __all__ = [
     "DYNAMIC_ROTATION_LIMIT",
     "rotation_shapes",
@@ -281,5 +283,5 @@ def warn_large_dynamic_rotation(tip_angle, strain, curvature_per_strain: float, 
             "quasi-static arc and neglects the quadratic velocity terms and the inertia change of the "
             f"dynamic deviation's geometry, errors of relative order {delta:.2g} in the dynamic part; "
             "check the run with cell='beam' (geometrically exact elements)",
-            RuntimeWarning, stacklevel=stacklevel)
+            AccuracyWarning, stacklevel=stacklevel)
     return delta
