@@ -26,6 +26,7 @@ import numpy as np
 
 from ..io.atomic import make_directory, write_json
 from ..casework import Case, CaseOutput, load_case
+from .budget import RunBudget, max_runs
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
@@ -227,6 +228,9 @@ def optimize(
     problem = Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
                        float(penalty) if constraint_handling == "penalty" else 0.0, engine, run_store)
     n = len(names)
+    problem.monitor = RunBudget(max_runs(method, n, maxiter, popsize),
+                                f"{method} over {n} variable{'s' if n > 1 else ''} of case {case.name}",
+                                announce=method == "differential_evolution")
     try:
         if method == "differential_evolution":
             result = _differential_evolution(so, problem, kinds, seed, maxiter, popsize, tol, constraint_handling == "scipy")

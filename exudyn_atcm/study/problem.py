@@ -38,6 +38,8 @@ class Problem:
         self.history: list[tuple[dict[str, Any], dict[str, Any]]] = []
         self.executed = 0
         self.error: Exception | None = None
+        #: ``monitor(known, executed)`` after every batch of runs (e.g. a :class:`~exudyn_atcm.study.budget.RunBudget`)
+        self.monitor: Callable[[int, int], None] | None = None
 
     # -- coordinates ----------------------------------------------------------------------
     def point(self, u: np.ndarray) -> dict[str, Any]:
@@ -61,6 +63,8 @@ class Problem:
         self.executed += result.executed
         for p, record in zip(points, result.records):
             self.records[self._key(p)] = record
+        if self.monitor is not None:
+            self.monitor(len(self.records), self.executed)
 
     def record(self, u: np.ndarray) -> dict[str, Any]:
         p = self.point(u)
