@@ -70,7 +70,8 @@ def test_a_long_optimisation_is_announced_once_with_its_bound(monkeypatch):
     announced = [w for w in caught if issubclass(w.category, RunCostWarning)]
     assert len(announced) == 1
     text = str(announced[0].message)
-    assert "may take up to" in text and "at most 25 runs" in text and "measured on the first 5" in text
+    # timed on the first generation (5 runs), after the initial population that paid for the warm-up
+    assert "may take up to" in text and "at most 25 runs" in text and "measured on 5 runs after the first 5" in text
     # the pace measured is at least the 5 ms each run sleeps
     per_run = float(text.split("at ~")[1].split(" s each")[0])
     assert per_run >= 0.005
@@ -84,6 +85,20 @@ def test_a_local_method_is_not_announced_from_its_loose_cap(monkeypatch):
         best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2, "delay": 0.005},
                         workers=1, rerun_best=False)
     assert best.executed < 100 < max_runs("nelder-mead", 1, 100, 15)
+
+
+def test_the_pace_is_not_taken_from_one_slow_first_run(monkeypatch):
+    """A first batch of one run that also paid for loading the case must not set the pace alone."""
+    clock = {"now": 0.0}
+    monkeypatch.setattr(budget_module, "perf_counter", lambda: clock["now"])
+    budget = budget_module.RunBudget(1000, "a test", limit=60.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RunCostWarning)
+        clock["now"] = 0.1  # one run of 0.1 s: 1000 x 0.1 s = 100 s if trusted
+        budget(1, 1)
+        clock["now"] = 0.2  # then 30 runs in 0.1 s: 0.2 s + 969 x 3.3 ms, about 3.4 s for the bound
+        budget(31, 31)
+    assert budget.announced and budget.estimate is None
 
 
 def test_a_quick_optimisation_says_nothing():

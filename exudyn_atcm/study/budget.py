@@ -1,8 +1,8 @@
 """An optimisation's run budget: one warning up front when it may take long, progress by runs.
 
 An optimiser's number of runs is not known in advance, only its bound (the iteration limits
-of the method).  :class:`RunBudget` times the first batch of runs (a differential evolution's
-first population) and, when the bound times that pace exceeds a minute, warns once with the
+of the method).  :class:`RunBudget` times the runs after the first batch (from a differential
+evolution's first generation on; at least :data:`MIN_MEASURED_RUNS` runs) and, when the bound times that pace exceeds a minute, warns once with the
 estimate (an upper bound: the search stops earlier when it converges).  After
 every batch it reports ``optimisation runs done/bound`` to the active progress display
 (:func:`exudyn_atcm.io.progress.report_task`), so a case that optimises shows its progress.
@@ -18,7 +18,12 @@ from ..errors import RunCostWarning
 from ..io.progress import format_duration, report_task
 from ..solve.run_checks import LONG_RUN_SECONDS
 
-__all__ = ["RunBudget", "max_runs"]
+__all__ = ["RunBudget", "max_runs", "MIN_MEASURED_RUNS"]
+
+#: Runs timed before the pace is trusted.  They are counted after the first batch, which also
+#: pays for loading the case and starting the workers (a first batch of one run, as scipy's
+#: constraint handling makes, gave a pace 10 times too slow).
+MIN_MEASURED_RUNS = 5
 
 
 def max_runs(method: str, n_variables: int, maxiter: int, popsize: int) -> int:
@@ -63,22 +68,27 @@ class RunBudget:
         self.announce = announce
         self.limit = LONG_RUN_SECONDS if limit is None else float(limit)
         self.start = perf_counter()
+        self._first: tuple[float, int] | None = None
         self.announced = False
         #: the upper-bound estimate warned about [s] (``None`` if none)
         self.estimate: float | None = None
 
     def __call__(self, known: int, executed: int) -> None:
-        if self.announce and not self.announced and executed > 0:
+        now = perf_counter()
+        if self._first is None:
+            self._first = (now, executed)  # the first batch paid for the warm-up: the pace is timed after it
+        elif self.announce and not self.announced and executed - self._first[1] >= min(MIN_MEASURED_RUNS, self.bound):
             self.announced = True
-            per_run = (perf_counter() - self.start) / executed
-            estimate = per_run * self.bound
+            measured = executed - self._first[1]
+            per_run = (now - self._first[0]) / measured
+            estimate = now - self.start + per_run * max(self.bound - executed, 0)
             if math.isfinite(estimate) and estimate > self.limit:
                 self.estimate = estimate
                 warnings.warn(
                     f"this optimisation ({self.what}) may take up to {format_duration(estimate, rough=True)}: at most "
-                    f"{self.bound} runs at ~{per_run:.3g} s each (measured on the first {executed}), before a polish "
-                    "if any; it stops earlier when it converges. For a quicker answer lower maxiter or popsize, or "
-                    "use workers; Ctrl-C stops it",
+                    f"{self.bound} runs at ~{per_run:.3g} s each (measured on {measured} runs after the first "
+                    f"{self._first[1]}), before a polish if any; it stops earlier when it converges. For a quicker "
+                    "answer lower maxiter or popsize, or use workers; Ctrl-C stops it",
                     RunCostWarning,
                     stacklevel=2,
                 )
