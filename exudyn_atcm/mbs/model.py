@@ -265,14 +265,14 @@ class MechanismModel:
         force_type, displacement_type = exu.OutputVariableType.Force, exu.OutputVariableType.Displacement
         out = []
         for item, normal in self._connector_plan:
-            force = get(item, force_type)
+            force = get(item, force_type).tolist()  # Python floats: cheaper than numpy for 3 components
             if normal is not None:
-                out.append(-float(force[0] * normal[0] + force[1] * normal[1]))
+                out.append(-(force[0] * normal[0] + force[1] * normal[1]))
             else:
                 # Exudyn's spring force vector points from marker 0 to marker 1 under tension
-                d = get(item, displacement_type)
-                along = sum(float(f) * float(x) for f, x in zip(force, d))
-                out.append(along / math.sqrt(sum(float(x) * float(x) for x in d)))
+                d = get(item, displacement_type).tolist()
+                along = sum(f * x for f, x in zip(force, d))
+                out.append(along / math.sqrt(sum(x * x for x in d)))
         return out
 
     def resolve_indices(self) -> None:

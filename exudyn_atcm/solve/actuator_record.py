@@ -86,7 +86,11 @@ class ActuatorRecorder:
         # hot path (every accepted step): one row written into a preallocated block; recorded
         # times are put on the grid once, vectorised, when the result is made
         u, strain = self.source.commit(t)
-        self.rows.add(t, u, strain, self._read())
+        row = self.rows.begin(t)
+        row[1] = u
+        row[2] = strain
+        row[3:] = self._read()
+        self.rows.end(t)
         if self.controller is not None or self.progress is not None:
             t = self._snap(t)
             if self.controller is not None:

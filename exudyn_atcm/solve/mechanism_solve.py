@@ -248,18 +248,22 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             user_errors.append(exc)
             raise
 
+    strain_slice = slice(1 + n_src, 1 + 2 * n_src)
+    q_slice = slice(1 + 2 * n_src, 1 + 2 * n_src + layout.n_coordinates)
+    force_slice = slice(1 + 2 * n_src + layout.n_coordinates, None)
+
     def post_step(t: float) -> None:
-        committed = [s.commit(t) for s in sources]
-        volts = [u for u, _ in committed]
-        strains = [e for _, e in committed]
-        if read_forces is None:
-            record.add(t, volts, strains, q_view)
-        else:
-            record.add(t, volts, strains, q_view, read_forces())
+        row = record.begin(t)  # hot path: element writes into the preallocated block
+        for k, source in enumerate(sources):
+            row[1 + k], row[1 + n_src + k] = source.commit(t)
+        row[q_slice] = q_view
+        if read_forces is not None:
+            row[force_slice] = read_forces()
+        record.end(t)
         if observers or clock is not None:
             t = snap_time(t, grid.step)  # observed times on the step grid, as recorded
             for controller, read in observers:
-                controller.observe(t, read(np.array(strains)))
+                controller.observe(t, read(row[strain_slice].copy()))
             if clock is not None:
                 clock(t)
 

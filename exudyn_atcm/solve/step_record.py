@@ -89,14 +89,28 @@ class StepRecord:
         self.last: np.ndarray | None = None
 
     # ------------------------------------------------------------------ hot path
+    def begin(self, t: float) -> np.ndarray:
+        """The row of the accepted step ending at ``t`` [s], time written; fill it, then call :meth:`end`."""
+        row = self._block[self._n]
+        row[0] = t
+        return row
+
+    def end(self, t: float) -> None:
+        """Close the row :meth:`begin` gave (the schedule decides whether it joins the record)."""
+        n = self._n
+        self._kept_flags[n] = self._keep(t)
+        self.accepted += 1
+        self.last = self._block[n]
+        self._n = n + 1
+        if self._n == self.block_rows:
+            self._flush(close=False)
+
     def add(self, t: float, *parts) -> np.ndarray:
         """Add the accepted step ending at ``t`` [s]: the row ``t, *parts`` (scalars or 1-D arrays).
 
         Returns the row (a view into the block).
         """
-        n = self._n
-        row = self._block[n]
-        row[0] = t
+        row = self.begin(t)
         i = 1
         for part in parts:
             if isinstance(part, float):
@@ -106,12 +120,7 @@ class StepRecord:
                 k = len(part)
                 row[i:i + k] = part
                 i += k
-        self._kept_flags[n] = self._keep(t)
-        self.accepted += 1
-        self.last = row
-        self._n = n + 1
-        if self._n == self.block_rows:
-            self._flush(close=False)
+        self.end(t)
         return row
 
     # ------------------------------------------------------------------ blocks
