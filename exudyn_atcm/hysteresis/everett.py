@@ -90,7 +90,7 @@ class EverettPreisach(StaircasePreisach):
         self.offset = finite_float("offset", offset)
         self.total_weight = float(w.sum())
         self._edges: list[float] = e.tolist()
-        self._table = table
+        self._table: list[list[float]] = table.tolist()  # Python floats: the step's hot path indexes it
         self._diag: list[float] = diag.tolist()
         self._diag_prefix: list[float] = [0.0, *np.cumsum(diag).tolist()]
         self._y_reset = self.offset
@@ -135,8 +135,8 @@ class EverettPreisach(StaircasePreisach):
         j = min(bisect_right(edges, b) - 1, last)
         s = (a - edges[i]) / (edges[i + 1] - edges[i])
         r = (b - edges[j]) / (edges[j + 1] - edges[j])
-        t = self._table
-        k = (1 - s) * (1 - r) * t[i, j] + s * (1 - r) * t[i + 1, j] + (1 - s) * r * t[i, j + 1] + s * r * t[i + 1, j + 1]
+        row, below = self._table[i], self._table[i + 1]
+        k = (1 - s) * (1 - r) * row[j] + s * (1 - r) * below[j] + (1 - s) * r * row[j + 1] + s * r * below[j + 1]
         diag = self._diag
         if i == j:
             return float(k + diag[i] * (s - r) ** 2)
