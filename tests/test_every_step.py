@@ -130,7 +130,9 @@ def _record(block_rows, spill_bytes, every=3, reduce=True):
                         on_block=lambda rows: blocks.append(len(rows)), block_rows=block_rows,
                         spill_bytes=spill_bytes)
     for k in range(11):
-        record.add(float(k), float(10 * k), np.array([100.0 * k]))
+        row = record.begin(float(k))
+        row[1:] = (10.0 * k, 100.0 * k)
+        record.end(float(k))
     record.close()
     return record, blocks
 

@@ -122,11 +122,6 @@ class ActuatorRecorder:
         """Flush the last block; the last accepted step joins the record if the schedule skipped it."""
         self.rows.close()
 
-    @property
-    def n_rows(self) -> int:
-        """Accepted steps recorded so far, kept or not."""
-        return self.rows.accepted
-
     def last_time(self) -> float:
         """Time [s] of the last accepted step (0 before the first)."""
         return self._snap(float(self.rows.last[0])) if self.rows.last is not None else 0.0

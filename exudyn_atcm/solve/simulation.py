@@ -321,7 +321,7 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
     if interrupted:
         t_stop = recorder.last_time()
         mark_partial(info, t_stop, accepted)
-        raise SimulationInterrupted(t_stop, recorder.result(actuator, info) if recorder.n_rows else None)
+        raise SimulationInterrupted(t_stop, recorder.result(actuator, info) if recorder.accepted else None)
     result = recorder.result(actuator, info)
     actuator.cell.check_run(result, actuator, stacklevel=4)  # the caller of simulate
     if recorder.strain_low <= recorder.strain_high:

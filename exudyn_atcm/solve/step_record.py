@@ -2,9 +2,10 @@
 
 Internal API of the solve layer (documented for tests and benchmarks).  A run's post-step hook
 writes one row of floats per accepted step (time first, then what the path needs to rebuild
-its result columns: voltages, strains, coordinates, forces) with :meth:`StepRecord.add`.  The
-rows go into a preallocated block of :attr:`StepRecord.block_rows` rows, not into Python lists,
-so the per-step cost is a few element writes and memory is 8 bytes per value.
+its result columns: voltages, strains, coordinates, forces) between :meth:`StepRecord.begin`
+and :meth:`StepRecord.end`.  The rows go into a preallocated block of
+:attr:`StepRecord.block_rows` rows, not into Python lists, so the per-step cost is a few element
+writes and memory is 8 bytes per value.
 
 Two things are made from the rows:
 
@@ -105,24 +106,6 @@ class StepRecord:
         if self._n == self.block_rows:
             self._flush(close=False)
 
-    def add(self, t: float, *parts) -> np.ndarray:
-        """Add the accepted step ending at ``t`` [s]: the row ``t, *parts`` (scalars or 1-D arrays).
-
-        Returns the row (a view into the block).
-        """
-        row = self.begin(t)
-        i = 1
-        for part in parts:
-            if isinstance(part, float):
-                row[i] = part
-                i += 1
-            else:
-                k = len(part)
-                row[i:i + k] = part
-                i += k
-        self.end(t)
-        return row
-
     # ------------------------------------------------------------------ blocks
     def _flush(self, close: bool) -> None:
         n = self._n
@@ -195,16 +178,9 @@ class StepRecord:
 
     def every_step(self) -> np.ndarray | None:
         """The every-step columns of all accepted steps (``None`` without ``reduce``)."""
-        if self._reduce is None:
-            return None
-        if not self._every:
+        if not self._every:  # no reduce, or nothing recorded
             return None
         return np.concatenate(self._every) if len(self._every) > 1 else self._every[0]
-
-    @property
-    def n_kept(self) -> int:
-        """Rows in the record so far (without the block not yet flushed)."""
-        return self._kept_rows + self._spilled_rows
 
 
 def check_view(view: np.ndarray, fresh: np.ndarray) -> None:
