@@ -17,9 +17,7 @@ CFC 0.2 mm on MFC 0.3 mm, 28 mm wide; f1 = 35.97 Hz):
   period 0.5 s, Preisach operator evaluated in the step and committed on accepted steps),
   step 1e-4 s, including building the system and the initial static equilibrium, best of three.
 
-Discretisations: the package's ``six-bar``, ``rigid`` (rigid bodies and joints), ``rigid-tree``
-(the same chain in minimal coordinates, ``ObjectKinematicTree``, internal alternative),
-``beam`` (geometrically exact beam elements), ``ancf`` (ANCF cable elements, cubic), ``ritz``
+Discretisations: the package's ``six-bar``, ``rigid`` (rigid bodies and joints), ``beam`` (geometrically exact beam elements), ``ancf`` (ANCF cable elements, cubic), ``ritz``
 (N assumed modes of the rotation field in one ``ObjectGenericODE2``, mass matrix following the
 free curvature: the package sets ``timeIntegration.reuseConstantMassMatrix = False`` for it, the
 other models keep Exudyn's default, a constant mass matrix), and ``GE by hand``: Exudyn's
@@ -48,7 +46,6 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from exudyn_atcm.mbs import actuator_chains as builder
 from exudyn_atcm import theory as bt
 from exudyn_atcm.mbs.eigen import constrained_eigenfrequencies
 from exudyn_atcm import __version__
@@ -66,7 +63,6 @@ PERIOD, STEP = 0.5, 1e-4
 CELLS = {
     "six-bar": (4, 8, 16, 32),
     "rigid": (4, 8, 16, 32, 64),
-    "rigid-tree": (4, 8, 16, 32),
     "beam": (2, 4, 8, 16, 32),
     "ancf": (1, 2, 3, 4, 8),
     "ritz": (1, 2, 3, 4, 6, 8),
@@ -197,35 +193,30 @@ def ge_by_hand(n: int, drive: PiezoDrive, t_end: float, solve: bool = True, stat
 # ----------------------------------------------------------------------------- measurements
 
 def measure(name: str, n: int) -> dict:
-    if name == "rigid-tree":
-        builder.RIGID_FORMULATION = "tree"
-    cell = "rigid" if name == "rigid-tree" else ("beam" if name == "GE by hand" else name)
-    try:
-        act_small = actuator(n, cell, small_drive())
-        f_ref = bt.first_bending_frequency(act_small.bending_stiffness, act_small.mass_per_length, LENGTH)
-        if name == "GE by hand":
-            times, angles, _ = ge_by_hand(n, small_drive(), PERIOD)
-            _, _, mbs = ge_by_hand(n, PiezoDrive(0.0), STEP, solve=False)  # undeformed
-            builder_f1 = constrained_eigenfrequencies(mbs, 1)[0]
-            _, _, mbs = ge_by_hand(n, PiezoDrive(BENT_VOLTAGE), STEP, static_only=True)
-            bent_f1 = constrained_eigenfrequencies(mbs, 1)[0]
-            wall = math.inf
-            for _ in range(REPEATS):
-                start = time.perf_counter()
-                ge_by_hand(n, paper_drive(), PERIOD)
-                wall = min(wall, time.perf_counter() - start)
-        else:
-            r = run_actuator(act_small, PERIOD, STEP, (0.0, 0.0), None)
-            times, angles = r["time"], r["tip_angle"]
-            builder_f1 = eigenfrequencies(act_small, n=1)[0]
-            bent_f1 = eigenfrequencies(act_small, n=1, voltage=BENT_VOLTAGE)[0]
-            wall = math.inf
-            for _ in range(REPEATS):
-                start = time.perf_counter()
-                run_actuator(actuator(n, cell, paper_drive()), PERIOD, STEP, (0.0, 0.0), None)
-                wall = min(wall, time.perf_counter() - start)
-    finally:
-        builder.RIGID_FORMULATION = "bodies"
+    cell = "beam" if name == "GE by hand" else name
+    act_small = actuator(n, cell, small_drive())
+    f_ref = bt.first_bending_frequency(act_small.bending_stiffness, act_small.mass_per_length, LENGTH)
+    if name == "GE by hand":
+        times, angles, _ = ge_by_hand(n, small_drive(), PERIOD)
+        _, _, mbs = ge_by_hand(n, PiezoDrive(0.0), STEP, solve=False)  # undeformed
+        builder_f1 = constrained_eigenfrequencies(mbs, 1)[0]
+        _, _, mbs = ge_by_hand(n, PiezoDrive(BENT_VOLTAGE), STEP, static_only=True)
+        bent_f1 = constrained_eigenfrequencies(mbs, 1)[0]
+        wall = math.inf
+        for _ in range(REPEATS):
+            start = time.perf_counter()
+            ge_by_hand(n, paper_drive(), PERIOD)
+            wall = min(wall, time.perf_counter() - start)
+    else:
+        r = run_actuator(act_small, PERIOD, STEP, (0.0, 0.0), None)
+        times, angles = r["time"], r["tip_angle"]
+        builder_f1 = eigenfrequencies(act_small, n=1)[0]
+        bent_f1 = eigenfrequencies(act_small, n=1, voltage=BENT_VOLTAGE)[0]
+        wall = math.inf
+        for _ in range(REPEATS):
+            start = time.perf_counter()
+            run_actuator(actuator(n, cell, paper_drive()), PERIOD, STEP, (0.0, 0.0), None)
+            wall = min(wall, time.perf_counter() - start)
     strains = np.array([small_drive().static_strain(small_drive().voltage_at(t)) for t in times])
     moments = act_small.bending_stiffness * act_small.curvature_per_strain * strains
     reference = modal_tip_angle(act_small, np.asarray(times, dtype=float), moments)
@@ -282,7 +273,7 @@ def main(argv=None) -> int:
     for q, tol in TARGETS:
         key = f"{q} {tol:g}"
         ge = table.get("GE by hand", {}).get(key)
-        package = [(table[name][key]["cost [s/s]"], name) for name in ("six-bar", "rigid", "rigid-tree", "beam", "ancf", "ritz")
+        package = [(table[name][key]["cost [s/s]"], name) for name in ("six-bar", "rigid", "beam", "ancf", "ritz")
                    if name in table and table[name][key] is not None]
         if ge is None or not package:
             continue

@@ -431,8 +431,14 @@ def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
     # the stiffness comparison loads the tip (compliance run): ritz is not among its choices
     with pytest.raises((CaseError, ValueError), match="cell must be one of six-bar, rigid, beam, ancf, got 'ritz'"):
         load_case(CASES / "stiffness_comparison.py").run({"cell": "ritz", "n_voltages": 2})
-    # a mechanism's bender is a chain of rigid, six-bar or beam cells (no ritz: its joints load the tip)
-    with pytest.raises(ValueError, match=r"cell='ritz' cannot be a mechanism's bender: the ritz cell is built for "
-                                         r"the lone actuator only"):
-        Bender("b", width=1e-2, passive=Layer(0.2e-3, 70e9, 1550.0), active=Layer(0.3e-3, 30.336e9, 5440.0),
-               length=0.03, n_cells=2, drive=PiezoDrive(0.0), cell="ritz")
+    # in a mechanism a ritz bender is a cantilever only: a joint at its tip is refused by the cell itself
+    from exudyn_atcm import Link, Mechanism, MechanismError, solve_static
+
+    b = Bender("b", width=1e-2, passive=Layer(0.2e-3, 70e9, 1550.0), active=Layer(0.3e-3, 30.336e9, 5440.0),
+               length=0.03, n_cells=2, drive=PiezoDrive(300.0), cell="ritz")
+    lever = Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
+    with pytest.raises(MechanismError, match=r"bender 'b': the ritz cell joins a mechanism as a cantilever only .*"
+                                             r"got its tip joined to other parts; use cell='beam'"):
+        solve_static(Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A")))
+    with pytest.raises(MechanismError, match=r"'push' acts at b.tip of bender 'b': the ritz cell refuses tip loads"):
+        solve_static(Mechanism("m").add(b).ground(b.base).force(b.tip, (0.0, -0.01), name="push"))

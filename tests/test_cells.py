@@ -16,9 +16,10 @@ import numpy as np
 import pytest
 
 import exudyn_atcm as atcm
+from exudyn_atcm import MechanismError
 from exudyn_atcm.cells import CELL_KINDS, CellKind, RigidCell, BeamCell, cell_kind
 from exudyn_atcm.mbs import solver_settings
-from exudyn_atcm.mbs.cells import add_actuator_cells, add_mechanism_bender
+from exudyn_atcm.mbs.cells import add_mechanism_bender
 from exudyn_atcm.plots.mechanism import plot_mechanism
 from exudyn_atcm import theory as bt
 
@@ -159,23 +160,21 @@ class Unrealised(CellKind):
 
 
 def test_a_new_kind_without_a_realisation_says_how_to_register_one():
-    with pytest.raises(ValueError, match=r"cell kind 'unrealised' \(Unrealised\) has no Exudyn realisation for a "
-                                         r"lone actuator: register one with exudyn_atcm.mbs.cells.add_actuator_cells"):
+    # one builder: the lone actuator is a one-bender mechanism, so one message for both
+    with pytest.raises(ValueError, match=r"cell kind 'unrealised' \(Unrealised\) has no Exudyn realisation: "
+                                         r"register one with exudyn_atcm.mbs.cells.add_mechanism_bender"):
         atcm.solve_static(actuator(Unrealised()))
-    with pytest.raises(ValueError, match=r"has no Exudyn realisation in a mechanism: register one with "
+    with pytest.raises(ValueError, match=r"has no Exudyn realisation: register one with "
                                          r"exudyn_atcm.mbs.cells.add_mechanism_bender"):
         atcm.simulate(bender_with_lever(Unrealised()), 0.005, step=1e-4)
 
 
 def test_a_new_kind_registers_its_own_realisation():
-    """A kind that is no subclass of a package kind, realised by delegating to the rigid chain's builders."""
+    """A kind that is no subclass of a package kind, realised by delegating to the rigid chain's realisation:
+    one registration serves the lone actuator and mechanisms (one builder)."""
 
     class Delegating(CellKind):
         name = "delegating"
-
-    @add_actuator_cells.register(Delegating)
-    def _(cell, SC, mbs, act, stroke_path, tip_force):
-        return add_actuator_cells(RigidCell(), SC, mbs, act, stroke_path, tip_force)
 
     @add_mechanism_bender.register(Delegating)
     def _(cell, builder, bender):
@@ -190,12 +189,47 @@ def test_a_new_kind_registers_its_own_realisation():
 
 
 # ----------------------------------------------------------------------------- refusals from the kind
-@pytest.mark.parametrize("name", [n for n, k in CELL_KINDS.items() if k.mechanism_refusal() is not None])
-def test_kinds_that_cannot_join_a_mechanism_say_why_themselves(name):
-    reason = CELL_KINDS[name].mechanism_refusal()
-    with pytest.raises(ValueError) as info:
-        atcm.Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, cell=name)
-    assert reason in str(info.value)
+CANTILEVER_ONLY = [n for n, k in CELL_KINDS.items() if k.end_refusal("tip", "joined") is not None]
+
+
+def test_every_kind_joins_a_mechanism():
+    # no kind refuses mechanisms as such: the lone actuator is a one-bender mechanism
+    assert all(k.mechanism_refusal() is None for k in CELL_KINDS.values())
+    assert set(CANTILEVER_ONLY) == {"ancf", "ritz"}
+
+
+@pytest.mark.parametrize("name", CANTILEVER_ONLY)
+@pytest.mark.parametrize("end", ["base", "tip"])
+def test_kinds_that_refuse_an_end_connection_say_why_themselves(name, end):
+    kind = CELL_KINDS[name]
+    b = atcm.Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, cell=name,
+                    drive=atcm.PiezoDrive(300.0))
+    lever = atcm.Link("lever", {"A": (0.0, 0.0) if end == "base" else (0.03, 0.0), "E": (0.05, 0.01)}, mass=2e-4,
+                      inertia=1e-8)
+    other = "tip" if end == "base" else "base"
+    mech = atcm.Mechanism("m").add(b, lever).ground(b.point(other)).pin(b.point(end), lever.point("A"))
+    with pytest.raises(MechanismError) as info:
+        atcm.solve_static(mech)
+    assert kind.end_refusal(end, "joined") in str(info.value)
+    assert kind.end_refusal("base", "ground") is None and kind.end_refusal("tip", "free") is None
+
+
+@pytest.mark.parametrize("name", ["ritz", "ancf"])
+def test_cantilever_kinds_in_a_turned_mechanism_follow_the_arc(name):
+    # a user's cantilever at base (x0, y0), angle a: the arc of the free curvature, turned and shifted
+    # (ritz: the exact arc for any number of modes, to round-off; ancf: the bound of the lone actuator's
+    # arc test, 1.2e-2 (kappa L_c)^4 + 1e-9, tests/test_actuator_ancf.py)
+    a, x0, length = 0.7, np.array([0.01, -0.02]), 0.087
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=length, n_cells=6, cell=name,
+                    drive=atcm.PiezoDrive(1500.0), base=tuple(x0), angle=a)
+    r = atcm.solve_static(atcm.Mechanism("m").add(b).ground(b.base))
+    kappa = b.laminate.curvature_per_strain * b.drives["b"].static_strain(1500.0)
+    rel = 1e-9 if name == "ritz" else 1.2e-2 * (kappa * length / 6) ** 4 + 1e-9
+    x, y = bt.arc_point(kappa, length)
+    c, s = np.cos(a), np.sin(a)
+    assert r["b.tip_x"][0] == pytest.approx(x0[0] + c * x - s * y, abs=rel * length)
+    assert r["b.tip_y"][0] == pytest.approx(x0[1] + s * x + c * y, abs=rel * length)
+    assert r["b.tip_angle"][0] == pytest.approx(a + kappa * length, rel=rel)
 
 
 def test_tip_load_refusal_comes_from_the_kind():
@@ -224,9 +258,9 @@ def test_solves_take_the_system_first_and_the_rest_by_keyword():
 
     for function in (atcm.simulate, atcm.solve_static, atcm.eigenfrequencies, atcm.static_sweep):
         parameters = list(inspect.signature(function).parameters.values())
-        assert parameters[0].name == "system" or function is atcm.static_sweep
+        assert parameters[0].name == "system"
         positional = [p.name for p in parameters if p.kind is not inspect.Parameter.KEYWORD_ONLY]
-        assert positional == {"simulate": ["system", "t_end"], "static_sweep": ["mech", "voltages"]}.get(
+        assert positional == {"simulate": ["system", "t_end"], "static_sweep": ["system", "voltages"]}.get(
             function.__name__, ["system"]), function.__name__
 
 

@@ -440,18 +440,27 @@ def test_shape_of_a_beam_bender_runs_through_its_nodes(tmp_path):
 
 # ----------------------------------------------------------------------------- refused input
 
-def test_unknown_cell_is_refused_with_the_allowed_ones():
-    with pytest.raises(ValueError, match=r"cell='ancf' cannot be a mechanism's bender: the ancf cell is built for "
-                                         r"the lone actuator only .*use cell='beam'"):
-        beam().__class__("x", width=W, passive=CFC, active=MFC, length=0.03, n_cells=2, cell="ancf")
+def test_an_ancf_bender_joined_at_its_tip_is_refused_by_the_cell():
+    b = beam().__class__("x", width=W, passive=CFC, active=MFC, length=0.03, n_cells=2, cell="ancf",
+                         drive=PiezoDrive(300.0))
+    lever = Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
+    with pytest.raises(MechanismError, match=r"bender 'x': the ancf cell joins a mechanism as a cantilever only "
+                                             r".*got its tip joined to other parts; use cell='beam'"):
+        solve_static(Mechanism("m").add(b, lever).ground(b.base).pin(b.tip, lever.point("A")))
 
 
-def test_static_sweep_refuses_an_actuator_cell_without_a_mechanism_model():
-    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0), cell="ancf")
-    with pytest.raises(ValueError, match=r"cells are \('six-bar', 'rigid', 'beam'\); got an actuator with "
-                                         r"cell='ancf' \(the ancf cell is built for the lone actuator only.*\)\. Use "
-                                         r"one of those cells, or solve_static per voltage"):
-        static_sweep(act, [0.0, 100.0])
+@pytest.mark.parametrize("cell", ["ancf", "ritz"])
+def test_static_sweep_of_any_actuator_cell_equals_solve_static_per_voltage(cell):
+    # every cell joins the one builder, so static_sweep takes them all; without hysteresis each sweep
+    # point (continued from the previous one) is the equilibrium solve_static finds from the reference pose
+    act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0), cell=cell)
+    volts = [0.0, 500.0, 1500.0, 200.0]
+    r = static_sweep(act, volts)
+    for i, v in enumerate(volts):
+        s = solve_static(act, voltage=v)
+        for name in ("tip_x", "tip_y", "tip_angle"):
+            assert r[name][i] == pytest.approx(s[name][0], abs=1e-10 * 0.087), (name, v)
+    assert r["tip_y"][2] > 0.01  # it bent
 
 
 def test_bad_case_cell_is_refused(guide_case):

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .base import CellKind
+from .base import CONNECTIONS, END_NODE, CellKind
 
 __all__ = ["AncfCell"]
 
@@ -16,9 +16,16 @@ class AncfCell(CellKind):
     """
 
     name = "ancf"
+    stroke_paths = ("prestep", "offsets")
     summary = "one ANCF cable element per cell"
-    limits = "coarse meshes lock in strongly bent states: use >= 8 elements for large deflections"
+    end_kind = END_NODE
+    limits = ("coarse meshes lock in strongly bent states: use >= 8 elements for large deflections; in a mechanism "
+              "a cantilever only (base welded to the ground, tip free)")
 
-    def mechanism_refusal(self) -> str | None:
-        return ("the ancf cell is built for the lone actuator only (its end slopes are not joined to rigid "
-                "bodies); use cell='beam' (geometrically exact elements) in a mechanism")
+    def end_refusal(self, end: str, connection: str) -> str | None:
+        """A cantilever only: the base welded to the ground, the tip free."""
+        if (end, connection) in (("base", "ground"), ("tip", "free")):
+            return None
+        return (f"the ancf cell joins a mechanism as a cantilever only (base welded to the ground, tip free; its "
+                f"end slopes are not joined to rigid bodies), got its {end} {CONNECTIONS[connection]}; use "
+                "cell='beam' (geometrically exact elements) for other end connections")

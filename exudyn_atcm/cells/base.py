@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE"]
+__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS"]
 
 #: The bender's end is an interface body of its own (rigid cells).
 END_BODY = "body"
@@ -20,6 +20,9 @@ END_BODY = "body"
 END_CHAIN = "chain"
 #: The bender's end is a node of the discretisation (beam elements): welded to what it joins.
 END_NODE = "node"
+
+#: How a bender end can be connected in a mechanism (see :meth:`CellKind.end_refusal`), in words.
+CONNECTIONS = {"ground": "welded to the ground", "free": "free", "joined": "joined to other parts"}
 
 
 class CellKind:
@@ -55,6 +58,11 @@ class CellKind:
         (``None``: not measured; no run-time estimate).
     limits : str
         Known limits, stated in the documentation.
+    stroke_paths : tuple of str
+        How the stroke can reach the Exudyn model (an internal choice that tests compare):
+        ``"prestep"`` (the default: written in the pre-step hook as torques, offsets or loads),
+        ``"offsets"`` (as every spring's or element's rest angle or reference curvature),
+        ``"user_function"`` (returned by Exudyn user functions at the step's time).
     static_tolerances : (float, float) or None
         Absolute [SI: N, N m] and relative Newton tolerances of a static solve of a chain of
         these cells, when the package defaults (absolute 1e-8) are not right for it
@@ -72,10 +80,26 @@ class CellKind:
     cost_per_step: ClassVar[tuple[float, float, float] | None] = None
     limits: ClassVar[str] = ""
     static_tolerances: ClassVar[tuple[float, float] | None] = None
+    stroke_paths: ClassVar[tuple[str, ...]] = ("prestep", "offsets", "user_function")
 
     def mechanism_refusal(self) -> str | None:
         """Why a bender of this kind cannot be part of a :class:`~exudyn_atcm.Mechanism` (``None``: it can)."""
         return None
+
+    def end_refusal(self, end: str, connection: str) -> str | None:
+        """Why a bender end of this kind cannot have ``connection`` in a mechanism (``None``: it can).
+
+        ``end`` is ``"base"`` or ``"tip"``; ``connection`` is ``"ground"`` (welded to the ground),
+        ``"free"`` (nothing attached) or ``"joined"`` (anything else: a pin, a slider, a weld to
+        another part).  Every end connection is allowed by default.
+        """
+        return None
+
+    def check_stroke_path(self, stroke_path: str) -> None:
+        """Refuse a ``stroke_path`` this kind cannot realise (``ValueError`` naming the allowed ones)."""
+        if stroke_path not in self.stroke_paths:
+            allowed = " or ".join(repr(p) for p in self.stroke_paths)
+            raise ValueError(f"stroke_path must be {allowed} for the {self.name} cell, got {stroke_path!r}")
 
     def tip_load_refusal(self) -> str | None:
         """Why a lone actuator of this kind refuses a tip load (``None``: it carries one)."""

@@ -17,6 +17,7 @@ class BeamCell(CellKind):
     """
 
     name = "beam"
+    stroke_paths = ("prestep", "offsets")
     summary = "one geometrically exact beam element per cell"
     end_kind = END_NODE
     joint_label = "beam nodes"

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..theory import ritz_beam
-from .base import CellKind
+from .base import CONNECTIONS, END_NODE, CellKind
 
 __all__ = ["RitzCell"]
 
@@ -21,13 +21,15 @@ class RitzCell(CellKind):
     """
 
     name = "ritz"
+    stroke_paths = ("prestep",)
     summary = "assumed modes of the rotation field (one dense system)"
     carries_tip_load = False
     chain_of_cells = False
+    end_kind = END_NODE
     # bench_run_cost.py: 8.6, 12.6 and 26 µs per step at 3, 10 and 40 modes
     cost_per_step = (9e-6, 0.5e-6, 0.0)
     limits = ("dynamics linearised about the quasi-static arc (a warning above 0.05 rad of dynamic tip "
-              "rotation); no tip loads; lone actuators only")
+              "rotation); no tip loads; in a mechanism a cantilever only (base welded to the ground, tip free)")
 
     def check_run(self, result: Any, actuator: Any, stacklevel: int = 2) -> None:
         """Warn when the dynamic tip rotation leaves the quasi-static arc by more than 0.05 rad."""
@@ -38,6 +40,10 @@ class RitzCell(CellKind):
         return ("the ritz cell refuses tip loads (the model leaves out a load's geometric stiffness); "
                 "use cell='beam' or cell='ancf' for them")
 
-    def mechanism_refusal(self) -> str | None:
-        return ("the ritz cell is built for the lone actuator only (no end connections or loads yet); "
-                "use cell='rigid' or cell='beam' in a mechanism")
+    def end_refusal(self, end: str, connection: str) -> str | None:
+        """A cantilever only: the base welded to the ground, the tip free."""
+        if (end, connection) in (("base", "ground"), ("tip", "free")):
+            return None
+        return (f"the ritz cell joins a mechanism as a cantilever only (base welded to the ground, tip free: the "
+                f"modes are clamped at the base and the model has no end connections), got its {end} "
+                f"{CONNECTIONS[connection]}; use cell='beam' (geometrically exact elements) for other end connections")

@@ -1,13 +1,16 @@
 """The Exudyn layer: the only part of the package that imports and calls Exudyn.
 
-Mechanisms (:class:`~exudyn_atcm.mechanism.Mechanism`) are built into a ``MainSystem`` by
-:mod:`~exudyn_atcm.mbs.builder` (six-bar chains in :mod:`~exudyn_atcm.mbs.six_bar`, beam
-chains in :mod:`~exudyn_atcm.mbs.beam_chain`), with step hooks shared with user code, read-outs
-and linearisation; the lone :class:`~exudyn_atcm.mechanism.actuator.BendingActuator` is built by
-:mod:`~exudyn_atcm.mbs.actuator_chains` (rigid and six-bar chains) and its beam, ANCF and
-kinematic-tree cells.  Both paths share the solver settings
-(:mod:`~exudyn_atcm.mbs.solver_settings`), the solver runs (:mod:`~exudyn_atcm.mbs.solver_runs`)
-and the constrained eigenfrequencies (:mod:`~exudyn_atcm.mbs.eigen`).
+One builder (:mod:`~exudyn_atcm.mbs.builder`) adds a :class:`~exudyn_atcm.mechanism.Mechanism`
+to a ``MainSystem``; a lone :class:`~exudyn_atcm.mechanism.actuator.BendingActuator` is built as
+the one-bender mechanism it is.  Each cell kind adds its bender through the realisation
+registered for its class (:mod:`~exudyn_atcm.mbs.cells`): rigid chains
+(:mod:`~exudyn_atcm.mbs.rigid_chain`), six-bar chains (:mod:`~exudyn_atcm.mbs.six_bar`), beam
+chains (:mod:`~exudyn_atcm.mbs.beam_chain`), ANCF chains (:mod:`~exudyn_atcm.mbs.ancf_chain`)
+and assumed modes (:mod:`~exudyn_atcm.mbs.ritz_bender`).  Around the builder: the model
+handle with its read-outs (:mod:`~exudyn_atcm.mbs.model`, :mod:`~exudyn_atcm.mbs.recording`),
+step hooks shared with user code, the solver settings and runs
+(:mod:`~exudyn_atcm.mbs.solver_settings`, :mod:`~exudyn_atcm.mbs.solver_runs`) and the
+constrained eigenfrequencies (:mod:`~exudyn_atcm.mbs.eigen`).
 
 On import it registers its degrees-of-freedom count with the description layer
 (:mod:`exudyn_atcm.mechanism.realisation`), which never imports this one.

@@ -4,7 +4,7 @@ One ``ObjectBeamGeometricallyExact2D`` element per cell (Simo-Reissner beam, lin
 interpolation of position and rotation between two ``NodeRigidBody2D`` nodes) along the
 passive layer's mid-plane, with the laminate's numbers of
 :class:`~exudyn_atcm.model.laminate.Laminate` exactly as the lone actuator's beam cell
-(:mod:`exudyn_atcm.mbs.actuator_beam`): bending stiffness ``EI``, axial and shear stiffness
+: bending stiffness ``EI``, axial and shear stiffness
 ``a1 + a2`` (a practically inextensible, shear-rigid axis: the closed forms are
 Euler-Bernoulli's), mass per length, rotary inertia about the passive mid-plane, and
 stiffness-proportional damping ``beta`` times each stiffness (the bender's ``beta``: its
@@ -25,7 +25,8 @@ with position and rotation.  It joins the rest of the mechanism (see
 Actuation: for a segment ``k`` of uniform laminate the free curvature ``kappa_k(t)`` enters
 as two end torques, ``+EI kappa_k`` on its end node and ``-EI kappa_k`` on its start node (the
 element's bending moment is ``EI (k - kappa)``; the virtual work of ``EI kappa`` integrates to
-``EI kappa (phi_end - phi_start)``, see :mod:`exudyn_atcm.mbs.actuator_beam`).  The torques of
+``EI kappa (phi_end - phi_start)``, the same equations as a reference curvature ``kappa`` in
+every element, which the ``"offsets"`` stroke path writes instead).  The torques of
 all segments meeting at a node are summed per drive: one ``LoadTorqueVector`` per segment
 boundary, written per step.  A node clamped to the ground gets none (its torque goes into
 the clamp).
@@ -99,6 +100,7 @@ def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
     for i, key in enumerate(keys):  # a node's "body": the element ending there (the first for the base)
         model.bodies[key].item = items[max(i - 1, 0)]
     model.cells[bender.name] = keys
+    model.elements[bender.name] = items
     model.beam_benders.add(bender.name)
     # an axial force EA/L_c du resolves positions only to round-off eps L: its residual floor is
     # ~eps (EA/L_c) L; 10x that is the smallest reachable Newton tolerance (as for the lone
@@ -125,6 +127,19 @@ def actuation_torques(model: MechanismModel, bender: Bender, zeros) -> dict[str,
                 out.setdefault(key, zeros())[src] += sign * per_strain
         first = last
     return {key: v for key, v in out.items() if np.any(v != 0.0)}
+
+
+def reference_curvatures(model: MechanismModel, bender: Bender, zeros) -> list[tuple[int, np.ndarray]]:
+    """``(element, free curvature per unit strain of each source [1/m])`` of every actuated element of a
+    beam or ANCF ``bender``: the ``"offsets"`` stroke path writes them as the elements' reference curvature."""
+    per_strain = bender.curvature_sign * bender.laminate.curvature_per_strain
+    out = []
+    for item, k in zip(model.elements[bender.name], bender.cell_segments):
+        if bender.segments[int(k)].drive is not None:
+            coefficient = zeros()
+            coefficient[model.drive_source[bender.drive_name(int(k))]] = per_strain
+            out.append((item, coefficient))
+    return out
 
 
 def weld_node(mbs, node: Body, body: Body, ground_coordinate: int) -> None:

@@ -1,28 +1,31 @@
-"""Adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
+"""The one builder: adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
 
-Six-bar benders are chains between real interface bodies (:mod:`exudyn_atcm.mbs.six_bar`);
-beam benders are chains of beam elements whose end nodes join the groups
-(:mod:`exudyn_atcm.mbs.beam_chain`); the rest of this description is about rigid cells.
+A lone :class:`~exudyn_atcm.BendingActuator` is built here too, as the one-bender mechanism it
+is (:mod:`exudyn_atcm.solve.as_mechanism`).  Each bender's cells are added by the realisation
+registered for its cell kind (:mod:`exudyn_atcm.mbs.cells`): rigid chains
+(:mod:`~exudyn_atcm.mbs.rigid_chain`), six-bar chains between real interface bodies
+(:mod:`~exudyn_atcm.mbs.six_bar`), beam and ANCF chains whose end nodes join the groups
+(:mod:`~exudyn_atcm.mbs.beam_chain`, :mod:`~exudyn_atcm.mbs.ancf_chain`) and assumed modes
+(:mod:`~exudyn_atcm.mbs.ritz_bender`); the rest of this description is about rigid cells.
 
 Model (planar, SI units):
 
 * Every rigid cell of a bender is one body (both layers' mass, the node at the cell's end
-  joint, reference angle = the bender's direction), as in :mod:`exudyn_atcm.mbs.actuator_chains`.
-  Neighbouring cells are joined by a revolute joint and a torsion spring ``2 EI/(L_j + L_{j+1})``
-  (``EI/L_c`` for equal cells).
+  joint, reference angle = the bender's direction).  Neighbouring cells are joined by a
+  revolute joint and a torsion spring ``2 EI/(L_j + L_{j+1})`` (``EI/L_c`` for equal cells).
 * Rigid groups (see :mod:`exudyn_atcm.mbs.layout`) are one body each (summed mass,
   parallel-axis inertia, node at the centre of mass, reference angle 0); the ground group is
   Exudyn's ground.
 * A bender end is an interface joined to its end cell by the end spring ``2 EI/L_c``
   (half a cell).  A *hinge* joins two bodies by a revolute joint at the point and one
   torsion spring-damper made of the compliances in series on the way: a virtual interface's
-  end spring, a pin's spring (0: free, weld: rigid), the other end spring.
-* Actuation: every spring's rest angle is the free rotation of the half cells it stands for.
-  The rest-angle moment ``k theta0(strains)`` is applied as a torque pair on the spring's two
-  bodies; the pairs are summed per body and drive, giving one ``LoadTorqueVector`` per body
-  whose net torque is not identically zero.  For a uniform cantilever that is one torque on
-  the last cell, exactly as in :mod:`exudyn_atcm.mbs.actuator_chains`.
-
+  end spring, a pin's spring (0: free, weld: rigid), the other end spring.  A free tip's
+  interface is massless, so its angle is the last cell's angle plus half a cell's free
+  rotation (the tip angle of a lone actuator).
+* Actuation: every spring's rest angle is the free rotation of the half cells it stands for,
+  realised as torque pairs summed per body (or as the springs' offsets, or user functions:
+  :mod:`exudyn_atcm.mbs.actuation`).  For a uniform cantilever that is one torque ``EI kappa``
+  on the last cell.
 * Damping: every spring ``k`` of a bender gets ``beta k`` (series springs of one ``beta`` keep
   it); with a mass-proportional part ``alpha`` every laminate mass (cells, interface masses,
   flexure segments; not links) gets a force at its own centre and a torque
@@ -45,21 +48,21 @@ from ..mechanism.connections import Pin, Slider, joint_label
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
-from .layout import part_of, rigid_groups
+from .actuation import realise_actuation
+from .layout import check_end_connections, part_of, rigid_groups
 from .items import NOVIS as _NOVIS
 from .items import add_body as _add_body
 from .items import local_point
 from .items import position_marker as _marker_position
 from .items import rigid_marker as _rigid_marker
-from .items import rotation_marker as _rot_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
 from .graphics import part_graphics, shift_graphics
 from .loads import add_loads
 from ..cells import END_CHAIN, END_NODE
-from . import rigid_chain  # noqa: F401 - registers the rigid cell's realisation
+from . import ancf_chain, rigid_chain, ritz_bender  # noqa: F401 - register the cells' realisations
 from .cells import add_mechanism_bender
 from .six_bar import six_bar_end_mass
-from .beam_chain import actuation_torques, beam_end_key, weld_node
+from .beam_chain import beam_end_key, weld_node
 from .mass_damping import MassDampers, part_mass_damping_factor
 
 
@@ -67,11 +70,12 @@ from .mass_damping import MassDampers, part_mass_damping_factor
 # ---------------------------------------------------------------------------- building
 
 class _Builder:
-    def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False) -> None:
+    def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False,
+                 stroke_path: str = "prestep") -> None:
         self.mbs = mbs
         self.mech = mech
         self.free_end_bodies = free_end_bodies
-        self.model = MechanismModel(mechanism=mech, mbs=mbs)
+        self.model = MechanismModel(mechanism=mech, mbs=mbs, stroke_path=stroke_path)
         self.ground_item = ground_item
         sources: list = []
         for name, drive in mech.drives.items():
@@ -95,6 +99,7 @@ class _Builder:
     def build(self) -> MechanismModel:
         mbs, mech, model = self.mbs, self.mech, self.model
         for bender in mech.benders:
+            bender.cell.check_stroke_path(model.stroke_path)
             if bender.cell.needs_active_layer and bender.active is None:
                 raise MechanismError(
                     f"bender {bender.name!r}: the {bender.cell.name} cell models two layers; a passive strip "
@@ -109,6 +114,7 @@ class _Builder:
         six_bar = {b.name for b in mech.benders if b.cell.end_kind == END_CHAIN}
         beam = {b.name for b in mech.benders if b.cell.end_kind == END_NODE}
         self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar, beam)
+        check_end_connections(mech, self.groups, self.group_of, self.free_end_bodies)
         self._group_bodies()
         for bender in mech.benders:
             self._bender_cells(bender)
@@ -264,7 +270,12 @@ class _Builder:
                     key = beam_end_key(bender, end)
                     node, body = model.bodies[key], model.bodies[g.key]
                     if body is not node:
-                        weld_node(self.mbs, node, body, self.gcoord)
+                        if node.pose_function is not None:  # assumed modes: clamped at the base by the modes
+                            pass
+                        elif node.slope_at is not None:  # an ANCF base (the cell allows the ground only)
+                            ancf_chain.clamp_slope_node(self.mbs, node, self.gcoord)
+                        else:
+                            weld_node(self.mbs, node, body, self.gcoord)
                         if body.node is None:
                             self._clamped.add(key)
                     model.ends[label] = EndReadout("body", body=key)
@@ -369,66 +380,30 @@ class _Builder:
 
     # ---------------------------------------------------------------- springs of the hinges, actuation torques
     def _realise_hinges(self) -> None:
-        mbs, model = self.mbs, self.model
-        per_body: dict[str, np.ndarray] = {}
-        for h in model.hinges:
-            if len(h.elements) == 1:
-                e = h.elements[0]
-                h.stiffness, damping, h.moment = e.stiffness, e.damping, e.moment
-            else:
-                finite = [e for e in h.elements if math.isfinite(e.stiffness)]
-                if any(e.stiffness == 0.0 for e in finite):
-                    h.stiffness, h.moment = 0.0, self.zeros()
-                    dampers = [e.damping for e in finite if e.stiffness == 0.0]
-                    damping = sum(dampers)
-                else:
-                    h.stiffness = 1.0 / sum(1.0 / e.stiffness for e in finite)
-                    h.moment = h.stiffness * sum((e.theta for e in h.elements), self.zeros())
-                    # series Kelvin-Voigt elements with equal beta = d/k give beta k_s; in general
-                    # k_s^2 sum(d_i / k_i^2) (exact for equal beta, an approximation otherwise)
-                    damping = h.stiffness**2 * sum(e.damping / e.stiffness**2 for e in finite)
-            if h.stiffness > 0.0 or damping > 0.0:
-                ra = _rot_marker(mbs, model.bodies[h.a], self.gcoord)
-                rb = _rot_marker(mbs, model.bodies[h.b], self.gcoord)
-                h.spring_item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
-                    markerNumbers=[ra, rb], stiffness=h.stiffness, damping=damping, visualization=_NOVIS))
-                model.springs.append((h.spring_item, h.stiffness, "damping"))
-            if np.any(h.moment != 0.0):
-                per_body[h.b] = per_body.get(h.b, self.zeros()) + h.moment
-                per_body[h.a] = per_body.get(h.a, self.zeros()) - h.moment
-        for bender in self.mech.benders:
-            if bender.cell.end_kind == END_NODE:  # the segments' end torques EI kappa on the beam nodes
-                for key, coef in actuation_torques(model, bender, self.zeros).items():
-                    if key not in self._clamped:
-                        per_body[key] = per_body.get(key, self.zeros()) + coef
-        scale = max((float(np.max(np.abs(v))) for v in per_body.values()), default=0.0)
-        for key, coef in per_body.items():
-            body = model.bodies[key]
-            if body.node is None or float(np.max(np.abs(coef))) <= 1e-12 * scale:
-                continue  # ground, or moments that cancel (inner cells of one drive)
-            marker = _rigid_marker(mbs, body, (0.0, 0.0))
-            load = mbs.AddLoad(ii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
-            model.torque_loads.append((load, coef))
+        """The hinges' springs and how the strains reach the system (:mod:`~exudyn_atcm.mbs.actuation`)."""
+        realise_actuation(self.mbs, self.mech, self.model, self.gcoord, self.zeros, self._clamped)
+
 
 def _flipped(el: Element) -> Element:
     return Element(el.stiffness, el.damping, -el.theta, -el.moment)
 
 
 def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,
-                  free_end_bodies: bool = False) -> MechanismModel:
+                  free_end_bodies: bool = False, stroke_path: str = "prestep") -> MechanismModel:
     """Add the items of ``mechanism`` to ``mbs`` (not assembled); ``mechanism.check()`` must have passed.
 
-    ``free_end_bodies=True`` gives free bender ends small interface bodies (for user joints).
+    ``free_end_bodies=True`` gives free bender ends small interface bodies (for user joints);
+    ``stroke_path`` chooses how the strains reach the system (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`).
     """
-    return _Builder(mbs, mechanism, ground_item, free_end_bodies).build()
+    return _Builder(mbs, mechanism, ground_item, free_end_bodies, stroke_path).build()
 
 
-def build(mechanism: Mechanism) -> MechanismModel:
+def build(mechanism: Mechanism, stroke_path: str = "prestep") -> MechanismModel:
     """A new Exudyn system holding ``mechanism``, assembled."""
     mechanism.check()
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    model = add_mechanism(mbs, mechanism)
+    model = add_mechanism(mbs, mechanism, stroke_path=stroke_path)
     model.SC = SC
     # static tolerances of the cells when every bender's kind sets them (rigid: relative to the
     # deformation) and no part of the model set its own (beam elements' round-off floor)

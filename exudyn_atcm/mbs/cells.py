@@ -1,16 +1,18 @@
-"""The Exudyn realisation of each cell kind, registered by class (generic functions).
+"""The Exudyn realisation of each cell kind, registered by class (a generic function).
 
-:func:`add_actuator_cells` builds a lone actuator's chain of a given kind;
-:func:`add_mechanism_bender` adds a mechanism bender's cells.  Both dispatch on the class of the
+:func:`add_mechanism_bender` adds a bender's cells to the system the builder
+(:mod:`~exudyn_atcm.mbs.builder`) is making, for a mechanism and for a lone actuator alike
+(the actuator is built as a one-bender mechanism).  It dispatches on the class of the
 :class:`~exudyn_atcm.cells.CellKind` (``functools.singledispatch``), so a subclass of a kind,
-also one defined outside the package, is built like its parent; a new kind registers its
-own builders::
+also one defined outside the package, is built like its parent; a new kind registers its own
+realisation::
 
-    @add_actuator_cells.register
-    def _(cell: MyCell, SC, mbs, actuator, stroke_path, tip_force): ...
+    @add_mechanism_bender.register
+    def _(cell: MyCell, builder, bender): ...
 
-The package's own realisations are registered by :mod:`~exudyn_atcm.mbs.actuator_chains` and
-:mod:`~exudyn_atcm.mbs.builder`.
+The package's realisations are in :mod:`~exudyn_atcm.mbs.rigid_chain`,
+:mod:`~exudyn_atcm.mbs.six_bar`, :mod:`~exudyn_atcm.mbs.beam_chain`,
+:mod:`~exudyn_atcm.mbs.ancf_chain` and :mod:`~exudyn_atcm.mbs.ritz_bender`.
 """
 
 from __future__ import annotations
@@ -20,20 +22,7 @@ from typing import Any
 
 from ..cells import CellKind
 
-__all__ = ["add_actuator_cells", "add_mechanism_bender"]
-
-
-@singledispatch
-def add_actuator_cells(cell: CellKind, SC: Any, mbs: Any, actuator: Any, stroke_path: str, tip_force: Any) -> Any:
-    """Add a lone actuator made of ``cell`` to ``mbs``; returns its model handles (not assembled).
-
-    Raises
-    ------
-    ValueError
-        If no realisation is registered for the class of ``cell``.
-    """
-    raise ValueError(f"cell kind {cell.name!r} ({type(cell).__name__}) has no Exudyn realisation for a lone "
-                     "actuator: register one with exudyn_atcm.mbs.cells.add_actuator_cells.register")
+__all__ = ["add_mechanism_bender"]
 
 
 @singledispatch
@@ -45,5 +34,5 @@ def add_mechanism_bender(cell: CellKind, builder: Any, bender: Any) -> None:
     ValueError
         If no realisation is registered for the class of ``cell``.
     """
-    raise ValueError(f"cell kind {cell.name!r} ({type(cell).__name__}) has no Exudyn realisation in a mechanism: "
-                     "register one with exudyn_atcm.mbs.cells.add_mechanism_bender.register")
+    raise ValueError(f"cell kind {cell.name!r} ({type(cell).__name__}) has no Exudyn realisation: register one"
+                     " with exudyn_atcm.mbs.cells.add_mechanism_bender.register")

@@ -1,4 +1,4 @@
-"""Small Exudyn item helpers shared by the mechanism builders (bodies, markers)."""
+"""Small Exudyn item helpers of the builder and the cells' realisations (bodies, markers, hidden items)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,15 @@ from typing import Any
 import numpy as np
 from exudyn import itemInterface as ii
 
-from .actuator_items import NOVIS, body_position_marker
 from .model import Body
+
+#: Visualisation settings of items that are not drawn.
+NOVIS = {'show': False, 'drawSize': -1., 'color': [-1., -1., -1., -1.]}
+
+
+def body_position_marker(mbs, body: int, local) -> int:
+    """A ``MarkerBodyPosition`` at ``local`` [m] in the frame of the body with item number ``body``."""
+    return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=body, localPosition=[float(local[0]), float(local[1]), 0.0]))
 
 
 def _at_node(body: Body, local) -> bool:
@@ -33,6 +40,8 @@ def position_marker(mbs, body: Body, local) -> int:
 def rigid_marker(mbs, body: Body, local) -> int:
     """A ``MarkerBodyRigid`` at ``local`` [m] in ``body``'s frame (a ``MarkerNodeRigid`` at a beam node)."""
     if _at_node(body, local):
+        if body.slope_at is not None:  # an ANCF node has no rotation coordinate: the element's frame there
+            return mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[body.slope_at, 0.0, 0.0]))
         return mbs.AddMarker(ii.MarkerNodeRigid(nodeNumber=body.node))
     return mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body.item, localPosition=[float(local[0]), float(local[1]), 0.0]))
 

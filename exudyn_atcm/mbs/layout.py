@@ -28,7 +28,7 @@ from ..mechanism.bender import Bender
 from ..mechanism.connections import Pin, Slider, Weld
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
-from ..mechanism.points import GROUND, PointRef
+from ..mechanism.points import GROUND, MechanismError, PointRef
 
 
 def part_of(mech: Mechanism, ref: PointRef | None) -> str:
@@ -125,3 +125,35 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
         else:
             g.kind = "interface-body"
     return groups, group_of
+
+
+def check_end_connections(mech: Mechanism, groups: dict[str, Group], group_of: dict[str, str],
+                          free_end_bodies: bool = False) -> None:
+    """Refuse the end connections and loads a bender's cell kind cannot realise, in the cell's own words
+    (:meth:`~exudyn_atcm.cells.CellKind.end_refusal`, :meth:`~exudyn_atcm.cells.CellKind.tip_load_refusal`).
+
+    Raises
+    ------
+    MechanismError
+        Naming the bender and the end or the load.
+    """
+    for bender in mech.benders:
+        for end in ("base", "tip"):
+            part = f"{bender.name}#{end}"
+            g = groups[group_of[part]]
+            if g.kind == "ground":
+                connection = "ground"
+            elif g.parts == [part] and not g.joints and not free_end_bodies:
+                connection = "free"
+            else:
+                connection = "joined"
+            refusal = bender.cell.end_refusal(end, connection)
+            if refusal is not None:
+                raise MechanismError(f"bender {bender.name!r}: {refusal}")
+    loaded = [(f.name, f.point) for f in mech.forces] + [(s.name, s.p) for s in mech.springs] + \
+        [(s.name, s.q) for s in mech.springs] + [(s.name, s.point) for s in mech.stops]
+    for name, ref in loaded:
+        comp = mech.components.get(ref.component) if ref is not None else None
+        refusal = comp.cell.tip_load_refusal() if isinstance(comp, Bender) else None
+        if refusal is not None:
+            raise MechanismError(f"{name!r} acts at {ref} of bender {comp.name!r}: {refusal}")

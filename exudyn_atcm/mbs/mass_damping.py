@@ -23,7 +23,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..mechanism.points import GROUND
-from .actuator_items import NOVIS
+from .items import NOVIS
 from .items import rotation_marker as body_rotation_marker
 from .model import Body
 

@@ -32,6 +32,26 @@ class Body:
     rot_marker: Any = None
     ode2: int = -1                 # first ODE2 index (set after Assemble)
     node_only: bool = False
+    #: ANCF node (position and slope): orientation markers go on the element ``item`` at local x
+    #: ``element_x`` [m], and the angle is the slope's
+    slope_at: float | None = None
+    #: pose rows (n, 3) from rows of ODE2 coordinates, for bodies whose pose is not their node's
+    #: first three coordinates (assumed-modes benders)
+    pose_function: Any = None
+
+    def pose_rows(self, q: np.ndarray) -> np.ndarray:
+        """Pose ``(x, y, angle)`` rows [m, m, rad] from rows ``q`` of ODE2 coordinates (shape (n, nODE2))."""
+        if self.node is None:
+            return np.tile(self.reference, (q.shape[0], 1))
+        if self.pose_function is not None:
+            return self.pose_function(q)
+        if self.slope_at is not None:
+            c = q[:, self.ode2:self.ode2 + 4]
+            a = self.reference[2]
+            slope = np.arctan2(math.sin(a) + c[:, 3], math.cos(a) + c[:, 2])
+            angle = a + np.remainder(slope - a + math.pi, 2.0 * math.pi) - math.pi
+            return np.column_stack([self.reference[0] + c[:, 0], self.reference[1] + c[:, 1], angle])
+        return self.reference + q[:, self.ode2:self.ode2 + 3]
 
 
 @dataclass
@@ -130,7 +150,20 @@ class MechanismModel:
     ramp_loads: bool = True
     load_factor: float = 1.0
     time: float = 0.0
-    uf_strain: Any = None
+    # how the stroke reaches the system (see exudyn_atcm.cells.CellKind.stroke_paths)
+    stroke_path: str = "prestep"
+    # "offsets": (item, parameter, coefficient per source) written as coefficient @ strains
+    offset_items: list = field(default_factory=list)
+    # "user_function": the strains [-] per source at the solver's time t (default: the strains last set)
+    uf_strains: Any = None
+    # beam and ANCF benders: their elements, base first
+    elements: dict[str, list[int]] = field(default_factory=dict)
+    # cells whose actuation is not a torque or an offset (assumed modes): called with the strains
+    strain_writers: list = field(default_factory=list)
+    # called with the strains before a linearisation about the current state
+    linearisation_hooks: list = field(default_factory=list)
+    # cells' changes to the dynamic solver settings (before the user's)
+    settings_adjusters: list = field(default_factory=list)
     _torque_matrix: np.ndarray | None = None  # rows: the torque_loads' coefficients per source
     _written_factor: float | None = None       # load factor at which every load was last written
     _connector_plan: list | None = None         # (Exudyn item, stop normal or None) per spring and stop
@@ -148,8 +181,29 @@ class MechanismModel:
                 set_load(load, "loadVector", [0.0, 0.0, torque])
         for item, factor, source in self.motor_offsets:
             self.mbs.SetObjectParameter(item, "offset", factor * float(strains[source]))
+        for item, parameter, coefficient in self.offset_items:
+            self.mbs.SetObjectParameter(item, parameter, float(coefficient @ strains))
+        for write in self.strain_writers:
+            write(strains)
         if self.loads:
             self._write_loads(varying_only=True)
+
+    def strains_at(self, t: float) -> np.ndarray:
+        """Strains [-] per source for the user functions of the ``"user_function"`` stroke path at time ``t`` [s]."""
+        if self.uf_strains is not None:
+            return self.uf_strains(t)
+        return self.strains if self.strains is not None else np.zeros(len(self.sources))
+
+    def adjust_settings(self, settings: Any) -> None:
+        """The cells' changes to the dynamic solver settings (before the user's)."""
+        for adjust in self.settings_adjusters:
+            adjust(settings)
+
+    def before_linearisation(self) -> None:
+        """Prepare an eigenvalue analysis about the current state (the cells' hooks, with the current strains)."""
+        strains = self.strains if self.strains is not None else np.zeros(len(self.sources))
+        for hook in self.linearisation_hooks:
+            hook(strains)
 
     def set_path(self, start: np.ndarray, end: np.ndarray, ramp_loads: bool) -> None:
         """Static path: strains go from ``start`` to ``end`` with the path parameter; loads ramp if asked."""
@@ -206,13 +260,7 @@ class MechanismModel:
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
         """Pose (x, y, angle) of every body for rows of ODE2 coordinates ``q`` (shape (n, nODE2))."""
         q = np.atleast_2d(q)
-        out = {}
-        for key, body in self.bodies.items():
-            if body.node is None:
-                out[key] = np.tile(body.reference, (q.shape[0], 1))
-            else:
-                out[key] = body.reference + q[:, body.ode2:body.ode2 + 3]
-        return out
+        return {key: body.pose_rows(q) for key, body in self.bodies.items()}
 
     def point_positions(self, poses: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Position (x, y) rows of every component point (``"comp.point"``)."""

@@ -103,6 +103,28 @@ class RowLayout:
                       parameters=self.model.mechanism.parameters(), info=info)
 
 
+def cell_rotations(model: MechanismModel, q: np.ndarray, strains: np.ndarray) -> dict[str, float]:
+    """Largest rotation [rad] of a cell relative to its neighbour (the first: to the bender's base), per bender
+    whose cells form a chain (:attr:`~exudyn_atcm.cells.CellKind.chain_of_cells`), over rows ``q`` of ODE2
+    coordinates with the rows ``strains`` of the sources' strains."""
+    q = np.atleast_2d(q)
+    out: dict[str, float] = {}
+    if q.shape[0] == 0:
+        return out
+    poses = model.poses(q)
+    for bender in model.mechanism.benders:
+        if not bender.cell.chain_of_cells:
+            continue
+        cells = np.column_stack([model.rotation(poses, key) for key in model.cells[bender.name]])
+        if bender.name in model.beam_benders:  # a cell's angle: the mean of its two nodes' rotations
+            cells = 0.5 * (cells[:, :-1] + cells[:, 1:])
+        base = model.end_rotation(poses, strains, f"{bender.name}.base")
+        # the first cell's axis sits halfway between the base and its end: it turns twice its angle
+        padded = np.column_stack([2.0 * base - cells[:, 0], cells])
+        out[bender.name] = float(np.max(np.abs(np.diff(padded, axis=1))))
+    return out
+
+
 def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarray], float]:
     """A function ``read(strains) -> float`` giving result column ``column`` for the model's current state.
 
@@ -132,7 +154,7 @@ def measurement_reader(model: MechanismModel, column: str) -> Callable[[np.ndarr
         axis_index = 0 if axis == "x" else 1
 
         def read_point(strains: np.ndarray) -> float:
-            pose = body.reference if body.node is None else body.reference + model.coordinates()[body.ode2:body.ode2 + 3]
+            pose = body.pose_rows(np.atleast_2d(model.coordinates()))[0]
             c, s = np.cos(pose[2]), np.sin(pose[2])
             xy = (pose[0] + c * local[0] - s * local[1], pose[1] + s * local[0] + c * local[1])
             return float(xy[axis_index])

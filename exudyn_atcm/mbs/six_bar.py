@@ -1,6 +1,6 @@
 """The paper's six-bar cell (its Fig. 2) inside a mechanism: a chain between two end bodies.
 
-Per cell ``j`` (as :mod:`exudyn_atcm.mbs.actuator_chains` builds a lone actuator): the passive bar,
+Per cell ``j`` (for a lone actuator as for any bender): the passive bar,
 the active layer as three bodies A1-A2-A3, revolute joints with torsion springs
 ``2 E_i I_i / L_c`` to the interfaces on both layers, the prismatic motor A1-A2 (its offset
 is the stroke ``strain * L_c``, written per step) and the prismatic joint A2-A3 with the axial
@@ -142,16 +142,29 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         m_motor, m_spring = (mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
             bodyNumbers=[act[a].item, act[b].item], localPosition0=[0.5 * la, 0.0, 0.0],
             localPosition1=[-0.5 * la, 0.0, 0.0], axis0=[1.0, 0.0, 0.0])) for a, b in ((0, 1), (1, 2)))
-        motor = mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[ground_coordinate, m_motor], offset=0.0,
-                                                           visualization=NOVIS))
         drive = bender.segments[segment[j]].drive
-        if drive is not None:
-            model.motor_offsets.append((motor, float(lc), model.drive_source[bender.drive_name(int(segment[j]))]))
+        source = model.drive_source[bender.drive_name(int(segment[j]))] if drive is not None else None
+        if source is not None and model.stroke_path == "user_function":
+            mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[ground_coordinate, m_motor],
+                                                       offsetUserFunction=_motor_offset(model, float(lc), source),
+                                                       visualization=NOVIS))
+        else:
+            motor = mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[ground_coordinate, m_motor],
+                                                               offset=0.0, visualization=NOVIS))
+            if source is not None:
+                model.motor_offsets.append((motor, float(lc), source))
         spring = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
             markerNumbers=[ground_coordinate, m_spring], stiffness=k1, damping=beta * k1, visualization=NOVIS))
         model.springs.append((spring, k1, "damping"))
         prev_lower, prev_upper, prev_rot = lower, upper_m, rot
     return bars
+
+
+def _motor_offset(model: MechanismModel, factor: float, source: int) -> Callable:
+    """The motor's offset user function: the stroke ``factor * strain`` of ``source`` at the solver's ``t``."""
+    def offset(mbs_, t, item_number, offset_):
+        return factor * float(model.strains_at(t)[source])
+    return offset
 
 
 @add_mechanism_bender.register

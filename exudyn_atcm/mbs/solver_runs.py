@@ -1,10 +1,10 @@
-"""Exudyn solver runs shared by the actuator and the mechanism paths.
+"""Exudyn solver runs of a built model.
 
 Static solve (:func:`run_static`), dynamic relaxation (:func:`run_relaxation`, the fallback
 when the static Newton iteration fails), time integration (:func:`run_dynamic`), state resets
 and eigenfrequencies about the current state.  A run works on any built model with the
-attributes of :class:`SolvableModel` (:class:`~exudyn_atcm.mbs.actuator_model.BuiltModel`,
-:class:`~exudyn_atcm.mbs.model.MechanismModel`); Exudyn's failures are raised as
+attributes of :class:`SolvableModel` (:class:`~exudyn_atcm.mbs.model.MechanismModel`);
+Exudyn's failures are raised as
 :class:`ExudynFailure` with the time or load factor reached.
 """
 
@@ -24,7 +24,7 @@ class SolvableModel(Protocol):
     """What the runs read and call on a built model."""
 
     mbs: Any
-    uf_strain: Any
+    uf_strains: Any
     springs: list
     newton_tolerance_floor: float
     static_relative_tolerance: float | None
@@ -74,8 +74,8 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
         settings.staticSolver.newton.absoluteTolerance = model.static_absolute_tolerance
     mbs.SetPreStepUserFunction(pre)
     model.set_strain(strain_at_factor(0.0))
-    saved_uf = model.uf_strain
-    model.uf_strain = lambda t: strain_at_factor(min(max(t, 0.0), 1.0))
+    saved_uf = model.uf_strains  # the user functions read the strains the pre-step hook set
+    model.uf_strains = None
     solver = exu.MainSolverStatic()
     quiet_console()
     try:
@@ -86,7 +86,7 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
     finally:
         restore_console()
         mbs.SetPreStepUserFunction(0)
-        model.uf_strain = saved_uf
+        model.uf_strains = saved_uf
     if not ok:
         raise ExudynFailure("static Newton iteration did not converge", _solver_time(solver))
     # the static solver ends at load factor 1: make sure the final strain is exact
@@ -172,8 +172,8 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
     mbs.SetPreStepUserFunction(pre)
     mbs.SetPostStepUserFunction(post)
     solver = exu.MainSolverImplicitSecondOrder()
-    saved_uf = model.uf_strain
-    model.uf_strain = lambda t: ramp(t) * strain
+    saved_uf = model.uf_strains
+    model.uf_strains = None
     quiet_console()
     try:
         ok = solver.SolveSystem(mbs, settings)
@@ -183,7 +183,7 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
         restore_console()
         mbs.SetPreStepUserFunction(0)
         mbs.SetPostStepUserFunction(0)
-        model.uf_strain = saved_uf
+        model.uf_strains = saved_uf
         for item, name, d in saved:
             mbs.SetObjectParameter(item, name, d)
         model.scale_loads(1.0)

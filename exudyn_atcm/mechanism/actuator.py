@@ -1,9 +1,10 @@
 """The piezo bending actuator: a chain of simulation cells (paper Figs. 2, 3, 11).
 
 This module holds the geometry, the stiffness calibration, masses and damping of the
-actuator, as plain numbers.  The Exudyn model is built from them in
-:mod:`exudyn_atcm.mbs.actuator_chains`; the closed-form references the tests compare against are
-in :mod:`exudyn_atcm.theory.beam`.
+actuator, as plain numbers.  The Exudyn model is built from them by
+:mod:`exudyn_atcm.mbs.builder` as the one-bender mechanism the actuator is
+(:mod:`exudyn_atcm.solve.as_mechanism`); the closed-form references the tests compare against
+are in :mod:`exudyn_atcm.theory.beam`.
 
 Coordinates: ``x`` runs along the undeformed actuator from the clamp, ``y`` across it.
 The passive layer's mid-plane lies on ``y = 0``; the active layer's mid-plane lies at

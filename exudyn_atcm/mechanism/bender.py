@@ -86,11 +86,12 @@ class Bender(MaterialDamped):
         Base point in the reference pose [m] (default the origin).
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
-    cell : {"rigid", "six-bar", "beam"} or CellKind, optional
+    cell : {"rigid", "six-bar", "beam", "ancf", "ritz"} or CellKind, optional
         Cell model by name or as a :class:`~exudyn_atcm.cells.CellKind` (see
-        :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; a kind that cannot join a
-        mechanism (``"ancf"``, ``"ritz"``) is refused with its own reason; the
-        six-bar cell needs an active layer.  ``"beam"``: one geometrically exact beam element
+        :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; ``"ancf"`` and ``"ritz"``
+        join a mechanism as a cantilever only (base welded to the ground, tip free; other end
+        connections are refused with the cell's own reason); the six-bar cell needs an active
+        layer.  ``"beam"``: one geometrically exact beam element
         per cell (the actuator's beam cell): bending stiffness ``EI``, a practically
         inextensible axis, each segment's free curvature as end torques ``EI kappa`` on its end
         nodes; the ends are real nodes (no interface mass).  It converges at second order like

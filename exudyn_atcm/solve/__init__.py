@@ -6,11 +6,9 @@ May import the description layers and :mod:`exudyn_atcm.mbs`; never plotting.
 
 from ..errors import SolverError
 from ..model.strain_sources import InStepStrain, TableStrain
-from .actuator_static import static_equilibrium
-from .mechanism_solve import static_sweep
 from .run_checks import SimulationInterrupted
 from .run_setup import DEFAULT_STEP
-from .simulation import eigenfrequencies, run_actuator, simulate, solve_static
+from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
-           "SimulationInterrupted", "run_actuator", "static_equilibrium", "InStepStrain", "TableStrain"]
+           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain"]

@@ -16,11 +16,13 @@ No Exudyn import.
 from __future__ import annotations
 
 import math
+import warnings
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..cells import CellKind, RigidCell
+from ..errors import AccuracyWarning
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
@@ -30,7 +32,12 @@ from .run_checks import check_record_interval, check_step_against_frequency, che
 if TYPE_CHECKING:
     from ..mbs.model import MechanismModel
 
-__all__ = ["check_steps", "check_drive_ranges", "feedback_controllers", "lowest_first_frequency", "cost_parts"]
+__all__ = ["check_steps", "check_drive_ranges", "feedback_controllers", "lowest_first_frequency", "cost_parts",
+           "cost_description",
+           "warn_coarse_cells", "MAX_CELL_ROTATION"]
+
+#: Largest rotation of one cell relative to its neighbour [rad] before a warning is issued.
+MAX_CELL_ROTATION = 0.5
 
 
 def _drive_names(model: MechanismModel) -> list[str]:
@@ -95,6 +102,16 @@ def cost_parts(mech: Mechanism) -> tuple[CellKind, int]:
     return cell, count
 
 
+def cost_description(mech: Mechanism) -> str:
+    """The parts of :func:`cost_parts` in words: ``"3 rigid cells"`` when the mechanism is benders of one
+    cell kind, ``"12 cells and bodies (rigid cells)"`` otherwise."""
+    cell, parts = cost_parts(mech)
+    kinds = {b.cell for b in mech.benders}
+    if len(mech.benders) == len(mech.components) and len(kinds) == 1:
+        return f"{parts} {cell} cells"
+    return f"{parts} cells and bodies ({cell} cells)"
+
+
 def _per_cell(kind: CellKind) -> float:
     """Cost of one more cell of ``kind`` at 10 cells [s] (0 when not measured)."""
     return (kind.estimate_step_cost(11) or 0.0) - (kind.estimate_step_cost(10) or 0.0)
@@ -119,7 +136,7 @@ def check_steps(mech: Mechanism, grid: Any, t_end: float, schedule: Any = None) 
     frequency, which = lowest_first_frequency(mech)
     check_step_against_frequency(grid, frequency, what=which, stacklevel=5)
     cell, parts = cost_parts(mech)
-    warn_if_long(cell, parts, grid.n_steps, parts=f"{parts} cells and bodies ({cell} cells)", stacklevel=5)
+    warn_if_long(cell, parts, grid.n_steps, parts=cost_description(mech), stacklevel=5)
 
 
 def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[Any, str]]:
@@ -153,3 +170,17 @@ def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[A
                                  f"measurements {sorted(declared)}; declare one")
         out.append((controller, declared.pop()))
     return out
+
+
+def warn_coarse_cells(mech: Mechanism, rotations: dict[str, float], stacklevel: int = 4) -> None:
+    """Warn once per bender whose cells turned by more than :data:`MAX_CELL_ROTATION` [rad] relative to a
+    neighbour (``rotations`` from :func:`exudyn_atcm.mbs.recording.cell_rotations`); ``stacklevel`` counts
+    from this function."""
+    benders = {b.name: b for b in mech.benders}
+    for name, per_cell in rotations.items():
+        if per_cell > MAX_CELL_ROTATION:
+            b = benders[name]
+            warnings.warn(
+                f"a cell of the {b.cell} bender {name!r} turns by {per_cell:.3g} rad relative to its neighbour (more "
+                f"than {MAX_CELL_ROTATION} rad): with {b.n_cells} cells the chain is a coarse discretisation of the "
+                "bent bender; use more cells", AccuracyWarning, stacklevel=stacklevel)

@@ -17,23 +17,20 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_int
+from .._checks import finite_array, positive_int
 from ..mbs import builder as mb
 from ..mbs import linear
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
-from ..mbs.recording import RowLayout, Rows, measurement_reader
-from ..mechanism.actuator import BendingActuator
+from ..mbs.recording import RowLayout, Rows, cell_rotations, measurement_reader
 from ..mechanism.assembly import Mechanism
-from ..mechanism.bender import CELL_TYPES as BENDER_CELLS
-from ..mechanism.bender import Bender
 from ..mechanism.points import MechanismError, closest
-from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers
+from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers, warn_coarse_cells
 from ..io.result import Result
 from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
 from .step_record import StepRecord, check_view
-from .mechanism_static import VoltageSpec, drive_voltages, equilibrium, source_values
+from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from ..errors import SolverError
 from .run_checks import is_interrupt
@@ -53,92 +50,15 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     strains = source_values(model, strains_by_drive, "solve_static")
     source_volts = source_values(model, volts, "solve_static")
     check_drive_ranges(model, source_volts, strains)
-    method = equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, f"voltages {volts} V")
+    method = equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, describe_voltages(volts))
     rows = Rows(model)
     rows.add(0.0, source_volts, strains)
+    warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
     return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
 
 
-def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float] = (0.0, 0.0)) -> Mechanism:
-    """A :class:`BendingActuator` as a one-bender mechanism named ``"actuator"``: base welded to the
-    ground at the origin, along +x, the dead ``tip_force`` [N] at the tip (the same model).
-
-    Raises
-    ------
-    ValueError
-        For an actuator cell that cannot join a mechanism (the reason is the cell kind's own,
-        :meth:`~exudyn_atcm.cells.CellKind.mechanism_refusal`).
-    """
-    refusal = actuator.cell.mechanism_refusal()
-    if refusal is not None:
-        raise ValueError(
-            f"static_sweep runs a BendingActuator as a one-bender mechanism, whose cells are {BENDER_CELLS}; "
-            f"got an actuator with cell={actuator.cell.name!r} ({refusal}). Use one of those cells, or solve_static "
-            "per voltage (no hysteresis path)")
-    bender = Bender("actuator", width=actuator.width, passive=actuator.passive, active=actuator.active,
-                    length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive, cell=actuator.cell,
-                    stiffness=actuator.stiffness, damping=actuator.damping)
-    mech = Mechanism("actuator").add(bender).ground(bender.base)
-    fx = finite_float("tip_force[0]", tip_force[0])
-    fy = finite_float("tip_force[1]", tip_force[1])
-    if (fx, fy) != (0.0, 0.0):
-        mech.force(bender.tip, (fx, fy))
-    return mech
-
-
-def _actuator_result(actuator: BendingActuator, r: Result) -> Result:
-    """The columns of :func:`exudyn_atcm.simulate` for an actuator from a one-bender mechanism's result."""
-    base = "time" if "time" in r else "point"
-    series = {base: r[base], "voltage": r["actuator.voltage"], "strain": r["actuator.strain"],
-              "stroke": r["actuator.strain"] * actuator.cell_length, "tip_x": r["actuator.tip_x"],
-              "tip_y": r["actuator.tip_y"], "tip_angle": r["actuator.tip_angle"]}
-    units = {base: r.unit(base), "voltage": "V", "strain": "-", "stroke": "m", "tip_x": "m", "tip_y": "m",
-             "tip_angle": "rad"}
-    for j in range(actuator.n_cells):
-        series[f"cell_angle_{j + 1}"] = r[f"actuator.cell_angle_{j + 1}"]
-        units[f"cell_angle_{j + 1}"] = "rad"
-    return Result(series, units, parameters=actuator.parameters(), info=r.info)
-
-
-def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
-                 tip_force: tuple[float, float] = (0.0, 0.0)) -> Result:
-    """Quasi-static path over a voltage sequence, following the hysteresis.
-
-    Each point continues from the previous equilibrium and the previous hysteresis memory
-    (the operators are reset before the first point; between points the voltage is taken to
-    change monotonically, so each point commits its voltage once).  No dynamics: for path and
-    function generation.
-
-    Parameters
-    ----------
-    mech : Mechanism or BendingActuator
-        The mechanism with its loads (held constant along the sweep), or an actuator.
-    voltages : sequence of float, or mapping of drive name to sequence
-        Voltages [V] of all drives at each point, or per drive (equal lengths; drives not
-        named follow their program at t = 0 throughout).
-    tip_force : (float, float), optional
-        Actuator only: dead tip load [N], constant along the sweep.
-
-    Returns
-    -------
-    Result
-        One row per point; the first column ``point [-]`` holds the point's index (0, 1, 2, ...;
-        a sweep has no time), then the columns of :func:`exudyn_atcm.simulate` for the
-        mechanism (``{drive}.voltage [V]`` holds each point's voltage), or for the actuator.
-
-    Warns
-    -----
-    RuntimeWarning
-        Once per drive, naming it, for voltages outside its hysteresis operator's input range
-        or its rating, and implausible free strains (as for an actuator).
-    """
-    if isinstance(mech, BendingActuator):
-        return _actuator_result(mech, static_sweep(actuator_mechanism(mech, tip_force), voltages))
-    if not isinstance(mech, Mechanism):
-        raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {mech!r}")
-    if tuple(np.ravel(np.asarray(tip_force, dtype=float))) != (0.0, 0.0):
-        raise ValueError(f"tip_force is for a BendingActuator; load a Mechanism with mechanism.force(point, "
-                         f"(Fx, Fy)), got tip_force={tip_force!r}")
+def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
+    """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`)."""
     model = mb.build(mech)
     drives = mech.drives
     if isinstance(voltages, Mapping):
@@ -168,23 +88,25 @@ def static_sweep(mech: Mechanism | BendingActuator, voltages: Sequence[float] | 
                               else float(getattr(d.hysteresis, "commit_held", d.hysteresis.commit)(u))
                               for d, u in zip(model.sources, volts)] for volts in source_table])
     strain_table = strain_table.reshape(source_table.shape)
-    check_drive_ranges(model, source_table, strain_table, stacklevel=3)
+    check_drive_ranges(model, source_table, strain_table)
     rows = Rows(model)
     previous = np.zeros(len(model.sources))
     methods = []
     for i, per_drive in enumerate(table):
         volts, strains = source_table[i], strain_table[i]
         methods.append(equilibrium(mech, model, previous, strains, i == 0, None,
-                                    f"sweep point {i}, voltages {per_drive} V"))
+                                    f"sweep point {i}, {describe_voltages(per_drive)}"))
         runs.set_current_as_initial(model, zero_velocity=True)
         rows.add(float(i), volts, strains)
         previous = strains
+    warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
     return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)},
                        base=("point", "-"))
 
 
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
-             progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
+             progress: Callable[[float, float], None] | None = None, record_every: Any = None, *,
+             sources: Sequence[Any] | None = None, stroke_path: str = "prestep") -> Result:
     """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`).
 
     The same checks as for an actuator (:mod:`exudyn_atcm.solve.run_checks`): the step against every
@@ -195,15 +117,24 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     :class:`~exudyn_atcm.solve.run_checks.SimulationInterrupted` carrying the partial result.
     A drive set by a controller observes the column declared with
     :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`.
+
+    Internal choices that tests and benchmarks compare: ``sources``, one strain source per
+    distinct drive in the order of ``model.sources`` (default: an
+    :class:`~exudyn_atcm.model.strain_sources.InStepStrain` each; a
+    :class:`~exudyn_atcm.model.strain_sources.TableStrain` follows a precomputed table), and
+    ``stroke_path`` (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`).
     """
     t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
     check_steps(mech, grid, t_end, schedule)
-    model = mb.build(mech)
+    model = mb.build(mech, stroke_path=stroke_path)
     feedback = feedback_controllers(mech, model)
     observers = [(c, measurement_reader(model, column)) for c, column in feedback]
     for controller, _ in feedback:
         controller.reset()
-    sources = [InStepStrain(drive) for drive in model.sources]
+    if sources is None:
+        sources = [InStepStrain(drive) for drive in model.sources]
+    elif len(sources) != len(model.sources):
+        raise ValueError(f"sources: one strain source per drive ({len(model.sources)}), got {len(sources)}")
     strains0 = np.array([s.trial(0.0) for s in sources])
     if np.any(strains0 != 0.0) or model.loads:
         try:
@@ -217,6 +148,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
+    model.adjust_settings(sim_settings)
     solver_settings.apply_user_settings(sim_settings, settings)
     layout = RowLayout(model)
     clock = WallClock(progress, t_end) if progress is not None else None
@@ -224,8 +156,12 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     # extremes over every accepted step (the record may be thinned), for the range checks
     extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
 
+    rotations: dict[str, float] = {}  # largest relative cell rotation per bender over every accepted step
+
     def block_extremes(block: np.ndarray) -> None:
-        _, volts, strains, _, _ = layout.parts(block)
+        _, volts, strains, q, _ = layout.parts(block)
+        for name, value in cell_rotations(model, q, strains).items():
+            rotations[name] = max(value, rotations.get(name, 0.0))
         np.minimum(extremes[0], volts.min(axis=0), out=extremes[0])
         np.maximum(extremes[1], volts.max(axis=0), out=extremes[1])
         np.minimum(extremes[2], strains.min(axis=0), out=extremes[2])
@@ -240,10 +176,16 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     q_view = model.coordinates()  # Exudyn's coordinate vector stays in place during a run (checked after it)
     user_errors: list[ValueError] = []
 
+    def trial_strains(t: float) -> np.ndarray:
+        return np.array([s.trial(t) for s in sources])
+
+    if stroke_path == "user_function":  # the user functions ask the sources at their t
+        model.uf_strains = trial_strains
+
     def pre_step(t: float) -> None:
         model.time = t
         try:
-            model.set_strains(np.array([s.trial(t) for s in sources]))
+            model.set_strains(trial_strains(t))
         except ValueError as exc:  # a voltage program or load function gave nonsense: report it as such
             user_errors.append(exc)
             raise
@@ -268,7 +210,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
                 clock(t)
 
     stats, interrupted = integrate(
-        model, sim_settings, pre_step, post_step, what=f"mechanism {mech.name!r}", step=grid.step,
+        model, sim_settings, pre_step, post_step, what=describe(mech), step=grid.step,
         last_time=lambda: snap_time(float(record.last[0]), grid.step) if record.last is not None else 0.0,
         user_errors=user_errors,
         advice="Try a smaller step, a slower voltage program, more cells, or check that the mechanism is not locked "
@@ -279,13 +221,14 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     check_view(q_view, model.coordinates())
     accepted = max(record.accepted - 1, 0)
     info = run_info(grid, accepted, schedule, stats,
-                    hysteresis_evaluations=sum(s.evaluations for s in sources))
+                    hysteresis_evaluations=sum(getattr(s, "evaluations", 0) for s in sources))
     info["recorded_channels"] = layout.width - 1  # floats per accepted step besides the time
     for controller, column in feedback:
         report_controller(controller, info, f"the controller observing {column!r}")
         info["controller"]["measurement"] = column
     if record.accepted and n_src:
         check_drive_ranges(model, extremes[:2], extremes[2:])
+    warn_coarse_cells(mech, rotations)
     rows = record.rows()
     every = record.every_step()
     every_step = layout.every_step_result(every, info) if every is not None else None
@@ -299,7 +242,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     return result
 
 
-def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -> np.ndarray:
+def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, loaded: bool = False) -> np.ndarray:
     """Lowest ``n`` eigenfrequencies [Hz] of a mechanism about its static equilibrium at ``voltage``.
 
     ``voltage=None`` linearises about the undeformed reference pose without loads (as for a
@@ -307,19 +250,25 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None) -
     loads (see :func:`drive_voltages`).  The tangent stiffness includes the geometric stiffness
     of the joints' internal forces (loads, closed-loop prestress, six-bar cells bent by their
     motors), which Exudyn's own ``ComputeODE2Eigenvalues`` leaves out
-    (:func:`exudyn_atcm.mbs.linear.eigenfrequencies`).
+    (:func:`exudyn_atcm.mbs.linear.eigenfrequencies`).  ``loaded=True`` with ``voltage=None``: about
+    the equilibrium under the loads at zero strain (a lone actuator's ``tip_force``).
     """
     n = positive_int("n", n)
     model = mb.build(mech)
-    if voltage is not None:
+    if voltage is None and loaded:
+        zero = np.zeros(len(model.sources))
+        equilibrium(mech, model, zero, zero, True, None, "the loads at zero strain")
+        runs.set_current_as_initial(model, zero_velocity=True)
+    elif voltage is not None:
         volts = drive_voltages(mech, voltage)
         strains = source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
                                  "eigenfrequencies")
         check_drive_ranges(model, source_values(model, volts, "eigenfrequencies"), strains)
-        equilibrium(mech, model, np.zeros_like(strains), strains, True, None, f"voltages {volts} V")
+        equilibrium(mech, model, np.zeros_like(strains), strains, True, None, describe_voltages(volts))
         runs.set_current_as_initial(model, zero_velocity=True)
     else:
         model.scale_loads(0.0)
+    model.before_linearisation()
     freqs = linear.eigenfrequencies(model, n)
     if freqs.size < n:
         raise ValueError(f"n must be <= the number of degrees of freedom ({freqs.size}), got {n}")

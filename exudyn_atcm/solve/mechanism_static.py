@@ -22,7 +22,7 @@ from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..mechanism.points import MechanismError, closest
 
-__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium"]
+__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium", "describe", "describe_voltages"]
 
 VoltageSpec = Any  # None | float | Mapping[str, float]
 
@@ -45,6 +45,19 @@ def drive_voltages(mech: Mechanism, voltage: VoltageSpec) -> dict[str, float]:
         return out
     value = finite_float("voltage", voltage)
     return {name: value for name in drives}
+
+
+def describe_voltages(volts: Mapping[str, float]) -> str:
+    """``"voltage 1500 V"`` for one drive, ``"voltages 'a' 300 V, 'b' -200 V"`` for several (messages)."""
+    if len(volts) == 1:
+        return f"voltage {next(iter(volts.values())):g} V"
+    return "voltages " + ", ".join(f"{name!r} {v:g} V" for name, v in volts.items())
+
+
+def describe(mech: Mechanism) -> str:
+    """``"mechanism 'm' (bender 'b': 4 rigid cells)"``: the mechanism and its benders' cells (messages)."""
+    cells = "; ".join(f"bender {b.name!r}: {b.n_cells} {b.cell} cells" for b in mech.benders)
+    return f"mechanism {mech.name!r}" + (f" ({cells})" if cells else "")
 
 
 def source_values(model: mb.MechanismModel, per_drive: Mapping[str, float], what: str) -> np.ndarray:
@@ -119,7 +132,7 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
 
     return equilibrium_with_fallback(
         model, static=lambda: runs.run_static(model, settings, lambda f: f), relaxation=relaxation, relax_target=1.0,
-        omega1=omega1, polish=polish, size=mech.size, subject=f"mechanism {mech.name!r}", what=what,
+        omega1=omega1, polish=polish, size=mech.size, subject=describe(mech), what=what,
         load_steps=load_steps,
         advice=f"Expected rotation about {rot:.3g} rad. Use more cells, reduce the loads, check that the mechanism is "
                "not locked, or pass load_steps.")

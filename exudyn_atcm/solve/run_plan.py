@@ -44,7 +44,7 @@ from ..errors import RunCostWarning
 from ..io.progress import format_duration
 from ..mechanism.assembly import Mechanism
 from .long_runs import announced_up_front, long_run_message
-from .mechanism_checks import cost_parts
+from .mechanism_checks import cost_description, cost_parts
 from .run_checks import LONG_RUN_SECONDS, estimate_run_time, time_grid
 
 __all__ = ["PlannedRun", "RunPlan", "estimate_simulation", "PACE_FACTOR"]
@@ -104,7 +104,7 @@ def estimate_simulation(system: Any, t_end: float, step: float) -> tuple[float |
     n_steps = time_grid(t_end, step, warn=False).n_steps
     if isinstance(system, Mechanism):
         cell, parts = cost_parts(system)
-        return estimate_run_time(cell, parts, n_steps), n_steps, f"{parts} cells and bodies ({cell} cells)"
+        return estimate_run_time(cell, parts, n_steps), n_steps, cost_description(system)
     cell, n_cells = getattr(system, "cell", None), getattr(system, "n_cells", None)
     if cell is None or n_cells is None:
         raise ValueError(f"PlannedRun.system must be a BendingActuator or a Mechanism, got {type(system).__name__}")

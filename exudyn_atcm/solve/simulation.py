@@ -8,41 +8,28 @@ and committed only in the post-step hook, which Exudyn calls for accepted steps 
 that Exudyn rejects and repeats with a smaller step size therefore leaves no trace in the
 memory, and the recorded strain equals the operator applied offline to the recorded
 voltages (tested).  The strain is evaluated once per attempted step (cached by ``t``) and
-written into the model in a pre-step hook; see :mod:`exudyn_atcm.mbs.actuator_chains` for why this
-is the same as an offset user function.
+written into the model in a pre-step hook; see :mod:`exudyn_atcm.mbs.actuation` for why this
+is the same as an offset user function.  A :class:`~exudyn_atcm.mechanism.actuator.BendingActuator`
+is solved as its one-bender mechanism (:mod:`exudyn_atcm.solve.as_mechanism`).
 """
 
 from __future__ import annotations
 
 import inspect
-import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
 import numpy as np
 
-from ..mbs import actuator_chains, solver_settings
-from ..mbs import solver_runs as runs
 from .._checks import finite_float, positive_int
 from ..mechanism.actuator import BendingActuator
 from ..mechanism import Mechanism
-from ..errors import SolverError
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
 from . import mechanism_solve
+from .as_mechanism import actuator_interrupts, actuator_mechanism, actuator_result
 from .keywords import keyword_signature, legacy_positional
-from .actuator_record import ActuatorRecorder, make_result
-from .actuator_static import static_equilibrium
-from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
-from .dynamic_run import integrate, mark_partial
-from .run_checks import (
-    SimulationInterrupted,
-    check_step_against_frequency,
-    check_record_interval,
-    check_step_against_program,
-    is_interrupt,
-    warn_if_long,
-)
+from .run_setup import DEFAULT_STEP
 
 
 # ------------------------------------------------------------------------------ argument checks
@@ -128,22 +115,9 @@ def solve_static(
         return mechanism_solve.solve_static(actuator, voltage, load_steps)
     actuator = _check_actuator(actuator)
     force = _check_force(tip_force)
-    if voltage is None:
-        volts = actuator.drive.voltage_at(0.0)
-    else:
-        volts = finite_float("voltage", voltage)
-    if load_steps is not None:
-        load_steps = positive_int("load_steps", load_steps)
-    actuator.drive.check_voltage_range(volts, volts)
-    strain = actuator.drive.static_strain(volts)
-    actuator.drive.check_strain(strain, strain)
-    model = actuator_chains.build(actuator, force)
-    method = static_equilibrium(actuator, model, strain, force, load_steps,
-                                 f"voltage {volts:g} V, tip force {force} N")
-    x, y, a, ca = model.read_state(model.coordinates(), strain)
-    rows = np.array([[0.0, volts, strain, x, y, a]])
-    return make_result(actuator, rows, np.asarray(ca, dtype=float).reshape(1, -1),
-                        {"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
+    volts = None if voltage is None else finite_float("voltage", voltage)
+    return actuator_result(actuator, mechanism_solve.solve_static(actuator_mechanism(actuator, force), volts,
+                                                                  load_steps))
 
 
 # ------------------------------------------------------------------------------ dynamic solve
@@ -254,8 +228,12 @@ def simulate(
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
-    return run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
-                     progress=progress, record_every=record_every)
+    # the mechanism solve is called from here (and from run_actuator) directly: as many frames between the
+    # caller and the run checks as for a mechanism, so their warnings point at the caller's line
+    with actuator_interrupts(actuator):
+        result = mechanism_solve.simulate(actuator_mechanism(actuator, _check_force(tip_force)), t_end, step,
+                                          settings, progress, record_every)
+    return _finish_actuator_run(actuator, result, "prestep")
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
@@ -265,68 +243,72 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
     Internal API (documented for tests and benchmarks): ``source`` is the strain source
     (:class:`~exudyn_atcm.model.strain_sources.InStepStrain` by default, or a
     :class:`~exudyn_atcm.model.strain_sources.TableStrain`) and ``stroke_path`` how the strain reaches
-    the model (``"prestep"``: written in a pre-step hook; ``"offsets"``: offset user functions).
+    the model (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`).
     The other arguments are those of :func:`simulate`, all positional here.
     """
-    t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
-    force = _check_force(tip_force)
-    check_step_against_program(actuator.drive.voltage, grid, t_end)
-    check_record_interval(actuator.drive.voltage, schedule, t_end)
-    check_step_against_frequency(grid, actuator.first_frequency_estimate)
-    warn_if_long(actuator.cell, actuator.n_cells, grid.n_steps)
+    actuator = _check_actuator(actuator)
     controller = getattr(actuator.drive, "controller", None)
-    if controller is not None:
-        if source is not None and not isinstance(source, InStepStrain):
-            raise ValueError(
-                f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
-                "the voltage depends on the simulated response and cannot be tabulated beforehand"
-            )
-        controller.reset()
-    if source is None:
-        source = InStepStrain(actuator.drive)
-    model = actuator_chains.build(actuator, force, stroke_path=stroke_path)
-    model.uf_strain = source.trial
+    if controller is not None and source is not None and not isinstance(source, InStepStrain):
+        raise ValueError(
+            f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
+            "the voltage depends on the simulated response and cannot be tabulated beforehand"
+        )
+    with actuator_interrupts(actuator):
+        result = mechanism_solve.simulate(actuator_mechanism(actuator, _check_force(tip_force)), t_end, step,
+                                          settings, progress, record_every,
+                                          sources=None if source is None else [source], stroke_path=stroke_path)
+    return _finish_actuator_run(actuator, result, stroke_path)
 
-    # initial equilibrium at U(0) (the hysteresis memory takes U(0) at the t = 0 post-step)
-    strain0 = source.trial(0.0)
-    if strain0 != 0.0 or force != (0.0, 0.0):
-        try:
-            static_equilibrium(actuator, model, strain0, force, None, "initial state at t = 0")
-        except SolverError as exc:
-            if is_interrupt(exc.__cause__ or exc):
-                raise SimulationInterrupted(0.0) from None
-            raise
-        runs.set_current_as_initial(model, zero_velocity=True)
 
-    sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
-    model.adjust_settings(sim_settings)
-    solver_settings.apply_user_settings(sim_settings, settings)
-    recorder = ActuatorRecorder(model, source, progress, t_end, step=grid.step, schedule=schedule)
-    pre_step = (lambda t: model.set_strain(source.trial(t))) if stroke_path != "user_function" else None
-    stats, interrupted = integrate(
-        model, sim_settings, pre_step, recorder.post_step, what=f"the {actuator.cell} actuator with "
-        f"{actuator.n_cells} cells", step=grid.step, last_time=recorder.last_time,
-        advice="Try a smaller step, a slower voltage program, more cells for large deflections, or a looser "
-               "tolerance via settings={'timeIntegration.newton.absoluteTolerance': 1e-7}.")
-    accepted = max(recorder.accepted - 1, 0)
-    info = run_info(grid, accepted, schedule, stats, stroke_path=stroke_path)
-    info["recorded_channels"] = recorder.rows.width - 1  # floats per accepted step besides the time
-    if isinstance(source, InStepStrain):
-        info["hysteresis_evaluations"] = source.evaluations
-    u_low, u_high = getattr(source, "u_low", math.inf), getattr(source, "u_high", -math.inf)
-    if u_low <= u_high:
-        actuator.drive.check_voltage_range(u_low, u_high)
-    if controller is not None:
-        report_controller(controller, info)
-    if interrupted:
-        t_stop = recorder.last_time()
-        mark_partial(info, t_stop, accepted)
-        raise SimulationInterrupted(t_stop, recorder.result(actuator, info) if recorder.accepted else None)
-    result = recorder.result(actuator, info)
-    actuator.cell.check_run(result, actuator, stacklevel=4)  # the caller of simulate
-    if recorder.strain_low <= recorder.strain_high:
-        actuator.drive.check_strain(recorder.strain_low, recorder.strain_high)
-    return result
+def _finish_actuator_run(actuator: BendingActuator, result: Result, stroke_path: str) -> Result:
+    """The actuator's result of its one-bender mechanism's run, checked by its cell kind."""
+    result.info["stroke_path"] = stroke_path
+    out = actuator_result(actuator, result)
+    actuator.cell.check_run(out, actuator, stacklevel=4)  # the caller of simulate
+    return out
+
+
+# ------------------------------------------------------------------------------ quasi-static sweep
+
+def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
+                 tip_force: tuple[float, float] = (0.0, 0.0)) -> Result:
+    """Quasi-static path over a voltage sequence, following the hysteresis.
+
+    Each point continues from the previous equilibrium and the previous hysteresis memory
+    (the operators are reset before the first point; between points the voltage is taken to
+    change monotonically, so each point commits its voltage once).  No dynamics: for path and
+    function generation.
+
+    Parameters
+    ----------
+    system : BendingActuator or Mechanism
+        The actuator, or a mechanism with its loads (held constant along the sweep).
+    voltages : sequence of float, or mapping of drive name to sequence
+        Voltages [V] of all drives at each point, or per drive (equal lengths; drives not
+        named follow their program at t = 0 throughout).
+    tip_force : (float, float), optional
+        Actuator only: dead tip load [N], constant along the sweep.
+
+    Returns
+    -------
+    Result
+        One row per point; the first column ``point [-]`` holds the point's index (0, 1, 2, ...;
+        a sweep has no time), then the columns of :func:`exudyn_atcm.simulate` for the
+        mechanism (``{drive}.voltage [V]`` holds each point's voltage), or for the actuator.
+
+    Warns
+    -----
+    RuntimeWarning
+        Once per drive, naming it, for voltages outside its hysteresis operator's input range
+        or its rating, and implausible free strains (as for an actuator).
+    """
+    if isinstance(system, Mechanism):
+        _mechanism_only(tip_force)
+        return mechanism_solve.static_sweep(system, voltages)
+    if not isinstance(system, BendingActuator):
+        raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {system!r}")
+    mech = actuator_mechanism(system, _check_force(tip_force))
+    return actuator_result(system, mechanism_solve.static_sweep(mech, voltages))
 
 
 # ------------------------------------------------------------------------------ eigenfrequencies
@@ -395,13 +377,8 @@ def eigenfrequencies(
     n = positive_int("n", n)
     force = _check_force(tip_force)
     volts = None if voltage is None else finite_float("voltage", voltage)
-    strain = 0.0 if volts is None else actuator.drive.static_strain(volts)
-    model = actuator_chains.build(actuator, force)
-    if strain != 0.0 or force != (0.0, 0.0):
-        static_equilibrium(actuator, model, strain, force, None,
-                            f"voltage {volts!r} V, tip force {force} N, for eigenfrequencies")
-    model.before_linearisation(strain)
-    return runs.eigenfrequencies(model, n)
+    return mechanism_solve.eigenfrequencies(actuator_mechanism(actuator, force), n, volts,
+                                            loaded=force != (0.0, 0.0))
 
 
 #: Defaults of the public solves' keyword arguments in their old positional order (the positional

@@ -3,7 +3,7 @@
 These functions are the independent references the validation tests compare the multibody
 model against.  They are plain formulas of classical beam theory (Euler-Bernoulli,
 perfectly bonded layers, small strains) and deliberately share no code with the model
-(:mod:`exudyn_atcm.mechanism.actuator`, :mod:`exudyn_atcm.mbs.actuator_chains`).  The
+(:mod:`exudyn_atcm.mechanism.actuator`, :mod:`exudyn_atcm.mbs.builder`).  The
 references of the mechanism cases are in :mod:`exudyn_atcm.theory.beam_mechanisms`, the
 dynamic ones in :mod:`exudyn_atcm.theory.beam_dynamics`; all of them are exported by
 :mod:`exudyn_atcm.theory`.
