@@ -164,7 +164,7 @@ class MechanismModel:
     linearisation_hooks: list = field(default_factory=list)
     # cells' changes to the dynamic solver settings (before the user's)
     settings_adjusters: list = field(default_factory=list)
-    _torque_matrix: np.ndarray | None = None  # rows: the torque_loads' coefficients per source
+    _torque_plan: list | None = None           # per torque load: its (source, torque per strain) terms
     _written_factor: float | None = None       # load factor at which every load was last written
     _connector_plan: list | None = None         # (Exudyn item, stop normal or None) per spring and stop
 
@@ -173,11 +173,17 @@ class MechanismModel:
         """Write the free strains of every source [-] into the actuation torques (and follower loads)."""
         self.strains = strains = np.asarray(strains, dtype=float)
         if self.torque_loads:
-            if self._torque_matrix is None or len(self._torque_matrix) != len(self.torque_loads):
-                self._torque_matrix = np.array([coef for _, coef in self.torque_loads], dtype=float)
-            torques = self._torque_matrix @ strains
+            if self._torque_plan is None or len(self._torque_plan) != len(self.torque_loads):
+                # per load the non-zero (source, torque per strain) terms, as Python numbers: a step's
+                # few products cost less than a numpy product (the hot path of every attempted step)
+                self._torque_plan = [(load, [(k, float(c)) for k, c in enumerate(coef) if c != 0.0])
+                                     for load, coef in self.torque_loads]
+            values = strains.tolist()
             set_load = self.mbs.SetLoadParameter
-            for (load, _), torque in zip(self.torque_loads, torques.tolist()):
+            for load, terms in self._torque_plan:
+                torque = 0.0
+                for k, c in terms:
+                    torque += c * values[k]
                 set_load(load, "loadVector", [0.0, 0.0, torque])
         for item, factor, source in self.motor_offsets:
             self.mbs.SetObjectParameter(item, "offset", factor * float(strains[source]))

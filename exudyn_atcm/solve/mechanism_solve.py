@@ -176,8 +176,13 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     q_view = model.coordinates()  # Exudyn's coordinate vector stays in place during a run (checked after it)
     user_errors: list[ValueError] = []
 
+    trial = np.zeros(n_src)  # the attempted step's strains, written in place (the hot path)
+    indexed_sources = list(enumerate(sources))
+
     def trial_strains(t: float) -> np.ndarray:
-        return np.array([s.trial(t) for s in sources])
+        for k, source in indexed_sources:
+            trial[k] = source.trial(t)
+        return trial
 
     if stroke_path == "user_function":  # the user functions ask the sources at their t
         model.uf_strains = trial_strains
