@@ -107,7 +107,7 @@ def add_ritz_bender(builder, bender: Bender) -> None:
     def write_strains(strains: np.ndarray) -> None:
         kappa = 0.0
         for k, c in terms:  # Python numbers: cheaper than a numpy product in every attempted step
-            kappa += c * float(strains[k])
+            kappa += c * strains.item(k)
         mbs.SetLoadParameter(load, "load", ei * kappa)
         grid = int(round(kappa * length / MASS_UPDATE_ANGLE))
         if grid != state["grid"]:

@@ -199,10 +199,12 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     q_slice = slice(1 + 2 * n_src, 1 + 2 * n_src + layout.n_coordinates)
     force_slice = slice(1 + 2 * n_src + layout.n_coordinates, None)
 
+    commits = [(source, 1 + k, 1 + n_src + k) for k, source in indexed_sources]  # (source, voltage, strain column)
+
     def post_step(t: float) -> None:
         row = record.begin(t)  # hot path: element writes into the preallocated block
-        for k, source in enumerate(sources):
-            row[1 + k], row[1 + n_src + k] = source.commit(t)
+        for source, volt_column, strain_column in commits:
+            row[volt_column], row[strain_column] = source.commit(t)
         row[q_slice] = q_view
         if read_forces is not None:
             row[force_slice] = read_forces()
