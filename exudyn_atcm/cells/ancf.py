@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .base import CONNECTIONS, END_NODE, CellKind
+from .base import END_NODE, CellKind, cantilever_refusal
 
 __all__ = ["AncfCell"]
 
@@ -24,8 +24,4 @@ class AncfCell(CellKind):
 
     def end_refusal(self, end: str, connection: str) -> str | None:
         """A cantilever only: the base welded to the ground, the tip free."""
-        if (end, connection) in (("base", "ground"), ("tip", "free")):
-            return None
-        return (f"the ancf cell joins a mechanism as a cantilever only (base welded to the ground, tip free; its "
-                f"end slopes are not joined to rigid bodies), got its {end} {CONNECTIONS[connection]}; use "
-                "cell='beam' (geometrically exact elements) for other end connections")
+        return cantilever_refusal(self.name, end, connection, "its end slopes are not joined to rigid bodies")

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS"]
+__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal"]
 
 #: The bender's end is an interface body of its own (rigid cells).
 END_BODY = "body"
@@ -23,6 +23,16 @@ END_NODE = "node"
 
 #: How a bender end can be connected in a mechanism (see :meth:`CellKind.end_refusal`), in words.
 CONNECTIONS = {"ground": "welded to the ground", "free": "free", "joined": "joined to other parts"}
+
+
+def cantilever_refusal(name: str, end: str, connection: str, why: str) -> str | None:
+    """The refusal of a kind that joins a mechanism as a cantilever only (base welded to the ground, tip
+    free): ``None`` for those two connections, else the reason, with ``why`` the kind's own."""
+    if (end, connection) in (("base", "ground"), ("tip", "free")):
+        return None
+    return (f"the {name} cell joins a mechanism as a cantilever only (base welded to the ground, tip free; {why}), "
+            f"got its {end} {CONNECTIONS[connection]}; use cell='beam' (geometrically exact elements) for other end "
+            "connections")
 
 
 class CellKind:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..theory import ritz_beam
-from .base import CONNECTIONS, END_NODE, CellKind
+from .base import END_NODE, CellKind, cantilever_refusal
 
 __all__ = ["RitzCell"]
 
@@ -42,8 +42,5 @@ class RitzCell(CellKind):
 
     def end_refusal(self, end: str, connection: str) -> str | None:
         """A cantilever only: the base welded to the ground, the tip free."""
-        if (end, connection) in (("base", "ground"), ("tip", "free")):
-            return None
-        return (f"the ritz cell joins a mechanism as a cantilever only (base welded to the ground, tip free: the "
-                f"modes are clamped at the base and the model has no end connections), got its {end} "
-                f"{CONNECTIONS[connection]}; use cell='beam' (geometrically exact elements) for other end connections")
+        return cantilever_refusal(self.name, end, connection,
+                                  "the modes are clamped at the base and the model has no end connections")

@@ -32,7 +32,7 @@ from exudyn import itemInterface as ii
 
 from ..cells import AncfCell
 from ..mechanism.bender import Bender
-from .beam_chain import beam_node_key
+from .beam_chain import beam_node_key, node_positions, register_element_chain
 from .cells import add_mechanism_bender
 from .items import NOVIS
 from .model import Body, MechanismModel
@@ -47,13 +47,8 @@ def add_ancf_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
     beta = bender.stiffness_damping_factor
     lengths = bender.cell_lengths
     a = bender.angle
-    d = bender.direction
-    x0 = np.array(bender.base_position, dtype=float)
-    tip = np.array(bender.points["tip"], dtype=float)
-    s = np.concatenate([[0.0], np.cumsum(lengths)])
     nodes, keys = [], []
-    for i, si in enumerate(s):
-        pos = x0 + si * d if i < len(s) - 1 else tip
+    for i, pos in enumerate(node_positions(bender)):
         nodes.append(mbs.AddNode(ii.NodePoint2DSlope1(
             referenceCoordinates=[float(pos[0]), float(pos[1]), math.cos(a), math.sin(a)], visualization=NOVIS)))
         keys.append(beam_node_key(bender, i))
@@ -72,13 +67,7 @@ def add_ancf_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
         body = model.bodies[key]
         body.item = items[max(i - 1, 0)]
         body.slope_at = float(lengths[i - 1]) if i > 0 else 0.0
-    model.cells[bender.name] = keys
-    model.elements[bender.name] = items
-    model.beam_benders.add(bender.name)
-    # round-off floor of the stiff axis's forces, as for the linear beam elements
-    floor = 10.0 * np.finfo(float).eps * ea / float(np.min(lengths)) * bender.length
-    model.newton_tolerance_floor = max(model.newton_tolerance_floor, floor)
-    model.static_relative_tolerance = 1e-10
+    register_element_chain(model, bender, keys, items)
     return keys
 
 

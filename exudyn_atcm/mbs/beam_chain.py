@@ -58,6 +58,15 @@ def beam_end_key(bender: Bender, end: str) -> str:
     return beam_node_key(bender, 0 if end == "base" else bender.n_cells)
 
 
+def node_positions(bender: Bender) -> list[np.ndarray]:
+    """The reference positions [m] of the cell boundaries of ``bender``, base first; the end nodes
+    exactly at the bender's base and tip points."""
+    d = bender.direction
+    x0 = np.array(bender.base_position, dtype=float)
+    s = np.concatenate([[0.0], np.cumsum(bender.cell_lengths)])
+    return [x0 + si * d for si in s[:-1]] + [np.array(bender.points["tip"], dtype=float)]
+
+
 def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
     """Add the nodes and beam elements of ``bender``; returns the node keys (base first).
 
@@ -72,14 +81,8 @@ def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
     thick = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
     beta = bender.stiffness_damping_factor
     lengths = bender.cell_lengths
-    d = bender.direction
-    x0 = np.array(bender.base_position, dtype=float)
-    tip = np.array(bender.points["tip"], dtype=float)
-    s = np.concatenate([[0.0], np.cumsum(lengths)])
     keys = []
-    for i, si in enumerate(s):
-        # the end nodes exactly at the bender's base and tip points
-        pos = x0 + si * d if i < len(s) - 1 else tip
+    for i, pos in enumerate(node_positions(bender)):
         node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[float(pos[0]), float(pos[1]), bender.angle],
                                               visualization=NOVIS))
         key = beam_node_key(bender, i)
@@ -99,16 +102,23 @@ def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
         items.append(item)
     for i, key in enumerate(keys):  # a node's "body": the element ending there (the first for the base)
         model.bodies[key].item = items[max(i - 1, 0)]
+    register_element_chain(model, bender, keys, items)
+    return keys
+
+
+def register_element_chain(model: MechanismModel, bender: Bender, keys: list[str], items: list[int]) -> None:
+    """Register a chain of beam or ANCF elements: its node keys as the bender's cells (a cell's angle is
+    the mean of its nodes'), its elements, and the Newton tolerances its stiff axis needs."""
     model.cells[bender.name] = keys
     model.elements[bender.name] = items
     model.beam_benders.add(bender.name)
     # an axial force EA/L_c du resolves positions only to round-off eps L: its residual floor is
-    # ~eps (EA/L_c) L; 10x that is the smallest reachable Newton tolerance (as for the lone
-    # actuator's beam cell), and the static solves need the relative tolerance 1e-10 there
-    floor = 10.0 * np.finfo(float).eps * ea / float(np.min(lengths)) * bender.length
+    # ~eps (EA/L_c) L; 10x that is the smallest reachable Newton tolerance, and the static solves
+    # need the relative tolerance 1e-10 there
+    ea = bender.laminate.axial_rigidity
+    floor = 10.0 * np.finfo(float).eps * ea / float(np.min(bender.cell_lengths)) * bender.length
     model.newton_tolerance_floor = max(model.newton_tolerance_floor, floor)
     model.static_relative_tolerance = 1e-10
-    return keys
 
 
 def actuation_torques(model: MechanismModel, bender: Bender, zeros) -> dict[str, np.ndarray]:
