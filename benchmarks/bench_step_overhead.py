@@ -42,14 +42,13 @@ import warnings
 from pathlib import Path
 
 import exudyn
-import numpy as np
 
 from exudyn_atcm import __version__, simulate
 from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm.mbs import solver_runs
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import bench_mechanisms as bm  # noqa: E402 - the mechanisms of the mechanism benchmark
+import bench_systems as bm  # noqa: E402 - the mechanisms of the mechanism benchmarks
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
 STEP = 1e-4  # s

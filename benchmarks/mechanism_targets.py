@@ -35,7 +35,7 @@ import numpy as np
 from exudyn_atcm import __version__, simulate
 from exudyn_atcm.io.atomic import write_json
 
-import bench_mechanisms as bm
+import bench_systems as bm
 import handbuilt
 from bench_step_overhead import exudyn_floor
 

@@ -21,7 +21,7 @@ import pytest
 BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 sys.path.insert(0, str(BENCHMARKS))
 
-import bench_mechanisms as bm  # noqa: E402
+import bench_systems as bm  # noqa: E402
 import handbuilt  # noqa: E402
 
 from exudyn_atcm import simulate  # noqa: E402

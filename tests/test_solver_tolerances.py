@@ -14,14 +14,13 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import exudyn_atcm as atcm
 from exudyn_atcm import theory
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-import bench_mechanisms as bm  # noqa: E402 - the four-bar and the gripper of the mechanism benchmark
+import bench_systems as bm  # noqa: E402 - the four-bar and the gripper of the mechanism benchmarks
 
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
 MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)
