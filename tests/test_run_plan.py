@@ -34,7 +34,7 @@ def _actuator() -> BendingActuator:
 @pytest.fixture
 def dear_steps(monkeypatch):
     """Every step predicted to cost SECONDS_PER_STEP [s] (in the plan and in each simulate)."""
-    def estimate(cell, n_cells, n_steps):
+    def estimate(cell, n_cells, n_steps, extra_per_step=0.0):
         return n_steps * SECONDS_PER_STEP
     monkeypatch.setattr(run_checks, "estimate_run_time", estimate)
     monkeypatch.setattr(run_plan, "estimate_run_time", estimate)

@@ -58,6 +58,7 @@ import numpy as np
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from .interrupts import InterruptGuard, SimulationInterrupted, WallClock, is_interrupt
+from .drive_cost import drive_share
 from .long_runs import is_announced, long_run_message
 from ..errors import AccuracyWarning, InputRangeWarning, RunCostWarning
 
@@ -405,19 +406,21 @@ def check_step_against_frequency(step: float | TimeGrid, frequency: float, *, wh
 
 # ------------------------------------------------------------------------------ run time
 
-def estimate_run_time(cell: str | CellKind, n_cells: int, n_steps: int) -> float | None:
+def estimate_run_time(cell: str | CellKind, n_cells: int, n_steps: int, extra_per_step: float = 0.0) -> float | None:
     """Predicted wall time [s] of a time integration from the cell kind's measured cost.
 
-    ``n_steps * (a + b n_cells + c n_cells^2)`` with the kind's
-    :attr:`~exudyn_atcm.cells.CellKind.cost_per_step` ``(a, b, c)``; ``None`` for a kind without
-    measured costs.  ``cell`` is a kind or its name.
+    ``n_steps * (a + b n_cells + c n_cells^2 + extra_per_step)`` with the kind's
+    :attr:`~exudyn_atcm.cells.CellKind.cost_per_step` ``(a, b, c)`` and the drives' measured cost
+    beyond the one the kind's cost includes (``extra_per_step`` [s],
+    :func:`~exudyn_atcm.solve.drive_cost.extra_drive_cost`); ``None`` for a kind without measured
+    costs.  ``cell`` is a kind or its name.
     """
     per_step = cell_kind(cell).estimate_step_cost(n_cells)
-    return None if per_step is None else n_steps * per_step
+    return None if per_step is None else n_steps * (per_step + extra_per_step)
 
 
 def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: float | None = None,
-                 parts: str | None = None, stacklevel: int = 4) -> float | None:
+                 parts: str | None = None, extra_per_step: float = 0.0, stacklevel: int = 4) -> float | None:
     """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
 
     Quiet inside :func:`~exudyn_atcm.solve.long_runs.announced_up_front` (a run of several
@@ -428,9 +431,10 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
     benders and flexures and its links).
     """
     limit = LONG_RUN_SECONDS if limit is None else limit
-    estimate = estimate_run_time(cell, n_cells, n_steps)
+    estimate = estimate_run_time(cell, n_cells, n_steps, extra_per_step)
     if estimate is not None and estimate > limit and not is_announced():  # a plan announced the whole run
         per_step = estimate / max(n_steps, 1)
-        detail = f"{n_steps} steps of {parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} µs per step, measured"
+        detail = (f"{n_steps} steps of {parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} "
+                  f"µs per step, measured{drive_share(extra_per_step)}")
         warnings.warn(long_run_message(estimate, detail), RunCostWarning, stacklevel=stacklevel)
     return estimate

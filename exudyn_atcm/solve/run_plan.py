@@ -45,6 +45,7 @@ from ..io.progress import format_duration
 from ..mechanism.assembly import Mechanism
 from .long_runs import announced_up_front, long_run_message
 from .mechanism_checks import cost_description, cost_parts
+from .drive_cost import drive_share, extra_drive_cost
 from .run_checks import LONG_RUN_SECONDS, estimate_run_time, time_grid
 
 __all__ = ["PlannedRun", "RunPlan", "estimate_simulation", "PACE_FACTOR"]
@@ -94,21 +95,26 @@ class PlannedRun:
                              "estimate seconds=...")
 
 
-def estimate_simulation(system: Any, t_end: float, step: float) -> tuple[float | None, int, str]:
-    """Predicted wall time [s] (``None`` without measured costs), steps and parts of one simulation.
+def estimate_simulation(system: Any, t_end: float, step: float) -> tuple[float | None, int, str, float]:
+    """Predicted wall time [s] (``None`` without measured costs), steps, parts and the drives' extra cost per
+    step [s] of one simulation.
 
     A :class:`~exudyn_atcm.BendingActuator` counts its cells, a
     :class:`~exudyn_atcm.Mechanism` its cells and bodies
-    (:func:`~exudyn_atcm.solve.mechanism_checks.cost_parts`).
+    (:func:`~exudyn_atcm.solve.mechanism_checks.cost_parts`); both add what their drives cost beyond
+    the one the cells' measured costs include (:func:`~exudyn_atcm.solve.drive_cost.extra_drive_cost`).
     """
-    n_steps = time_grid(t_end, step, warn=False).n_steps
+    grid = time_grid(t_end, step, warn=False)
+    n_steps = grid.n_steps
     if isinstance(system, Mechanism):
         cell, parts = cost_parts(system)
-        return estimate_run_time(cell, parts, n_steps), n_steps, cost_description(system)
+        extra = extra_drive_cost(system.drives.values(), grid.step)
+        return estimate_run_time(cell, parts, n_steps, extra), n_steps, cost_description(system), extra
     cell, n_cells = getattr(system, "cell", None), getattr(system, "n_cells", None)
     if cell is None or n_cells is None:
         raise ValueError(f"PlannedRun.system must be a BendingActuator or a Mechanism, got {type(system).__name__}")
-    return estimate_run_time(cell, n_cells, n_steps), n_steps, f"{n_cells} {cell.name} cells"
+    extra = extra_drive_cost([system.drive], grid.step)
+    return estimate_run_time(cell, n_cells, n_steps, extra), n_steps, f"{n_cells} {cell.name} cells", extra
 
 
 class RunPlan:
@@ -155,9 +161,10 @@ class RunPlan:
                 estimates.append(float(run.seconds))
                 details.append("its own estimate")
                 continue
-            estimate, n_steps, parts = estimate_simulation(run.system, run.t_end, run.step)
+            estimate, n_steps, parts, extra = estimate_simulation(run.system, run.t_end, run.step)
             estimates.append(estimate)
-            per_step = f" at ~{estimate / max(n_steps, 1) * 1e6:.3g} µs per step, measured" if estimate is not None else ""
+            per_step = "" if estimate is None else \
+                f" at ~{estimate / max(n_steps, 1) * 1e6:.3g} µs per step, measured{drive_share(extra)}"
             details.append(f"{n_steps} steps of {parts}{per_step}")
         self.estimates = tuple(estimates)
         known = [e for e in estimates if e is not None]
