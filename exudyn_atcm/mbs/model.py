@@ -263,10 +263,12 @@ class MechanismModel:
         """Current ODE2 coordinates (a view)."""
         return self.mbs.systemData.GetODE2Coordinates(copy=False)
 
-    def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
-        """Pose (x, y, angle) of every body for rows of ODE2 coordinates ``q`` (shape (n, nODE2))."""
+    def poses(self, q: np.ndarray, keys: Any = None) -> dict[str, np.ndarray]:
+        """Pose (x, y, angle) of every body (or of the bodies ``keys``) for rows of ODE2 coordinates ``q``
+        (shape (n, nODE2))."""
         q = np.atleast_2d(q)
-        return {key: body.pose_rows(q) for key, body in self.bodies.items()}
+        bodies = self.bodies.items() if keys is None else ((key, self.bodies[key]) for key in keys)
+        return {key: body.pose_rows(q) for key, body in bodies}
 
     def point_positions(self, poses: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Position (x, y) rows of every component point (``"comp.point"``)."""

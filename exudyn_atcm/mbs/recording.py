@@ -109,12 +109,16 @@ def cell_rotations(model: MechanismModel, q: np.ndarray, strains: np.ndarray) ->
     coordinates with the rows ``strains`` of the sources' strains."""
     q = np.atleast_2d(q)
     out: dict[str, float] = {}
-    if q.shape[0] == 0:
+    chains = [b for b in model.mechanism.benders if b.cell.chain_of_cells]
+    if q.shape[0] == 0 or not chains:
         return out
-    poses = model.poses(q)
-    for bender in model.mechanism.benders:
-        if not bender.cell.chain_of_cells:
-            continue
+    needed: set[str] = set()  # the poses the cells and the base ends need, no others (they may be dear)
+    for bender in chains:
+        needed.update(model.cells[bender.name])
+        base = model.ends[f"{bender.name}.base"]
+        needed.update([base.body] if base.kind != "hinge" else [model.hinges[base.hinge].a, model.hinges[base.hinge].b])
+    poses = model.poses(q, needed)
+    for bender in chains:
         cells = np.column_stack([model.rotation(poses, key) for key in model.cells[bender.name]])
         if bender.name in model.beam_benders:  # a cell's angle: the mean of its two nodes' rotations
             cells = 0.5 * (cells[:, :-1] + cells[:, 1:])
