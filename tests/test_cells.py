@@ -285,3 +285,22 @@ def test_warnings_of_a_solve_point_at_the_callers_line():
     with pytest.warns(RuntimeWarning) as record:
         atcm.simulate(act, 0.02, step=5e-3)
     assert any(pathlib.Path(w.filename).name == "test_cells.py" for w in record), [w.filename for w in record]
+
+
+def test_the_retired_actuator_registry_warns_and_says_where_to_register():
+    from exudyn_atcm.errors import AtcmDeprecationWarning
+    from exudyn_atcm.mbs.cells import add_actuator_cells
+
+    class Old(RigidCell):
+        name = "old"
+
+    with pytest.warns(AtcmDeprecationWarning, match="register the kind's realisation once with "
+                                                    r"exudyn_atcm.mbs.cells.add_mechanism_bender.register"):
+        @add_actuator_cells.register(Old)
+        def _(cell, SC, mbs, act, stroke_path, tip_force):
+            raise AssertionError("never called: the one builder realises Old as its parent kind")
+    # the registration had no effect: the kind is built as its parent, the rigid chain
+    ref = atcm.solve_static(actuator("rigid", voltage=800.0))
+    assert atcm.solve_static(actuator(Old(), voltage=800.0))["tip_y"][0] == ref["tip_y"][0]
+    with pytest.raises(ValueError, match="add_actuator_cells is retired"):
+        add_actuator_cells(Old(), None, None, None, "prestep", (0.0, 0.0))
