@@ -29,14 +29,14 @@ def coarse_step_expected():
     return pytest.warns(AccuracyWarning, match=r"lasting 0\.025 s, with only 12\.5 steps")
 
 
-class LeakyOperator:
-    """A deliberately wrong integration of the operator: commits on every trial evaluation."""
+class WrappedOperator:
+    """A hysteresis operator that hands everything to ``inner``; subclasses change evaluate/commit."""
 
     def __init__(self, inner):
         self.inner = inner
 
     def evaluate(self, u):
-        return self.inner.commit(u)
+        return self.inner.evaluate(u)
 
     def commit(self, u):
         return self.inner.commit(u)
@@ -52,6 +52,13 @@ class LeakyOperator:
 
     def restore(self, snapshot):
         self.inner.restore(snapshot)
+
+
+class LeakyOperator(WrappedOperator):
+    """A deliberately wrong integration of the operator: commits on every trial evaluation."""
+
+    def evaluate(self, u):
+        return self.inner.commit(u)
 
 
 def check_in_step_hysteresis_equals_offline_replay(cell, settings):

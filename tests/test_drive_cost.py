@@ -19,16 +19,18 @@ from exudyn_atcm.solve.drive_cost import drive_step_cost, extra_drive_cost, refe
 from exudyn_atcm.solve.run_checks import estimate_run_time
 from exudyn_atcm.solve.run_plan import estimate_simulation
 
+from _actuator_runs import WrappedOperator
+
 SLEEP = 2e-3  # s per evaluation and per commit
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
 MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)
 
 
-class SlowOperator:
+class SlowOperator(WrappedOperator):
     """The paper's Preisach loop, sleeping ``SLEEP`` in every evaluation and commit."""
 
     def __init__(self) -> None:
-        self.inner = paper_strain_preisach()
+        super().__init__(paper_strain_preisach())
 
     def evaluate(self, u):
         time.sleep(SLEEP)
@@ -37,18 +39,6 @@ class SlowOperator:
     def commit(self, u):
         time.sleep(SLEEP)
         return self.inner.commit(u)
-
-    def reset(self):
-        self.inner.reset()
-
-    def apply(self, u_series):
-        return self.inner.apply(u_series)
-
-    def checkpoint(self):
-        return self.inner.checkpoint()
-
-    def restore(self, snapshot):
-        self.inner.restore(snapshot)
 
 
 def slow_actuator(n_cells=4):
