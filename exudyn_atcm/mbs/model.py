@@ -171,7 +171,9 @@ class MechanismModel:
     # ------------------------------------------------------------------ actuation and loads
     def set_strains(self, strains: np.ndarray) -> None:
         """Write the free strains of every source [-] into the actuation torques (and follower loads)."""
-        self.strains = strains = np.asarray(strains, dtype=float)
+        if strains.__class__ is not np.ndarray or strains.dtype != float:  # the run's own array passes as it is
+            strains = np.asarray(strains, dtype=float)
+        self.strains = strains
         if self.torque_loads:
             if self._torque_plan is None or len(self._torque_plan) != len(self.torque_loads):
                 # per load the non-zero (source, torque per strain) terms, as Python numbers: a step's

@@ -31,8 +31,9 @@ from ..model.strain_sources import InStepStrain
 
 __all__ = ["drive_step_cost", "extra_drive_cost", "reference_drive_cost", "drive_share", "SAMPLES"]
 
-#: Trial-and-commit cycles timed per drive (after two that warm it up).
-SAMPLES = 24
+#: Trial-and-commit cycles timed per drive (after two that warm it up): enough for an estimate, a
+#: fraction of a millisecond for the paper's operator.
+SAMPLES = 8
 
 _reference: list[float] = []  # the reference drive's cost, measured once per process
 

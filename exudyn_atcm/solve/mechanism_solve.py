@@ -187,10 +187,14 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     if stroke_path == "user_function":  # the user functions ask the sources at their t
         model.uf_strains = trial_strains
 
+    set_strains = model.set_strains
+
     def pre_step(t: float) -> None:
         model.time = t
         try:
-            model.set_strains(trial_strains(t))
+            for k, source in indexed_sources:
+                trial[k] = source.trial(t)
+            set_strains(trial)
         except ValueError as exc:  # a voltage program or load function gave nonsense: report it as such
             user_errors.append(exc)
             raise
