@@ -78,8 +78,12 @@ def _check_modes(n: int) -> int:
 
 
 def _coefficients(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Shifted-Legendre coefficients (rows) of ``phi_i`` and ``W_i = int_0^xi phi_i``, i = 1..n."""
-    n = _check_modes(n)
+    """Shifted-Legendre coefficients (rows) of ``phi_i`` and ``W_i = int_0^xi phi_i``, i = 1..n (read-only)."""
+    return _coefficients_of(_check_modes(n))
+
+
+@functools.lru_cache(maxsize=64)
+def _coefficients_of(n: int) -> tuple[np.ndarray, np.ndarray]:
     phi = np.zeros((n, n + 1))
     wint = np.zeros((n, n + 2))
     # in y = 2 xi - 1: d xi = dy / 2, so int_0^xi f d xi = legint(f, scl=1/2, lbnd=-1)
@@ -93,6 +97,8 @@ def _coefficients(n: int) -> tuple[np.ndarray, np.ndarray]:
         phi[i, :c.size] = c
         w = legendre.legint(c, lbnd=-1.0, scl=0.5)
         wint[i, :w.size] = w
+    phi.flags.writeable = False
+    wint.flags.writeable = False
     return phi, wint
 
 
