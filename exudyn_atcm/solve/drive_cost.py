@@ -10,9 +10,10 @@ and its controller's state are not touched) and returns what the drives cost bey
 reference drive, per step.
 
 It narrows the gap but does not close it.  On ``cases/tip_tracking.py`` (4 s, 20,000 steps per
-run) the four runs were estimated at 0.48 s each from the cells alone, at 0.67 to 0.83 s with
-the drives, and took 1.1 to 2.3 s: the rest is the closed loop's extra Newton iterations and
-the cells' constants, which were measured on another day.  A run of several simulations
+run) the four runs were estimated at 0.48 s each from the cells alone; with the drives at 0.52
+to 0.80 s, and they took 0.78 to 1.36 s (an earlier run on a busier machine: 0.67 to 0.83 s
+estimated, 1.1 to 2.3 s taken).  The rest is the closed loop's extra Newton iterations and the
+cells' constants, which were measured on another day.  A run of several simulations
 (:class:`~exudyn_atcm.solve.run_plan.RunPlan`) says so when its first simulations run slower than
 predicted.
 """
