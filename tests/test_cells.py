@@ -329,3 +329,30 @@ def test_three_kinds_in_one_mechanism_agree_with_beam_theory():
     x, y = bt.arc_point(kappa, length)
     for k, b in enumerate(benders):
         assert s[f"{b.name}.tip_y"][0] - 0.02 * k == pytest.approx(float(y), rel=1e-4), b.name
+
+
+def ancf_cantilever(cell):
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.06, n_cells=3, cell=cell,
+                    drive=atcm.PiezoDrive(atcm.signals.Triangle(750.0, 750.0, 0.1)))
+    return atcm.Mechanism("m").add(b).ground(b.base)
+
+
+def test_an_ancf_cantilever_works_through_add_to_and_a_ritz_one_says_why_not():
+    # add_to with the user's own solver run: the same answer as simulate (the ANCF end node carries the
+    # user's markers as a beam node does)
+    ref = atcm.simulate(ancf_cantilever("ancf"), 0.005, step=1e-4)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    handle = atcm.add_to(mbs, ancf_cantilever("ancf"))
+    tip = handle.position_marker("b.tip")  # a user's marker at the free tip: the end node's position
+    assert mbs.GetMarker(tip)["markerType"] == "NodePosition"
+    mbs.Assemble()
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.005, 1e-4))
+    r = handle.result()
+    for name in ("b.tip_x", "b.tip_y", "b.tip_angle"):
+        np.testing.assert_allclose(r[name], ref[name], rtol=0, atol=1e-12, err_msg=name)
+    assert np.ptp(r["b.tip_y"]) > 1e-4  # it moved
+    # the ritz cell's dynamics need its own solver settings, which a user's run would not set
+    mbs2 = exu.SystemContainer().AddSystem()
+    with pytest.raises(MechanismError, match=r"add_to: bender 'b': the ritz cell needs solver settings of its own"):
+        atcm.add_to(mbs2, ancf_cantilever("ritz"))

@@ -111,6 +111,11 @@ class CellKind:
             allowed = " or ".join(repr(p) for p in self.stroke_paths)
             raise ValueError(f"stroke_path must be {allowed} for the {self.name} cell, got {stroke_path!r}")
 
+    def add_to_refusal(self) -> str | None:
+        """Why a bender of this kind cannot be added to a user's own Exudyn system with
+        :func:`~exudyn_atcm.add_to` (``None``: it can)."""
+        return None
+
     def tip_load_refusal(self) -> str | None:
         """Why a lone actuator of this kind refuses a tip load (``None``: it carries one)."""
         if self.carries_tip_load:

@@ -40,6 +40,11 @@ class RitzCell(CellKind):
         return ("the ritz cell refuses tip loads (the model leaves out a load's geometric stiffness); "
                 "use cell='beam' or cell='ancf' for them")
 
+    def add_to_refusal(self) -> str | None:
+        return ("the ritz cell needs solver settings of its own (the mass matrix re-read every step, the dense "
+                "linear solver), which a user's own solver run would not set: its dynamics would be quietly wrong; "
+                "use cell='ancf' or cell='beam' with add_to")
+
     def end_refusal(self, end: str, connection: str) -> str | None:
         """A cantilever only: the base welded to the ground, the tip free."""
         return cantilever_refusal(self.name, end, connection,

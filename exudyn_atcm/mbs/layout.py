@@ -130,7 +130,8 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
 def check_end_connections(mech: Mechanism, groups: dict[str, Group], group_of: dict[str, str],
                           free_end_bodies: bool = False) -> None:
     """Refuse the end connections and loads a bender's cell kind cannot realise, in the cell's own words
-    (:meth:`~exudyn_atcm.cells.CellKind.end_refusal`, :meth:`~exudyn_atcm.cells.CellKind.tip_load_refusal`).
+    (:meth:`~exudyn_atcm.cells.CellKind.end_refusal`, :meth:`~exudyn_atcm.cells.CellKind.tip_load_refusal`,
+    and with ``free_end_bodies`` (:func:`~exudyn_atcm.add_to`) :meth:`~exudyn_atcm.cells.CellKind.add_to_refusal`).
 
     Raises
     ------
@@ -138,12 +139,16 @@ def check_end_connections(mech: Mechanism, groups: dict[str, Group], group_of: d
         Naming the bender and the end or the load.
     """
     for bender in mech.benders:
+        refusal = bender.cell.add_to_refusal() if free_end_bodies else None
+        if refusal is not None:
+            raise MechanismError(f"add_to: bender {bender.name!r}: {refusal}")
         for end in ("base", "tip"):
             part = f"{bender.name}#{end}"
             g = groups[group_of[part]]
             if g.kind == "ground":
                 connection = "ground"
-            elif g.parts == [part] and not g.joints and not free_end_bodies:
+            elif g.parts == [part] and not g.joints and (not free_end_bodies or g.kind == "beam-node"):
+                # free (a user's joints may attach to an end node through add_to, as to a beam's)
                 connection = "free"
             else:
                 connection = "joined"
