@@ -132,6 +132,7 @@ def test_a_family_that_cannot_be_fitted_is_listed_with_the_reason():
     ({"families": ("preisach",)}, r"families must be a non-empty selection of"),
     ({"split": 1.0}, r"split must be a fraction in \(0, 1\)"),
     ({"n_fit": 10**6}, r"n_fit must be an integer in \[10, \d+\] \(a held-out part is needed\)"),
+    ({"relays_per_cell": 0}, r"relays_per_cell must be an integer >= 1, got 0"),
 ])
 def test_bad_options_are_refused(kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):
@@ -141,3 +142,18 @@ def test_bad_options_are_refused(kwargs, pattern):
 def test_needs_y_or_a_record():
     with pytest.raises(ValueError, match=r"identify needs u and y, or a measured record"):
         identify(U)
+
+
+def test_refined_relay_grid_in_the_table():
+    """``relays_per_cell`` reaches the discrete fit: its row is the refined grid, fitted as the
+    spread cells are, so its held-out error comes within the finer staircase of the Everett row's."""
+    truth = everett_truth()
+    u = corners_path([-1, 1, -1, 1, -0.2, 0.5, -0.6, 0.9, -1, 0.3, -0.4, 1], 0.01)
+    y = truth.apply(u)
+    choice = identify(u, y, families=("discrete", "everett"), n_levels=12, prior="smooth", relays_per_cell=8)
+    rows = {c.family: c for c in choice.candidates}
+    assert rows["discrete"].label == "discrete (12 levels, smooth, 8x8 relays per cell)"
+    assert rows["discrete"].model.n_relays == 96 * 97 // 2
+    assert rows["discrete"].parameters == rows["everett"].parameters == 12 * 13 // 2 + 1
+    # the relays' staircase over 96 levels stays within one fine step of the spread grid's output
+    assert abs(rows["discrete"].held_out_rms_percent - rows["everett"].held_out_rms_percent) < 100 / 96

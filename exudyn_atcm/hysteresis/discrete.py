@@ -228,6 +228,7 @@ class DiscretePreisach(StaircasePreisach):
         prior: str = "smooth",
         prior_weight: float | None = None,
         cv_folds: int = 5,
+        relays_per_cell: int = 1,
     ) -> tuple["DiscretePreisach", Any]:
         """Variable gains: relay weights on a Preisach grid by non-negative least squares.
 
@@ -276,6 +277,20 @@ class DiscretePreisach(StaircasePreisach):
             standard error of the best; the table is in the report's ``settings``).
         cv_folds : int, optional
             Blocks of the cross-validation (default 5).
+        relays_per_cell : int, optional
+            ``1`` (default): one relay per grid cell, weights fitted to the relays' staircase.
+            ``k > 1``: the weights are fitted with each spread evenly over its cell (the
+            density of :meth:`EverettPreisach.fit <exudyn_atcm.hysteresis.EverettPreisach.fit>`,
+            same least squares) and realised as ``k × k`` relays per cell, the relay grid of
+            ``k·n_levels`` levels (:func:`~exudyn_atcm.hysteresis.relay_gram.refined_relays`).
+            The staircase's steps shrink ``k`` times at the same number of fitted weights and
+            the same fit time; an operator step still costs ``O(log n)``.  What it buys on
+            nested minor loops predicted from major loops (``prior="pi"``, 30 levels, 0.3 % noise;
+            ``tests/test_minor_loop_prior.py``), held-out RMS in % of the range: on a non-PI
+            truth 1.3 with ``k = 1``, 0.65 with ``k = 4``, 0.61 with ``k = 8``, against 0.59
+            for the spread grid itself; on a PI truth 1.08, 0.39, 0.35 against 0.30 for the
+            PI fit.  ``k = 8`` keeps the relay grid within 1.2 times the package's best model
+            on both.
 
         Returns
         -------
@@ -296,7 +311,8 @@ class DiscretePreisach(StaircasePreisach):
         then the relays' states depend on the history before the record.
         """
         return fit_discrete(cls, u, y, n_levels, smoothing=smoothing, n_fit=n_fit, input_range=input_range,
-                            output_unit=output_unit, prior=prior, prior_weight=prior_weight, cv_folds=cv_folds)
+                            output_unit=output_unit, prior=prior, prior_weight=prior_weight, cv_folds=cv_folds,
+                            relays_per_cell=relays_per_cell)
 
     # -- the function K -----------------------------------------------------------------
     def _k_rising(self, a: float, b: float) -> float:

@@ -34,7 +34,7 @@ from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_
 from .fit_report import FitReport, make_report
 from .nnls import single_blas_thread
 from .priors import PRIOR_STRENGTHS, PRIORS, along_lines_matrix, cross_validate_strength, solve_regularised
-from .relay_gram import cell_gram, nnls_normal, relay_grid, relay_gram, smoothness_matrix
+from .relay_gram import cell_gram, nnls_normal, refined_relays, relay_grid, relay_gram, smoothness_matrix
 
 #: Fewest samples accepted by the least-squares fits.
 MIN_SAMPLES = 10
@@ -101,11 +101,18 @@ def _first_near(u: np.ndarray, target: float, tolerance: float) -> int:
 def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float = 1e-3, n_fit: int | None = None,
                  input_range: tuple[float, float] | None = None, output_unit: str = "",
                  basis: str = "relays", prior: str = "smooth", prior_weight: float | None = None,
-                 cv_folds: int = 5) -> tuple[Any, FitReport]:
+                 cv_folds: int = 5, relays_per_cell: int = 1) -> tuple[Any, FitReport]:
     """Body of :meth:`DiscretePreisach.fit` (``basis="relays"``) and :meth:`EverettPreisach.fit`
-    (``basis="cells"``: each weight spread over its grid cell)."""
+    (``basis="cells"``: each weight spread over its grid cell).  With ``relays_per_cell > 1``
+    the relay fit identifies the spread cells' weights and realises them as the finer relay grid
+    of :func:`~exudyn_atcm.hysteresis.relay_gram.refined_relays`."""
     if basis not in ("relays", "cells"):
         raise ValueError(f"basis must be 'relays' or 'cells', got {basis!r}")
+    refine = _levels_int("relays_per_cell", relays_per_cell, minimum=1)
+    if basis == "cells" and refine != 1:
+        raise ValueError(f"relays_per_cell applies to DiscretePreisach.fit only (EverettPreisach spreads each weight "
+                         f"over its whole cell), got relays_per_cell={relays_per_cell!r}")
+    spread = "cells" if basis == "cells" or refine > 1 else "relays"
     started = time.perf_counter()
     u_a, y_a, n_fit = check_record(u, y, n_fit)
     n_levels = _levels_int("n_levels", n_levels)
@@ -115,6 +122,8 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             f"n_levels must be <= {MAX_FIT_LEVELS}, got {n_levels}: {relays} relays would need dense normal equations "
             f"of {relays}x{relays} floats ({relays**2 * 8 / 2**30:.3g} GiB); 10 ... 40 levels resolve a measured loop "
             "to about its noise level")
+    check_element_count(f"n_levels={n_levels} x relays_per_cell={refine}", n_levels * refine * (n_levels * refine + 1) // 2,
+                        "relays")
     smoothing = nonnegative_float("smoothing", smoothing)
     if prior not in PRIORS:
         raise ValueError(f"prior must be one of {', '.join(repr(p) for p in PRIORS)}, got {prior!r}")
@@ -137,7 +146,7 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     crossed = (np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="right")) != 0) | (
         np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="left")) != 0)
     changes = 1 + int(np.count_nonzero(crossed))
-    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, n_fit, basis, distinct_rows=changes,
+    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, n_fit, spread, distinct_rows=changes,
                                                     cv_folds=cv_folds if cross_validate else 0,
                                                     cv_strengths=len(PRIOR_STRENGTHS)),
                "use fewer levels (n_levels) or decimate the record (exudyn_atcm.io.measurements.preprocess)")
@@ -145,7 +154,7 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     edges = np.linspace(u_lo, u_hi, n_levels + 1)
     # all grid relays are off once the input is at or below the lowest threshold (for relays
     # spread over their cells: at or below the lowest cell edge)
-    lowest = float(alpha.min()) if basis == "relays" else u_lo + 1e-12 * (u_hi - u_lo)
+    lowest = float(alpha.min()) if spread == "relays" else u_lo + 1e-12 * (u_hi - u_lo)
     low = np.flatnonzero(u_a[:n_fit] <= lowest)
     start = int(low[0]) if low.size else n_fit
     notes = []
@@ -160,7 +169,7 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
         )
     scale = float(np.ptp(y_a[start:n_fit])) or 1.0
     with single_blas_thread():  # see exudyn_atcm.hysteresis.nnls
-        if basis == "relays":
+        if spread == "relays":
             gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
         else:
             gram, rhs, colsum, ysum, m = cell_gram(edges, index, u_a, y_a / scale, start, n_fit)
@@ -185,7 +194,7 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
             folds = []
             with single_blas_thread():
                 for a, b in zip(bounds[:-1], bounds[1:]):
-                    if basis == "relays":
+                    if spread == "relays":
                         stats = relay_gram(alpha, beta, u_a, y_a / scale, int(a), int(b))
                     else:
                         stats = cell_gram(edges, index, u_a, y_a / scale, int(a), int(b))
@@ -207,11 +216,19 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     if never.any():
         notes.append(f"{int(never.sum())} of {alpha.size} grid relays never switch on in the fitted samples "
                      "(their weights come from the smoothing only)")
-    model = cls(alpha, beta, weights, offset=offset) if basis == "relays" else cls(edges, alpha, beta, weights, offset=offset)
+    if basis == "cells":
+        model = cls(edges, alpha, beta, weights, offset=offset)
+    elif refine > 1:
+        model = cls(*refined_relays(u_lo, u_hi, n_levels, weights, refine), offset=offset)
+        notes.append(f"cell weights realised as {model.n_relays} relays, {refine} x {refine} per grid cell "
+                     f"({n_levels * refine} levels)")
+    else:
+        model = cls(alpha, beta, weights, offset=offset)
     elapsed = time.perf_counter() - started
     report = make_report(
         model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
-        settings={"n_levels": n_levels, "n_relays": int(alpha.size), "smoothing": smoothing,
+        settings={"n_levels": n_levels, "n_relays": int(getattr(model, "n_relays", alpha.size)),
+                  "relays_per_cell": refine, "smoothing": smoothing,
                   "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis, **prior_settings},
         notes=notes, output_unit=output_unit, fit_time=elapsed, coverage_levels=n_levels,
     )

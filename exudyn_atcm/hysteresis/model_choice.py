@@ -197,7 +197,7 @@ def _record_arrays(record: Any, y: Any) -> tuple[Any, Any, str, Any]:
 def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = None,
              families: tuple[str, ...] = FAMILIES, n_levels: int = 30, n_plays: int = 20, n_relays: int = 20,
              smoothing: float = 1e-3, prior: str = "pi", reversal_tolerance: float = 0.02, levels: str = "paper",
-             simpler_margin: float = 0.1, output_unit: str | None = None) -> ModelChoice:
+             simpler_margin: float = 0.1, output_unit: str | None = None, relays_per_cell: int = 1) -> ModelChoice:
     """Fit every hysteresis family to a record and choose one by its held-out error.
 
     Parameters
@@ -235,6 +235,10 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
         ``1 + simpler_margin`` times that of every simpler one within reach (default 0.1).
     output_unit : str, optional
         Unit of ``y`` (default: the record's, or ``""``).
+    relays_per_cell : int, optional
+        Of the ``discrete`` fit: ``k > 1`` fits the weights as spread cells and realises each
+        cell as ``k × k`` relays (see :meth:`DiscretePreisach.fit`); the parameter count is the
+        fitted weights' (default 1).
 
     Returns
     -------
@@ -251,6 +255,8 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
     u_a, y_a, _ = check_record(u_in, y_in)
     if not families or any(f not in FAMILIES for f in families):
         raise ValueError(f"families must be a non-empty selection of {FAMILIES}, got {families!r}")
+    if isinstance(relays_per_cell, bool) or not isinstance(relays_per_cell, (int, np.integer)) or relays_per_cell < 1:
+        raise ValueError(f"relays_per_cell must be an integer >= 1, got {relays_per_cell!r}")
     if not (isinstance(simpler_margin, (int, float)) and 0.0 <= simpler_margin < 10.0):
         raise ValueError(f"simpler_margin must be a number in [0, 10), got {simpler_margin!r}")
     if n_fit is None:
@@ -274,9 +280,12 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
                                  notes=fitted.notes, output_unit=unit, fit_time=fitted.fit_time)
             return f"equal_gain ({n_relays} relays, {levels})", model, report, 2 * n_relays + 2
         if family in ("discrete", "everett"):
+            options = {"relays_per_cell": relays_per_cell} if family == "discrete" else {}
             cls = DiscretePreisach if family == "discrete" else EverettPreisach
-            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, n_fit=n_fit, output_unit=unit, prior=prior)
-            return f"{family} ({n_levels} levels, {prior})", model, report, n_levels * (n_levels + 1) // 2 + 1
+            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, n_fit=n_fit, output_unit=unit, prior=prior,
+                                    **options)
+            refined = f", {relays_per_cell}x{relays_per_cell} relays per cell" if options and relays_per_cell != 1 else ""
+            return f"{family} ({n_levels} levels, {prior}{refined})", model, report, n_levels * (n_levels + 1) // 2 + 1
         if family == "prandtl_ishlinskii":
             model, report = PrandtlIshlinskii.fit(u_a, y_a, n_plays, n_fit=n_fit, output_unit=unit)
             return f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1

@@ -16,7 +16,7 @@ import scipy.sparse
 from .nnls import nnls_gram
 from .staircase import StaircasePreisach
 
-__all__ = ["relay_grid", "smoothness_matrix", "relay_gram", "CellFractions", "cell_gram", "chunked_gram",
+__all__ = ["relay_grid", "refined_relays", "smoothness_matrix", "relay_gram", "CellFractions", "cell_gram", "chunked_gram",
            "nnls_normal"]
 
 
@@ -39,6 +39,37 @@ def relay_grid(u_lo: float, u_hi: float, n_levels: int) -> tuple[np.ndarray, np.
     levels = u_lo + (np.arange(n_levels) + 0.5) * h
     i, j = np.tril_indices(n_levels)
     return levels[i], levels[j], np.column_stack([i, j])
+
+
+def refined_relays(u_lo: float, u_hi: float, n_levels: int, weights: np.ndarray,
+                   relays_per_cell: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Relays of an ``n_levels`` grid whose cell weights are spread evenly over their cells.
+
+    Each cell of the coarse grid (:func:`relay_grid` order of ``weights``) is cut into
+    ``k = relays_per_cell`` parts along each axis, and one relay sits at the centre of every
+    part that lies in the Preisach triangle ``alpha >= beta``: the relay grid of ``k·n_levels``
+    levels.  A relay's weight is the cell's weight times the share of the cell's area its part
+    holds (as :class:`~exudyn_atcm.hysteresis.everett.EverettPreisach` spreads it: over the
+    square off the diagonal, over the half below ``alpha = beta`` on it), so ``1/k²`` off the
+    diagonal, and on a diagonal cell ``2/k²`` for a full square part and ``1/k²`` for a part the
+    diagonal halves.  The relays switch exactly where the spread cells are fully on or off,
+    so for inputs whose turning points lie on the fine grid's cell edges their output equals
+    the spread grid's; in between it is a staircase with steps ``k`` times finer than the
+    coarse grid's relays would give.
+
+    Returns
+    -------
+    alpha, beta, weights : numpy.ndarray
+        ``k·n (k·n + 1)/2`` relays.
+    """
+    k = int(relays_per_cell)
+    alpha, beta, fine = relay_grid(u_lo, u_hi, n_levels * k)
+    _, _, coarse = relay_grid(u_lo, u_hi, n_levels)
+    cell = np.zeros((n_levels, n_levels))
+    cell[coarse[:, 0], coarse[:, 1]] = weights
+    ci, cj = fine[:, 0] // k, fine[:, 1] // k
+    share = np.where((ci == cj) & (fine[:, 0] != fine[:, 1]), 2.0, 1.0) / k**2
+    return alpha, beta, cell[ci, cj] * share
 
 
 def smoothness_matrix(index: np.ndarray, n_levels: int) -> Any:
