@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 import exudyn as exu
 import numpy as np
@@ -164,7 +164,7 @@ class MechanismModel:
     linearisation_hooks: list = field(default_factory=list)
     # cells' changes to the dynamic solver settings (before the user's)
     settings_adjusters: list = field(default_factory=list)
-    _torque_plan: list | None = None           # per torque load: its (source, torque per strain) terms
+    _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
     _written_factor: float | None = None       # load factor at which every load was last written
     _connector_plan: list | None = None         # (Exudyn item, stop normal or None) per spring and stop
 
@@ -174,27 +174,62 @@ class MechanismModel:
         if strains.__class__ is not np.ndarray or strains.dtype != float:  # the run's own array passes as it is
             strains = np.asarray(strains, dtype=float)
         self.strains = strains
+        self.strain_writer()(strains)
+
+    def strain_writer(self) -> Callable[[np.ndarray], None]:
+        """The callable that writes a strain vector [-] (one per source) into the system.
+
+        It does only what this model needs (actuation torques, six-bar motor offsets, offset
+        items, the cells' own writers, follower loads); a run calls it in every attempted step
+        with its own array, after ``model.strains`` was set to that array (:meth:`set_strains`
+        does both).  Rebuilt when items were added since.
+        """
+        key = (len(self.torque_loads), len(self.motor_offsets), len(self.offset_items), len(self.strain_writers),
+               len(self.loads))
+        if self._writer is None or self._writer[0] != key:
+            self._writer = (key, self._make_strain_writer())
+        return self._writer[1]
+
+    def _make_strain_writer(self) -> Callable[[np.ndarray], None]:
+        # the hot path of every attempted step: Python numbers and bound methods, no numpy products
+        mbs = self.mbs
+        actions: list[Callable[[np.ndarray], None]] = []
         if self.torque_loads:
-            if self._torque_plan is None or len(self._torque_plan) != len(self.torque_loads):
-                # per load the non-zero (source, torque per strain) terms, as Python numbers: a step's
-                # few products cost less than a numpy product (the hot path of every attempted step)
-                self._torque_plan = [(load, [(k, float(c)) for k, c in enumerate(coef) if c != 0.0])
-                                     for load, coef in self.torque_loads]
-            values = strains.tolist()
-            set_load = self.mbs.SetLoadParameter
-            for load, terms in self._torque_plan:
-                torque = 0.0
-                for k, c in terms:
-                    torque += c * values[k]
-                set_load(load, "loadVector", [0.0, 0.0, torque])
-        for item, factor, source in self.motor_offsets:
-            self.mbs.SetObjectParameter(item, "offset", factor * float(strains[source]))
-        for item, parameter, coefficient in self.offset_items:
-            self.mbs.SetObjectParameter(item, parameter, float(coefficient @ strains))
-        for write in self.strain_writers:
-            write(strains)
+            plan = [(load, [(k, float(c)) for k, c in enumerate(coef) if c != 0.0]) for load, coef in self.torque_loads]
+            set_load = mbs.SetLoadParameter
+
+            def torques(strains: np.ndarray) -> None:
+                values = strains.tolist()
+                for load, terms in plan:
+                    torque = 0.0
+                    for k, c in terms:
+                        torque += c * values[k]
+                    set_load(load, "loadVector", [0.0, 0.0, torque])
+            actions.append(torques)
+        if self.motor_offsets:
+            motors = list(self.motor_offsets)
+
+            def motor_offsets(strains: np.ndarray) -> None:
+                for item, factor, source in motors:
+                    mbs.SetObjectParameter(item, "offset", factor * strains.item(source))
+            actions.append(motor_offsets)
+        if self.offset_items:
+            items = list(self.offset_items)
+
+            def offsets(strains: np.ndarray) -> None:
+                for item, parameter, coefficient in items:
+                    mbs.SetObjectParameter(item, parameter, float(coefficient @ strains))
+            actions.append(offsets)
+        actions.extend(self.strain_writers)
         if self.loads:
-            self._write_loads(varying_only=True)
+            actions.append(lambda strains: self._write_loads(varying_only=True))
+        if len(actions) == 1:
+            return actions[0]
+
+        def write_all(strains: np.ndarray) -> None:
+            for action in actions:
+                action(strains)
+        return write_all
 
     def strains_at(self, t: float) -> np.ndarray:
         """Strains [-] per source for the user functions of the ``"user_function"`` stroke path at time ``t`` [s]."""

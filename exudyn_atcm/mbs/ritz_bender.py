@@ -102,14 +102,16 @@ def add_ritz_bender(builder, bender: Bender) -> None:
     cache = {0: M0}
     state = {"grid": 0}
 
-    terms = [(k, float(c)) for k, c in enumerate(curvature) if c != 0.0]
+    source = int(np.flatnonzero(curvature)[0]) if np.any(curvature) else None  # the bender's one drive
+    curvature_per_strain = float(curvature[source]) if source is not None else 0.0
+    set_load = mbs.SetLoadParameter
+    grids_per_curvature = length / MASS_UPDATE_ANGLE
 
     def write_strains(strains: np.ndarray) -> None:
-        kappa = 0.0
-        for k, c in terms:  # Python numbers: cheaper than a numpy product in every attempted step
-            kappa += c * strains.item(k)
-        mbs.SetLoadParameter(load, "load", ei * kappa)
-        grid = int(round(kappa * length / MASS_UPDATE_ANGLE))
+        # the hot path of every attempted step: Python numbers only
+        kappa = curvature_per_strain * strains.item(source)
+        set_load(load, "load", ei * kappa)
+        grid = round(kappa * grids_per_curvature)
         if grid != state["grid"]:
             matrix = cache.get(grid)
             if matrix is None:
@@ -122,7 +124,8 @@ def add_ritz_bender(builder, bender: Bender) -> None:
         mbs.SetObjectParameter(obj, "massMatrix", ritz_beam.mass_matrix(n, length, mu, rho_i, kappa))
         state["grid"] = None  # the next strains write a grid value again
 
-    model.strain_writers.append(write_strains)
+    if source is not None:  # without a drive the load stays 0 and the mass matrix M(0)
+        model.strain_writers.append(write_strains)
     model.linearisation_hooks.append(linearise)
     model.settings_adjusters.append(_ritz_settings)
     # the static problem is linear, K q = Q: Exudyn's Newton iteration (numerical Jacobian) stops

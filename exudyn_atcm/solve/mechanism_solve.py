@@ -187,14 +187,19 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     if stroke_path == "user_function":  # the user functions ask the sources at their t
         model.uf_strains = trial_strains
 
-    set_strains = model.set_strains
+    model.strains = trial  # the run's array: the pre-step writes it in place, the model reads it
+    write_strains = model.strain_writer()
+    only_trial = sources[0].trial if n_src == 1 else None
 
     def pre_step(t: float) -> None:
         model.time = t
         try:
-            for k, source in indexed_sources:
-                trial[k] = source.trial(t)
-            set_strains(trial)
+            if only_trial is not None:  # one drive (every actuator): no loop
+                trial[0] = only_trial(t)
+            else:
+                for k, source in indexed_sources:
+                    trial[k] = source.trial(t)
+            write_strains(trial)
         except ValueError as exc:  # a voltage program or load function gave nonsense: report it as such
             user_errors.append(exc)
             raise
