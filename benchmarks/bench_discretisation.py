@@ -69,6 +69,8 @@ CELLS = {
     "GE by hand": (2, 4, 8, 16, 32),
 }
 REPEATS = 3  # cost: best of this many runs
+#: The lone actuator keeps at least this speed-up over the hand-built GE beam (issue 15; issue 9 asked 2x).
+GOAL_SPEED_UP = 3.0
 TARGETS = (("tip angle", 1e-3), ("tip angle", 1e-4), ("f1", 1e-2), ("f1", 1e-3), ("bent f1", 1e-2),
            ("bent f1", 1e-3))
 BENT_VOLTAGE = 1500.0
@@ -279,10 +281,10 @@ def main(argv=None) -> int:
             continue
         cost, name = min(package)
         goals[key] = {"fastest": name, "speed-up over GE by hand": ge["cost [s/s]"] / cost,
-                      "met (>= 2)": ge["cost [s/s]"] / cost >= 2.0}
-    print("\ngoal: the package's fastest discretisation >= 2x faster than Exudyn's GE beam by hand")
+                      f"met (>= {GOAL_SPEED_UP:g})": ge["cost [s/s]"] / cost >= GOAL_SPEED_UP}
+    print(f"\ngoal: the package's fastest discretisation >= {GOAL_SPEED_UP:g}x faster than Exudyn's GE beam by hand")
     for key, g in goals.items():
-        print(f"  {'met ' if g['met (>= 2)'] else 'MISS'}  {key}: {g['fastest']} "
+        print(f"  {'met ' if g[f'met (>= {GOAL_SPEED_UP:g})'] else 'MISS'}  {key}: {g['fastest']} "
               f"{g['speed-up over GE by hand']:.2f}x")
 
     os.makedirs(args.out, exist_ok=True)
