@@ -305,7 +305,14 @@ class MechanismModel:
         (shape (n, nODE2))."""
         q = np.atleast_2d(q)
         bodies = self.bodies.items() if keys is None else ((key, self.bodies[key]) for key in keys)
-        return {key: body.pose_rows(q) for key, body in bodies}
+        done: dict[int, np.ndarray] = {}  # a body under two keys (a bender's end) is computed once
+        out = {}
+        for key, body in bodies:
+            pose = done.get(id(body))
+            if pose is None:
+                pose = done[id(body)] = body.pose_rows(q)
+            out[key] = pose
+        return out
 
     def point_positions(self, poses: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Position (x, y) rows of every component point (``"comp.point"``)."""
