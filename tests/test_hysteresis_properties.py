@@ -197,3 +197,35 @@ def test_checkpoint_and_restore_replay_exactly(name, history, continuation):
     first = [model.commit(u) for u in continuation]
     model.restore(saved)
     assert [model.commit(u) for u in continuation] == first
+
+
+@given(model_names, histories, st.lists(st.tuples(st.lists(values, max_size=3), st.integers(0, 3), values),
+                                         min_size=1, max_size=20))
+def test_commit_after_trials_equals_commit_alone(name, history, steps):
+    """A solver step's pattern: trials (``evaluate``, any number), then ``commit`` of the last trial's
+    input, of an earlier one, or of another input (a trial of an earlier step: a stale one).  The
+    commit takes the matching trial's output instead of evaluating ``K`` again; outputs and memory
+    must equal those of a twin that only commits, bit for bit."""
+    model, twin = MODELS[name](), MODELS[name]()
+    run(model, history)
+    run(twin, history)
+    earlier = list(history)
+    for trials, pick, other in steps:
+        for u in trials:
+            model.evaluate(u)
+        pool = trials + earlier[-2:] + [other]
+        u = pool[-1 - pick] if pick < len(trials) else pool[pick % len(pool)]
+        assert model.commit(u) == twin.commit(u)
+        assert model.checkpoint() == twin.checkpoint()
+        earlier += trials
+    for a, b in ((700.0, -200.0), (-200.0, 700.0)):  # a trial, another input committed, then the trial's input
+        model.evaluate(a)
+        assert model.commit(b) == twin.commit(b)
+        assert model.commit(a) == twin.commit(a)
+    twin.reset()
+    for u in (1500.0, -500.0, 300.0):
+        twin.commit(u)
+    model.reset()
+    model.evaluate(700.0)
+    model.restore(twin.checkpoint())  # a restored memory forgets the trial
+    assert model.commit(700.0) == twin.commit(700.0)

@@ -30,6 +30,7 @@ from .base import HysteresisOperator, check_input
 from .bisection import BisectionInverse
 
 _INF = math.inf
+_NAN = math.nan
 
 
 def _staircase_step(store: bool):
@@ -38,6 +39,11 @@ def _staircase_step(store: bool):
     Both methods are made from this one function, so they cannot drift apart, and neither
     carries a private argument nor pays for an extra call level (the step is a hot path: it
     runs once per attempted solver step).
+
+    ``evaluate`` keeps its input and output (``_trial_u``, ``_trial_y``); a ``commit`` of the
+    same input from the same memory (the accepted step of a solver run: trial, then commit)
+    takes that output instead of evaluating ``K`` again.  Every change of the memory (commit,
+    :meth:`~StaircasePreisach.reset`, :meth:`~StaircasePreisach.restore`) forgets it.
     """
 
     def step(self, u: float) -> float:
@@ -48,51 +54,54 @@ def _staircase_step(store: bool):
         u_now = self._u
         if u == u_now:
             return self._y
+        known = self._trial_y if store and u == self._trial_u else None
         values = self._values
+        new_extremum = False  # u_now becomes a reversal point, no extremum wiped out
         if u > u_now:
+            rising = True
             if self._rising:
                 i = len(values) - 1
             elif u < values[-1]:
-                # A new minimum at u_now, no extremum wiped out.
-                y = self._y + self._k_rising(u, u_now) - (self._tie(u_now) if self._has_ties else 0.0)
-                if store:
-                    values.append(u_now)
-                    self._outputs.append(self._y)
-                    self._rising, self._u, self._y = True, u, y
-                return y
+                new_extremum = True
             else:
                 i = len(values) - 2  # the new minimum and the last maximum are wiped out
-            while u >= values[i - 1]:
-                i -= 2
-            m = values[i]
-            y = self._outputs[i] + self._k_rising(u, m) - (self._tie(m) if self._has_ties else 0.0)
-            if store:
-                if i + 1 < len(values):
-                    del values[i + 1 :]
-                    del self._outputs[i + 1 :]
-                self._rising, self._u, self._y = True, u, y
-            return y
-        if not self._rising:
-            i = len(values) - 1
-        elif u > values[-1]:
-            # A new maximum at u_now, no extremum wiped out.
-            y = self._y - self._k_falling(u_now, u) + (self._tie(u) if self._has_ties else 0.0)
-            if store:
-                values.append(u_now)
-                self._outputs.append(self._y)
-                self._rising, self._u, self._y = False, u, y
-            return y
+            if new_extremum:
+                y = known if known is not None else (
+                    self._y + self._k_rising(u, u_now) - (self._tie(u_now) if self._has_ties else 0.0))
+            else:
+                while u >= values[i - 1]:
+                    i -= 2
+                m = values[i]
+                y = known if known is not None else (
+                    self._outputs[i] + self._k_rising(u, m) - (self._tie(m) if self._has_ties else 0.0))
         else:
-            i = len(values) - 2
-        while u <= values[i - 1]:
-            i -= 2
-        big_m = values[i]
-        y = self._outputs[i] - self._k_falling(big_m, u) + (self._tie(u) if self._has_ties else 0.0)
-        if store:
-            if i + 1 < len(values):
-                del values[i + 1 :]
-                del self._outputs[i + 1 :]
-            self._rising, self._u, self._y = False, u, y
+            rising = False
+            if not self._rising:
+                i = len(values) - 1
+            elif u > values[-1]:
+                new_extremum = True
+            else:
+                i = len(values) - 2
+            if new_extremum:
+                y = known if known is not None else (
+                    self._y - self._k_falling(u_now, u) + (self._tie(u) if self._has_ties else 0.0))
+            else:
+                while u <= values[i - 1]:
+                    i -= 2
+                big_m = values[i]
+                y = known if known is not None else (
+                    self._outputs[i] - self._k_falling(big_m, u) + (self._tie(u) if self._has_ties else 0.0))
+        if not store:
+            self._trial_u, self._trial_y = u, y
+            return y
+        if new_extremum:
+            values.append(u_now)
+            self._outputs.append(self._y)
+        elif i + 1 < len(values):
+            del values[i + 1 :]
+            del self._outputs[i + 1 :]
+        self._rising, self._u, self._y = rising, u, y
+        self._trial_u = _NAN
         return y
 
     name = "commit" if store else "evaluate"
@@ -112,6 +121,9 @@ class StaircasePreisach(HysteresisOperator):
     _y_reset: float
     #: whether some relays have alpha == beta (then K(u, u) can be non-zero)
     _has_ties: bool = False
+    #: the last :meth:`evaluate`'s input and output from the current memory (nan: none)
+    _trial_u: float = _NAN
+    _trial_y: float = _NAN
 
     def __init__(self) -> None:
         self.reset()
@@ -139,6 +151,7 @@ class StaircasePreisach(HysteresisOperator):
         self._u = -_INF
         self._y = self._y_reset
         self._rising = True
+        self._trial_u = _NAN
 
     def checkpoint(self) -> tuple:
         """Snapshot of the staircase (reversal points, last input and output, direction)."""
@@ -155,6 +168,7 @@ class StaircasePreisach(HysteresisOperator):
         self._values = list(values)
         self._outputs = list(outputs)
         self._u, self._y, self._rising = u, y, rising
+        self._trial_u = _NAN
 
     @property
     def output(self) -> float:
