@@ -188,6 +188,26 @@ def test_a_new_kind_registers_its_own_realisation():
     assert r["lever.E_y"][0] == pytest.approx(r_ref["lever.E_y"][0], abs=1e-15)
 
 
+def test_every_kind_is_one_description_file_and_one_realisation_file_named_alike():
+    """``cells/<kind>.py`` describes a kind, ``mbs/chains/<kind>.py`` realises it; the chains package
+    imports every file of its folder, so no other file lists the realisations (issue 14's "a new cell
+    kind is one new file plus one line": the line is in ``CELL_KINDS``)."""
+    from exudyn_atcm.mbs import chains
+
+    described = sorted(p.stem for p in (PACKAGE / "cells").glob("*.py") if p.stem not in ("__init__", "base"))
+    assert list(chains.MODULES) == described
+    assert sorted(p.stem for p in (PACKAGE / "mbs" / "chains").glob("*.py") if p.stem != "__init__") == described
+    unrealised = add_mechanism_bender.dispatch(CellKind)
+    for kind in CELL_KINDS.values():
+        realisation = add_mechanism_bender.dispatch(type(kind))
+        assert realisation is not unrealised, kind.name
+        stem = type(kind).__module__.rpartition(".")[2]
+        assert realisation.__module__ == f"exudyn_atcm.mbs.chains.{stem}"
+    # the builder imports the chains package, not the kinds' modules one by one
+    builder = (PACKAGE / "mbs" / "builder.py").read_text()
+    assert "from . import chains" in builder and not any(f"chains import {m}" in builder for m in described)
+
+
 # ----------------------------------------------------------------------------- refusals from the kind
 CANTILEVER_ONLY = [n for n, k in CELL_KINDS.items() if k.end_refusal("tip", "joined") is not None]
 

@@ -72,3 +72,21 @@ def test_every_old_name_is_in_the_face_all(old):
 
     face = importlib.import_module(NEW_FACE[old])
     assert sorted(set(OLD_NAMES[old]) - set(face.__all__)) == []
+
+
+#: the cell kinds' Exudyn realisations moved into ``mbs/chains/`` (one file per kind, found by the folder)
+MOVED_REALISATIONS = {"six_bar": ("chains.six_bar", "add_six_bar_chain"), "beam_chain": ("chains.beam", "add_beam_chain"),
+                      "rigid_chain": ("chains.rigid", "add_rigid_chain"), "ancf_chain": ("chains.ancf", "add_ancf_chain"),
+                      "ritz_bender": ("chains.ritz", "add_ritz_bender")}
+
+
+@pytest.mark.parametrize("old", sorted(MOVED_REALISATIONS))
+def test_moved_realisation_paths_warn_and_give_the_module(old):
+    new, name = MOVED_REALISATIONS[old]
+    proc = subprocess.run([sys.executable, "-c", PROBE, f"mbs.{old}", f"exudyn_atcm.mbs.{new}", json.dumps([name])],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    found = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert found["missing"] == [] and found["different"] == [] and found["module"] == f"exudyn_atcm.mbs.{new}"
+    assert found["warnings"] == [f"exudyn_atcm.mbs.{old} moved to exudyn_atcm.mbs.{new}; the old path goes away in "
+                                 f"the next release (import from exudyn_atcm or exudyn_atcm.mbs.{new})"]

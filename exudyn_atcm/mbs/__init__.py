@@ -4,9 +4,9 @@ One builder (:mod:`~exudyn_atcm.mbs.builder`) adds a :class:`~exudyn_atcm.mechan
 to a ``MainSystem``; a lone :class:`~exudyn_atcm.mechanism.actuator.BendingActuator` is built as
 the one-bender mechanism it is.  Each cell kind adds its bender through the realisation
 registered for its class (:mod:`~exudyn_atcm.mbs.cells`): rigid chains
-(:mod:`~exudyn_atcm.mbs.rigid_chain`), six-bar chains (:mod:`~exudyn_atcm.mbs.six_bar`), beam
-chains (:mod:`~exudyn_atcm.mbs.beam_chain`), ANCF chains (:mod:`~exudyn_atcm.mbs.ancf_chain`)
-and assumed modes (:mod:`~exudyn_atcm.mbs.ritz_bender`).  Around the builder: the model
+(:mod:`~exudyn_atcm.mbs.chains.rigid`), six-bar chains (:mod:`~exudyn_atcm.mbs.chains.six_bar`), beam
+chains (:mod:`~exudyn_atcm.mbs.chains.beam`), ANCF chains (:mod:`~exudyn_atcm.mbs.chains.ancf`)
+and assumed modes (:mod:`~exudyn_atcm.mbs.chains.ritz`).  Around the builder: the model
 handle with its read-outs (:mod:`~exudyn_atcm.mbs.model`, :mod:`~exudyn_atcm.mbs.recording`),
 step hooks shared with user code, the solver settings and runs
 (:mod:`~exudyn_atcm.mbs.solver_settings`, :mod:`~exudyn_atcm.mbs.solver_runs`) and the

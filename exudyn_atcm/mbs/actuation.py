@@ -11,7 +11,7 @@ realises the free curvature of the benders along one of the stroke paths
     drive, giving one ``LoadTorqueVector`` per body whose net torque is not identically zero
     (for a uniform cantilever the pairs cancel on every cell but the last: one torque
     ``EI kappa``).  Beam and ANCF benders get the end torques ``+-EI kappa`` of each segment
-    on their nodes (:func:`~exudyn_atcm.mbs.beam_chain.actuation_torques`).  The model writes
+    on their nodes (:func:`~exudyn_atcm.mbs.node_chain.actuation_torques`).  The model writes
     them in the pre-step hook (:meth:`~exudyn_atcm.mbs.model.MechanismModel.set_strains`).
 ``"offsets"``
     The rest angles are written into every spring's ``offset``; beam and ANCF elements get
@@ -19,7 +19,7 @@ realises the free curvature of the benders along one of the stroke paths
     spring or element and step.
 ``"user_function"``
     Spring-force user functions with the rest angle at the solver's ``t`` (six-bar motors:
-    offset user functions, :mod:`~exudyn_atcm.mbs.six_bar`).
+    offset user functions, :mod:`~exudyn_atcm.mbs.chains.six_bar`).
 
 These are the same computation: every hook and user function of one solver step receives the
 same ``t`` (the end time of the step being attempted, measured with Exudyn 1.13), and the
@@ -36,7 +36,7 @@ import numpy as np
 from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
-from .beam_chain import actuation_torques, reference_curvatures
+from .node_chain import actuation_torques, reference_curvatures
 from .items import NOVIS, rigid_marker, rotation_marker
 from .model import MechanismModel
 

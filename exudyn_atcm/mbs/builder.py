@@ -3,10 +3,10 @@
 A lone :class:`~exudyn_atcm.BendingActuator` is built here too, as the one-bender mechanism it
 is (:mod:`exudyn_atcm.solve.as_mechanism`).  Each bender's cells are added by the realisation
 registered for its cell kind (:mod:`exudyn_atcm.mbs.cells`): rigid chains
-(:mod:`~exudyn_atcm.mbs.rigid_chain`), six-bar chains between real interface bodies
-(:mod:`~exudyn_atcm.mbs.six_bar`), beam and ANCF chains whose end nodes join the groups
-(:mod:`~exudyn_atcm.mbs.beam_chain`, :mod:`~exudyn_atcm.mbs.ancf_chain`) and assumed modes
-(:mod:`~exudyn_atcm.mbs.ritz_bender`); the rest of this description is about rigid cells.
+(:mod:`~exudyn_atcm.mbs.chains.rigid`), six-bar chains between real interface bodies
+(:mod:`~exudyn_atcm.mbs.chains.six_bar`), beam and ANCF chains whose end nodes join the groups
+(:mod:`~exudyn_atcm.mbs.chains.beam`, :mod:`~exudyn_atcm.mbs.chains.ancf`) and assumed modes
+(:mod:`~exudyn_atcm.mbs.chains.ritz`); the rest of this description is about rigid cells.
 
 Model (planar, SI units):
 
@@ -59,12 +59,14 @@ from .model import Body, Element, EndReadout, Hinge, MechanismModel
 from .graphics import part_graphics, shift_graphics
 from .loads import add_loads
 from ..cells import END_CHAIN, END_NODE
-from . import ancf_chain, rigid_chain, ritz_bender  # noqa: F401 - register the cells' realisations
+from . import chains
 from .cells import add_mechanism_bender
-from .six_bar import six_bar_end_mass
-from .beam_chain import beam_end_key, weld_node
+from .chains.six_bar import six_bar_end_mass
+from .node_chain import beam_end_key, weld_node
 from .mass_damping import MassDampers, part_mass_damping_factor
 
+#: The cell kinds' realisation modules (:mod:`exudyn_atcm.mbs.chains`), imported and so registered with it.
+REALISATIONS = chains.MODULES
 
 
 # ---------------------------------------------------------------------------- building
@@ -270,10 +272,8 @@ class _Builder:
                     key = beam_end_key(bender, end)
                     node, body = model.bodies[key], model.bodies[g.key]
                     if body is not node:
-                        if node.pose_function is not None:  # assumed modes: clamped at the base by the modes
-                            pass
-                        elif node.slope_at is not None:  # an ANCF base (the cell allows the ground only)
-                            ancf_chain.clamp_slope_node(self.mbs, node, self.gcoord)
+                        if node.weld is not None:  # the kind's own weld (ANCF slope, assumed modes)
+                            node.weld(self.mbs, body, self.gcoord)
                         else:
                             weld_node(self.mbs, node, body, self.gcoord)
                         if body.node is None:

@@ -10,9 +10,9 @@ realisation::
     @add_mechanism_bender.register
     def _(cell: MyCell, builder, bender): ...
 
-The package's realisations are in :mod:`~exudyn_atcm.mbs.rigid_chain`,
-:mod:`~exudyn_atcm.mbs.six_bar`, :mod:`~exudyn_atcm.mbs.beam_chain`,
-:mod:`~exudyn_atcm.mbs.ancf_chain` and :mod:`~exudyn_atcm.mbs.ritz_bender`.
+The package's realisations are in :mod:`~exudyn_atcm.mbs.chains.rigid`,
+:mod:`~exudyn_atcm.mbs.chains.six_bar`, :mod:`~exudyn_atcm.mbs.chains.beam`,
+:mod:`~exudyn_atcm.mbs.chains.ancf` and :mod:`~exudyn_atcm.mbs.chains.ritz`.
 """
 
 from __future__ import annotations

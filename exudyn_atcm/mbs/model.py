@@ -21,7 +21,7 @@ from ..mechanism.assembly import Mechanism
 class Body:
     """A body of the built model (``node is None`` for the ground).
 
-    ``node_only``: a beam bender's node (:mod:`exudyn_atcm.mbs.beam_chain`); its markers are node
+    ``node_only``: a beam bender's node (:mod:`exudyn_atcm.mbs.chains.beam`); its markers are node
     markers at the node itself, and ``item`` is the number of a beam element attached to it.
     """
 
@@ -38,6 +38,10 @@ class Body:
     #: pose rows (n, 3) from rows of ODE2 coordinates, for bodies whose pose is not their node's
     #: first three coordinates (assumed-modes benders)
     pose_function: Any = None
+    #: ``weld(mbs, body, ground_coordinate)``: how this end node is welded to its group's ``body`` when not
+    #: by :func:`~exudyn_atcm.mbs.node_chain.weld_node` (an ANCF base: position and slope clamped; an
+    #: assumed-modes base: clamped by the modes themselves, nothing to add)
+    weld: Any = None
 
     def pose_rows(self, q: np.ndarray) -> np.ndarray:
         """Pose ``(x, y, angle)`` rows [m, m, rad] from rows ``q`` of ODE2 coordinates (shape (n, nODE2))."""

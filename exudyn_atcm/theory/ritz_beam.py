@@ -2,7 +2,7 @@
 
 The ``cell="ritz"`` discretisation of :class:`~exudyn_atcm.mechanism.actuator.BendingActuator`: pure
 numpy physics (shape functions, stiffness, curvature-dependent mass matrix, kinematics); the
-Exudyn system that carries these matrices is :mod:`exudyn_atcm.mbs.ritz_bender`.  The
+Exudyn system that carries these matrices is :mod:`exudyn_atcm.mbs.chains.ritz`.  The
 derivation is on the theory page of the documentation ("Rotation-field Ritz model").
 
 The cross-section's rotation ``theta(s, t)`` along the arc length ``s`` in ``[0, L]`` of an

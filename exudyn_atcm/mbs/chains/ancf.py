@@ -10,7 +10,7 @@ elements' (f1: +0.05 % at 2 elements against +0.70 % at 4 linear ones).  In a st
 state the element's axial constraint locks on coarse meshes (f1 about the state at 1500 V: +4 %
 at 2 elements, +0.4 % at 4, 1e-4 at 8).
 
-The nodes are the bender's *bodies* (as a beam bender's, :mod:`exudyn_atcm.mbs.beam_chain`,
+The nodes are the bender's *bodies* (as a beam bender's, :mod:`exudyn_atcm.mbs.chains.beam`,
 with the same keys): their angle is the slope vector's, and orientation markers (torques,
 follower forces) sit on the element's frame at the node.  The base is clamped to the ground by
 fixing the node's position and the slope's component normal to the bender
@@ -19,7 +19,7 @@ fixing the node's position and the slope's component normal to the bender
 not modelled.
 
 Actuation: the free curvature enters as the beam chain's end torques ``+-EI kappa`` per
-segment (:func:`~exudyn_atcm.mbs.beam_chain.actuation_torques`); for a uniform laminate the same
+segment (:func:`~exudyn_atcm.mbs.node_chain.actuation_torques`); for a uniform laminate the same
 equations as a reference curvature in every element.
 """
 
@@ -30,12 +30,12 @@ import math
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ..cells import AncfCell
-from ..mechanism.bender import Bender
-from .beam_chain import beam_node_key, node_positions, register_element_chain
-from .cells import add_mechanism_bender
-from .items import NOVIS
-from .model import Body, MechanismModel
+from ...cells import AncfCell
+from ...mechanism.bender import Bender
+from ..node_chain import beam_node_key, node_positions, register_element_chain
+from ..cells import add_mechanism_bender
+from ..items import NOVIS
+from ..model import Body, MechanismModel
 
 __all__ = ["add_ancf_chain", "clamp_slope_node"]
 
@@ -67,6 +67,10 @@ def add_ancf_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
         body = model.bodies[key]
         body.item = items[max(i - 1, 0)]
         body.slope_at = float(lengths[i - 1]) if i > 0 else 0.0
+    # the kind joins mechanisms as a cantilever only (AncfCell.end_refusal): an end welded to its group is
+    # the base clamped to the ground
+    model.bodies[keys[0]].weld = lambda mbs, body, ground_coordinate, node=model.bodies[keys[0]]: \
+        clamp_slope_node(mbs, node, ground_coordinate)
     register_element_chain(model, bender, keys, items)
     return keys
 

@@ -30,13 +30,13 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ..cells import RitzCell
-from ..mechanism.bender import Bender
-from ..mechanism.points import MechanismError
-from ..theory import ritz_beam
-from .beam_chain import beam_node_key
-from .cells import add_mechanism_bender
-from .model import Body
+from ...cells import RitzCell
+from ...mechanism.bender import Bender
+from ...mechanism.points import MechanismError
+from ...theory import ritz_beam
+from ..node_chain import beam_node_key
+from ..cells import add_mechanism_bender
+from ..model import Body
 
 __all__ = ["add_ritz_bender", "MASS_UPDATE_ANGLE"]
 
@@ -79,6 +79,7 @@ def add_ritz_bender(builder, bender: Bender) -> None:
     reference_tip = np.array([*bender.points["tip"], angle], dtype=float)
     model.bodies[base_key] = Body(base_key, node, obj, np.array([base[0], base[1], angle]), node_only=True)
     model.bodies[base_key].pose_function = lambda q, b=model.bodies[base_key]: np.tile(b.reference, (q.shape[0], 1))
+    model.bodies[base_key].weld = lambda mbs, body, ground_coordinate: None  # clamped by the modes themselves
     tip = Body(tip_key, node, obj, reference_tip, node_only=True)
 
     def tip_pose(q: np.ndarray) -> np.ndarray:

@@ -9,11 +9,11 @@ from __future__ import annotations
 import exudyn as exu
 import numpy as np
 
-from ..cells import RigidCell
-from ..mechanism.bender import Bender
-from .cells import add_mechanism_bender
-from .items import add_body
-from .model import Element, Hinge
+from ...cells import RigidCell
+from ...mechanism.bender import Bender
+from ..cells import add_mechanism_bender
+from ..items import add_body
+from ..model import Element, Hinge
 
 __all__ = ["add_rigid_chain"]
 

@@ -21,11 +21,11 @@ import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ..cells import SixBarCell
-from ..mechanism.bender import Bender
-from .cells import add_mechanism_bender
-from .items import NOVIS, add_body, local_point, position_marker, rotation_marker
-from .model import Body, MechanismModel
+from ...cells import SixBarCell
+from ...mechanism.bender import Bender
+from ..cells import add_mechanism_bender
+from ..items import NOVIS, add_body, local_point, position_marker, rotation_marker
+from ..model import Body, MechanismModel
 
 
 PASSIVE_COLOR = [0.2, 0.45, 0.8, 1.0]
