@@ -13,6 +13,7 @@ import warnings
 import numpy as np
 import pytest
 
+from exudyn_atcm.cells import CellKind
 from exudyn_atcm.errors import AccuracyWarning
 from exudyn_atcm.solve import run_checks
 from exudyn_atcm.model.drive import PiezoDrive
@@ -357,12 +358,16 @@ def test_recorded_times_are_on_the_grid_and_short():
 
 # ----------------------------------------------------------------------------- 12. long runs
 def test_long_run_estimate_and_warning(monkeypatch):
-    # 40 six-bar cells for 20 s at 1e-4 s: 2e5 steps x (20 + 55*40 + 1.3*1600) µs = 860 s
-    assert run_checks.estimate_run_time("six-bar", 40, 200_000) == pytest.approx(200_000 * 4300e-6)
-    assert run_checks.estimate_run_time("ancf", 4, 10) is None  # no measured cost
+    # 40 six-bar cells for 20 s at 1e-4 s: 2e5 steps x (140 + 61*40 + 0.55*1600) µs = 692 s
+    assert run_checks.estimate_run_time("six-bar", 40, 200_000) == pytest.approx(200_000 * 3460e-6)
+
+    class Unmeasured(CellKind):
+        name = "unmeasured"
+
+    assert run_checks.estimate_run_time(Unmeasured(), 4, 10) is None  # no measured cost
     with pytest.raises(ValueError, match="cell must be one of"):
         run_checks.estimate_run_time("no-such-cell", 4, 10)
-    with pytest.warns(RuntimeWarning, match=r"predicted to take about 14 min \(200000 steps of 40 six-bar cells"):
+    with pytest.warns(RuntimeWarning, match=r"predicted to take about 12 min \(200000 steps of 40 six-bar cells"):
         run_checks.warn_if_long("six-bar", 40, 200_000)
     # through simulate, with a tiny limit (the warning comes before the run)
     monkeypatch.setattr(run_checks, "LONG_RUN_SECONDS", 1e-6)

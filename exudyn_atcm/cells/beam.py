@@ -21,7 +21,8 @@ class BeamCell(CellKind):
     summary = "one geometrically exact beam element per cell"
     end_kind = END_NODE
     joint_label = "beam nodes"
-    # a beam element costs about a rigid cell per step (bench_mechanisms.py)
-    cost_per_step = (20e-6, 1e-6, 0.12e-6)
+    # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 36, 79, 95 and 139 µs per step at 3, 10, 20 and 40
+    # elements; the fit a + b n
+    cost_per_step = (40e-6, 2.6e-6, 0.0)
     limits = ("Newton's absolute tolerance must be at least the model's floor (MechanismHandle."
               "newton_tolerance_floor) in a user's own solve")

@@ -19,9 +19,10 @@ class RigidCell(CellKind):
     name = "rigid"
     summary = "one rigid body per cell, torsion springs at the joints"
     end_kind = END_BODY
-    # bench_run_cost.py: 20, 28 and 192 µs per step at 3, 10 and 40 cells (fit, rounded up)
+    # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 33, 70, 132 and 196 µs per step at 3, 10, 20 and 40
+    # cells; the fit a + b n
+    cost_per_step = (28e-6, 4.4e-6, 0.0)
     realises_mass_damping = True
-    cost_per_step = (20e-6, 1e-6, 0.12e-6)
     # the torque-actuated chain is nearly linear in its rotations: with the absolute tolerance 1e-8
     # Newton stopped after its first step at small voltages, missing ~19 % of the second-order
     # shortening of a 60 mm 16-cell bender at 20 V (tests/test_solver_tolerances.py); a tolerance

@@ -20,8 +20,9 @@ class SixBarCell(CellKind):
     summary = "the paper's six-bar cell (two layers, prescribed-stroke motor)"
     needs_active_layer = True
     end_kind = END_CHAIN
-    # bench_run_cost.py: 148, 655 and 4268 µs per step at 3, 10 and 40 cells (fit, rounded up)
+    # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 306, 863, 1554 and 3478 µs per step at 3, 10, 20 and
+    # 40 cells; the fit a + b n + c n^2
+    cost_per_step = (140e-6, 61e-6, 0.55e-6)
     realises_mass_damping = True
-    cost_per_step = (20e-6, 55e-6, 1.3e-6)
     limits = ("about 10x the rigid chain's cost per step; the shear mode lowers the dynamic stiffness at few "
               "cells; a passive strip (no active layer) cannot be made of it")
