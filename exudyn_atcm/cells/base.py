@@ -18,9 +18,7 @@ __all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cant
 END_BODY = "body"
 #: The bender's chain ends on the body of the group it joins (six-bar cells: real interface bodies).
 END_CHAIN = "chain"
-#: The bender's end is a node of the discretisation (beam elements): welded to what it joins, or carrying the
-#: body of a part welded to it.  An end of such a kind that may be joined (``end_refusal(end, "joined")`` is
-#: ``None``) is a ``NodeRigidBody2D``.
+#: The bender's end is a node of the discretisation (beam elements): welded to what it joins.
 END_NODE = "node"
 
 #: How a bender end can be connected in a mechanism (see :meth:`CellKind.end_refusal`), in words.

@@ -14,9 +14,8 @@ Model (planar, SI units):
   joint, reference angle = the bender's direction).  Neighbouring cells are joined by a
   revolute joint and a torsion spring ``2 EI/(L_j + L_{j+1})`` (``EI/L_c`` for equal cells).
 * Rigid groups (see :mod:`exudyn_atcm.mbs.layout`) are one body each (summed mass,
-  parallel-axis inertia, node at the centre of mass, reference angle 0; on a beam end's node
-  when the group's bender ends are all beam ends: see :mod:`~exudyn_atcm.mbs.chains.beam`); the
-  ground group is Exudyn's ground.
+  parallel-axis inertia, node at the centre of mass, reference angle 0); the ground group is
+  Exudyn's ground.
 * A bender end is an interface joined to its end cell by the end spring ``2 EI/L_c``
   (half a cell).  A *hinge* joins two bodies by a revolute joint at the point and one
   torsion spring-damper made of the compliances in series on the way: a virtual interface's
@@ -53,12 +52,11 @@ from .actuation import realise_actuation
 from .layout import check_end_connections, part_of, rigid_groups
 from .items import NOVIS as _NOVIS
 from .items import add_body as _add_body
-from .items import add_body_on_node
 from .items import local_point
 from .items import position_marker as _marker_position
 from .items import rigid_marker as _rigid_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
-from .graphics import frame_graphics, part_graphics, shift_graphics
+from .graphics import part_graphics, shift_graphics
 from .loads import add_loads
 from ..cells import END_CHAIN, END_NODE
 from . import chains
@@ -95,7 +93,6 @@ class _Builder:
         #: per rigid-cell bender: (theta(j), moment_full(j), EI, beta, cell lengths), for its end springs
         self.cell_rotations: dict[str, tuple] = {}
         self._clamped: set[str] = set()  # beam nodes clamped to the ground (no actuation torque)
-        self._on_nodes: list[tuple] = []  # group bodies built on a beam end's node (_shared_end)
 
     def zeros(self) -> np.ndarray:
         return np.zeros(self.n_sources)
@@ -123,7 +120,6 @@ class _Builder:
         self._group_bodies()
         for bender in mech.benders:
             self._bender_cells(bender)
-        self._bodies_on_nodes()
         for key, g in self.groups.items():
             if g.kind == "beam-node":  # the group's body is the first beam end's node
                 name, _, end = next(p for p in g.interfaces if p.partition("#")[0] in beam).partition("#")
@@ -174,33 +170,10 @@ class _Builder:
             m = sum(mm for mm, _, _ in masses)
             com = sum(mm * c for mm, _, c in masses) / m
             inertia = sum(j + mm * float((c - com) @ (c - com)) for mm, j, c in masses)
-            shared = self._shared_end(g)
-            if shared is not None:  # built on that end's node once the benders exist (_bodies_on_nodes)
-                self._on_nodes.append((key, shared, m, inertia, com, graphics, damped))
-                continue
             local_graphics = [shift_graphics(gd, -com) for gd in graphics]
             model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
             for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre
                 self.dampers.add(model.bodies[key], alpha, mm, j, c - com)
-
-    def _shared_end(self, g) -> tuple[Bender, str] | None:
-        """The beam end whose node the body of ``g`` shares: the first, when every bender end in ``g`` is a node that
-        may be joined (a ``NodeRigidBody2D``: a weld without constraints; the group's other ends are welded to it)."""
-        ends = [(self.mech.components[p.partition("#")[0]], p.partition("#")[2]) for p in g.interfaces]
-        if ends and all(isinstance(c, Bender) and c.cell.end_kind == END_NODE and c.cell.end_refusal(e, "joined")
-                        is None for c, e in ends):
-            return ends[0]
-        return None
-
-    def _bodies_on_nodes(self) -> None:
-        """The bodies of the groups :meth:`_shared_end` found, on their beam ends' nodes."""
-        for key, (bender, end), m, inertia, com, graphics, damped in self._on_nodes:
-            node = self.model.bodies[beam_end_key(bender, end)]
-            body = add_body_on_node(self.mbs, key, node, m, inertia, com,
-                                    [frame_graphics(gd, node.reference) for gd in graphics])
-            self.model.bodies[key] = body
-            for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre (body frame)
-                self.dampers.add(body, alpha, mm, j, local_point(body, c))
 
     def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
         """(mass, inertia about own centre, centre) of a rigid part."""
@@ -298,7 +271,7 @@ class _Builder:
                 if bender.cell.end_kind == END_NODE:  # the end node, welded to its group's body unless it is that body
                     key = beam_end_key(bender, end)
                     node, body = model.bodies[key], model.bodies[g.key]
-                    if body.node != node.node:  # not the end's own node nor a body on it
+                    if body is not node:
                         if node.weld is not None:  # the kind's own weld (ANCF slope, assumed modes)
                             node.weld(self.mbs, body, self.gcoord)
                         else:

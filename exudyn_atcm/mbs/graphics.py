@@ -10,7 +10,7 @@ from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND
 
-__all__ = ["part_graphics", "shift_graphics", "frame_graphics", "LINK_COLOR", "FLEXURE_COLOR"]
+__all__ = ["part_graphics", "shift_graphics", "LINK_COLOR", "FLEXURE_COLOR"]
 
 LINK_COLOR = [0.55, 0.55, 0.55, 1.0]
 FLEXURE_COLOR = [0.85, 0.55, 0.15, 1.0]
@@ -42,19 +42,5 @@ def shift_graphics(gdata: dict, offset: np.ndarray) -> dict:
         pts = np.array(gd["points"], dtype=float).reshape(-1, 3)
         pts[:, 0] += offset[0]
         pts[:, 1] += offset[1]
-        gd["points"] = pts.ravel().tolist()
-    return gd
-
-
-def frame_graphics(gdata: dict, pose) -> dict:
-    """``gdata`` with its points (global reference coordinates [m]) in the frame of a body at ``pose``
-    ``(x, y, angle)`` [m, m, rad]."""
-    gd = dict(gdata)
-    if "points" in gd:
-        x, y, a = (float(v) for v in pose)
-        pts = np.array(gd["points"], dtype=float).reshape(-1, 3)
-        dx, dy = pts[:, 0] - x, pts[:, 1] - y
-        c, s = np.cos(a), np.sin(a)
-        pts[:, 0], pts[:, 1] = c * dx + s * dy, -s * dx + c * dy
         gd["points"] = pts.ravel().tolist()
     return gd

@@ -75,18 +75,3 @@ def local_point(body: Body, position: Any) -> np.ndarray:
     dx, dy = position[0] - x, position[1] - y
     c, s = math.cos(a), math.sin(a)
     return np.array([c * dx + s * dy, -s * dx + c * dy])
-
-
-def add_body_on_node(mbs, key: str, node: Body, mass: float, inertia_com: float, com,
-                     graphics: list) -> Body:
-    """A 2D rigid body on the existing ``NodeRigidBody2D`` of ``node`` (a beam bender's end node): the part welded
-    to that end shares its node, with no weld constraint, as an Exudyn user builds it by hand.  ``com`` [m] is the
-    centre of mass in global reference coordinates, ``inertia_com`` [kg m²] the inertia about it; ``graphics``
-    are in the body's frame."""
-    body = Body(key, node.node, -1, np.array(node.reference, dtype=float))
-    local = local_point(body, com)
-    body.item = mbs.AddObject(ii.ObjectRigidBody2D(
-        nodeNumber=node.node, mass=mass, inertia=inertia_com + mass * float(local @ local),
-        centerOfMass=[float(local[0]), float(local[1])],
-        visualization={'show': True, 'graphicsDataUserFunction': 0, 'graphicsData': graphics}))
-    return body

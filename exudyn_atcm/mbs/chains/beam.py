@@ -18,13 +18,9 @@ with position and rotation.  It joins the rest of the mechanism (see
 
 * the body of its rigid group when the group holds only bender ends (a free end, a pin, two
   ends welded together): the other parts join the node itself;
-* the node of the group's body when the group's other bender ends are beam ends too (a link
-  welded to the end: the link's ``ObjectRigidBody2D`` sits on the end node, centre of mass
-  offset, no weld constraint, as an Exudyn user builds it by hand; further beam ends of the
-  group are welded to it);
 * welded to the group's body otherwise: clamped by three coordinate constraints when the
   group is the ground (as the lone actuator's clamp), a revolute joint and a rotation
-  constraint on a body of its own.
+  constraint on a link or an interface body.
 
 Actuation: for a segment ``k`` of uniform laminate the free curvature ``kappa_k(t)`` enters
 as two end torques, ``+EI kappa_k`` on its end node and ``-EI kappa_k`` on its start node (the
