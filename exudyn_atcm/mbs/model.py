@@ -366,17 +366,14 @@ class MechanismModel:
             normals = {s.name: tuple(map(float, s.normal)) for s in self.mechanism.stops}
             self._connector_plan = [(item, normals.get(name)) for name, item in self.spring_items.items()]
         get = self.mbs.GetObjectOutput
-        force_type, displacement_type = exu.OutputVariableType.Force, exu.OutputVariableType.Displacement
+        force_type, along_type = exu.OutputVariableType.Force, exu.OutputVariableType.ForceLocal
         out = []
         for item, normal in self._connector_plan:
-            force = get(item, force_type).tolist()  # Python floats: cheaper than numpy for 3 components
-            if normal is not None:
-                out.append(-(force[0] * normal[0] + force[1] * normal[1]))
+            if normal is None:  # a spring-damper's force along its axis, tension positive: one call
+                out.append(float(get(item, along_type)))
             else:
-                # Exudyn's spring force vector points from marker 0 to marker 1 under tension
-                d = get(item, displacement_type).tolist()
-                along = sum(f * x for f, x in zip(force, d))
-                out.append(along / math.sqrt(sum(x * x for x in d)))
+                force = get(item, force_type).tolist()  # Python floats: cheaper than numpy for 3 components
+                out.append(-(force[0] * normal[0] + force[1] * normal[1]))
         return out
 
     def resolve_indices(self) -> None:
