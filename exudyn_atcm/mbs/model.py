@@ -170,7 +170,6 @@ class MechanismModel:
     settings_adjusters: list = field(default_factory=list)
     _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
     _written_factor: float | None = None       # load factor at which every load was last written
-    _connector_plan: list | None = None         # (Exudyn item, stop normal or None) per spring and stop
 
     # ------------------------------------------------------------------ actuation and loads
     def set_strains(self, strains: np.ndarray) -> None:
@@ -362,19 +361,26 @@ class MechanismModel:
 
     def connector_forces(self) -> list[float]:
         """Force [N] of every spring (tension positive) and stop (compression positive) now."""
-        if self._connector_plan is None or len(self._connector_plan) != len(self.spring_items):
-            normals = {s.name: tuple(map(float, s.normal)) for s in self.mechanism.stops}
-            self._connector_plan = [(item, normals.get(name)) for name, item in self.spring_items.items()]
+        return self.connector_reader()()
+
+    def connector_reader(self) -> Callable[[], list[float]]:
+        """A function giving :meth:`connector_forces`, its plan made once (a run calls it every step)."""
+        normals = {s.name: tuple(map(float, s.normal)) for s in self.mechanism.stops}
+        plan = [(item, normals.get(name)) for name, item in self.spring_items.items()]
         get = self.mbs.GetObjectOutput
         force_type, along_type = exu.OutputVariableType.Force, exu.OutputVariableType.ForceLocal
-        out = []
-        for item, normal in self._connector_plan:
-            if normal is None:  # a spring-damper's force along its axis, tension positive: one call
-                out.append(float(get(item, along_type)))
-            else:
-                force = get(item, force_type).tolist()  # Python floats: cheaper than numpy for 3 components
-                out.append(-(force[0] * normal[0] + force[1] * normal[1]))
-        return out
+
+        def read() -> list[float]:
+            out = []
+            for item, normal in plan:
+                if normal is None:  # a spring-damper's force along its axis, tension positive: one call
+                    out.append(float(get(item, along_type)))
+                else:
+                    force = get(item, force_type).tolist()  # Python floats: cheaper than numpy for 3 components
+                    out.append(-(force[0] * normal[0] + force[1] * normal[1]))
+            return out
+
+        return read
 
     def resolve_indices(self) -> None:
         """Read the bodies' ODE2 indices (after ``mbs.Assemble()``)."""

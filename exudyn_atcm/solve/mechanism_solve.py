@@ -172,7 +172,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
 
     record = StepRecord(layout.width, schedule.take, on_block=block_extremes,
                         reduce=None if schedule.every_step else every_step_columns)
-    read_forces = model.connector_forces if layout.n_forces else None
+    read_forces = model.connector_reader() if layout.n_forces else None  # its plan made once
     q_view = model.coordinates()  # Exudyn's coordinate vector stays in place during a run (checked after it)
     user_errors: list[ValueError] = []
 
