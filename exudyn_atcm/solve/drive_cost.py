@@ -15,8 +15,8 @@ operator, in every step of the run, got dearer: +8 % of the instructions of a wh
 actuator run (callgrind, 1,000 steps).  The run resets the operator and the controller at its
 start, so measuring on the drive itself changes nothing the run sees.
 
-It narrows the gap but does not close it.  On ``cases/tip_tracking.py`` (4 s, 20,000 steps per
-run) the four runs were estimated at 0.48 s each from the cells alone; with the drives at 0.52
+Counting the drives narrows the gap between the estimate and the run but does not close it.
+On ``cases/tip_tracking.py`` (4 s, 20,000 steps per run) the four runs were estimated at 0.48 s each from the cells alone; with the drives at 0.52
 to 0.80 s, and they took 0.78 to 1.36 s (an earlier run on a busier machine: 0.67 to 0.83 s
 estimated, 1.1 to 2.3 s taken).  The rest is the closed loop's extra Newton iterations and the
 cells' constants, which were measured on another day.  A run of several simulations
