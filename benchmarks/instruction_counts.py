@@ -91,6 +91,10 @@ def main(argv=None) -> int:
     for rev, parts in revisions.items():
         if len(parts) != 2:
             parser.error(f"--{rev} must be CHECKOUT:PYTHON, got {getattr(args, rev)!r}")
+        if not (Path(parts[0]) / "exudyn_atcm").is_dir():
+            parser.error(f"--{rev}: {parts[0]!r} is not a checkout of exudyn_atcm (no exudyn_atcm folder in it)")
+        if shutil.which(parts[1]) is None:
+            parser.error(f"--{rev}: the interpreter {parts[1]!r} is not an executable")
     points = []
     for item in args.points.split(","):
         cell, _, n = item.strip().rpartition(" ")
