@@ -170,6 +170,7 @@ class MechanismModel:
     settings_adjusters: list = field(default_factory=list)
     _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
     _written_factor: float | None = None       # load factor at which every load was last written
+    _connectors: tuple | None = None           # (spring count, connector_reader()) of connector_forces()
 
     # ------------------------------------------------------------------ actuation and loads
     def set_strains(self, strains: np.ndarray) -> None:
@@ -361,7 +362,9 @@ class MechanismModel:
 
     def connector_forces(self) -> list[float]:
         """Force [N] of every spring (tension positive) and stop (compression positive) now."""
-        return self.connector_reader()()
+        if self._connectors is None or self._connectors[0] != len(self.spring_items):
+            self._connectors = (len(self.spring_items), self.connector_reader())
+        return self._connectors[1]()
 
     def connector_reader(self) -> Callable[[], list[float]]:
         """A function giving :meth:`connector_forces`, its plan made once (a run calls it every step)."""
