@@ -48,7 +48,7 @@ from exudyn_atcm.theory import RigidFourBar
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells of the crank bender"),
-    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=("rigid", "six-bar", "beam")),
+    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=("rigid", "six-bar", "beam", "rod")),
     Parameter("crank_length", 0.06, "m", "length of the crank bender"),
     Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*"),
     Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base"),

@@ -61,7 +61,7 @@ def test_names_resolve_to_the_listed_kinds_and_compare_equal_to_them():
 
 @pytest.mark.parametrize("bad", ["beams", 3, None, object()])
 def test_unknown_cells_are_refused_naming_the_value_and_the_kinds(bad):
-    with pytest.raises(ValueError, match=r"cell must be one of \('six-bar', 'rigid', 'beam', 'ancf', 'ritz'\) "
+    with pytest.raises(ValueError, match=r"cell must be one of \('six-bar', 'rigid', 'beam', 'ancf', 'ritz', 'rod'\) "
                                          r"or a CellKind, got "):
         actuator(bad)
 

@@ -20,14 +20,15 @@ from .base import END_BODY, END_CHAIN, END_NODE, CellKind
 from .beam import BeamCell
 from .rigid import RigidCell
 from .ritz import RitzCell
+from .rod import RodCell
 from .six_bar import SixBarCell
 
-__all__ = ["CellKind", "RigidCell", "SixBarCell", "BeamCell", "AncfCell", "RitzCell", "CELL_KINDS", "cell_kind",
+__all__ = ["CellKind", "RigidCell", "SixBarCell", "BeamCell", "AncfCell", "RitzCell", "RodCell", "CELL_KINDS", "cell_kind",
            "END_BODY", "END_CHAIN", "END_NODE"]
 
 #: The package's cell kinds by name (the one place where kinds are listed).
 CELL_KINDS: dict[str, CellKind] = {kind.name: kind for kind in
-                                   (SixBarCell(), RigidCell(), BeamCell(), AncfCell(), RitzCell())}
+                                   (SixBarCell(), RigidCell(), BeamCell(), AncfCell(), RitzCell(), RodCell())}
 
 
 def cell_kind(value: Any, parameter: str = "cell") -> CellKind:

@@ -6,7 +6,8 @@ the one-bender mechanism it is.  Each cell kind adds its bender through the real
 registered for its class (:mod:`~exudyn_atcm.mbs.cells`): rigid chains
 (:mod:`~exudyn_atcm.mbs.chains.rigid`), six-bar chains (:mod:`~exudyn_atcm.mbs.chains.six_bar`), beam
 chains (:mod:`~exudyn_atcm.mbs.chains.beam`), ANCF chains (:mod:`~exudyn_atcm.mbs.chains.ancf`)
-and assumed modes (:mod:`~exudyn_atcm.mbs.chains.ritz`).  Around the builder: the model
+assumed modes (:mod:`~exudyn_atcm.mbs.chains.ritz`) and the geometrically exact rod
+(:mod:`~exudyn_atcm.mbs.chains.rod`).  Around the builder: the model
 handle with its read-outs (:mod:`~exudyn_atcm.mbs.model`, :mod:`~exudyn_atcm.mbs.recording`),
 step hooks shared with user code, the solver settings and runs
 (:mod:`~exudyn_atcm.mbs.solver_settings`, :mod:`~exudyn_atcm.mbs.solver_runs`) and the
@@ -20,11 +21,12 @@ from __future__ import annotations
 
 from ..mechanism.realisation import register_dof_counter
 from .builder import build
-from .hooks import StepHooks, add_post_step, add_pre_step, step_hooks
+from .hooks import StepHooks, add_post_newton, add_post_step, add_pre_step, step_hooks
 from .linear import DofReport, degrees_of_freedom
 from .user_system import MechanismHandle, add_to
 
-__all__ = ["add_to", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_step", "step_hooks", "DofReport"]
+__all__ = ["add_to", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_step", "add_post_newton", "step_hooks",
+           "DofReport"]
 
 
 def _count(mechanism) -> DofReport:

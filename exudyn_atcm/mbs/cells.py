@@ -12,7 +12,8 @@ realisation::
 
 The package's realisations are in :mod:`~exudyn_atcm.mbs.chains.rigid`,
 :mod:`~exudyn_atcm.mbs.chains.six_bar`, :mod:`~exudyn_atcm.mbs.chains.beam`,
-:mod:`~exudyn_atcm.mbs.chains.ancf` and :mod:`~exudyn_atcm.mbs.chains.ritz`.
+:mod:`~exudyn_atcm.mbs.chains.ancf`, :mod:`~exudyn_atcm.mbs.chains.ritz` and
+:mod:`~exudyn_atcm.mbs.chains.rod`.
 """
 
 from __future__ import annotations

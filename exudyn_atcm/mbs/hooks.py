@@ -120,3 +120,40 @@ def add_post_step(mbs, function: StepFunction) -> None:
     hooks = step_hooks(mbs)
     hooks.post.append(function)
     hooks.install(mbs)
+
+
+#: Key of the list of post-Newton checks in ``mbs.variables``.
+POST_NEWTON_VARIABLE = "exudyn_atcm.post_newton"
+
+
+def add_post_newton(mbs, check: Callable[[Any, float], float]) -> None:
+    """Run ``check(mbs, t) -> error`` after every Newton solve of ``mbs`` (static and dynamic solvers).
+
+    Exudyn keeps one ``PostNewton`` user function per system; the package installs one that
+    runs every registered check and returns the largest error.  An error above Exudyn's
+    ``discontinuous.iterationTolerance`` (1 by default: return a ratio to your own tolerance)
+    makes the solver repeat the step's Newton solve (a "discontinuous iteration"), up to
+    ``discontinuous.maxIterations`` times.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system.
+    check : callable
+        ``check(mbs, t)`` with ``t`` the step's end time [s] (the load factor in static solves);
+        returns a float >= 0.
+    """
+    if not callable(check):
+        raise ValueError(f"check must be a callable check(mbs, t) -> float, got {check!r}")
+    checks = mbs.variables.get(POST_NEWTON_VARIABLE)
+    if not isinstance(checks, list):
+        checks = mbs.variables[POST_NEWTON_VARIABLE] = []
+
+        def post_newton(mbs_, t: float) -> list[float]:
+            error = 0.0
+            for f in checks:
+                error = max(error, f(mbs_, t))
+            return [error, -1.0]
+
+        mbs.SetPostNewtonUserFunction(post_newton)
+    checks.append(check)

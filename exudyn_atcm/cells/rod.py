@@ -1,0 +1,38 @@
+"""``cell="rod"``: the whole bender as a geometrically exact rod in assumed modes of its rotation field."""
+
+from __future__ import annotations
+
+from .base import END_NODE, CONNECTIONS, CellKind
+
+__all__ = ["RodCell"]
+
+
+class RodCell(CellKind):
+    """The bender as ``n`` assumed modes of its rotation field with the exact nonlinear kinematics and inertia.
+
+    :mod:`exudyn_atcm.theory.rotation_rod`: the modes of the ``ritz`` cell, but position, mass
+    matrix, quadratic velocity terms and the tip pose are the exact functions of the
+    coordinates, so large rotations, tip loads and end connections are modelled (the ``ritz``
+    cell linearises about the quasi-static arc).  ``n_cells`` is the number of modes;
+    ``cell_angle_j`` is the mean rotation of the ``j``-th of ``n`` equal segments.  Exact arc
+    under actuation for any ``n``.  The tip is a node with position and rotation that joints,
+    welds and loads attach to; the base is clamped by the modes (welded to the ground).
+    """
+
+    name = "rod"
+    stroke_paths = ("prestep",)
+    summary = "geometrically exact rod in assumed modes of its rotation field (few coordinates)"
+    chain_of_cells = False
+    end_kind = END_NODE
+    joint_label = "segment ends"
+    cost_per_step = None
+    limits = ("one uniform segment per bender; the base welded to the ground (the modes are clamped there); "
+              "inextensible and shear-rigid (Euler-Bernoulli); the tip pose's linearisation is re-evaluated "
+              "in every step and Newton pass, the mass matrix once per step")
+
+    def end_refusal(self, end: str, connection: str) -> str | None:
+        """The base welded to the ground; the tip free or joined to anything."""
+        if end == "tip" or connection == "ground":
+            return None
+        return (f"the rod cell's modes are clamped at its base, so the base must be welded to the ground, got it "
+                f"{CONNECTIONS[connection]}; put the joint at the tip (turn the bender round) or use cell='beam'")
