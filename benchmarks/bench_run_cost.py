@@ -51,10 +51,12 @@ def main() -> None:
     parser.add_argument("--t-sim", type=float, default=0.2, help="simulated time per run [s]")
     parser.add_argument("--cells", type=int, nargs="+", default=[3, 10, 40])
     parser.add_argument("--repeats", type=int, default=3, help="runs per point, the fastest counts (default 3)")
+    parser.add_argument("--kinds", nargs="+", default=list(CELL_KINDS), choices=list(CELL_KINDS),
+                        help="cell kinds to measure (default: all)")
     args = parser.parse_args()
     rows = []
     for n in args.cells:
-        for cell in CELL_KINDS:
+        for cell in args.kinds:
             act = actuator(n, cell)
             wall = float("inf")
             for _ in range(args.repeats):  # interleaving the kinds would not help: the repeats are back to back
@@ -76,7 +78,7 @@ def main() -> None:
         print(f"| {r['cell']} | {r['n_cells']} | {r['steps']} | {r['wall [s]']:.3f} | {r['cost per step [us]']:.1f} | "
               f"{r['cost per cell-step [us]']:.1f} | {ratio} |")
     fits = {}
-    for cell in CELL_KINDS:
+    for cell in args.kinds:
         mine = [r for r in rows if r["cell"] == cell]
         n = np.array([r["n_cells"] for r in mine], dtype=float)
         b = np.array([r["cost per step [us]"] for r in mine])

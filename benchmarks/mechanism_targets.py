@@ -8,8 +8,13 @@ Models, per mechanism (the compliant four-bar, the micro-gripper):
 * ``package rigid``: the case's mechanism with rigid cells, ``simulate`` (step 1e-4 s; with
   ``--large-step`` also at those steps);
 * ``package beam``: the same with geometrically exact beam cells;
+* ``package rod``: the same with the geometrically exact rod (``cell="rod"``; "cells" are its
+  modes);
 * ``hand-built GE``: :mod:`handbuilt` (``ObjectBeamGeometricallyExact2D`` elements, the same
-  in-step hysteresis, no package layer), step 1e-4 s (and the ``--large-step`` steps).
+  in-step hysteresis, no package layer), step 1e-4 s (and the ``--large-step`` steps);
+* ``linkage floor``: the hand-built model with one element per bender, at every step: what the
+  linkage itself (its links, joints, flexures and the hysteresis hooks) costs in Exudyn at that
+  step, a lower bound for any bender model (it reaches no target; listed beside the table).
 
 Accuracy: the tracked point's largest distance from the package's reference run
 (``--reference-cells`` beam elements per bender, step 1e-4 s) relative to its largest travel
@@ -41,6 +46,7 @@ from bench_step_overhead import exudyn_floor
 
 TARGETS = (1e-2, 1e-3, 1e-4)
 HAND = "hand-built GE"
+FLOOR = "linkage floor"
 LADDER = (2, 4, 8, 16, 32)
 
 
@@ -80,7 +86,9 @@ def targets_table(t_sim: float = 0.5, repeats: int = 3, cells=None, reference_ce
     cells = list(LADDER if cells is None else cells)
     steps = [bm.STEP] + [float(h) for h in (large_step or ())]
     models = [(label, cell, h) for h in steps
-              for label, cell in (("package rigid", "rigid"), ("package beam", "beam"), (HAND, "beam"))]
+              for label, cell in (("package rigid", "rigid"), ("package beam", "beam"), ("package rod", "rod"),
+                                  (HAND, "beam"))]
+    floor_models = [(FLOOR, "beam", h) for h in steps]
     key = lambda m: f"{m[0]} @ {m[2]:g} s"  # noqa: E731
     print(f"exudyn_atcm {__version__}, exudyn {exudyn.__version__}, python {platform.python_version()}, "
           f"{os.cpu_count()} cpus; {t_sim:g} s simulated per run (triangle -500 ... 1500 V, period 0.5 s), "
@@ -113,6 +121,13 @@ def targets_table(t_sim: float = 0.5, repeats: int = 3, cells=None, reference_ce
                         continue
                     b["setup_s"], b["run_s"] = min(b["setup_s"], setup), min(b["run_s"], total)
                     b["path_error"] = path_error(times, path, *references[name])
+            for name in bm.MECHANISMS:  # the linkage's own cost: one element per bender
+                for model in floor_models:
+                    b = best.setdefault((name, key(model)), {"setup_s": np.inf, "run_s": np.inf})
+                    setup = handbuilt.run(name, 1, model[2], model[2])[0]
+                    total, times, path = handbuilt.run(name, 1, t_sim, model[2])
+                    b["setup_s"], b["run_s"] = min(b["setup_s"], setup), min(b["run_s"], total)
+                    b["path_error"] = path_error(times, path, *references[name])
         for (name, label), b in best.items():
             if "failed" not in b:
                 b["cost_s_per_s"] = (b["run_s"] - b["setup_s"]) / t_sim
@@ -121,6 +136,12 @@ def targets_table(t_sim: float = 0.5, repeats: int = 3, cells=None, reference_ce
                      if "failed" not in b else b["failed"])
             print(f"  {name:>8} | {label:>26} | {n:>3} cells | {shown}", flush=True)
     floor = min(floors)
+    print("\nthe linkage's own cost (hand-built, one element per bender; a lower bound for any bender model):")
+    for name, labels in runs.items():
+        for label, ladder in labels.items():
+            if label.startswith(FLOOR):
+                b = min(ladder.values(), key=lambda r: r["cost_s_per_s"])
+                print(f"  {name:>8} | {label:>26} | {b['cost_s_per_s']:.3f} s/s (error {b['path_error']:.1e})")
     print(f"\nExudyn's floor (one mass on a spring, trivial Python PreStep/PostStep, step {bm.STEP:g} s): "
           f"{floor:.4f} s/s (best of {len(floors)})")
     table, goals = summary(runs, floor)
@@ -152,6 +173,8 @@ def summary(runs: dict, floor: float) -> tuple[dict, dict]:
         for name in mechanisms:
             cheapest = {}
             for label, ladder in runs[name].items():
+                if label.startswith(FLOOR):
+                    continue
                 # the fewest cells reaching the target: the cheapest up to the machine's noise (the cost
                 # grows with the cells; picking the lowest measured cost would pick noise between rungs)
                 ok = [(b["cost_s_per_s"], int(n), b) for n, b in ladder.items()

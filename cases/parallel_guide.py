@@ -36,7 +36,7 @@ from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_me
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)"),
-    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam", "rod")),
+    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam")),
     Parameter("length", 0.06, "m", "bender length L (two segments of L/2)"),
     Parameter("width", 10e-3, "m", "bender width"),
     Parameter("spacing", 0.02, "m", "distance between the two benders"),

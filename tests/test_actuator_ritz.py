@@ -429,7 +429,7 @@ def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():
     from _cli_helpers import CASES
 
     # the stiffness comparison loads the tip (compliance run): ritz is not among its choices
-    with pytest.raises((CaseError, ValueError), match="cell must be one of six-bar, rigid, beam, ancf, got 'ritz'"):
+    with pytest.raises((CaseError, ValueError), match="cell must be one of six-bar, rigid, beam, ancf, rod, got 'ritz'"):
         load_case(CASES / "stiffness_comparison.py").run({"cell": "ritz", "n_voltages": 2})
     # in a mechanism a ritz bender is a cantilever only: a joint at its tip is refused by the cell itself
     from exudyn_atcm import Link, Mechanism, MechanismError, solve_static

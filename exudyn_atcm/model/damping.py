@@ -105,7 +105,7 @@ class RayleighDamping:
         mass of the bender (velocity relative to the ground) and a torque ``-alpha J omega``
         on every rotary inertia.  Realised exactly by the ``"rigid"`` and ``"six-bar"`` cells
         (all their masses are rigid bodies); the continuum cells (``"beam"``, ``"ancf"``,
-        ``"ritz"``) refuse a non-zero ``alpha``.
+        ``"ritz"``, ``"rod"``) refuse a non-zero ``alpha``.
     beta : float, optional
         Stiffness-proportional coefficient [s], >= 0 (default 0): every spring or beam
         element of stiffness ``k`` gets the damping ``beta k`` (loss factor

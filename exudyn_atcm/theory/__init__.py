@@ -11,9 +11,12 @@ The face (``from exudyn_atcm.theory import free_curvature``) exports the referen
   response;
 * :mod:`~exudyn_atcm.theory.four_bar`: the rigid four-bar (Freudenstein, Grashof).
 
-The assumed-modes mathematics of the ``ritz`` cell stays in :mod:`exudyn_atcm.theory.ritz_beam`.
+The assumed-modes mathematics of the ``ritz`` cell stays in :mod:`exudyn_atcm.theory.ritz_beam`, the
+geometrically exact rod of the ``rod`` cell in :mod:`exudyn_atcm.theory.rotation_rod` (its compiled
+step kernels in :mod:`exudyn_atcm.theory.rod_kernels`, the one module that imports numba, imported
+only when a ``rod`` bender is built).
 
-May import: numpy, scipy and the package's argument checks only.
+May import: numpy, scipy and the package's argument checks only (and numba in ``rod_kernels``).
 """
 
 from .beam import (

@@ -21,10 +21,11 @@ compiled kernels (:mod:`exudyn_atcm.theory.rod_kernels`) and written into the it
   the step, ``x1 q - q_tip = offset`` with ``x1 = R dP/dq`` at the prediction;
 * after every Newton solve (Exudyn's ``PostNewton`` hook, static and dynamic solvers, also a
   user's own solve after :func:`~exudyn_atcm.add_to`): the tip's distance from the exact tip
-  pose of the solved ``q`` is checked; above :data:`TIP_TOLERANCE` times the length the
+  pose of the solved ``q`` is checked; above the tolerance the
   constraint is linearised at the solved state and Exudyn repeats the Newton solve
   (its "discontinuous iteration", up to ``discontinuous.maxIterations`` = 5 passes by default).
-  So every accepted state satisfies the exact nonlinear tip constraint to ``1e-10 L``.  With
+  So every accepted state satisfies the exact nonlinear tip constraint to :data:`TIP_TOLERANCE`
+  times the length (:data:`STATIC_TIP_TOLERANCE` at rest).  With
   the prediction a dynamic step needs no second pass (measured on the compliant four-bar at
   steps 1e-4 ... 1e-3 s); a static load step converges quadratically in the passes;
 * before an eigenvalue analysis: the constraint's geometric stiffness
@@ -54,12 +55,17 @@ from ..items import NOVIS
 from ..model import Body
 from ..node_chain import beam_node_key
 
-__all__ = ["add_rod_bender", "TIP_TOLERANCE"]
+__all__ = ["add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE"]
 
 #: Largest distance [in units of the rod's length] of the tip node from the exact tip pose of
-#: the rod's coordinates that a solved state may keep (else the Newton solve is repeated with
-#: the constraint linearised there).
+#: the rod's coordinates that a solved state of a moving rod may keep (else the Newton solve is
+#: repeated with the constraint linearised there).  On the compliant four-bar's 0.5 s triangle
+#: (steps 1e-4 and 5e-4 s) 1e-7 ... 1e-10 gave the same path to 1e-3 of its error against 64 beam
+#: elements; 1e-10 repeated 7 % of the steps at 5e-4 s, 1e-8 none.
 TIP_TOLERANCE = 1e-8
+#: The same for a rod at rest (static solves, eigenvalue analyses): the passes converge
+#: quadratically, so round-off is reached in one or two more.
+STATIC_TIP_TOLERANCE = 1e-13
 
 _START = exu.ConfigurationType.StartOfStep
 
@@ -114,13 +120,21 @@ def add_rod_bender(builder, bender: Bender) -> None:
     for j in range(n):
         key = f"{bender.name}/segment{j + 1}"
         seg = Body(key, node, obj, np.array([np.nan, np.nan, angle]), node_only=True)
-        seg.pose_function = (lambda q, row=segments[j]:
+        seg.pose_function = (lambda q, row=segments[j], body=seg:
                              np.column_stack([np.full(q.shape[0], np.nan), np.full(q.shape[0], np.nan),
-                                              angle + q[:, rod.ode2:rod.ode2 + n] @ row]))
+                                              angle + q[:, body.ode2:body.ode2 + n] @ row]))
         model.bodies[key] = seg
         keys.append(key)
     model.cells[bender.name] = keys
-    rod = model.bodies[keys[0]]  # a body on the rod's node: its ODE2 index after Assemble
+    # ODE2 indices of the rod's and the tip's coordinates, read at first use (after Assemble; a user's
+    # system after add_to is assembled later): nodes are numbered in the order they were added, so the
+    # indices of these two stay valid when items are added after them and the system is assembled again
+    ode2 = [-1, -1]
+
+    def indices() -> list[int]:
+        if ode2[0] < 0:
+            ode2[:] = [mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node)]
+        return ode2
     sd = mbs.systemData
     set_parameter = mbs.SetObjectParameter
     get_output = mbs.GetObjectOutput
@@ -138,7 +152,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
         also the tie's geometric stiffness at its current force (static passes and eigenvalues: a dynamic step's
         prediction is close enough without it)."""
         lam_ = get_output(tie, force_output) if stiffen else no_multipliers
-        linearisation(coordinates, velocities, rod.ode2, h, lam_, K, phi, integration, weights, phi_tip,
+        linearisation(coordinates, velocities, indices()[0], h, lam_, K, phi, integration, weights, phi_tip,
                       parameters, *out)
         state["mass"] = mass_out.copy()
         if stiffen or state["stiffened"]:
@@ -161,20 +175,24 @@ def add_rod_bender(builder, bender: Bender) -> None:
         if source is not None:
             set_load(load, "load", ei * curvature_per_strain * strains.item(source))
         h = get_time() - get_time(_START)
-        dynamic = 0.0 < h < math.inf and any(get_v(_START, False)[rod.ode2:rod.ode2 + n])
+        start = indices()[0]
+        dynamic = 0.0 < h < math.inf and any(get_v(_START, False)[start:start + n])
         write(get_q(_START, False), get_v(_START, False), h if dynamic else 0.0, not dynamic)
 
-    limit = TIP_TOLERANCE * length
+    limit, static_limit = TIP_TOLERANCE * length, STATIC_TIP_TOLERANCE * length
     tip_reference_xy = np.ascontiguousarray(tip_reference[:2])
 
     def check_tip(mbs_, t) -> float:
         """Distance of the tip node from the exact tip pose over the tolerance; linearise there if above."""
         coordinates = get_q(copy=False)
-        gap = tip_gap(coordinates, rod.ode2, tip.ode2, tip_reference_xy, phi, weights, phi_tip, parameters)
-        if gap <= limit:
+        start, tip_start = indices()
+        gap = tip_gap(coordinates, start, tip_start, tip_reference_xy, phi, weights, phi_tip, parameters)
+        velocities = get_v(copy=False)
+        allowed = limit if any(velocities[start:start + n]) else static_limit
+        if gap <= allowed:
             return 0.0
-        write(coordinates, get_v(copy=False), 0.0, True)
-        return gap / limit
+        write(coordinates, velocities, 0.0, True)
+        return gap / allowed
 
     def linearise(strains: np.ndarray) -> None:
         """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness."""

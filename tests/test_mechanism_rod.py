@@ -1,0 +1,373 @@
+"""``cell="rod"``: the geometrically exact rotation-field rod in assumed modes (issue 15, part 1).
+
+The mathematics (:mod:`exudyn_atcm.theory.rotation_rod` and its compiled kernels) against
+independent constructions: scipy's adaptive quadrature of the position integral, the kinetic
+energy of finite-difference velocities, Lagrange's equations for the quadratic velocity vector
+(finite differences of the mass matrix) and the ``ritz`` cell's double-integral mass on the arc.
+The Exudyn model against the exact arc, Bisshopp & Drucker's elastica, the shooting solution of a
+curved cantilever with a lever under a dead load (large deflection), the clamped-free beam's
+f1, beam elements about bent and loaded states, the rigid four-bar's loop closure, the
+hysteresis operator applied offline, and a user's own solve after ``add_to``.
+"""
+
+from __future__ import annotations
+
+import math
+import pathlib
+import sys
+
+import exudyn as exu
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+import exudyn_atcm as atcm
+from exudyn_atcm import (Bender, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment, eigenfrequencies,
+                         simulate, solve_static)
+from exudyn_atcm import theory as bt
+from exudyn_atcm.casework import load_case
+from exudyn_atcm.mbs import solver_settings
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Triangle
+from exudyn_atcm.theory import ritz_beam, rod_kernels
+from exudyn_atcm.theory import rotation_rod as rr
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from test_mechanism_solve import four_bar, rigid_coupler_point  # noqa: E402
+
+CASES = pathlib.Path(__file__).resolve().parents[1] / "cases"
+CFC = Layer(0.2e-3, 70e9, 1550.0)
+MFC = Layer(0.3e-3, 30.336e9, 5440.0)
+W = 28e-3
+L = 0.06
+MU, RHO_I = 0.2, 1.5e-8  # kg/m, kg m: the order of the paper's laminate
+#: a large-rotation state of 4 modes [rad]: tip at 1.1 rad, an S-shaped part
+Q = np.array([1.1, -0.4, 0.25, -0.1])
+QD = np.array([3.0, -2.0, 1.5, 0.7])
+
+
+def rod(name="b", n_cells=4, drive=None, length=L, **kw):
+    return Bender(name, width=W, passive=CFC, active=MFC, length=length, n_cells=n_cells,
+                  drive=drive if drive is not None else PiezoDrive(0.0), cell="rod", **kw)
+
+
+def cantilever(b, force=(0.0, 0.0)):
+    m = Mechanism("cantilever").add(b).ground(b.base)
+    if force != (0.0, 0.0):
+        m.force(b.tip, force)
+    return m
+
+
+def _theta(q, s, length=L):
+    return float(ritz_beam.rotation_shapes(len(q), [s / length])[0] @ q)
+
+
+def _position(q, s, length=L):
+    """r(s) by scipy's adaptive quadrature of (cos theta, sin theta)."""
+    return np.array([quad(lambda u: math.cos(_theta(q, u, length)), 0.0, s, epsabs=1e-15, epsrel=1e-13)[0],
+                     quad(lambda u: math.sin(_theta(q, u, length)), 0.0, s, epsabs=1e-15, epsrel=1e-13)[0]])
+
+
+# ----------------------------------------------------------------------------- the mathematics
+
+def test_integration_matrix_is_exact_for_polynomials_below_its_order():
+    xi, w, s = rr.quadrature(12)
+    for m in range(12):
+        np.testing.assert_allclose(s @ xi**m, xi ** (m + 1) / (m + 1), rtol=0, atol=1e-14)
+        assert w @ xi**m == pytest.approx(1.0 / (m + 1), abs=1e-15)
+    with pytest.raises(ValueError, match="n_points must be an integer >= 2, got 1"):
+        rr.quadrature(1)
+
+
+def test_tip_pose_is_the_integral_of_the_rotation_field():
+    shapes = rr.rod_shapes(4, L)
+    x, y, theta = rr.tip_pose(shapes, Q)
+    ref = _position(Q, L)
+    assert (x, y) == pytest.approx(tuple(ref), abs=1e-13 * L)
+    assert theta == pytest.approx(_theta(Q, L), abs=1e-15)
+    kx, ky, kth, jac = rod_kernels.tip_pose(Q, shapes.phi, shapes.weights, L, shapes.phi_tip)
+    assert (kx, ky, kth) == pytest.approx((x, y, theta), abs=1e-16)
+    # the Jacobian rows against central differences of the adaptive quadrature
+    for i in range(4):
+        e = np.zeros(4)
+        e[i] = 1e-6
+        fd = (_position(Q + e, L) - _position(Q - e, L)) / 2e-6
+        np.testing.assert_allclose(jac[:, i], fd, rtol=0, atol=1e-9 * L)
+
+
+def test_mass_matrix_is_the_kinetic_energy_of_the_exact_velocity():
+    # T = 1/2 int (mu |r_dot|^2 + rho_I theta_dot^2) ds with r_dot(s) from central differences of
+    # the quadrature positions along q_dot: 1/2 q_dot^T M q_dot for several directions
+    shapes = rr.rod_shapes(4, L)
+    m = rr.mass_matrix(shapes, Q, MU, RHO_I)
+    np.testing.assert_allclose(m, m.T, rtol=0, atol=1e-18)
+    s_nodes, s_weights = np.polynomial.legendre.leggauss(24)
+    s_nodes, s_weights = 0.5 * L * (s_nodes + 1.0), 0.5 * L * s_weights
+    rng = np.random.default_rng(1)
+    for v in [QD, *rng.normal(size=(3, 4))]:
+        h = 1e-6
+        energy = 0.0
+        for s, w in zip(s_nodes, s_weights):
+            rdot = (_position(Q + h * v, s) - _position(Q - h * v, s)) / (2 * h)
+            thdot = ritz_beam.rotation_shapes(4, [s / L])[0] @ v
+            energy += 0.5 * w * (MU * rdot @ rdot + RHO_I * thdot**2)
+        assert 0.5 * v @ m @ v == pytest.approx(energy, rel=1e-8)
+
+
+def test_mass_matrix_on_the_arc_is_the_ritz_cells():
+    # the ritz cell's M(kappa) (its own double-integral form, tested against nested integrals in
+    # test_actuator_ritz) is this M at q = (kappa L, 0, ...)
+    for kappa_l in (0.0, 0.36, 1.2):
+        q = np.array([kappa_l, 0.0, 0.0])
+        np.testing.assert_allclose(rr.mass_matrix(rr.rod_shapes(3, L), q, MU, RHO_I),
+                                   ritz_beam.mass_matrix(3, L, MU, RHO_I, kappa_l / L), rtol=1e-12, atol=1e-22)
+
+
+def test_quadratic_velocity_vector_follows_lagranges_equations():
+    # g = M_dot q_dot - 1/2 d(q_dot^T M q_dot)/dq, with M_dot and the gradient by central differences
+    shapes = rr.rod_shapes(4, L)
+    g = rr.quadratic_velocity_vector(shapes, Q, QD, MU)
+    h = 1e-6
+    m_dot = (rr.mass_matrix(shapes, Q + h * QD, MU, RHO_I) - rr.mass_matrix(shapes, Q - h * QD, MU, RHO_I)) / (2 * h)
+    grad = np.array([(QD @ rr.mass_matrix(shapes, Q + h * e, MU, RHO_I) @ QD
+                      - QD @ rr.mass_matrix(shapes, Q - h * e, MU, RHO_I) @ QD) / (2 * h) for e in np.eye(4)])
+    np.testing.assert_allclose(g, m_dot @ QD - 0.5 * grad, rtol=1e-6, atol=1e-9 * np.max(np.abs(g)))
+    assert np.max(np.abs(g)) > 1e-3 * MU * L**3 * (QD @ QD)  # not trivially zero
+    np.testing.assert_allclose(rr.quadratic_velocity_vector(shapes, Q, np.zeros(4), MU), 0.0, atol=0)
+
+
+def test_compiled_step_matrices_equal_the_numpy_reference_and_linearise_the_tip():
+    shapes = rr.rod_shapes(4, L)
+    angle, base = 0.7, (0.01, -0.02)
+    c, s = math.cos(angle), math.sin(angle)
+    mass, force, x1, offset = rod_kernels.step_matrices(Q, QD, shapes.phi, shapes.integration, shapes.weights, L, MU,
+                                                        RHO_I, shapes.phi_tip, base[0], base[1], c, s, angle)
+    np.testing.assert_allclose(mass, rr.mass_matrix(shapes, Q, MU, RHO_I), rtol=1e-13, atol=1e-22)
+    np.testing.assert_allclose(force, -rr.quadratic_velocity_vector(shapes, Q, QD, MU), rtol=1e-12, atol=1e-20)
+    rot = np.array([[c, -s], [s, c]])
+
+    def global_tip(q):
+        x, y, th = rr.tip_pose(shapes, q)
+        return np.array([*(np.array(base) + rot @ [x, y]), angle + th])
+
+    # Exudyn's tie: x1 q - q_tip - offset = 0 holds at q, and x1 is the tip's Jacobian
+    np.testing.assert_allclose(x1 @ Q - offset, global_tip(Q), rtol=0, atol=1e-15)
+    for i in range(4):
+        e = np.zeros(4)
+        e[i] = 1e-6
+        np.testing.assert_allclose(x1[:, i], (global_tip(Q + e) - global_tip(Q - e)) / 2e-6, rtol=0, atol=1e-9)
+    # geometric stiffness: the derivative of x1^T lam (finite differences of the Jacobian)
+    lam = np.array([0.3, -1.1])
+    kg = rod_kernels.geometric_stiffness(Q, shapes.phi, shapes.weights, L, lam[0], lam[1], c, s)
+    for i in range(4):
+        e = np.zeros(4)
+        e[i] = 1e-6
+        plus = rod_kernels.step_matrices(Q + e, QD, shapes.phi, shapes.integration, shapes.weights, L, MU, RHO_I,
+                                         shapes.phi_tip, base[0], base[1], c, s, angle)[2]
+        minus = rod_kernels.step_matrices(Q - e, QD, shapes.phi, shapes.integration, shapes.weights, L, MU, RHO_I,
+                                          shapes.phi_tip, base[0], base[1], c, s, angle)[2]
+        np.testing.assert_allclose(kg[:, i], ((plus - minus)[:2].T @ lam) / 2e-6, rtol=0, atol=1e-8)
+
+
+# ----------------------------------------------------------------------------- statics
+
+@pytest.mark.parametrize("n", [1, 3])
+@pytest.mark.parametrize("voltage", [100.0, 1500.0])
+def test_free_actuation_is_the_exact_arc_for_any_mode_count(n, voltage):
+    b = rod(n_cells=n, drive=PiezoDrive(voltage))
+    r = solve_static(cantilever(b))
+    kappa = b.laminate.curvature_per_strain * b.segments[0].drive.linear_strain(voltage)
+    # the static Newton tolerance: relative 1e-10 of the first residual, absolute 1e-12 EI/L
+    assert r["b.tip_angle"][0] == pytest.approx(kappa * L, rel=1e-9)
+    x, y = bt.arc_point(kappa, L)
+    # the angle's tolerance moves the tip by ~L kappa L 1e-10
+    assert r["b.tip_x"][0] == pytest.approx(x, abs=1e-10 * L)
+    assert r["b.tip_y"][0] == pytest.approx(y, abs=1e-10 * L)
+    angles = [r[f"b.cell_angle_{j + 1}"][0] for j in range(n)]
+    np.testing.assert_allclose(angles, (np.arange(n) + 0.5) * kappa * L / n, rtol=1e-9)  # mean rotations
+
+
+@pytest.mark.parametrize("alpha", [1.0, 2.0, 5.0])
+def test_large_tip_force_matches_the_elastica(alpha):
+    b = rod(n_cells=8)
+    ei = b.laminate.bending_stiffness
+    r = solve_static(cantilever(b, (0.0, alpha * ei / L**2)))
+    y_ref, dx_ref = bt.ELASTICA_TIP_FORCE[alpha]
+    # Bisshopp & Drucker's table has 5 digits
+    assert r["b.tip_y"][0] / L == pytest.approx(y_ref, abs=1e-5)
+    assert 1.0 - r["b.tip_x"][0] / L == pytest.approx(dx_ref, abs=1e-5)
+    # the shooting solution (DOP853, relative tolerance 1e-12): the modes converge exponentially,
+    # measured 2e-11 L (alpha = 1), 9e-11 L (alpha = 5, tip rotation 1.2 rad) at 8 modes
+    ref = bt.curved_cantilever_end_load(0.0, ei, L, (0.0, alpha * ei / L**2))
+    assert r["b.tip_x"][0] == pytest.approx(ref["tip_x"], abs=1e-9 * L)
+    assert r["b.tip_y"][0] == pytest.approx(ref["tip_y"], abs=1e-9 * L)
+    assert r["b.tip_angle"][0] == pytest.approx(ref["tip_angle"], abs=1e-8)
+
+
+def test_mode_convergence_under_a_large_tip_force_is_exponential():
+    """alpha = F L^2/EI = 10 (tip rotation 1.43 rad): tip error against the shooting solution
+    1.9e-5, 1.4e-6, 3.8e-9 and 1.9e-11 L at 4, 6, 8 and 12 modes (measured)."""
+    ei = rod().laminate.bending_stiffness
+    ref = bt.curved_cantilever_end_load(0.0, ei, L, (0.0, 10.0 * ei / L**2))
+    errors = []
+    for n in (4, 6, 8, 12):
+        r = solve_static(cantilever(rod(n_cells=n), (0.0, 10.0 * ei / L**2)))
+        errors.append(math.hypot(r["b.tip_x"][0] - ref["tip_x"], r["b.tip_y"][0] - ref["tip_y"]) / L)
+    assert errors[0] < 1e-4 and errors[-1] < 1e-9
+    assert all(later < earlier / 5 for earlier, later in zip(errors, errors[1:]))
+
+
+def test_follower_force_at_a_rod_tip_turns_with_the_tip():
+    """A follower force turns with the tip node: its equilibrium is the equilibrium under the dead
+    force turned by the tip's final rotation (the same equations; Newton tolerance)."""
+    f = np.array([0.0, 2.0])
+    follow = solve_static(Mechanism().add(rod()).ground("b.base").force("b.tip", tuple(f), follower=True))
+    theta = follow["b.tip_angle"][0]
+    turned = np.array([math.cos(theta) * f[0] - math.sin(theta) * f[1], math.sin(theta) * f[0] + math.cos(theta) * f[1]])
+    dead = solve_static(cantilever(rod(), tuple(turned)))
+    assert theta > 0.1  # a large rotation: the follower really turned
+    assert dead["b.tip_angle"][0] == pytest.approx(theta, abs=1e-9)
+    assert dead["b.tip_y"][0] == pytest.approx(follow["b.tip_y"][0], abs=1e-11)
+    plain = solve_static(cantilever(rod(), tuple(f)))
+    assert plain["b.tip_angle"][0] < theta - 5e-4  # a dead force of the reference direction bends less
+
+
+def test_curved_rod_with_a_lever_under_a_dead_load_matches_the_shooting_solution():
+    """Lever on the tip (a rigid link welded there), free curvature and a dead force at the
+    lever's end: the large-deflection equilibrium of Kirchhoff's rod (shooting, scipy)."""
+    drive = PiezoDrive(1500.0)
+    b = rod(n_cells=6, drive=drive)
+    lever = Link("lever", {"A": (L, 0.0), "P": (L + 0.02, 0.0)}, mass=1e-4, inertia=1e-8)
+    ei = b.laminate.bending_stiffness
+    force = (0.3 * ei / L**2, -1.5 * ei / L**2)
+    m = Mechanism().add(b, lever).ground(b.base).weld(b.tip, lever.point("A")).force("lever.P", force)
+    r = solve_static(m)
+    kappa = b.laminate.curvature_per_strain * drive.linear_strain(1500.0)
+    ref = bt.curved_cantilever_end_load(kappa, ei, L, force, (0.02, 0.0))
+    assert abs(ref["tip_angle"]) > 0.5  # large rotation
+    for key in ("tip_x", "tip_y"):
+        assert r[f"b.{key}"][0] == pytest.approx(ref[key], abs=1e-7 * L), key
+    assert r["b.tip_angle"][0] == pytest.approx(ref["tip_angle"], abs=1e-7)
+    assert r["lever.P_x"][0] == pytest.approx(ref["point_x"], abs=1e-7 * L)
+    assert r["lever.P_y"][0] == pytest.approx(ref["point_y"], abs=1e-7 * L)
+
+
+# ----------------------------------------------------------------------------- eigenfrequencies
+
+def test_clamped_free_f1_converges_to_the_beams():
+    b = rod(n_cells=2)
+    f1 = bt.first_bending_frequency(b.laminate.bending_stiffness, b.laminate.mass_per_length, L)
+    errors = [eigenfrequencies(cantilever(rod(n_cells=n)), n=1)[0] / f1 - 1 for n in (2, 3, 4, 6)]
+    # Rayleigh-Ritz from above in the modes (+0.47 %, +0.028 % at 2 and 3); the rotary inertia
+    # lowers f1 by ~(h/L)^2 ~ 2e-5 (the Euler-Bernoulli f1 leaves it out)
+    assert errors[0] > errors[1] > errors[2]
+    assert abs(errors[-1]) < 5e-5
+
+
+def test_frequencies_about_a_bent_and_loaded_state_equal_beam_elements():
+    # the tie's geometric stiffness (the tip force turning with the rod) enters the tangent: a tip
+    # force 2 EI/L^2 against the bending raises f1 by 18 %, and the rod follows beam
+    # elements.  The beam's error is second order (from above): Richardson's extrapolation of 32 and
+    # 64 elements; what remains is the beam's axial and shear compliance (the rod is inextensible
+    # and shear-rigid): measured 1.8e-5 (f1) and 1.4e-4 (f2)
+    drive = PiezoDrive(1500.0)
+
+    def frequencies(cell, n, loaded=True):
+        b = Bender("b", width=W, passive=CFC, active=MFC, length=L, n_cells=n, drive=drive, cell=cell)
+        force = (0.0, -2.0 * b.laminate.bending_stiffness / L**2) if loaded else (0.0, 0.0)
+        return eigenfrequencies(cantilever(b, force), n=2, voltage=1500.0)
+
+    rod_f = frequencies("rod", 8)
+    assert rod_f[0] / frequencies("rod", 8, loaded=False)[0] - 1 > 0.15  # +18 %
+    f32, f64 = frequencies("beam", 32), frequencies("beam", 64)
+    beam_f = f64 + (f64 - f32) / 3.0
+    assert rod_f[0] == pytest.approx(beam_f[0], rel=5e-5)
+    assert rod_f[1] == pytest.approx(beam_f[1], rel=3e-4)
+
+
+# ----------------------------------------------------------------------------- mechanisms and dynamics
+
+def test_closed_four_bar_with_a_rod_crank_follows_rigid_loop_closure():
+    m = four_bar(PiezoDrive(Triangle(0.0, 1500.0, 0.1)), n_cells=3, cell="rod")
+    with pytest.warns(RuntimeWarning):  # coarse step for the bender's vibrations; voltage outside the rating
+        r = simulate(m, 0.05, step=1e-3)
+    for i in range(0, r.n_rows, 7):
+        a_pos = np.array([r["crank.tip_x"][i], r["crank.tip_y"][i]])
+        p, b = rigid_coupler_point(a_pos)
+        np.testing.assert_allclose([r["coupler.P_x"][i], r["coupler.P_y"][i]], p, rtol=0, atol=1e-6 * 0.05)
+        np.testing.assert_allclose([r["rocker.B_x"][i], r["rocker.B_y"][i]], b, rtol=0, atol=1e-6 * 0.05)
+    assert np.ptp(r["crank.tip_x"]) > 1e-3
+    # 3 modes + the tip node's 3 coordinates + 2 links; the tie 3, three pins 2 each
+    dof = m.degrees_of_freedom()
+    assert (dof.coordinates, dof.constraints, dof.dof) == (12, 9, 3)
+
+
+def test_hysteresis_exact_under_step_rejection_with_a_rod_crank():
+    H = paper_strain_preisach()
+    m = four_bar(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=H), n_cells=3, cell="rod")
+    with pytest.warns(RuntimeWarning):
+        r = simulate(m, 0.06, step=2e-3, settings={"timeIntegration.newton.maxIterations": 2,
+                                                  "timeIntegration.newton.useModifiedNewton": False})
+    assert r.info["rejected_steps"] > 0
+    np.testing.assert_allclose(r["crank.strain"], H.apply(r["crank.voltage"]), rtol=0, atol=1e-15)
+    assert np.ptp(r["crank.strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
+
+
+def test_dynamic_four_bar_path_equals_fine_beam_elements():
+    """The closed four-bar in motion (a fast triangle that excites its vibrations): a 4-mode rod
+    crank and a 64-element beam crank give one coupler path (the beam's O(1/N^2) error at 64
+    elements is ~1e-5 of the travel; measured difference 1e-5)."""
+    paths = {}
+    for cell, n in (("rod", 4), ("beam", 64)):
+        m = four_bar(PiezoDrive(Triangle(500.0, 1000.0, 0.02)), n_cells=n, cell=cell)
+        r = simulate(m, 0.02, step=1e-4)
+        paths[cell] = np.column_stack([r["coupler.P_x"], r["coupler.P_y"]])
+    travel = np.max(np.linalg.norm(paths["beam"] - paths["beam"][0], axis=1))
+    assert travel > 1e-3
+    assert np.max(np.linalg.norm(paths["rod"] - paths["beam"], axis=1)) < 1e-4 * travel
+
+
+def test_compliant_four_bar_case_with_rod_cells():
+    case = load_case(CASES / "compliant_four_bar.py")
+    out = case.run({"cell": "rod", "n_cells": 4, "dynamic_period": 0.02, "step": 5e-4, "n_steps": 8})
+    s = out.scalars
+    # the references do not depend on the cells (rigid links and PRBM pivots): Newton tolerance
+    assert s["reference_error"] < 1e-6 and s["reference_error_linear"] < 1e-6
+    assert s["reference_error_dynamic"] < 1e-6
+    assert s["coupler_travel"] > 1e-3
+
+
+def test_add_to_with_a_rod_bender_equals_the_package_simulate():
+    # the user's own solver run: the rod's step updates run in the package's pre-step hook and its
+    # tie check in Exudyn's PostNewton hook, so the same settings give the same answer (the
+    # program starts at 0 V: both runs start from the reference pose)
+    def system():
+        b = rod(n_cells=3, drive=PiezoDrive(Triangle(750.0, 750.0, 0.1)))
+        return Mechanism("m").add(b).ground(b.base)
+
+    ref = simulate(system(), 0.005, step=1e-4)
+    mbs = exu.SystemContainer().AddSystem()
+    handle = atcm.add_to(mbs, system())
+    tip = handle.position_marker("b.tip")  # a user's marker at the free tip: the tip node's position
+    assert mbs.GetMarker(tip)["markerType"] == "NodePosition"
+    mbs.Assemble()
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.005, 1e-4))
+    r = handle.result()
+    for name in ("b.tip_x", "b.tip_y", "b.tip_angle"):
+        np.testing.assert_allclose(r[name], ref[name], rtol=0, atol=1e-12, err_msg=name)
+    assert np.ptp(r["b.tip_y"]) > 1e-4  # it moved
+
+
+def test_rod_refuses_a_jointed_base_and_segments():
+    b = rod()
+    link = Link("l", {"A": (0.0, 0.0), "B": (0.0, -0.01)}, mass=1e-4, inertia=1e-8)
+    m = Mechanism().add(b, link).pin(b.base, link.point("A")).ground("l.B")
+    with pytest.raises(MechanismError, match="the rod cell's modes are clamped at its base"):
+        solve_static(m)
+    seg = Bender("s", width=W, passive=CFC, active=MFC, cell="rod",
+                 segments=[Segment(0.03, 2, PiezoDrive(0.0)), Segment(0.03, 2, None)])
+    with pytest.raises(MechanismError, match="the rod cell models one uniform segment"):
+        solve_static(cantilever(seg))
+    # its mass matrix is not a set of rigid bodies: mass-proportional damping is refused, not approximated
+    with pytest.raises(ValueError, match="which the 'rod' cell cannot realise exactly"):
+        rod(damping=atcm.RayleighDamping(alpha=2.0))
