@@ -138,13 +138,16 @@ def main(argv=None) -> int:
                              "Exudyn's floor (mechanism_targets.py; --cells default 2,4,8,16,32, --t-sim 0.5)")
     parser.add_argument("--large-step", default=None,
                         help="with --targets: also run every model at these steps [s] (comma list, e.g. 5e-4,1e-3)")
+    parser.add_argument("--models", default=None,
+                        help="with --targets: only these models (comma list of rigid, beam, rod, hand; default all)")
     args = parser.parse_args(argv)
     if args.targets:
         mechanism_targets.targets_table(
             t_sim=0.5 if args.t_sim is None else args.t_sim, repeats=args.repeats,
             cells=None if args.cells is None else [int(c) for c in args.cells.split(",") if c.strip()],
             reference_cells=args.reference_cells, out=args.out,
-            large_step=None if args.large_step is None else [float(h) for h in args.large_step.split(",") if h.strip()])
+            large_step=None if args.large_step is None else [float(h) for h in args.large_step.split(",") if h.strip()],
+            models=None if args.models is None else [m.strip() for m in args.models.split(",") if m.strip()])
         return 0
     args.t_sim = 0.2 if args.t_sim is None else args.t_sim
     args.cells = "2,4,8,16" if args.cells is None else args.cells

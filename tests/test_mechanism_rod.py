@@ -252,6 +252,33 @@ def test_curved_rod_with_a_lever_under_a_dead_load_matches_the_shooting_solution
     assert r["lever.P_y"][0] == pytest.approx(ref["point_y"], abs=1e-7 * L)
 
 
+def test_tip_pinned_to_a_slider_block_with_a_spring_matches_the_shooting_solution():
+    """Clamped base, tip pinned to a block that slides along the x axis against a spring k: under the
+    free curvature the guide pushes the tip back to y = 0 and the spring takes the shortening.
+    Reference: the curved cantilever's shooting solution with the end force (Fx, Fy) that gives
+    tip_y = 0 and Fx = -k (tip_x - L) (scipy's root)."""
+    from scipy.optimize import root
+
+    k, drive = 20.0, PiezoDrive(1500.0)
+    b = rod(n_cells=6, drive=drive)
+    block = Link("block", {"A": (L, 0.0)}, mass=1e-4, inertia=1e-9)
+    m = Mechanism().add(b, block).ground(b.base).pin(b.tip, "block.A")
+    r = solve_static(m.ground("block.A", joint="slider", axis=(1.0, 0.0), stiffness=k))
+    ei = b.laminate.bending_stiffness
+    kappa = b.laminate.curvature_per_strain * drive.linear_strain(1500.0)
+
+    def residual(f):
+        end = bt.curved_cantilever_end_load(kappa, ei, L, (f[0], f[1]))
+        return [end["tip_y"] / L, (f[0] + k * (end["tip_x"] - L)) * L**2 / ei]
+
+    force = root(residual, [0.0, -2.0 * ei * kappa / L], tol=1e-14).x
+    ref = bt.curved_cantilever_end_load(kappa, ei, L, tuple(force))
+    assert L - ref["tip_x"] > 1e-5  # the spring is compressed by the arc's shortening
+    assert r["b.tip_x"][0] == pytest.approx(ref["tip_x"], abs=1e-12)
+    assert r["b.tip_y"][0] == pytest.approx(0.0, abs=1e-14)
+    assert r["b.tip_angle"][0] == pytest.approx(ref["tip_angle"], abs=1e-9)
+
+
 # ----------------------------------------------------------------------------- eigenfrequencies
 
 def test_clamped_free_f1_converges_to_the_beams():

@@ -170,15 +170,20 @@ def linearisation(coordinates, velocities, start, h, lam, stiffness, phi, integr
 
 
 @numba.njit(cache=True)
-def tip_gap(coordinates, start, tip_start, tip_reference, phi, weights, phi_tip, parameters):  # pragma: no cover
-    """Largest distance [m] of the tip node (ODE2 coordinates from ``tip_start``, plus ``tip_reference``) from
-    the exact tip position of the rod's coordinates (from ``start``)."""
+def tip_gap(coordinates, velocities, start, tip_start, tip_reference, phi, weights, phi_tip, parameters, moving_limit,
+            rest_limit):  # pragma: no cover - compiled
+    """Distance [m] of the tip node (ODE2 coordinates from ``tip_start``, plus ``tip_reference``) from the
+    exact tip position of the rod's coordinates (from ``start``), divided by the allowed distance:
+    ``moving_limit`` if any of the rod's velocities is non-zero, else ``rest_limit`` [m]."""
     n = phi.shape[1]
     q = np.empty(n)
+    moving = False
     for i in range(n):
         q[i] = coordinates[start + i]
+        if velocities[start + i] != 0.0:
+            moving = True
     x, y, _, _ = tip_pose(q, phi, weights, parameters[0], phi_tip)
     cos_a, sin_a = parameters[5], parameters[6]
     gx = abs(tip_reference[0] + coordinates[tip_start] - (parameters[3] + cos_a * x - sin_a * y))
     gy = abs(tip_reference[1] + coordinates[tip_start + 1] - (parameters[4] + sin_a * x + cos_a * y))
-    return max(gx, gy)
+    return max(gx, gy) / (moving_limit if moving else rest_limit)

@@ -154,7 +154,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
         lam_ = get_output(tie, force_output) if stiffen else no_multipliers
         linearisation(coordinates, velocities, indices()[0], h, lam_, K, phi, integration, weights, phi_tip,
                       parameters, *out)
-        state["mass"] = mass_out.copy()
+        state["mass"] = mass_out  # Exudyn copies what the mass matrix function returns
         if stiffen or state["stiffened"]:
             set_parameter(obj, "stiffnessMatrix", tangent)
             state["stiffened"] = stiffen
@@ -176,23 +176,23 @@ def add_rod_bender(builder, bender: Bender) -> None:
             set_load(load, "load", ei * curvature_per_strain * strains.item(source))
         h = get_time() - get_time(_START)
         start = indices()[0]
-        dynamic = 0.0 < h < math.inf and any(get_v(_START, False)[start:start + n])
-        write(get_q(_START, False), get_v(_START, False), h if dynamic else 0.0, not dynamic)
+        velocities = get_v(_START, False)
+        dynamic = 0.0 < h < math.inf and any(velocities[start:start + n])
+        write(get_q(_START, False), velocities, h if dynamic else 0.0, not dynamic)
 
     limit, static_limit = TIP_TOLERANCE * length, STATIC_TIP_TOLERANCE * length
     tip_reference_xy = np.ascontiguousarray(tip_reference[:2])
 
     def check_tip(mbs_, t) -> float:
         """Distance of the tip node from the exact tip pose over the tolerance; linearise there if above."""
-        coordinates = get_q(copy=False)
+        coordinates, velocities = get_q(copy=False), get_v(copy=False)
         start, tip_start = indices()
-        gap = tip_gap(coordinates, start, tip_start, tip_reference_xy, phi, weights, phi_tip, parameters)
-        velocities = get_v(copy=False)
-        allowed = limit if any(velocities[start:start + n]) else static_limit
-        if gap <= allowed:
+        ratio = tip_gap(coordinates, velocities, start, tip_start, tip_reference_xy, phi, weights, phi_tip, parameters,
+                        limit, static_limit)
+        if ratio <= 1.0:
             return 0.0
         write(coordinates, velocities, 0.0, True)
-        return gap / allowed
+        return ratio
 
     def linearise(strains: np.ndarray) -> None:
         """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness."""
