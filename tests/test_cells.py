@@ -357,13 +357,15 @@ def ancf_cantilever(cell):
     return atcm.Mechanism("m").add(b).ground(b.base)
 
 
-def test_an_ancf_cantilever_works_through_add_to_and_a_ritz_one_says_why_not():
-    # add_to with the user's own solver run: the same answer as simulate (the ANCF end node carries the
-    # user's markers as a beam node does)
-    ref = atcm.simulate(ancf_cantilever("ancf"), 0.005, step=1e-4)
+@pytest.mark.parametrize("cell", ["ancf", "rod"])
+def test_an_ancf_or_rod_cantilever_works_through_add_to_and_a_ritz_one_says_why_not(cell):
+    # add_to with the user's own solver run: the same answer as simulate (the ANCF end node and the rod's
+    # tip node carry the user's markers as a beam node does; the rod's updates run in the package's
+    # pre-step hook and in Exudyn's PostNewton hook, which a user's solve runs too)
+    ref = atcm.simulate(ancf_cantilever(cell), 0.005, step=1e-4)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    handle = atcm.add_to(mbs, ancf_cantilever("ancf"))
+    handle = atcm.add_to(mbs, ancf_cantilever(cell))
     tip = handle.position_marker("b.tip")  # a user's marker at the free tip: the end node's position
     assert mbs.GetMarker(tip)["markerType"] == "NodePosition"
     mbs.Assemble()

@@ -7,7 +7,8 @@ energy of finite-difference velocities, Lagrange's equations for the quadratic v
 The Exudyn model against the exact arc, Bisshopp & Drucker's elastica, the shooting solution of a
 curved cantilever with a lever under a dead load (large deflection), the clamped-free beam's
 f1, beam elements about bent and loaded states, the rigid four-bar's loop closure, the
-hysteresis operator applied offline, and a user's own solve after ``add_to``.
+hysteresis operator applied offline (the last two with the other cells in test_mechanism_solve.py, and
+a user's own solve after ``add_to`` in test_cells.py).
 """
 
 from __future__ import annotations
@@ -16,7 +17,6 @@ import math
 import pathlib
 import sys
 
-import exudyn as exu
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -26,14 +26,12 @@ from exudyn_atcm import (Bender, Layer, Link, Mechanism, MechanismError, PiezoDr
                          simulate, solve_static)
 from exudyn_atcm import theory as bt
 from exudyn_atcm.casework import load_case
-from exudyn_atcm.mbs import solver_settings
-from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import Triangle
 from exudyn_atcm.theory import ritz_beam, rod_kernels
 from exudyn_atcm.theory import rotation_rod as rr
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from test_mechanism_solve import four_bar, rigid_coupler_point  # noqa: E402
+from test_mechanism_solve import four_bar  # noqa: E402
 
 CASES = pathlib.Path(__file__).resolve().parents[1] / "cases"
 CFC = Layer(0.2e-3, 70e9, 1550.0)
@@ -314,30 +312,12 @@ def test_frequencies_about_a_bent_and_loaded_state_equal_beam_elements():
 
 # ----------------------------------------------------------------------------- mechanisms and dynamics
 
-def test_closed_four_bar_with_a_rod_crank_follows_rigid_loop_closure():
-    m = four_bar(PiezoDrive(Triangle(0.0, 1500.0, 0.1)), n_cells=3, cell="rod")
-    with pytest.warns(RuntimeWarning):  # coarse step for the bender's vibrations; voltage outside the rating
-        r = simulate(m, 0.05, step=1e-3)
-    for i in range(0, r.n_rows, 7):
-        a_pos = np.array([r["crank.tip_x"][i], r["crank.tip_y"][i]])
-        p, b = rigid_coupler_point(a_pos)
-        np.testing.assert_allclose([r["coupler.P_x"][i], r["coupler.P_y"][i]], p, rtol=0, atol=1e-6 * 0.05)
-        np.testing.assert_allclose([r["rocker.B_x"][i], r["rocker.B_y"][i]], b, rtol=0, atol=1e-6 * 0.05)
-    assert np.ptp(r["crank.tip_x"]) > 1e-3
-    # 3 modes + the tip node's 3 coordinates + 2 links; the tie 3, three pins 2 each
-    dof = m.degrees_of_freedom()
+def test_a_rod_crank_has_few_coordinates():
+    # the loop closure and the hysteresis under step rejection of a rod crank are checked with the
+    # other cells' (tests/test_mechanism_solve.py); here its size: 3 modes + the tip node's 3
+    # coordinates + 2 links; the tie 3, three pins 2 each
+    dof = four_bar(PiezoDrive(0.0), n_cells=3, cell="rod").degrees_of_freedom()
     assert (dof.coordinates, dof.constraints, dof.dof) == (12, 9, 3)
-
-
-def test_hysteresis_exact_under_step_rejection_with_a_rod_crank():
-    H = paper_strain_preisach()
-    m = four_bar(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=H), n_cells=3, cell="rod")
-    with pytest.warns(RuntimeWarning):
-        r = simulate(m, 0.06, step=2e-3, settings={"timeIntegration.newton.maxIterations": 2,
-                                                  "timeIntegration.newton.useModifiedNewton": False})
-    assert r.info["rejected_steps"] > 0
-    np.testing.assert_allclose(r["crank.strain"], H.apply(r["crank.voltage"]), rtol=0, atol=1e-15)
-    assert np.ptp(r["crank.strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
 
 
 def test_dynamic_four_bar_path_equals_fine_beam_elements():
@@ -362,27 +342,6 @@ def test_compliant_four_bar_case_with_rod_cells():
     assert s["reference_error"] < 1e-6 and s["reference_error_linear"] < 1e-6
     assert s["reference_error_dynamic"] < 1e-6
     assert s["coupler_travel"] > 1e-3
-
-
-def test_add_to_with_a_rod_bender_equals_the_package_simulate():
-    # the user's own solver run: the rod's step updates run in the package's pre-step hook and its
-    # tie check in Exudyn's PostNewton hook, so the same settings give the same answer (the
-    # program starts at 0 V: both runs start from the reference pose)
-    def system():
-        b = rod(n_cells=3, drive=PiezoDrive(Triangle(750.0, 750.0, 0.1)))
-        return Mechanism("m").add(b).ground(b.base)
-
-    ref = simulate(system(), 0.005, step=1e-4)
-    mbs = exu.SystemContainer().AddSystem()
-    handle = atcm.add_to(mbs, system())
-    tip = handle.position_marker("b.tip")  # a user's marker at the free tip: the tip node's position
-    assert mbs.GetMarker(tip)["markerType"] == "NodePosition"
-    mbs.Assemble()
-    mbs.SolveDynamic(solver_settings.dynamic_settings(0.005, 1e-4))
-    r = handle.result()
-    for name in ("b.tip_x", "b.tip_y", "b.tip_angle"):
-        np.testing.assert_allclose(r[name], ref[name], rtol=0, atol=1e-12, err_msg=name)
-    assert np.ptp(r["b.tip_y"]) > 1e-4  # it moved
 
 
 def test_rod_refuses_a_jointed_base_and_segments():

@@ -164,7 +164,7 @@ def rigid_coupler_point(a_pos):
 # step for the crank's 302 Hz mode and a -1500 ... 1500 V triangle (beyond the MFC's -500 V) for a large turn
 @pytest.mark.filterwarnings("ignore:step = .* resolves the first bending mode:exudyn_atcm.errors.AccuracyWarning")
 @pytest.mark.filterwarnings("ignore:drive 'crank'. the voltage program spans -1500:exudyn_atcm.errors.InputRangeWarning")
-@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+@pytest.mark.parametrize("cell", ["rigid", "six-bar", "rod"])
 def test_closed_four_bar_coupler_point_follows_rigid_loop_closure(cell):
     m = four_bar(PiezoDrive(Triangle(0.0, 1500.0, 0.1)), cell=cell)
     r = simulate(m, 0.05, step=1e-3)
@@ -182,7 +182,7 @@ def test_closed_four_bar_coupler_point_follows_rigid_loop_closure(cell):
 # (strain = operator applied offline) whatever the step resolves
 @pytest.mark.filterwarnings("ignore:step = .* resolves the first bending mode:exudyn_atcm.errors.AccuracyWarning")
 @pytest.mark.filterwarnings("ignore:step = .* resolves the shortest feature:exudyn_atcm.errors.AccuracyWarning")
-@pytest.mark.parametrize("cell, iterations", [("rigid", 2), ("six-bar", 3)])
+@pytest.mark.parametrize("cell, iterations", [("rigid", 2), ("six-bar", 3), ("rod", 2)])
 def test_hysteresis_exact_under_step_rejection_in_a_closed_loop(cell, iterations):
     H = paper_strain_preisach()
     m = four_bar(PiezoDrive(Triangle(500.0, 1000.0, 0.05), hysteresis=H), cell=cell)
