@@ -20,7 +20,7 @@ import scipy.linalg
 
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import solver_settings
-from exudyn_atcm.mbs import StepHooks, add_post_step, add_pre_step
+from exudyn_atcm.mbs import StepHooks, add_post_newton, add_post_step, add_pre_step
 from exudyn_atcm.model.signals import Triangle
 
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
@@ -121,6 +121,41 @@ def test_step_hooks_keep_an_earlier_user_function_and_run_all():
     assert h.result().n_rows == 11
     with pytest.raises(ValueError, match="callable"):
         add_pre_step(mbs, 3)
+
+
+def test_post_newton_checks_run_after_every_newton_solve_and_an_error_above_1_repeats_it():
+    # one mass on a spring; check a returns 0, check b returns 5 on its first call of each step and 0
+    # on the repeat: Exudyn repeats each step's Newton solve once (its discontinuous iteration,
+    # tolerance 1 by default), so both checks run twice per step
+    import exudyn.itemInterface as ii
+
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ii.ObjectGround())
+    node = mbs.AddNode(ii.NodePoint2D(referenceCoordinates=[0.0, 0.0]))
+    mass = mbs.AddObject(ii.MassPoint2D(mass=1.0, nodeNumber=node))
+    markers = [mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=b, localPosition=[0.0, 0.0, 0.0])) for b in (ground, mass)]
+    mbs.AddObject(ii.CartesianSpringDamper(markerNumbers=markers, stiffness=[100.0, 100.0, 0.0]))
+    mbs.AddLoad(ii.LoadForceVector(markerNumber=markers[1], loadVector=[1.0, 0.0, 0.0]))
+    calls = {"a": [], "b": []}
+
+    def check_a(mbs_, t):
+        calls["a"].append(t)
+        return 0.0
+
+    def check_b(mbs_, t):
+        first = t not in calls["b"]
+        calls["b"].append(t)
+        return 5.0 if first else 0.0
+
+    add_post_newton(mbs, check_a)
+    add_post_newton(mbs, check_b)
+    assert len(mbs.variables["exudyn_atcm.post_newton"]) == 2
+    mbs.Assemble()
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.005, 1e-3))
+    assert len(calls["b"]) == 10 and len(set(calls["b"])) == 5  # 5 steps, each solved twice
+    assert calls["a"] == calls["b"]
+    with pytest.raises(ValueError, match="check must be a callable"):
+        add_post_newton(mbs, 3)
 
 
 @pytest.mark.parametrize("cell", ["rigid", "six-bar"])
