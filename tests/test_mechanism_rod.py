@@ -344,6 +344,19 @@ def test_compliant_four_bar_case_with_rod_cells():
     assert s["coupler_travel"] > 1e-3
 
 
+def test_rod_updates_wait_for_the_users_assemble():
+    # after add_to the user assembles later: writing strains before that changes nothing and reads no
+    # coordinates (the rod's ODE2 indices do not exist yet); after Assemble the first write linearises
+    import exudyn as exu
+
+    mbs = exu.SystemContainer().AddSystem()
+    handle = atcm.add_to(mbs, cantilever(rod(n_cells=3, drive=PiezoDrive(1500.0))))
+    handle.model.set_strains(np.array([1e-3]))  # before Assemble: must not read the (absent) coordinates
+    mbs.Assemble()
+    handle.model.set_strains(np.array([1e-3]))
+    assert np.all(np.isfinite(mbs.systemData.GetODE2Coordinates()))
+
+
 def test_rod_refuses_a_jointed_base_and_segments():
     b = rod()
     link = Link("l", {"A": (0.0, 0.0), "B": (0.0, -0.01)}, mass=1e-4, inertia=1e-8)

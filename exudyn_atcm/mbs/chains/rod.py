@@ -132,6 +132,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
     ode2 = [-1, -1]
 
     def indices() -> list[int]:
+        """[rod, tip] ODE2 indices; -1 before the system is assembled."""
         if ode2[0] < 0:
             ode2[:] = [mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node)]
         return ode2
@@ -174,8 +175,10 @@ def add_rod_bender(builder, bender: Bender) -> None:
         (``q + h q_dot`` from the step's start)."""
         if source is not None:
             set_load(load, "load", ei * curvature_per_strain * strains.item(source))
-        h = get_time() - get_time(_START)
         start = indices()[0]
+        if start < 0:  # not assembled yet: the first step's pre-step hook linearises
+            return
+        h = get_time() - get_time(_START)
         velocities = get_v(_START, False)
         dynamic = 0.0 < h < math.inf and any(velocities[start:start + n])
         write(get_q(_START, False), velocities, h if dynamic else 0.0, not dynamic)
@@ -185,8 +188,10 @@ def add_rod_bender(builder, bender: Bender) -> None:
 
     def check_tip(mbs_, t) -> float:
         """Distance of the tip node from the exact tip pose over the tolerance; linearise there if above."""
-        coordinates, velocities = get_q(copy=False), get_v(copy=False)
         start, tip_start = indices()
+        if start < 0:
+            return 0.0
+        coordinates, velocities = get_q(copy=False), get_v(copy=False)
         ratio = tip_gap(coordinates, velocities, start, tip_start, tip_reference_xy, phi, weights, phi_tip, parameters,
                         limit, static_limit)
         if ratio <= 1.0:
@@ -196,6 +201,8 @@ def add_rod_bender(builder, bender: Bender) -> None:
 
     def linearise(strains: np.ndarray) -> None:
         """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness."""
+        if indices()[0] < 0:
+            return
         coordinates = get_q(copy=False)
         write(coordinates, np.zeros_like(coordinates), 0.0, True)
 
