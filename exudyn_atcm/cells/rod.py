@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .base import END_NODE, CONNECTIONS, CellKind
+from .base import END_NODE, CellKind
 
 __all__ = ["RodCell"]
 
@@ -15,8 +15,9 @@ class RodCell(CellKind):
     coordinates, so large rotations, tip loads and end connections are modelled (the ``ritz``
     cell linearises about the quasi-static arc).  ``n_cells`` is the number of modes;
     ``cell_angle_j`` is the mean rotation of the ``j``-th of ``n`` equal segments.  Exact arc
-    under actuation for any ``n``.  The tip is a node with position and rotation that joints,
-    welds and loads attach to; the base is clamped by the modes (welded to the ground).
+    under actuation for any ``n``.  Both ends are nodes with position and rotation that joints,
+    welds and loads attach to: the rod rides on its base node (a moving frame) and its tip node
+    is tied to the rod's exact tip pose.
     """
 
     name = "rod"
@@ -28,13 +29,5 @@ class RodCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.2 s, best of 3, lone actuator): 93, 70 and 79 µs per step at 3, 6 and
     # 12 modes (a profile of the 3-mode run: 68 µs); the machine's noise is larger than the trend
     cost_per_step = (70e-6, 0.8e-6, 0.0)
-    limits = ("one uniform segment per bender; the base welded to the ground (the modes are clamped there); "
-              "inextensible and shear-rigid (Euler-Bernoulli); the tip pose's linearisation is re-evaluated "
-              "in every step and Newton pass, the mass matrix once per step")
-
-    def end_refusal(self, end: str, connection: str) -> str | None:
-        """The base welded to the ground; the tip free or joined to anything."""
-        if end == "tip" or connection == "ground":
-            return None
-        return (f"the rod cell's modes are clamped at its base, so the base must be welded to the ground, got it "
-                f"{CONNECTIONS[connection]}; put the joint at the tip (turn the bender round) or use cell='beam'")
+    limits = ("one uniform segment per bender; inextensible and shear-rigid (Euler-Bernoulli); the tip pose's "
+              "linearisation is re-evaluated in every step and Newton pass, the mass matrix once per step")

@@ -1,7 +1,8 @@
 """Geometrically exact rotation-field rod in assumed modes: the mathematics of the ``rod`` cell.
 
 The rod is the inextensible, shear-rigid (Euler-Bernoulli) plane beam of the ``ritz`` cell
-(:mod:`exudyn_atcm.theory.ritz_beam`), clamped at ``s = 0``, with its rotation field in the same
+(:mod:`exudyn_atcm.theory.ritz_beam`), here clamped at ``s = 0`` (the compiled kernels of
+:mod:`exudyn_atcm.theory.rod_kernels` put it on a moving base), with its rotation field in the same
 ``n`` assumed modes ``theta(s, t) = sum_i q_i(t) phi_i(s / L)``, but *without* the ``ritz`` cell's
 linearisation: position, inertia and end pose are the exact nonlinear functions of ``q``
 (the rotation-field description of the plane elastica; Reissner 1972, Simo & Vu-Quoc 1986;
@@ -87,6 +88,9 @@ class RodShapes:
         ``S`` of :func:`quadrature`.
     phi_tip : ndarray (n,)
         ``phi_i(1)`` (``(1, 0, ..., 0)``).
+    phi_hat, phi_hat_tip : ndarray (N, n + 1), (n + 1,)
+        The same with a first column of ones: the shapes of ``(Phi, q)`` in the absolute rotation
+        ``Phi + sum q_i phi_i`` of a rod on a moving base (:mod:`exudyn_atcm.theory.rod_kernels`).
     """
 
     def __init__(self, n: int, length: float) -> None:
@@ -97,6 +101,8 @@ class RodShapes:
         self.weights = np.ascontiguousarray(w)
         self.integration = np.ascontiguousarray(s)
         self.phi_tip = np.ascontiguousarray(ritz_beam.rotation_shapes(self.n, np.array([1.0]))[0])
+        self.phi_hat = np.ascontiguousarray(np.column_stack([np.ones(len(xi)), self.phi]))
+        self.phi_hat_tip = np.ascontiguousarray(np.concatenate([[1.0], self.phi_tip]))
 
 
 @functools.lru_cache(maxsize=64)
