@@ -237,6 +237,25 @@ def test_large_tip_force_matches_the_elastica(alpha):
     assert r["b.tip_angle"][0] == pytest.approx(ref["tip_angle"], abs=1e-8)
 
 
+@pytest.mark.parametrize("angle", [0.3, math.pi / 2, -2.5])
+def test_a_turned_and_moved_rod_is_the_same_rod(angle):
+    """A rod whose base sits at (0.02, -0.01) turned by ``angle``, with its load turned alike, takes the
+    same shape turned and moved (the absolute rotation holds the base's rotation: a reference angle
+    that leaked into the coordinates' stiffness compensation once bent such rods by 1e-2 rad)."""
+    c, s = math.cos(angle), math.sin(angle)
+    drive = PiezoDrive(1000.0)
+    f = np.array([0.1, 0.4])
+    flat = solve_static(cantilever(rod(n_cells=6, drive=drive), tuple(f)))
+    b = rod(n_cells=6, drive=drive, base=(0.02, -0.01), angle=angle)
+    turned = solve_static(cantilever(b, (c * f[0] - s * f[1], s * f[0] + c * f[1])))
+    x, y = flat["b.tip_x"][0], flat["b.tip_y"][0]
+    # the static Newton tolerance (relative 1e-10) leaves ~1e-10 L
+    assert turned["b.tip_x"][0] == pytest.approx(0.02 + c * x - s * y, abs=1e-10 * L)
+    assert turned["b.tip_y"][0] == pytest.approx(-0.01 + s * x + c * y, abs=1e-10 * L)
+    assert turned["b.tip_angle"][0] - angle == pytest.approx(flat["b.tip_angle"][0], abs=1e-9)
+    assert flat["b.tip_angle"][0] > 0.2  # bent
+
+
 def test_mode_convergence_under_a_large_tip_force_is_exponential():
     """alpha = F L^2/EI = 10 (tip rotation 1.43 rad): tip error against the shooting solution
     1.9e-5, 1.4e-6, 3.8e-9 and 1.9e-11 L at 4, 6, 8 and 12 modes (measured)."""

@@ -166,8 +166,9 @@ def linearisation(coordinates, velocities, base_start, rod_start, reference, h, 
     start at ``base_start`` (displacements from ``reference``), the modes at ``rod_start``; the
     state of linearisation is ``z + h z_dot``.  ``lam``: the tie's current multipliers, or an empty
     array to leave out the geometric stiffness.  ``parameters``: length, mass per length, rotary
-    inertia.  Writes ``mass``, ``tangent = stiffness + kg``, ``force = -g + kg z``, ``x1`` and
-    ``offset`` (see :func:`rod_matrices`; ``kg`` = :func:`geometric_stiffness` at ``-lam``).
+    inertia.  Writes ``mass``, ``tangent = stiffness + kg``, ``force = -g + kg u`` (``u``: ``z`` as
+    Exudyn's coordinates, the base's displacements from ``reference``), ``x1`` and ``offset`` (see
+    :func:`rod_matrices`; ``kg`` = :func:`geometric_stiffness` at ``-lam``).
     """
     size = mass.shape[0]
     z = _gather(coordinates, reference, base_start, rod_start, size)
@@ -182,11 +183,12 @@ def linearisation(coordinates, velocities, base_start, rod_start, reference, h, 
     offset[:] = off_
     tangent[:, :] = stiffness
     if lam.shape[0] >= 2:
+        # Exudyn's stiffness acts on the coordinates (the base node's: displacements from its reference)
         kg = geometric_stiffness(z, phi_hat, weights, parameters[0], -lam[0], -lam[1])
         for i in range(size):
             for r in range(size):
                 tangent[i, r] += kg[i, r]
-                force[i] += kg[i, r] * z[r]
+                force[i] += kg[i, r] * (z[r] - reference[r] if r < 3 else z[r])
 
 
 @numba.njit(cache=True)
