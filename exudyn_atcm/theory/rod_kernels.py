@@ -28,6 +28,7 @@ __all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "
 
 @numba.njit(cache=True)
 def _rotations(z, phi_hat):  # pragma: no cover - compiled
+    """``phi_hat @ z[2:]``: the absolute rotation at the quadrature points (of ``z_dot``: its rate)."""
     n_points, m = phi_hat.shape
     theta = np.empty(n_points)
     for k in range(n_points):
@@ -39,10 +40,8 @@ def _rotations(z, phi_hat):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True)
-def tip_pose(z, phi_hat, weights, length, phi_hat_tip):  # pragma: no cover - compiled
-    """Tip ``(x, y, theta)`` (global) and the Jacobian rows of ``x`` and ``y`` (2 x (2 + m))."""
+def _tip(z, theta, phi_hat, weights, length, phi_hat_tip):  # pragma: no cover - compiled
     n_points, m = phi_hat.shape
-    theta = _rotations(z, phi_hat)
     x = z[0]
     y = z[1]
     jac = np.zeros((2, 2 + m))
@@ -64,6 +63,12 @@ def tip_pose(z, phi_hat, weights, length, phi_hat_tip):  # pragma: no cover - co
 
 
 @numba.njit(cache=True)
+def tip_pose(z, phi_hat, weights, length, phi_hat_tip):  # pragma: no cover - compiled
+    """Tip ``(x, y, theta)`` (global) and the Jacobian rows of ``x`` and ``y`` (2 x (2 + m))."""
+    return _tip(z, _rotations(z, phi_hat), phi_hat, weights, length, phi_hat_tip)
+
+
+@numba.njit(cache=True)
 def rod_matrices(z, z_dot, phi_hat, integration, weights, length, mass_per_length, rotary_inertia,
                  phi_hat_tip):  # pragma: no cover - compiled
     """Mass matrix ``M(z)``, force ``-g(z, z_dot)``, and the tip constraint linearised at ``z``.
@@ -72,15 +77,16 @@ def rod_matrices(z, z_dot, phi_hat, integration, weights, length, mass_per_lengt
     equation ``x1 z - q_tip - offset = 0`` with ``q_tip`` the tip node's ``(x, y, angle)``:
     ``x1`` the tip pose's Jacobian, ``offset = x1 z - tip(z)``.
     """
+    return _matrices(z, z_dot, _rotations(z, phi_hat), phi_hat, integration, weights, length, mass_per_length,
+                     rotary_inertia, phi_hat_tip)
+
+
+@numba.njit(cache=True)
+def _matrices(z, z_dot, theta, phi_hat, integration, weights, length, mass_per_length, rotary_inertia,
+              phi_hat_tip):  # pragma: no cover - compiled
     n_points, m = phi_hat.shape
     size = 2 + m
-    theta = _rotations(z, phi_hat)
-    rate = np.empty(n_points)
-    for k in range(n_points):
-        om = 0.0
-        for i in range(m):
-            om += phi_hat[k, i] * z_dot[2 + i]
-        rate[k] = om
+    rate = _rotations(z_dot, phi_hat)  # the absolute rotation's rate at the points
     c = np.cos(theta)
     s = np.sin(theta)
     ax = np.zeros((n_points, m))
@@ -114,7 +120,7 @@ def rod_matrices(z, z_dot, phi_hat, integration, weights, length, mass_per_lengt
     for i in range(size):
         for r in range(i):
             mass[i, r] = mass[r, i]
-    x, y, angle, jac = tip_pose(z, phi_hat, weights, length, phi_hat_tip)
+    x, y, angle, jac = _tip(z, theta, phi_hat, weights, length, phi_hat_tip)
     x1 = np.zeros((3, size))
     for i in range(size):
         x1[0, i] = jac[0, i]
@@ -135,8 +141,12 @@ def rod_matrices(z, z_dot, phi_hat, integration, weights, length, mass_per_lengt
 def geometric_stiffness(z, phi_hat, weights, length, lam_x, lam_y):  # pragma: no cover - compiled
     """``lam . d^2 P / dz^2`` ((2 + m) x (2 + m)): the curvature of the tip position times ``lam_x``,
     ``lam_y`` [N] (the tip position is linear in ``X``, ``Y``, its rotation linear in ``z``)."""
+    return _geometric(_rotations(z, phi_hat), phi_hat, weights, length, lam_x, lam_y)
+
+
+@numba.njit(cache=True)
+def _geometric(theta, phi_hat, weights, length, lam_x, lam_y):  # pragma: no cover - compiled
     n_points, m = phi_hat.shape
-    theta = _rotations(z, phi_hat)
     out = np.zeros((2 + m, 2 + m))
     for k in range(n_points):
         lw = length * weights[k]
@@ -175,8 +185,9 @@ def linearisation(coordinates, velocities, base_start, rod_start, reference, h, 
     z_dot = _gather(velocities, np.zeros(3), base_start, rod_start, size)
     for i in range(size):
         z[i] += h * z_dot[i]
-    m_, f_, x1_, off_ = rod_matrices(z, z_dot, phi_hat, integration, weights, parameters[0], parameters[1],
-                                     parameters[2], phi_hat_tip)
+    theta = _rotations(z, phi_hat)
+    m_, f_, x1_, off_ = _matrices(z, z_dot, theta, phi_hat, integration, weights, parameters[0], parameters[1],
+                                  parameters[2], phi_hat_tip)
     mass[:, :] = m_
     force[:] = f_
     x1[:, :] = x1_
@@ -184,7 +195,7 @@ def linearisation(coordinates, velocities, base_start, rod_start, reference, h, 
     tangent[:, :] = stiffness
     if lam.shape[0] >= 2:
         # Exudyn's stiffness acts on the coordinates (the base node's: displacements from its reference)
-        kg = geometric_stiffness(z, phi_hat, weights, parameters[0], -lam[0], -lam[1])
+        kg = _geometric(theta, phi_hat, weights, parameters[0], -lam[0], -lam[1])
         for i in range(size):
             for r in range(size):
                 tangent[i, r] += kg[i, r]
