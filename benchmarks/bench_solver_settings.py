@@ -46,6 +46,10 @@ VARIANTS = {
     "with connector derivative": {"timeIntegration.newton.numericalDifferentiation.jacobianConnectorDerivative": True},
     "tolerances 1e-12 abs, 1e-10 rel": {"timeIntegration.newton.absoluteTolerance": 1e-12,
                                         "timeIntegration.newton.relativeTolerance": 1e-10},
+    # a looser relative tolerance (the package keeps Exudyn's 1e-8): fewer iterations, but the
+    # error it leaves depends on the mechanism (rigid gripper, 0.5 s: 4e-4 of the travel at 1e-5)
+    "relative tolerance 1e-6": {"timeIntegration.newton.relativeTolerance": 1e-6},
+    "relative tolerance 1e-5": {"timeIntegration.newton.relativeTolerance": 1e-5},
 }
 
 

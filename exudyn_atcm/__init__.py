@@ -5,7 +5,7 @@
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
-``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``add_to``), results and files
+``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``), results and files
 (``Result``, ``read_csv``, ``read_record``, ``preprocess``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``), the warning categories (``AtcmWarning``
 and its subclasses, see :mod:`exudyn_atcm.errors`) and the submodules
@@ -28,7 +28,7 @@ from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .io.result import Result
 from .solve import SimulationInterrupted
 from .solve import SolverError, eigenfrequencies, simulate, solve_static
-from .solve import static_sweep
+from .solve import static_sweep, step_error
 from .mbs import add_to
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
                      RunCostWarning, SetupWarning, SuspectFileWarning)
@@ -52,6 +52,7 @@ __all__ = [
     "static_sweep",
     "add_to",
     "eigenfrequencies",
+    "step_error",
     "Result",
     "SolverError",
     "SimulationInterrupted",

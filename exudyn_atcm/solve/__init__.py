@@ -1,5 +1,5 @@
 """From a description to a result: ``simulate``, ``solve_static``, ``static_sweep``,
-``eigenfrequencies``, the run checks and the set-up every time integration shares.
+``eigenfrequencies``, ``step_error``, the run checks and the set-up every time integration shares.
 
 May import the description layers and :mod:`exudyn_atcm.mbs`; never plotting.
 """
@@ -9,6 +9,7 @@ from ..model.strain_sources import InStepStrain, TableStrain
 from .run_checks import SimulationInterrupted
 from .run_setup import DEFAULT_STEP
 from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
+from .step_error import StepError, step_error
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
-           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain"]
+           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError"]

@@ -1,0 +1,276 @@
+"""How large is the time-step error of a run?  ``step_error`` measures it by halving the step.
+
+The time integration (generalized-alpha, :func:`~exudyn_atcm.simulate`) is second-order
+accurate: a run with step ``h`` differs from the exact solution of the same model by about
+``C(t) h²``.  Runs at ``h`` and ``h/2`` therefore differ by about ``(3/4) C h²``, and the error of
+the run at ``h`` is about ``4/3`` of that difference (Richardson's estimate).  A third run at
+``h/4`` checks the order: the differences should fall by about 4 per halving.  They fall more
+slowly when the error is not smooth in ``h``: a voltage program whose corners fall between
+steps, steps reduced after Newton failures, or a difference at the level of the Newton
+tolerance (then the step error is negligible anyway).
+
+In mechanisms the step, not the bender model, often decides the accuracy: a lightly damped
+vibration started at a corner of the voltage program rings through the run, and the
+integrator's period error (about ``(ω h)²/12``) shifts its phase.  The compliant four-bar of
+the benchmark (``benchmarks/bench_mechanisms.py --targets``) needs a step of 2.5e-4 s for a path
+error of 1e-3 of its travel, whatever its bender model; ``step_error`` tells a user the same for
+their own design before a study runs it thousands of times.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from functools import reduce
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from .._checks import positive_float
+from ..errors import AccuracyWarning
+from ..io.result import Result
+from .run_checks import time_grid
+from .run_setup import DEFAULT_STEP
+from .simulation import simulate
+
+__all__ = ["step_error", "StepError", "ColumnStepError", "NOMINAL_ORDER", "MOTION_UNITS"]
+
+#: Order of accuracy of the time integration (generalized-alpha).
+NOMINAL_ORDER = 2.0
+#: Units of the columns summarised by default (positions and angles: the motion).
+MOTION_UNITS = ("m", "rad")
+#: Observed orders below this give an :class:`~exudyn_atcm.AccuracyWarning` (the estimate assumes 2).
+MIN_ORDER = 1.5
+#: Differences below this share of a column's range are round-off and Newton tolerance, not step error.
+NOISE = 1e-8
+
+
+@dataclass(frozen=True)
+class ColumnStepError:
+    """The step error of one result column.
+
+    Attributes
+    ----------
+    name, unit : str
+        The column and its unit.
+    difference : float
+        Largest difference between the runs at ``step`` and ``step/2`` [unit] (at the instants
+        both recorded).
+    error : float
+        Estimated largest error of the run at ``step`` [unit]: ``difference`` x 4/3.
+    relative : float
+        ``error`` / the column's range over the finest run [-] (``nan`` for a constant column).
+    order : float
+        Observed order ``log2(difference / difference of step/2 against step/4)``; ``nan`` without
+        the third run or when the differences are round-off.
+    """
+
+    name: str
+    unit: str
+    difference: float
+    error: float
+    relative: float
+    order: float
+
+
+@dataclass(frozen=True)
+class StepError:
+    """The result of :func:`step_error`: per column, the estimated error of a run at :attr:`step`.
+
+    Attributes
+    ----------
+    step : float
+        The step examined [s] (the one used: adjusted to divide ``t_end``, as :func:`simulate` does).
+    t_end : float
+        Length of the runs [s].
+    columns : dict of str to ColumnStepError
+        Every result column but ``time``.
+    summary : list of str
+        The columns :meth:`worst` and :meth:`suggested_step` look at by default.
+    finest : Result
+        The run at the finest step (``step/4``, or ``step/2`` without the order check): the most
+        accurate answer computed.
+    compared : int
+        Instants compared (the coarse run's recorded instants that all runs recorded).
+    """
+
+    step: float
+    t_end: float
+    columns: dict[str, ColumnStepError]
+    summary: list[str]
+    finest: Result = field(repr=False)
+    compared: int = 0
+
+    def _chosen(self, columns: Sequence[str] | None) -> list[ColumnStepError]:
+        names = self.summary if columns is None else list(columns)
+        unknown = [n for n in names if n not in self.columns]
+        if unknown:
+            raise ValueError(f"columns: no such result column {unknown}; available: {', '.join(self.columns)}")
+        return [self.columns[n] for n in names]
+
+    def worst(self, columns: Sequence[str] | None = None) -> ColumnStepError:
+        """The column with the largest relative error (default: among :attr:`summary`)."""
+        chosen = [c for c in self._chosen(columns) if math.isfinite(c.relative)]
+        if not chosen:
+            raise ValueError("none of the columns varies during the run: there is no relative error to compare")
+        return max(chosen, key=lambda c: c.relative)
+
+    def suggested_step(self, target: float, columns: Sequence[str] | None = None) -> float:
+        """Largest step [s] whose estimated relative error is ``target`` [-] in every chosen column.
+
+        From the second-order law ``error ~ h²`` through the measured error at :attr:`step`.
+        Below :attr:`step` that is an interpolation of a measured law; above it an
+        extrapolation: check the suggested step with :func:`step_error` before relying on it
+        (a coarser step may no longer resolve the voltage program or the lowest mode).
+        """
+        target = positive_float("target", target)
+        worst = self.worst(columns)
+        if worst.relative == 0.0:
+            return math.inf
+        return self.step * math.sqrt(target / worst.relative)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain numbers for JSON: the step, and per column its unit, difference, error, relative error and order."""
+        return {"step [s]": self.step, "t_end [s]": self.t_end, "compared": self.compared, "summary": list(self.summary),
+                "columns": {n: {"unit": c.unit, "difference": c.difference, "error": c.error,
+                                "relative": c.relative, "order": c.order} for n, c in self.columns.items()}}
+
+    def __str__(self) -> str:
+        lines = [f"time-step error of a run at step {self.step:.6g} s over {self.t_end:.6g} s "
+                 f"({self.compared} instants compared)",
+                 f"{'column':>28} | {'unit':>4} | {'estimated error':>15} | {'of its range':>12} | {'order':>5}"]
+        lines.append("-" * len(lines[-1]))
+        for c in self.columns.values():
+            marker = " *" if c.name in self.summary else ""
+            lines.append(f"{c.name:>28} | {c.unit:>4} | {c.error:>15.3e} | {c.relative:>12.2e} | "
+                         f"{c.order:>5.2f}{marker}")
+        lines.append("* summarised (worst: " + (f"{self.worst().name}, {self.worst().relative:.2e} of its range)"
+                                                if any(math.isfinite(self.columns[n].relative) for n in self.summary)
+                                                else "none varies)"))
+        return "\n".join(lines)
+
+
+def _grid_rows(times: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Grid indices ``k`` (``t = k step``) of the recorded instants on the grid, and their rows."""
+    k = np.rint(times / step)
+    on = np.abs(times - k * step) <= 1e-6 * step
+    return k[on].astype(np.int64), np.flatnonzero(on)
+
+
+def _common_rows(results: list[Result], steps: list[float]) -> list[np.ndarray]:
+    """Rows of every run at the coarse grid's instants that all runs recorded (same order)."""
+    keyed = []
+    for result, step in zip(results, steps):
+        k, rows = _grid_rows(np.asarray(result["time"], dtype=float), step)
+        factor = int(round(steps[0] / step))
+        on_coarse = k % factor == 0
+        keyed.append((k[on_coarse] // factor, rows[on_coarse]))
+    common = reduce(np.intersect1d, [k for k, _ in keyed])
+    return [rows[np.searchsorted(k, common)] for k, rows in keyed]
+
+
+def step_error(system: Any, t_end: float, step: float = DEFAULT_STEP, *, check_order: bool = True,
+               columns: Sequence[str] | None = None, tip_force: tuple[float, float] = (0.0, 0.0),
+               settings: Callable[[Any], None] | dict | None = None) -> StepError:
+    """Estimate the time-step error of :func:`~exudyn_atcm.simulate` at ``step`` by running at smaller steps.
+
+    Runs ``system`` for ``t_end`` at ``step``, ``step/2`` and (``check_order``) ``step/4``, and
+    compares every result column at the instants all runs recorded.  The error of the run at
+    ``step`` is estimated as 4/3 of its largest difference from the run at ``step/2``
+    (second-order integration); the third run measures the order that estimate assumes.
+
+    Parameters
+    ----------
+    system : BendingActuator or Mechanism
+        What :func:`~exudyn_atcm.simulate` runs (its voltage program, loads and hysteresis).
+    t_end : float
+        Length of the runs [s], > 0.
+    step : float, optional
+        The step to examine [s] (default 1e-4).  A step that does not divide ``t_end`` is
+        adjusted as :func:`~exudyn_atcm.simulate` does (with its warning).
+    check_order : bool, optional
+        Run ``step/4`` too and report the observed order (default True; the three runs cost
+        about 7 runs at ``step``, the two without it about 3).
+    columns : sequence of str, optional
+        The columns :meth:`StepError.worst` and :meth:`StepError.suggested_step` look at by
+        default (default: every column in metres or radians, the motion).
+    tip_force : (float, float), optional
+        A lone actuator's tip force [N], as for :func:`~exudyn_atcm.simulate`.
+    settings : callable or dict, optional
+        Solver adjustments, as for :func:`~exudyn_atcm.simulate` (the same for every run).
+
+    Returns
+    -------
+    StepError
+        Per column: the difference, the estimated error [the column's unit], the error over the
+        column's range and the observed order; ``print(report)`` gives the table,
+        ``report.suggested_step(1e-3)`` the step for a relative error of 1e-3.
+
+    Raises
+    ------
+    ValueError
+        For a bad ``t_end``, ``step`` or ``columns``, or runs that share fewer than two
+        recorded instants.
+
+    Warns
+    -----
+    AccuracyWarning
+        When the differences of a summarised column fall more slowly than ``h^1.5``: the error
+        is not smooth in the step (a voltage program's corners between steps, step reductions)
+        and the estimate, which assumes ``h²``, may be too small.
+
+    Examples
+    --------
+    >>> report = step_error(mechanism, 0.5, step=5e-4)            # doctest: +SKIP
+    >>> print(report)                                             # doctest: +SKIP
+    >>> report.suggested_step(1e-3)                               # doctest: +SKIP
+    """
+    t_end = positive_float("t_end", t_end)
+    step = positive_float("step", step)
+    if step > t_end:
+        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {step!r}")
+    used = time_grid(t_end, step, stacklevel=3).step
+    steps = [used, used / 2.0] + ([used / 4.0] if check_order else [])
+    if isinstance(columns, str):
+        raise ValueError(f"columns must be a sequence of column names, got the string {columns!r}")
+    runs = [simulate(system, t_end, step=used, tip_force=tip_force, settings=settings)]
+    names = [n for n in runs[0].names if n != "time"]
+    if columns is None:
+        summary = [n for n in names if runs[0].unit(n) in MOTION_UNITS] or names
+    else:
+        summary = list(columns)
+        unknown = [n for n in summary if n not in names]
+        if unknown:  # before the finer (dearer) runs
+            raise ValueError(f"columns: no such result column {unknown}; available: {', '.join(names)}")
+    runs += [simulate(system, t_end, step=h, tip_force=tip_force, settings=settings) for h in steps[1:]]
+    rows = _common_rows(runs, steps)
+    compared = len(rows[0])
+    if compared < 2:
+        raise ValueError(f"the runs at steps {steps} s share {compared} recorded instants; a run whose steps were "
+                         "reduced everywhere (Newton failures) cannot be compared: use a smaller step")
+    finest = runs[-1]
+    factor = 2.0 ** NOMINAL_ORDER / (2.0 ** NOMINAL_ORDER - 1.0)
+    out: dict[str, ColumnStepError] = {}
+    for name in names:
+        values = [np.asarray(run[name], dtype=float)[r] for run, r in zip(runs, rows)]
+        differences = [float(np.max(np.abs(a - b))) for a, b in zip(values, values[1:])]
+        span = float(np.ptp(finest[name])) if finest.n_rows else 0.0
+        relative = factor * differences[0] / span if span > 0.0 else math.nan
+        order = math.nan
+        if len(differences) > 1 and span > 0.0 and differences[0] > NOISE * span and differences[1] > 0.0:
+            order = math.log2(differences[0] / differences[1])
+        out[name] = ColumnStepError(name, finest.unit(name), differences[0], factor * differences[0], relative, order)
+    slow = [c for c in (out[n] for n in summary) if math.isfinite(c.order) and c.order < MIN_ORDER]
+    if slow:
+        slow.sort(key=lambda c: c.order)
+        listed = ", ".join(f"{c.name} (order {c.order:.2f})" for c in slow[:3])
+        if len(slow) > 3:
+            listed += f" and {len(slow) - 3} more columns"
+        warnings.warn(
+            f"step_error: the differences of {listed} fall more slowly than h^{MIN_ORDER:g} from step {used:.6g} s to "
+            f"{steps[-1]:.6g} s, not as h^2: the error is not smooth in the step (a voltage program whose corners "
+            "fall between steps, steps reduced after Newton failures, a stop), and the estimate, which assumes h^2, "
+            "may be too small. Compare the finest run (report.finest) with a run at a step whose grid holds the "
+            "program's corners", AccuracyWarning, stacklevel=2)
+    return StepError(used, t_end, out, summary, finest, compared)
