@@ -21,6 +21,8 @@ chain reproduces the S up to the polygon factor ``1 + (kappa L_c)²/24`` on the 
 1e-5 of the translation at the defaults; ``translation_error_chain_polygon`` compares with the
 polygon itself.  With ``cell="beam"`` the beam elements' nodes lie on the same polygon (each
 element's chord has length ``L_c`` at its mean node rotation), so the same two references hold.
+With ``cell="rod"`` each segment's modes represent its arc exactly: the exact reference holds
+to the Newton tolerance with one mode per segment (``n_cells = 1``).
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_me
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)"),
-    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam")),
+    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam", "rod")),
     Parameter("length", 0.06, "m", "bender length L (two segments of L/2)"),
     Parameter("width", 10e-3, "m", "bender width"),
     Parameter("spacing", 0.02, "m", "distance between the two benders"),

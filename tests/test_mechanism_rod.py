@@ -22,8 +22,7 @@ import pytest
 from scipy.integrate import quad
 
 import exudyn_atcm as atcm
-from exudyn_atcm import (Bender, Layer, Link, Mechanism, MechanismError, PiezoDrive, Segment, eigenfrequencies,
-                         simulate, solve_static)
+from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, eigenfrequencies, simulate, solve_static
 from exudyn_atcm import theory as bt
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.model.signals import Triangle
@@ -441,11 +440,8 @@ def test_pinned_base_with_a_torsion_spring_adds_the_rigid_rotation():
     assert pinned["b.tip_y"][0] == pytest.approx(clamped["b.tip_y"][0] + extra * L, rel=1e-6)
 
 
-def test_rod_refuses_segments_and_mass_damping():
-    seg = Bender("s", width=W, passive=CFC, active=MFC, cell="rod",
-                 segments=[Segment(0.03, 2, PiezoDrive(0.0)), Segment(0.03, 2, None)])
-    with pytest.raises(MechanismError, match="the rod cell models one uniform segment"):
-        solve_static(cantilever(seg))
+def test_rod_refuses_mass_damping():
+    # (segmented benders: tests/test_mechanism_rod_segments.py)
     # its mass matrix is not a set of rigid bodies: mass-proportional damping is refused, not approximated
     with pytest.raises(ValueError, match="which the 'rod' cell cannot realise exactly"):
         rod(damping=atcm.RayleighDamping(alpha=2.0))

@@ -13,9 +13,11 @@ class RodCell(CellKind):
     :mod:`exudyn_atcm.theory.rotation_rod`: the modes of the ``ritz`` cell, but position, mass
     matrix, quadratic velocity terms and the tip pose are the exact functions of the
     coordinates, so large rotations, tip loads and end connections are modelled (the ``ritz``
-    cell linearises about the quasi-static arc).  ``n_cells`` is the number of modes;
-    ``cell_angle_j`` is the mean rotation of the ``j``-th of ``n`` equal segments.  Exact arc
-    under actuation for any ``n``.  Both ends are nodes with position and rotation that joints,
+    cell linearises about the quasi-static arc).  ``n_cells`` is the number of modes (per
+    segment: a bender of segments has each segment's modes on its own length, so a piecewise
+    free curvature is exact); ``cell_angle_j`` is the mean rotation of the ``j``-th of a
+    segment's ``n_cells`` equal parts, counted from the base.  Exact arc under actuation for any
+    ``n``.  Both ends are nodes with position and rotation that joints,
     welds and loads attach to: the rod rides on its base node (a moving frame) and its tip node
     is tied to the rod's exact tip pose.
     """
@@ -29,5 +31,6 @@ class RodCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.2 s, best of 3, lone actuator): 93, 70 and 79 µs per step at 3, 6 and
     # 12 modes (a profile of the 3-mode run: 68 µs); the machine's noise is larger than the trend
     cost_per_step = (70e-6, 0.8e-6, 0.0)
-    limits = ("one uniform segment per bender; inextensible and shear-rigid (Euler-Bernoulli); the tip pose's "
+    limits = ("one laminate per bender (segments with their own drives: each segment's n_cells modes on its own "
+              "length); inextensible and shear-rigid (Euler-Bernoulli); the tip pose's "
               "linearisation is re-evaluated in every step and Newton pass, the mass matrix once per step")

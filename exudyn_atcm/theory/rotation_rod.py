@@ -91,24 +91,92 @@ class RodShapes:
     phi_hat, phi_hat_tip : ndarray (N, n + 1), (n + 1,)
         The same with a first column of ones: the shapes of ``(Phi, q)`` in the absolute rotation
         ``Phi + sum q_i phi_i`` of a rod on a moving base (:mod:`exudyn_atcm.theory.rod_kernels`).
+    modes, lengths : tuple
+        Per segment: its number of modes and its length [m] (one segment: ``(n,)``, ``(length,)``).
+        A rod of several segments has each segment's modes on its own length, its rotation
+        continuous, its curvature free to jump at the segment ends (:func:`_composite`); the points,
+        weights and integration matrix are then in units of the whole ``length``.
     """
 
-    def __init__(self, n: int, length: float) -> None:
+    def __init__(self, n: int, length: float, modes: tuple[int, ...] | None = None,
+                 lengths: tuple[float, ...] | None = None) -> None:
+        self.modes = (int(n),) if modes is None else tuple(int(m) for m in modes)
+        self.lengths = (float(length),) if lengths is None else tuple(float(a) for a in lengths)
+        if len(self.modes) != len(self.lengths) or sum(self.modes) != int(n):
+            raise ValueError(f"modes {self.modes} and lengths {self.lengths}: one entry per segment, summing to "
+                             f"n = {n}")
         self.n = int(n)
         self.length = float(length)
-        xi, w, s = quadrature(rule_points(self.n))
-        self.phi = np.ascontiguousarray(ritz_beam.rotation_shapes(self.n, xi))
-        self.weights = np.ascontiguousarray(w)
-        self.integration = np.ascontiguousarray(s)
-        self.phi_tip = np.ascontiguousarray(ritz_beam.rotation_shapes(self.n, np.array([1.0]))[0])
-        self.phi_hat = np.ascontiguousarray(np.column_stack([np.ones(len(xi)), self.phi]))
+        phi, weights, integration, phi_tip = _composite(self.modes, self.lengths, self.length)
+        self.phi = np.ascontiguousarray(phi)
+        self.weights = np.ascontiguousarray(weights)
+        self.integration = np.ascontiguousarray(integration)
+        self.phi_tip = np.ascontiguousarray(phi_tip)
+        self.phi_hat = np.ascontiguousarray(np.column_stack([np.ones(len(weights)), self.phi]))
         self.phi_hat_tip = np.ascontiguousarray(np.concatenate([[1.0], self.phi_tip]))
+
+    @property
+    def first_modes(self) -> list[int]:
+        """Index of each segment's first mode (the one its free curvature loads) in ``q``."""
+        return [int(sum(self.modes[:j])) for j in range(len(self.modes))]
+
+    def stiffness_matrix(self, bending_stiffness: float) -> np.ndarray:
+        """``K`` [N m] of ``q``: each segment's block of the ``ritz`` cell's diagonal stiffness."""
+        k = np.zeros((self.n, self.n))
+        for first, m, a in zip(self.first_modes, self.modes, self.lengths):
+            k[first:first + m, first:first + m] = ritz_beam.stiffness_matrix(m, a, bending_stiffness)
+        return k
+
+    def cell_rotations(self) -> np.ndarray:
+        """Matrix ``G`` (``n x n``): the mean rotations ``G q`` [rad] of the cells, relative to the base:
+        each segment's modes count as its cells, its ``m`` equal parts (a segment's rotation adds the
+        earlier segments' end rotations, their first modes)."""
+        g = np.zeros((self.n, self.n))
+        for first, m in zip(self.first_modes, self.modes):
+            g[first:first + m, :first] = self.phi_tip[:first]
+            g[first:first + m, first:first + m] = ritz_beam.segment_rotation_matrix(m, m)
+        return g
+
+
+def _composite(modes: tuple[int, ...], lengths: tuple[float, ...], length: float):
+    """Shapes, weights and integration matrix of a rod of segments (points and weights in units of ``length``).
+
+    Segment ``j`` carries ``modes[j]`` modes of the ``ritz`` cell on its own ``s / L_j``; the rotation
+    at a point of segment ``j`` adds the end rotations of the earlier segments (their first modes:
+    ``phi_1(1) = 1``, ``phi_i(1) = 0`` else), so the rotation field is continuous and its curvature
+    may jump at the segment ends (piecewise free curvature is represented exactly).  Each segment has
+    its own Gauss rule (:func:`rule_points`); the integrals from the base to a point add the full
+    weights of the earlier segments.  One segment gives :func:`quadrature`'s arrays themselves.
+    """
+    n = int(sum(modes))
+    blocks_phi, blocks_w, starts = [], [], []
+    total_points = sum(rule_points(m) for m in modes)
+    integration = np.zeros((total_points, total_points))
+    phi_tip = np.zeros(n)
+    row = col = 0
+    for j, (m, a) in enumerate(zip(modes, lengths)):
+        xi, w, s = quadrature(rule_points(m))
+        scale = a / length
+        block = np.zeros((len(xi), n))
+        block[:, :col] = phi_tip[:col]  # the earlier segments' end rotations
+        block[:, col:col + m] = ritz_beam.rotation_shapes(m, xi)
+        blocks_phi.append(block)
+        blocks_w.append(w * scale if scale != 1.0 else w)
+        for earlier, w_earlier in zip(starts, blocks_w[:-1]):
+            integration[row:row + len(xi), earlier:earlier + len(w_earlier)] = w_earlier
+        integration[row:row + len(xi), row:row + len(xi)] = s * scale if scale != 1.0 else s
+        starts.append(row)
+        phi_tip[col:col + m] = ritz_beam.rotation_shapes(m, np.array([1.0]))[0]
+        row += len(xi)
+        col += m
+    return np.vstack(blocks_phi), np.concatenate(blocks_w), integration, phi_tip
 
 
 @functools.lru_cache(maxsize=64)
-def rod_shapes(n: int, length: float) -> RodShapes:
-    """Cached :class:`RodShapes`."""
-    return RodShapes(n, length)
+def rod_shapes(n: int, length: float, modes: tuple[int, ...] | None = None,
+               lengths: tuple[float, ...] | None = None) -> RodShapes:
+    """Cached :class:`RodShapes` (``modes``, ``lengths``: per segment, for a rod of several segments)."""
+    return RodShapes(n, length, modes, lengths)
 
 
 def _velocity_shapes(shapes: RodShapes, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

@@ -15,7 +15,9 @@ Items per bender (coordinates ``z = (X, Y, Phi, q)``, :mod:`exudyn_atcm.theory.r
 * the tip: a ``NodeRigidBody2D`` (no mass of its own) that joints, welds, loads and sensors
   attach to, tied to the rod by an ``ObjectConnectorCoordinateVector`` (on the tip node's and
   the rod object's coordinates): its pose equals the exact tip pose ``P(z)``, ``Phi + q_1``;
-* the actuation: ``LoadCoordinate`` ``EI kappa`` on ``q_1`` (as the ``ritz`` cell).
+* the actuation: ``LoadCoordinate`` ``EI kappa`` on ``q_1`` (as the ``ritz`` cell); a bender
+  of segments has each segment's modes on its own length (:class:`~exudyn_atcm.theory.rotation_rod.RodShapes`)
+  and one such load per driven segment, on that segment's first mode.
 
 The nonlinear parts (``M``, the quadratic velocity vector and the tip pose) are evaluated by
 compiled kernels and written into the items:
@@ -48,8 +50,7 @@ from exudyn import itemInterface as ii
 
 from ...cells import RodCell
 from ...mechanism.bender import Bender
-from ...mechanism.points import MechanismError
-from ...theory import ritz_beam, rotation_rod
+from ...theory import rotation_rod
 from ..cells import add_mechanism_bender
 from ..hooks import add_post_newton
 from ..items import NOVIS
@@ -75,18 +76,19 @@ def add_rod_bender(builder, bender: Bender) -> None:
     """Add the rod model of ``bender`` (its base and tip nodes and the tie) through the mechanism ``builder``."""
     from ...theory import rod_kernels  # noqa: PLC0415 - numba is imported (and the kernels compiled) for rods only
 
-    if len(bender.segments) != 1:
-        raise MechanismError(f"bender {bender.name!r}: the rod cell models one uniform segment, got "
-                             f"{len(bender.segments)} segments; use cell='beam' for segmented benders")
     mbs, model = builder.mbs, builder.model
     n, length = bender.n_cells, bender.length
     size = 3 + n  # X, Y, Phi of the base node, then the modes
     lam = bender.laminate
     ei, mu, rho_i = lam.bending_stiffness, lam.mass_per_length, lam.rotary_inertia_per_length
-    shapes = rotation_rod.rod_shapes(n, length)
+    if len(bender.segments) == 1:
+        shapes = rotation_rod.rod_shapes(n, length)
+    else:  # each segment's modes on its own length (its free curvature, its drive)
+        shapes = rotation_rod.rod_shapes(n, length, tuple(seg.n_cells for seg in bender.segments),
+                                         tuple(seg.length for seg in bender.segments))
     phi_hat, integration, weights, phi_hat_tip = shapes.phi_hat, shapes.integration, shapes.weights, shapes.phi_hat_tip
     K = np.zeros((size, size))
-    K[3:, 3:] = ritz_beam.stiffness_matrix(n, length, ei)
+    K[3:, 3:] = shapes.stiffness_matrix(ei)
     angle = bender.angle
     base_reference = np.array([*bender.base_position, angle], dtype=float)
     z0 = np.concatenate([base_reference, np.zeros(n)])
@@ -103,8 +105,13 @@ def add_rod_bender(builder, bender: Bender) -> None:
     obj = mbs.AddObject(ii.ObjectGenericODE2(nodeNumbers=[base_node, node], massMatrix=mass0, stiffnessMatrix=K,
                                              dampingMatrix=bender.stiffness_damping_factor * K, forceVector=force0,
                                              massMatrixUserFunction=mass_matrix))
-    load = mbs.AddLoad(ii.LoadCoordinate(markerNumber=mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=node,
-                                                                                             coordinate=0)), load=0.0))
+    # the actuation: EI kappa_j on the first mode of every driven segment j
+    actuation = []
+    for j, (seg, first) in enumerate(zip(bender.segments, shapes.first_modes)):
+        if seg.drive is not None:
+            marker = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=node, coordinate=first))
+            actuation.append((mbs.AddLoad(ii.LoadCoordinate(markerNumber=marker, load=0.0)),
+                              model.drive_source[bender.drive_name(j)]))
     tip_reference = np.array([*bender.points["tip"], angle], dtype=float)
     tip_node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=tip_reference.tolist(), visualization=NOVIS))
     tie = mbs.AddObject(ii.ObjectConnectorCoordinateVector(
@@ -116,12 +123,12 @@ def add_rod_bender(builder, bender: Bender) -> None:
     tip = Body(beam_node_key(bender, n), tip_node, obj, tip_reference, node_only=True)
     model.bodies[base.key] = base
     model.bodies[tip.key] = tip
-    segments = ritz_beam.segment_rotation_matrix(n, n)
+    cells = shapes.cell_rotations()
     keys = []
     for j in range(n):
         key = f"{bender.name}/segment{j + 1}"
         seg = Body(key, node, obj, np.array([np.nan, np.nan, angle]), node_only=True)
-        seg.pose_function = (lambda q, row=segments[j], body=seg:
+        seg.pose_function = (lambda q, row=cells[j], body=seg:
                              np.column_stack([np.full(q.shape[0], np.nan), np.full(q.shape[0], np.nan),
                                               angle + q[:, base.ode2 + 2] + q[:, body.ode2:body.ode2 + n] @ row]))
         model.bodies[key] = seg
@@ -166,18 +173,14 @@ def add_rod_bender(builder, bender: Bender) -> None:
         set_parameter(tie, "scalingMarker1", x1_)
         set_parameter(tie, "offset", offset_)
 
-    source = None
-    curvature_per_strain = 0.0
-    if bender.segments[0].drive is not None:
-        source = model.drive_source[bender.drive_name(0)]
-        curvature_per_strain = bender.curvature_sign * lam.curvature_per_strain
+    moment_per_strain = ei * bender.curvature_sign * lam.curvature_per_strain
     set_load = mbs.SetLoadParameter
 
     def write_strains(strains: np.ndarray) -> None:
         """The actuation, and the rod linearised at the state predicted for the attempted step's end
         (``z + h z_dot`` from the step's start)."""
-        if source is not None:
-            set_load(load, "load", ei * curvature_per_strain * strains.item(source))
+        for load, source in actuation:
+            set_load(load, "load", moment_per_strain * strains.item(source))
         base_start, rod_start, _ = indices()
         if base_start < 0:  # not assembled yet: the first step's pre-step hook linearises
             return
