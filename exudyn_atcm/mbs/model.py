@@ -168,6 +168,8 @@ class MechanismModel:
     linearisation_hooks: list = field(default_factory=list)
     # cells' changes to the dynamic solver settings (before the user's)
     settings_adjusters: list = field(default_factory=list)
+    # assumed-mode benders: name -> estimate() of the tip error [m] at the current static state from the left-out modes
+    truncation_estimators: dict = field(default_factory=dict)
     _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
     _written_factor: float | None = None       # load factor at which every load was last written
     _connectors: tuple | None = None           # (spring count, connector_reader()) of connector_forces()
@@ -245,6 +247,10 @@ class MechanismModel:
         """The cells' changes to the dynamic solver settings (before the user's)."""
         for adjust in self.settings_adjusters:
             adjust(settings)
+
+    def truncation_errors(self) -> dict[str, float]:
+        """Estimated tip-position error [m] of every assumed-mode bender from the modes it leaves out (current state)."""
+        return {name: estimate() for name, estimate in self.truncation_estimators.items()}
 
     def before_linearisation(self) -> None:
         """Prepare an eigenvalue analysis about the current state (the cells' hooks, with the current strains)."""

@@ -35,10 +35,13 @@ if TYPE_CHECKING:
 
 __all__ = ["check_steps", "check_drive_ranges", "feedback_controllers", "lowest_first_frequency", "cost_parts",
            "cost_description",
-           "warn_coarse_cells", "MAX_CELL_ROTATION"]
+           "warn_coarse_cells", "MAX_CELL_ROTATION", "warn_few_modes", "MAX_TRUNCATION_ERROR"]
 
 #: Largest rotation of one cell relative to its neighbour [rad] before a warning is issued.
 MAX_CELL_ROTATION = 0.5
+#: Largest estimated tip error of a ``rod`` bender from its left-out modes, relative to its length, before a
+#: warning is issued (:func:`~exudyn_atcm.theory.rotation_rod.truncation_error`).
+MAX_TRUNCATION_ERROR = 1e-3
 
 
 def _drive_names(model: MechanismModel) -> list[str]:
@@ -186,3 +189,20 @@ def warn_coarse_cells(mech: Mechanism, rotations: dict[str, float], stacklevel: 
                 f"a cell of the {b.cell} bender {name!r} turns by {per_cell:.3g} rad relative to its neighbour (more "
                 f"than {MAX_CELL_ROTATION} rad): with {b.n_cells} cells the chain is a coarse discretisation of the "
                 "bent bender; use more cells", AccuracyWarning, stacklevel=stacklevel)
+
+
+def warn_few_modes(mech: Mechanism, errors: dict[str, float], stacklevel: int = 4) -> None:
+    """Warn once per ``rod`` bender whose estimated tip error from its left-out modes (``errors`` [m], the
+    largest over the states solved, from :meth:`~exudyn_atcm.mbs.model.MechanismModel.truncation_errors`)
+    exceeds :data:`MAX_TRUNCATION_ERROR` of its length; ``stacklevel`` counts from this function."""
+    benders = {b.name: b for b in mech.benders}
+    for name, error in errors.items():
+        b = benders[name]
+        if error > MAX_TRUNCATION_ERROR * b.length:
+            modes = (f"{b.n_cells} modes" if len(b.segments) == 1
+                     else "modes " + " + ".join(str(s.n_cells) for s in b.segments) + " (per segment)")
+            warnings.warn(
+                f"the rod bender {name!r} with {modes} is too coarse for the force at its tip: the first modes it "
+                f"leaves out would move the tip by about {error:.3g} m, {error / b.length:.2g} of its length "
+                f"(more than {MAX_TRUNCATION_ERROR:g}); use more modes (n_cells), e.g. twice as many",
+                AccuracyWarning, stacklevel=stacklevel)

@@ -25,7 +25,7 @@ from ..mbs import solver_settings
 from ..mbs.recording import RowLayout, Rows, cell_rotations, measurement_reader
 from ..mechanism.assembly import Mechanism
 from ..mechanism.points import MechanismError, closest
-from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers, warn_coarse_cells
+from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers, warn_coarse_cells, warn_few_modes
 from ..io.result import Result
 from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
@@ -54,6 +54,7 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     rows = Rows(model)
     rows.add(0.0, source_volts, strains)
     warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
+    warn_few_modes(mech, model.truncation_errors())
     return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
 
 
@@ -92,6 +93,7 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     rows = Rows(model)
     previous = np.zeros(len(model.sources))
     methods = []
+    truncation: dict[str, float] = {}
     for i, per_drive in enumerate(table):
         volts, strains = source_table[i], strain_table[i]
         methods.append(equilibrium(mech, model, previous, strains, i == 0, None,
@@ -99,7 +101,10 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
         runs.set_current_as_initial(model, zero_velocity=True)
         rows.add(float(i), volts, strains)
         previous = strains
+        for name, error in model.truncation_errors().items():
+            truncation[name] = max(error, truncation.get(name, 0.0))
     warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
+    warn_few_modes(mech, truncation)
     return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)},
                        base=("point", "-"))
 
@@ -284,6 +289,8 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
         runs.set_current_as_initial(model, zero_velocity=True)
     else:
         model.scale_loads(0.0)
+    if voltage is not None or loaded:
+        warn_few_modes(mech, model.truncation_errors())
     model.before_linearisation()
     freqs = linear.eigenfrequencies(model, n)
     if freqs.size < n:

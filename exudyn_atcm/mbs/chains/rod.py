@@ -213,6 +213,17 @@ def add_rod_bender(builder, bender: Bender) -> None:
         coordinates = get_q(copy=False)
         write(coordinates, np.zeros_like(coordinates), 0.0, True)
 
+    def truncation() -> float:
+        """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
+        base_start, rod_start, _ = indices()
+        if base_start < 0:
+            return 0.0
+        coordinates = get_q(copy=False)
+        force = get_output(tie, force_output)
+        return rotation_rod.truncation_error(shapes, ei, base_reference[2] + coordinates[base_start + 2],
+                                             coordinates[rod_start:rod_start + n], (force[0], force[1]))
+
+    model.truncation_estimators[bender.name] = truncation
     model.strain_writers.append(write_strains)
     model.linearisation_hooks.append(linearise)
     add_post_newton(mbs, check_tip)
