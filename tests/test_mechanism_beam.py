@@ -464,7 +464,7 @@ def test_static_sweep_of_any_actuator_cell_equals_solve_static_per_voltage(cell)
 
 
 def test_bad_case_cell_is_refused(guide_case):
-    with pytest.raises(ValueError, match="cell must be one of rigid, six-bar, beam, got 'beams'"):
+    with pytest.raises(ValueError, match="cell must be one of rigid, six-bar, beam, rod, got 'beams'"):
         guide_case.run({"cell": "beams"})
 
 
