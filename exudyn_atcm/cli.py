@@ -4,6 +4,7 @@
 
     exudyn-atcm list                                   the cases, their description and parameters
     exudyn-atcm run CASE [--set NAME=VALUE ...] [--out DIR] [--no-plot]
+    exudyn-atcm step-error CASE [--set NAME=VALUE ...] [--no-order-check] [--out DIR]
     exudyn-atcm sweep CASE --grid NAME=START:STOP:N [--grid NAME=A,B,C] [--samples N] [--workers N] [--out DIR]
     exudyn-atcm optimize CASE --objective NAME [--maximize] --bound NAME=LOW:HIGH [--constraint "NAME>=V"]
     exudyn-atcm bench [--quick] [--only ID ...] [--out DIR] [--update-references --reason TEXT]
@@ -25,8 +26,10 @@ import os
 import sys
 import warnings
 from collections.abc import Sequence
+from pathlib import Path
 
 from . import casework as _cases
+from .casework import step_check
 from .casework.error_report import report_error as _error
 from .casework.termination import StopSignal, stop_signals_as_interrupt
 
@@ -62,6 +65,14 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a parameter (repeatable)")
     run.add_argument("--out", default="out", metavar="DIR", help="output directory (default: ./out)")
     run.add_argument("--no-plot", action="store_true", help="do not write the PNG plots")
+    check = sub.add_parser("step-error", help="how much a case's key scalars depend on its time step (runs it at step, "
+                           "step/2, step/4)", parents=[sub_common])
+    check.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file; it must have a "
+                       "'step' parameter")
+    check.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                       help="override a parameter (repeatable; --set step=... is the step examined)")
+    check.add_argument("--no-order-check", action="store_true", help="two runs (step, step/2) instead of three")
+    check.add_argument("--out", default=None, metavar="DIR", help="also write <case>_step_error.json there")
     bench = sub.add_parser("bench", help="run the regression benchmark suite", parents=[sub_common])
     bench.add_argument("--quick", action="store_true", help="only the quick benchmarks (< 2 min)")
     bench.add_argument("--out", default="out/bench", metavar="DIR", help="report directory (default: ./out/bench)")
@@ -176,7 +187,24 @@ def _dispatch(args: argparse.Namespace, debug: bool) -> int:
         return _cases.run_and_report(case, args.set, args.out, not args.no_plot, debug)
     if args.command in ("sweep", "optimize"):
         return _study_command(args)
+    if args.command == "step-error":
+        return _step_error(args, debug)
     return _bench(args)
+
+
+def _step_error(args: argparse.Namespace, debug: bool) -> int:
+    try:
+        case = _cases.load_case(args.case, args.cases_dir)
+        step, rows = step_check.case_step_error(case, args.set, check_order=not args.no_order_check)
+    except _cases.CaseError as exc:
+        return _error(exc, debug, 2)
+    print(step_check.format_step_errors(case.name, step, rows))
+    if args.out is not None:
+        path = Path(args.out) / f"{case.name}_step_error.json"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        step_check.write_step_errors(path, case.name, step, rows)
+        print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

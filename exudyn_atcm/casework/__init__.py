@@ -12,7 +12,9 @@ needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
 * :mod:`~exudyn_atcm.casework.discovery`: :func:`case_dirs`, :func:`list_cases`, :func:`find_case`,
   :func:`load_case`;
 * :mod:`~exudyn_atcm.casework.regression` (with :mod:`~exudyn_atcm.casework.metrics`): the
-  regression suite, :func:`run_suite`.
+  regression suite, :func:`run_suite`;
+* :mod:`~exudyn_atcm.casework.step_check`: a case's key scalars at step, step/2 and step/4
+  (``exudyn-atcm step-error``).
 
 May import everything below it; :mod:`exudyn_atcm.study` and the command line build on it.
 """
