@@ -12,11 +12,13 @@ from __future__ import annotations
 import math
 import pathlib
 
+import exudyn as exu
 import numpy as np
 import pytest
 
-from exudyn_atcm import (Bender, Layer, Mechanism, PiezoDrive, RayleighDamping, Segment, eigenfrequencies, simulate,
-                         solve_static)
+from exudyn_atcm import (Bender, Layer, Mechanism, PiezoDrive, RayleighDamping, Segment, add_to, eigenfrequencies,
+                         simulate, solve_static)
+from exudyn_atcm.mbs import solver_settings
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.model.signals import Triangle
 from exudyn_atcm.theory import rotation_rod as rr
@@ -150,3 +152,20 @@ def test_parallel_guide_with_rods_is_the_exact_s_blade():
     # one mode per segment represents the S exactly (cells and beam elements: the polygon, 5e-5 at 8 cells)
     assert s["translation_error"] < 1e-8
     assert s["rotation_max"] < 1e-12
+
+
+def test_a_segmented_rod_works_through_add_to_with_the_users_solver():
+    """add_to, the user's Assemble and SolveDynamic: the same run as simulate (the segments' actuation
+    loads and the rod's updates run in the package's hooks, which the user's solve calls)."""
+    modes, lengths = (2, 3), (0.03, 0.03)
+    # programs starting at 0 V: simulate starts from the static state at U(0), the user's run from the reference
+    drives = (PiezoDrive(Triangle(500.0, 500.0, 0.02)), PiezoDrive(Triangle(250.0, 250.0, 0.01)))
+    ref = simulate(one_rod(modes, lengths, drives), 0.005, step=1e-4)
+    mbs = exu.SystemContainer().AddSystem()
+    handle = add_to(mbs, one_rod(modes, lengths, drives))
+    mbs.Assemble()
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.005, 1e-4))
+    r = handle.result()
+    for name in ("s.tip_x", "s.tip_y", "s.tip_angle", "s.cell_angle_3"):
+        np.testing.assert_allclose(r[name], ref[name], rtol=0, atol=1e-12, err_msg=name)
+    assert np.ptp(r["s.tip_y"]) > 1e-5  # it moved
