@@ -123,6 +123,7 @@ def test_lone_actuator_with_a_tip_force_and_without_the_order_check():
     ({"step": 0.0}, "step must be > 0"),
     ({"step": 1.0}, "step must be <= t_end"),
     ({"columns": "tip_y"}, "sequence of column names"),
+    ({"columns": []}, "at least one result column"),
     ({"columns": ["tip_z"]}, r"no such result column \['tip_z'\]"),
 ])
 def test_bad_arguments_are_refused_naming_them(kwargs, match):

@@ -234,6 +234,8 @@ def step_error(system: Any, t_end: float, step: float = DEFAULT_STEP, *, check_o
     steps = [used, used / 2.0] + ([used / 4.0] if check_order else [])
     if isinstance(columns, str):
         raise ValueError(f"columns must be a sequence of column names, got the string {columns!r}")
+    if columns is not None and len(columns) == 0:
+        raise ValueError("columns must name at least one result column (None: every column in m or rad), got []")
     runs = [simulate(system, t_end, step=used, tip_force=tip_force, settings=settings)]
     names = [n for n in runs[0].names if n != "time"]
     if columns is None:
