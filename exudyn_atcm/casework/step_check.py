@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
 from ..io.atomic import write_json
+from ..solve.step_error import richardson
 from .case import Case
 from .parameters import CaseError
 
@@ -104,16 +105,12 @@ def case_step_error(case: Case, values: Mapping[str, Any] | Sequence[str] | None
     given = {name: params[name] for name in names}
     steps = [step, step / 2.0] + ([step / 4.0] if check_order else [])
     outputs = [case.run({**given, STEP_PARAMETER: h}) for h in steps]
-    factor = 4.0 / 3.0
     out = []
     for name, value in outputs[0].scalars.items():
         values_ = [o.scalars.get(name, math.nan) for o in outputs]
         changes = [abs(a - b) for a, b in zip(values_, values_[1:])]
         finest = values_[-1]
-        order = math.nan
-        if len(changes) > 1 and changes[0] > NOISE * abs(finest) and changes[1] > 0.0:
-            order = math.log2(changes[0] / changes[1])
-        error = factor * changes[0]
+        error, order = richardson(changes, NOISE * abs(finest))
         relative = error / abs(finest) if finest != 0.0 else math.nan
         out.append(ScalarStepError(name, outputs[0].scalar_units.get(name, "-"), value, finest, error, relative, order))
     return step, out

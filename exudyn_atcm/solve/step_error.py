@@ -34,7 +34,7 @@ from .run_checks import time_grid
 from .run_setup import DEFAULT_STEP
 from .simulation import simulate
 
-__all__ = ["step_error", "StepError", "ColumnStepError", "NOMINAL_ORDER", "MOTION_UNITS"]
+__all__ = ["step_error", "StepError", "ColumnStepError", "richardson", "NOMINAL_ORDER", "MOTION_UNITS"]
 
 #: Order of accuracy of the time integration (generalized-alpha).
 NOMINAL_ORDER = 2.0
@@ -44,6 +44,21 @@ MOTION_UNITS = ("m", "rad")
 MIN_ORDER = 1.5
 #: Differences below this share of a column's range are round-off and Newton tolerance, not step error.
 NOISE = 1e-8
+
+
+def richardson(changes: Sequence[float], noise: float) -> tuple[float, float]:
+    """Richardson's estimate from the changes between runs at ``h``, ``h/2`` (and ``h/4``).
+
+    ``changes``: ``|x_h - x_{h/2}|`` (and ``|x_{h/2} - x_{h/4}|``).  Returns the estimated error of
+    the run at ``h``, ``changes[0] * 2^p / (2^p - 1)`` with ``p`` = :data:`NOMINAL_ORDER`, and the
+    observed order ``log2(changes[0] / changes[1])`` (``nan`` without the second change or when the
+    first is not above ``noise``, round-off and Newton tolerance in the caller's units).
+    """
+    factor = 2.0 ** NOMINAL_ORDER / (2.0 ** NOMINAL_ORDER - 1.0)
+    order = math.nan
+    if len(changes) > 1 and changes[0] > noise and changes[1] > 0.0:
+        order = math.log2(changes[0] / changes[1])
+    return factor * changes[0], order
 
 
 @dataclass(frozen=True)
@@ -145,9 +160,11 @@ class StepError:
             marker = " *" if c.name in self.summary else ""
             lines.append(f"{c.name:>28} | {c.unit:>4} | {c.error:>15.3e} | {c.relative:>12.2e} | "
                          f"{c.order:>5.2f}{marker}")
-        lines.append("* summarised (worst: " + (f"{self.worst().name}, {self.worst().relative:.2e} of its range)"
-                                                if any(math.isfinite(self.columns[n].relative) for n in self.summary)
-                                                else "none varies)"))
+        if any(math.isfinite(self.columns[n].relative) for n in self.summary):
+            worst = self.worst()
+            lines.append(f"* summarised (worst: {worst.name}, {worst.relative:.2e} of its range)")
+        else:
+            lines.append("* summarised (none varies)")
         return "\n".join(lines)
 
 
@@ -252,17 +269,14 @@ def step_error(system: Any, t_end: float, step: float = DEFAULT_STEP, *, check_o
         raise ValueError(f"the runs at steps {steps} s share {compared} recorded instants; a run whose steps were "
                          "reduced everywhere (Newton failures) cannot be compared: use a smaller step")
     finest = runs[-1]
-    factor = 2.0 ** NOMINAL_ORDER / (2.0 ** NOMINAL_ORDER - 1.0)
     out: dict[str, ColumnStepError] = {}
     for name in names:
         values = [np.asarray(run[name], dtype=float)[r] for run, r in zip(runs, rows)]
         differences = [float(np.max(np.abs(a - b))) for a, b in zip(values, values[1:])]
         span = float(np.ptp(finest[name])) if finest.n_rows else 0.0
-        relative = factor * differences[0] / span if span > 0.0 else math.nan
-        order = math.nan
-        if len(differences) > 1 and span > 0.0 and differences[0] > NOISE * span and differences[1] > 0.0:
-            order = math.log2(differences[0] / differences[1])
-        out[name] = ColumnStepError(name, finest.unit(name), differences[0], factor * differences[0], relative, order)
+        error, order = richardson(differences, NOISE * span if span > 0.0 else math.inf)
+        relative = error / span if span > 0.0 else math.nan
+        out[name] = ColumnStepError(name, finest.unit(name), differences[0], error, relative, order)
     slow = [c for c in (out[n] for n in summary) if math.isfinite(c.order) and c.order < MIN_ORDER]
     if slow:
         slow.sort(key=lambda c: c.order)

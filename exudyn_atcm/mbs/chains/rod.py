@@ -81,11 +81,9 @@ def add_rod_bender(builder, bender: Bender) -> None:
     size = 3 + n  # X, Y, Phi of the base node, then the modes
     lam = bender.laminate
     ei, mu, rho_i = lam.bending_stiffness, lam.mass_per_length, lam.rotary_inertia_per_length
-    if len(bender.segments) == 1:
-        shapes = rotation_rod.rod_shapes(n, length)
-    else:  # each segment's modes on its own length (its free curvature, its drive)
-        shapes = rotation_rod.rod_shapes(n, length, tuple(seg.n_cells for seg in bender.segments),
-                                         tuple(seg.length for seg in bender.segments))
+    # each segment's modes on its own length (its free curvature, its drive); one segment: the plain rod
+    shapes = rotation_rod.rod_shapes(n, length, tuple(seg.n_cells for seg in bender.segments),
+                                     tuple(seg.length for seg in bender.segments))
     phi_hat, integration, weights, phi_hat_tip = shapes.phi_hat, shapes.integration, shapes.weights, shapes.phi_hat_tip
     K = np.zeros((size, size))
     K[3:, 3:] = shapes.stiffness_matrix(ei)
