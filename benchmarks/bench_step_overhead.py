@@ -20,11 +20,17 @@ Exudyn's floor: a system with one point mass on a linear spring and trivial ``Pr
 ``PostStep`` Python functions (``return True``), integrated with the same solver settings and
 step: the cheapest a run with Python hooks can be.
 
+``--rod-mass`` compares the two ways the ``rod`` cell hands its mass matrix (rewritten every step)
+to Exudyn, on the four-bar and the gripper with 4-mode rods at step 5e-4 s, interleaved: a
+``massMatrixUserFunction`` (what a user's system after ``add_to`` gets) and the item's parameter
+re-read by the solver (``reuseConstantMassMatrix = False``, the package's own runs).  Cost:
+(best run of ``t_sim``) - (best run of one step), per simulated second.
+
 ``--memory`` measures, in child processes, the peak resident memory added by recording every
 step of a long run of the Fig. 12 actuator (default 20 s, 200,001 rows, six-bar cells): peak RSS of
 the run minus the peak RSS of the same process after a 0.01 s run.
 
-Usage: ``python benchmarks/bench_step_overhead.py [--t-sim 0.2] [--repeats 3] [--memory [--memory-t 20]]``.
+Usage: ``python benchmarks/bench_step_overhead.py [--t-sim 0.2] [--repeats 3] [--rod-mass] [--memory [--memory-t 20]]``.
 Prints a table and writes JSON to ``benchmarks/results/`` (git-ignored).
 """
 
@@ -147,6 +153,39 @@ def exudyn_floor(t_sim: float) -> float:
     return (time.perf_counter() - start) / t_sim
 
 
+ROD_MASS_STEP = 5e-4  # s
+
+
+def rod_mass_paths(t_sim: float, repeats: int) -> dict:
+    """Cost [s/s] of the rod mechanisms with the mass matrix as a user function and as a re-read parameter."""
+    from exudyn_atcm.mbs import builder  # noqa: PLC0415 - the toggle of the rod's mass path
+
+    original = builder.add_mechanism
+    paths = {"user function": False, "parameter": True}
+    out = {}
+    for name in ("four_bar", "gripper"):
+        best = {label: [float("inf"), float("inf")] for label in paths}  # [t_sim run, one-step run]
+        for _ in range(repeats):
+            for label, by_parameter in paths.items():
+                def add(mbs, mech, ground_item=None, free_end_bodies=False, stroke_path="prestep",
+                        package_solves=False, _flag=by_parameter):
+                    return original(mbs, mech, ground_item, free_end_bodies, stroke_path, package_solves and _flag)
+
+                builder.add_mechanism = add
+                try:
+                    for k, t in enumerate((t_sim, ROD_MASS_STEP)):
+                        system = bm.MECHANISMS[name](4, "rod")
+                        with warnings.catch_warnings():
+                            warnings.simplefilter("ignore", RuntimeWarning)
+                            start = time.perf_counter()
+                            simulate(system, t, step=ROD_MASS_STEP)
+                            best[label][k] = min(best[label][k], time.perf_counter() - start)
+                finally:
+                    builder.add_mechanism = original
+        out[name] = {label: (b[0] - b[1]) / t_sim for label, b in best.items()}
+    return out
+
+
 def memory_child(t_sim: float) -> None:
     """Run the Fig. 12 actuator recording every step for ``t_sim`` s; print the peak RSS [MB] before and after."""
     module = bm.case_module("paper_bending_actuator")
@@ -174,6 +213,8 @@ def main(argv=None) -> int:
     parser.add_argument("--memory", action="store_true", help="also measure the memory of a long every-step record")
     parser.add_argument("--memory-t", type=float, default=20.0, help="simulated time of the memory run [s]")
     parser.add_argument("--memory-child", type=float, default=None, help=argparse.SUPPRESS)
+    parser.add_argument("--rod-mass", action="store_true",
+                        help="also compare the rod cell's two mass matrix paths (4 modes, step 5e-4 s)")
     parser.add_argument("--out", default=RESULTS)
     args = parser.parse_args(argv)
     if args.memory_child is not None:
@@ -201,6 +242,13 @@ def main(argv=None) -> int:
     out = {"exudyn_atcm": __version__, "exudyn": exudyn.__version__, "python": platform.python_version(),
            "cpus": os.cpu_count(), "step_s": STEP, "t_sim_s": args.t_sim, "repeats": args.repeats,
            "systems": table, "exudyn_floor_s_per_s": floor}
+    if args.rod_mass:
+        rod = rod_mass_paths(max(args.t_sim, 0.5), args.repeats)
+        out["rod_mass_paths_s_per_s"] = rod
+        print(f"rod cell (4 modes, step {ROD_MASS_STEP:g} s): mass matrix as a user function / as a re-read parameter")
+        for name, costs in rod.items():
+            print(f"{name:>9} | {costs['user function']:.4f} s/s | {costs['parameter']:.4f} s/s | "
+                  f"{costs['user function'] / costs['parameter']:.2f}x")
     if args.memory:
         mem = memory(args.memory_t)
         out["memory"] = mem

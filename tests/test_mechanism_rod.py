@@ -428,6 +428,19 @@ def test_dynamic_four_bar_path_equals_fine_beam_elements():
     assert np.max(np.linalg.norm(paths["rod"] - paths["beam"], axis=1)) < 1e-4 * travel
 
 
+@pytest.mark.parametrize("cell", ["rod", "ritz"])
+def test_a_setting_that_would_freeze_a_rewritten_mass_matrix_is_refused(cell):
+    # both cells rewrite their mass matrix during a run: Exudyn must re-read it every step
+    drive = PiezoDrive(Triangle(500.0, 1000.0, 0.02))
+    if cell == "rod":
+        system, name = cantilever(rod(n_cells=3, drive=drive)), "b"
+    else:
+        system, name = atcm.BendingActuator(3, L / 3, W, CFC, MFC, drive, cell="ritz"), "actuator"
+    with pytest.raises(ValueError, match=rf"reuseConstantMassMatrix = True would keep the mass matrix of bender\(s\) \['{name}'\]"):
+        simulate(system, 0.002, step=1e-4, settings={"timeIntegration.reuseConstantMassMatrix": True})
+    simulate(system, 0.002, step=1e-4, settings={"timeIntegration.reuseConstantMassMatrix": False})
+
+
 def test_compliant_four_bar_case_with_rod_cells():
     case = load_case(CASES / "compliant_four_bar.py")
     out = case.run({"cell": "rod", "n_cells": 4, "dynamic_period": 0.02, "step": 5e-4, "n_steps": 8})

@@ -73,10 +73,13 @@ REALISATIONS = chains.MODULES
 
 class _Builder:
     def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False,
-                 stroke_path: str = "prestep") -> None:
+                 stroke_path: str = "prestep", package_solves: bool = False) -> None:
         self.mbs = mbs
         self.mech = mech
         self.free_end_bodies = free_end_bodies
+        #: only the package's runs solve this system (they apply ``model.settings_adjusters``); False
+        #: after :func:`~exudyn_atcm.add_to`, whose user may solve with any settings
+        self.package_solves = package_solves
         self.model = MechanismModel(mechanism=mech, mbs=mbs, stroke_path=stroke_path)
         self.ground_item = ground_item
         sources: list = []
@@ -389,13 +392,16 @@ def _flipped(el: Element) -> Element:
 
 
 def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,
-                  free_end_bodies: bool = False, stroke_path: str = "prestep") -> MechanismModel:
+                  free_end_bodies: bool = False, stroke_path: str = "prestep",
+                  package_solves: bool = False) -> MechanismModel:
     """Add the items of ``mechanism`` to ``mbs`` (not assembled); ``mechanism.check()`` must have passed.
 
     ``free_end_bodies=True`` gives free bender ends small interface bodies (for user joints);
-    ``stroke_path`` chooses how the strains reach the system (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`).
+    ``stroke_path`` chooses how the strains reach the system (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`);
+    ``package_solves=True``: only the package's runs solve the system, so cells may rely on
+    their changes to the solver settings (``model.settings_adjusters``).
     """
-    return _Builder(mbs, mechanism, ground_item, free_end_bodies, stroke_path).build()
+    return _Builder(mbs, mechanism, ground_item, free_end_bodies, stroke_path, package_solves).build()
 
 
 def build(mechanism: Mechanism, stroke_path: str = "prestep") -> MechanismModel:
@@ -403,7 +409,7 @@ def build(mechanism: Mechanism, stroke_path: str = "prestep") -> MechanismModel:
     mechanism.check()
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    model = add_mechanism(mbs, mechanism, stroke_path=stroke_path)
+    model = add_mechanism(mbs, mechanism, stroke_path=stroke_path, package_solves=True)
     model.SC = SC
     # static tolerances of the cells when every bender's kind sets them (rigid: relative to the
     # deformation) and no part of the model set its own (beam elements' round-off floor)

@@ -168,6 +168,8 @@ class MechanismModel:
     linearisation_hooks: list = field(default_factory=list)
     # cells' changes to the dynamic solver settings (before the user's)
     settings_adjusters: list = field(default_factory=list)
+    # benders whose mass matrix the package rewrites during a run (Exudyn must not reuse it)
+    varying_mass_benders: list[str] = field(default_factory=list)
     # assumed-mode benders: name -> estimate() of the tip error [m] at the current static state from the left-out modes
     truncation_estimators: dict = field(default_factory=dict)
     _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
@@ -247,6 +249,14 @@ class MechanismModel:
         """The cells' changes to the dynamic solver settings (before the user's)."""
         for adjust in self.settings_adjusters:
             adjust(settings)
+
+    def check_settings(self, settings: Any) -> None:
+        """Refuse dynamic settings (after the user's) that would freeze a mass matrix the package rewrites."""
+        if self.varying_mass_benders and settings.timeIntegration.reuseConstantMassMatrix:
+            raise ValueError(
+                "settings: timeIntegration.reuseConstantMassMatrix = True would keep the mass matrix of bender(s) "
+                f"{self.varying_mass_benders} at its first value (their cells rewrite it every step, so the "
+                "dynamics would be wrong); leave it False")
 
     def truncation_errors(self) -> dict[str, float]:
         """Estimated tip-position error [m] of every assumed-mode bender from the modes it leaves out (current state)."""

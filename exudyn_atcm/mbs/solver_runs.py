@@ -35,6 +35,8 @@ class SolvableModel(Protocol):
 
     def coordinates(self) -> np.ndarray: ...
 
+    def adjust_settings(self, settings: Any) -> None: ...
+
 
 class ExudynFailure(RuntimeError):
     """Exudyn's solver stopped; carries the time / load factor reached."""
@@ -166,6 +168,7 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
     for item, k, name in model.springs:
         mbs.SetObjectParameter(item, name, damping_factor * k)
     settings = dynamic_settings(t_end, h)
+    model.adjust_settings(settings)  # e.g. a mass matrix written each step is read each step
     _apply_tolerance_floor(model, settings.timeIntegration.newton)
     settings.timeIntegration.newton.useModifiedNewton = False
     settings.timeIntegration.newton.maxIterations = 25

@@ -155,6 +155,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
     model.adjust_settings(sim_settings)
     solver_settings.apply_user_settings(sim_settings, settings)
+    model.check_settings(sim_settings)
     layout = RowLayout(model)
     clock = WallClock(progress, t_end) if progress is not None else None
     n_src = len(sources)

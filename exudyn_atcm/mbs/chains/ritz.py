@@ -129,6 +129,7 @@ def add_ritz_bender(builder, bender: Bender) -> None:
         model.strain_writers.append(write_strains)
     model.linearisation_hooks.append(linearise)
     model.settings_adjusters.append(_ritz_settings)
+    model.varying_mass_benders.append(bender.name)
     # the static problem is linear, K q = Q: Exudyn's Newton iteration (numerical Jacobian) stops
     # at the default tolerance ~1e-9 rad off; 1e-13 rad of generalised moment reaches round-off
     absolute = 1e-13 * ei / length

@@ -8,10 +8,11 @@ Items per bender (coordinates ``z = (X, Y, Phi, q)``, :mod:`exudyn_atcm.theory.r
 * the rod: one ``ObjectGenericODE2`` on the base node and a ``NodeGenericODE2`` with the ``n``
   mode amplitudes ``q_i`` [rad] (the rotation shapes of :mod:`exudyn_atcm.theory.rotation_rod`,
   relative to the base's rotation ``Phi``), its constant stiffness ``K`` and damping
-  ``beta K`` on the modes, its mass matrix ``M(z)`` (given to Exudyn through
-  ``massMatrixUserFunction``, which returns the stored matrix: Exudyn then treats it as
-  varying in every solver, the user's too) and the quadratic velocity vector as its
-  ``forceVector``;
+  ``beta K`` on the modes, its mass matrix ``M(z)`` and the quadratic velocity vector as its
+  ``forceVector``.  ``M(z)`` changes from step to step: the package's own runs write it as the
+  item's ``massMatrix`` and let Exudyn re-read it (``reuseConstantMassMatrix = False``); in a
+  user's system (:func:`~exudyn_atcm.add_to`) it is returned by a ``massMatrixUserFunction``,
+  so that Exudyn treats it as varying in any solver with any settings;
 * the tip: a ``NodeRigidBody2D`` (no mass of its own) that joints, welds, loads and sensors
   attach to, tied to the rod by an ``ObjectConnectorCoordinateVector`` (on the tip node's and
   the rod object's coordinates): its pose equals the exact tip pose ``P(z)``, ``Phi + q_1``;
@@ -93,16 +94,20 @@ def add_rod_bender(builder, bender: Bender) -> None:
     mass0, force0, x1, offset = rod_kernels.rod_matrices(z0, np.zeros(size), phi_hat, integration, weights, length,
                                                          mu, rho_i, phi_hat_tip)
     state = {"mass": mass0, "stiffened": False}
-
-    def mass_matrix(mbs_, t, item, q, q_t):
-        return state["mass"]
+    # the mass matrix changes every step: in the package's own runs it is written as the item's
+    # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, a settings
+    # adjuster); in a user's system (add_to), whose settings the package does not control, a mass
+    # matrix user function makes Exudyn treat it as varying in any solver (about 10 us per call,
+    # several calls per step: a third of the rod four-bar's step)
+    by_parameter = builder.package_solves
+    varying_mass = {} if by_parameter else {"massMatrixUserFunction": lambda mbs_, t, item, q, q_t: state["mass"]}
 
     base_node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=base_reference.tolist(), visualization=NOVIS))
     node = mbs.AddNode(ii.NodeGenericODE2(referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n,
                                           initialCoordinates_t=[0.0] * n, numberOfODE2Coordinates=n))
     obj = mbs.AddObject(ii.ObjectGenericODE2(nodeNumbers=[base_node, node], massMatrix=mass0, stiffnessMatrix=K,
                                              dampingMatrix=bender.stiffness_damping_factor * K, forceVector=force0,
-                                             massMatrixUserFunction=mass_matrix))
+                                             **varying_mass))
     # the actuation: EI kappa_j on the first mode of every driven segment j
     actuation = []
     for j, (seg, first) in enumerate(zip(bender.segments, shapes.first_modes)):
@@ -163,7 +168,10 @@ def add_rod_bender(builder, bender: Bender) -> None:
         base_start, rod_start, _ = indices()
         linearisation(coordinates, velocities, base_start, rod_start, base_reference, h, lam_, K, phi_hat,
                       integration, weights, phi_hat_tip, parameters, *out)
-        state["mass"] = mass_out  # Exudyn copies what the mass matrix function returns
+        if by_parameter:
+            set_parameter(obj, "massMatrix", mass_out)
+        else:
+            state["mass"] = mass_out  # Exudyn copies what the mass matrix function returns
         if stiffen or state["stiffened"]:
             set_parameter(obj, "stiffnessMatrix", tangent)
             state["stiffened"] = stiffen
@@ -222,6 +230,9 @@ def add_rod_bender(builder, bender: Bender) -> None:
                                              coordinates[rod_start:rod_start + n], (force[0], force[1]))
 
     model.truncation_estimators[bender.name] = truncation
+    if by_parameter:
+        model.settings_adjusters.append(_reread_mass_matrix)
+        model.varying_mass_benders.append(bender.name)
     model.strain_writers.append(write_strains)
     model.linearisation_hooks.append(linearise)
     add_post_newton(mbs, check_tip)
@@ -229,6 +240,11 @@ def add_rod_bender(builder, bender: Bender) -> None:
     # tolerance 1e-8 would leave ~1e-8 L / (EI/L) rad
     absolute = 1e-12 * ei / length
     model.static_absolute_tolerance = min(absolute, model.static_absolute_tolerance or math.inf)
+
+
+def _reread_mass_matrix(settings) -> None:
+    """Let Exudyn read the rod's mass matrix (written once per step) in every step."""
+    settings.timeIntegration.reuseConstantMassMatrix = False
 
 
 @add_mechanism_bender.register
