@@ -37,6 +37,7 @@ May import: numpy (and the ``ritz`` cell's shapes).
 from __future__ import annotations
 
 import functools
+from typing import Any, Callable
 
 import numpy as np
 from numpy.polynomial import legendre
@@ -44,7 +45,7 @@ from numpy.polynomial import legendre
 from . import ritz_beam
 
 __all__ = ["rule_points", "quadrature", "RodShapes", "rod_shapes", "tip_pose", "mass_matrix",
-           "quadratic_velocity_vector", "truncation_error"]
+           "quadratic_velocity_vector", "truncation_error", "truncation_estimator"]
 
 
 def rule_points(n: int) -> int:
@@ -238,16 +239,25 @@ def truncation_error(shapes: RodShapes, bending_stiffness: float, base_angle: fl
     tip_force : (float, float)
         Force at the tip [N] (global; its sign does not matter).
     """
+    return truncation_estimator(shapes, bending_stiffness)(base_angle, q, tip_force)
+
+
+def truncation_estimator(shapes: RodShapes, bending_stiffness: float) -> Callable[[float, Any, Any], float]:
+    """:func:`truncation_error` for one rod, with its shapes prepared once: ``estimate(base_angle, q,
+    tip_force)`` [m] (about 25 us a call against 150 us; a static sweep asks at every point)."""
     richer = rod_shapes(shapes.n + len(shapes.modes), shapes.length, tuple(m + 1 for m in shapes.modes),
                         shapes.lengths)
     extra = [first + m for first, m in zip(richer.first_modes, shapes.modes)]
     kept = np.setdiff1d(np.arange(richer.n), extra)
-    q_richer = np.zeros(richer.n)
-    q_richer[kept] = np.asarray(q, dtype=float)
-    theta = base_angle + richer.phi @ q_richer
+    phi_kept, phi_extra = richer.phi[:, kept], richer.phi[:, extra]
     lw = richer.length * richer.weights
-    jx = lw @ (-np.sin(theta)[:, None] * richer.phi[:, extra])
-    jy = lw @ (np.cos(theta)[:, None] * richer.phi[:, extra])
     stiffness = np.array([bending_stiffness / (a * (2.0 * m + 1.0)) for m, a in zip(shapes.modes, shapes.lengths)])
-    amplitude = (float(tip_force[0]) * jx + float(tip_force[1]) * jy) / stiffness
-    return float(np.sum(np.abs(amplitude) * np.hypot(jx, jy)))
+
+    def estimate(base_angle: float, q, tip_force) -> float:
+        theta = base_angle + phi_kept @ np.asarray(q, dtype=float)
+        jx = lw @ (-np.sin(theta)[:, None] * phi_extra)
+        jy = lw @ (np.cos(theta)[:, None] * phi_extra)
+        amplitude = (float(tip_force[0]) * jx + float(tip_force[1]) * jy) / stiffness
+        return float(np.sum(np.abs(amplitude) * np.hypot(jx, jy)))
+
+    return estimate

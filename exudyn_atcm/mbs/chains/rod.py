@@ -219,6 +219,8 @@ def add_rod_bender(builder, bender: Bender) -> None:
         coordinates = get_q(copy=False)
         write(coordinates, np.zeros_like(coordinates), 0.0, True)
 
+    estimate = rotation_rod.truncation_estimator(shapes, ei)
+
     def truncation() -> float:
         """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
         base_start, rod_start, _ = indices()
@@ -226,8 +228,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
             return 0.0
         coordinates = get_q(copy=False)
         force = get_output(tie, force_output)
-        return rotation_rod.truncation_error(shapes, ei, base_reference[2] + coordinates[base_start + 2],
-                                             coordinates[rod_start:rod_start + n], (force[0], force[1]))
+        return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force)
 
     model.truncation_estimators[bender.name] = truncation
     if by_parameter:
