@@ -229,7 +229,8 @@ def step_error(system: Any, t_end: float, step: float = DEFAULT_STEP, *, check_o
     StepError
         Per column: the difference, the estimated error [the column's unit], the error over the
         column's range and the observed order; ``print(report)`` gives the table,
-        ``report.suggested_step(1e-3)`` the step for a relative error of 1e-3.
+        ``report.suggested_step(1e-3)`` the step for a relative error of 1e-3,
+        ``report.extrapolated`` the two finest runs extrapolated to step zero.
 
     Raises
     ------
