@@ -168,7 +168,8 @@ class MechanismModel:
     linearisation_hooks: list = field(default_factory=list)
     # cells' changes to the dynamic solver settings (before the user's)
     settings_adjusters: list = field(default_factory=list)
-    # benders whose mass matrix the package rewrites during a run (Exudyn must not reuse it)
+    # benders whose mass matrix the package rewrites during a run: Exudyn must re-read it every step
+    # (adjust_settings sets reuseConstantMassMatrix = False, check_settings refuses True)
     varying_mass_benders: list[str] = field(default_factory=list)
     # assumed-mode benders: name -> estimate() of the tip error [m] at the current static state from the left-out modes
     truncation_estimators: dict = field(default_factory=dict)
@@ -247,6 +248,8 @@ class MechanismModel:
 
     def adjust_settings(self, settings: Any) -> None:
         """The cells' changes to the dynamic solver settings (before the user's)."""
+        if self.varying_mass_benders:
+            settings.timeIntegration.reuseConstantMassMatrix = False
         for adjust in self.settings_adjusters:
             adjust(settings)
 

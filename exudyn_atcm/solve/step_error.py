@@ -111,7 +111,7 @@ class StepError:
         Richardson's extrapolation of the two finest runs to step zero at the compared instants,
         ``x_{h/4} + (x_{h/4} - x_{h/2}) / 3`` in every column: the second-order error cancels, so
         where the observed order is about 2 this is more accurate than :attr:`finest` (on the
-        compliant four-bar at step 5e-4 s, about 20 times; ``tests/test_step_error.py``).  Where
+        compliant four-bar at step 5e-4 s, 25-30 times; ``tests/test_step_error.py``).  Where
         the order is not 2 (the :class:`~exudyn_atcm.AccuracyWarning` of :func:`step_error`) it
         is no better than :attr:`finest`.  ``None`` without the order check.
     """

@@ -138,8 +138,7 @@ def add_ritz_bender(builder, bender: Bender) -> None:
 
 
 def _ritz_settings(settings) -> None:
-    """Let Exudyn re-read the mass matrix each step; dense solver for the small dense system."""
-    settings.timeIntegration.reuseConstantMassMatrix = False
+    """Dense solver for the small dense system (the mass matrix is re-read each step: varying_mass_benders)."""
     settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
 
 

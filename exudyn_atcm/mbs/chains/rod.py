@@ -95,10 +95,10 @@ def add_rod_bender(builder, bender: Bender) -> None:
                                                          mu, rho_i, phi_hat_tip)
     state = {"mass": mass0, "stiffened": False}
     # the mass matrix changes every step: in the package's own runs it is written as the item's
-    # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, a settings
-    # adjuster); in a user's system (add_to), whose settings the package does not control, a mass
-    # matrix user function makes Exudyn treat it as varying in any solver (about 10 us per call,
-    # several calls per step: a third of the rod four-bar's step)
+    # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, from
+    # model.varying_mass_benders); in a user's system (add_to), whose settings the package does not
+    # control, a mass matrix user function makes Exudyn treat it as varying in any solver (about
+    # 10 us per call, several calls per step: a third of the rod four-bar's step)
     by_parameter = builder.package_solves
     varying_mass = {} if by_parameter else {"massMatrixUserFunction": lambda mbs_, t, item, q, q_t: state["mass"]}
 
@@ -232,8 +232,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
 
     model.truncation_estimators[bender.name] = truncation
     if by_parameter:
-        model.settings_adjusters.append(_reread_mass_matrix)
-        model.varying_mass_benders.append(bender.name)
+        model.varying_mass_benders.append(bender.name)  # the runs let Exudyn re-read it every step
     model.strain_writers.append(write_strains)
     model.linearisation_hooks.append(linearise)
     add_post_newton(mbs, check_tip)
@@ -241,11 +240,6 @@ def add_rod_bender(builder, bender: Bender) -> None:
     # tolerance 1e-8 would leave ~1e-8 L / (EI/L) rad
     absolute = 1e-12 * ei / length
     model.static_absolute_tolerance = min(absolute, model.static_absolute_tolerance or math.inf)
-
-
-def _reread_mass_matrix(settings) -> None:
-    """Let Exudyn read the rod's mass matrix (written once per step) in every step."""
-    settings.timeIntegration.reuseConstantMassMatrix = False
 
 
 @add_mechanism_bender.register
