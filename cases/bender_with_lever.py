@@ -32,15 +32,15 @@ from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
-    Parameter("n_cells", 6, "-", "rigid cells of the bender"),
-    Parameter("length", 0.087, "m", "bender length L"),
-    Parameter("lever", 0.03, "m", "lever length a"),
-    Parameter("lever_mass", 1e-3, "kg", "lever mass (a slender bar)"),
-    Parameter("period", 0.5, "s", "period of the triangle voltage"),
-    Parameter("cycles", 1, "-", "voltage periods simulated"),
-    Parameter("step", 1e-4, "s", "time step"),
+    Parameter("n_cells", 6, "-", "rigid cells of the bender", minimum=1),
+    Parameter("length", 0.087, "m", "bender length L", exclusive_minimum=0.0),
+    Parameter("lever", 0.03, "m", "lever length a", exclusive_minimum=0.0),
+    Parameter("lever_mass", 1e-3, "kg", "lever mass (a slender bar)", exclusive_minimum=0.0),
+    Parameter("period", 0.5, "s", "period of the triangle voltage", exclusive_minimum=0.0),
+    Parameter("cycles", 1, "-", "voltage periods simulated", minimum=1),
+    Parameter("step", 1e-4, "s", "time step", exclusive_minimum=0.0),
     Parameter("record_every", 1e-3, "s", "recording interval [s] (0: every step); the solution and the scalars (from every "
-              "accepted step) are the same, the files smaller (an interval coarser than the program is warned about)"),
+              "accepted step) are the same, the files smaller (an interval coarser than the program is warned about)", minimum=0.0),
     Parameter("static_voltages", (0.0, 500.0, 1000.0, 1500.0), "V", "voltages of the static check (rising)"),
     Parameter("animation", True, "-", "also write a GIF of the moving bender and lever"),
 ]
@@ -60,10 +60,6 @@ def build_mechanism(p: Parameters) -> Mechanism:
 
 
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
-    if p.cycles < 1:
-        raise ValueError(f"cycles must be >= 1, got {p.cycles}")
-    if p.record_every < 0.0:
-        raise ValueError(f"record_every must be >= 0 s (0: every step), got {p.record_every}")
     a, L = p.lever, p.length
     mech = build_mechanism(p)
     result = simulate(mech, p.cycles * p.period, step=p.step, progress=ctx.progress,

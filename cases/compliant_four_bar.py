@@ -47,19 +47,19 @@ from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_me
 from exudyn_atcm.theory import RigidFourBar
 
 PARAMETERS = [
-    Parameter("n_cells", 8, "-", "cells of the crank bender"),
+    Parameter("n_cells", 8, "-", "cells of the crank bender", minimum=1),
     Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=("rigid", "six-bar", "beam", "rod")),
-    Parameter("crank_length", 0.06, "m", "length of the crank bender"),
-    Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*"),
-    Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base"),
+    Parameter("crank_length", 0.06, "m", "length of the crank bender", exclusive_minimum=0.0),
+    Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*", exclusive_minimum=0.0),
+    Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base", minimum=0.0),
     Parameter("coupler_point_x", 0.025, "m", "coupler point P from the coupler's hinge point B, along B -> C"),
     Parameter("coupler_point_y", 0.02, "m", "coupler point P from the coupler's hinge point B, normal to B -> C (up)"),
-    Parameter("flexure_length", 4e-3, "m", "length of each flexure hinge"),
-    Parameter("flexure_thickness", 0.1e-3, "m", "thickness of the flexure strips (CFC)"),
+    Parameter("flexure_length", 4e-3, "m", "length of each flexure hinge", exclusive_minimum=0.0),
+    Parameter("flexure_thickness", 0.1e-3, "m", "thickness of the flexure strips (CFC)", exclusive_minimum=0.0),
     Parameter("n_steps", 40, "-", "static steps per voltage cycle"),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
-    Parameter("dynamic_period", 0.5, "s", "period of a dynamic run (triangle -500 ... 1500 V, one cycle); 0: none"),
-    Parameter("step", 1e-4, "s", "time step of the dynamic run"),
+    Parameter("dynamic_period", 0.5, "s", "period of a dynamic run (triangle -500 ... 1500 V, one cycle); 0: none", minimum=0.0),
+    Parameter("step", 1e-4, "s", "time step of the dynamic run", exclusive_minimum=0.0),
     Parameter("animation", True, "-", "also write a GIF of the moving mechanism"),
 ]
 
@@ -131,9 +131,6 @@ def reference_four_bar(mech: Mechanism) -> RigidFourBar:
 
 def check_geometry(p: Parameters) -> None:
     """Refuse dimensions that leave no room for the rocker (it spans from D* up to the coupler)."""
-    for name in ("crank_length", "coupler_length", "flexure_length", "flexure_thickness"):
-        if p[name] <= 0.0:
-            raise ValueError(f"{name} must be > 0 m, got {p[name]!r}")
     if not 0.0 <= p.rocker_pivot_height < p.crank_length - p.flexure_length:
         raise ValueError(
             f"rocker_pivot_height must be in [0, crank_length - flexure_length) = [0, "

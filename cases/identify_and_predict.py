@@ -52,15 +52,15 @@ PARAMETERS = [
     Parameter("time_column", "time", "-", "column of the time [s]"),
     Parameter("input_column", "voltage", "-", "column of the input (voltage)"),
     Parameter("output_column", "displacement", "-", "column of the output (displacement)"),
-    Parameter("split_fraction", 0.6, "-", "fraction of the duration fitted; the rest is held out"),
-    Parameter("n_levels", 40, "-", "grid levels of the Preisach fit"),
-    Parameter("smoothing", 1e-3, "-", "smoothness regularisation of the Preisach fit"),
+    Parameter("split_fraction", 0.6, "-", "fraction of the duration fitted; the rest is held out", exclusive_minimum=0.0, maximum=1.0),
+    Parameter("n_levels", 40, "-", "grid levels of the Preisach fit", minimum=1),
+    Parameter("smoothing", 1e-3, "-", "smoothness regularisation of the Preisach fit", minimum=0.0),
     Parameter("prior", "smooth", "-", "prior of the Preisach fits where the record says nothing: smooth or pi "
               "(cross-validated)", choices=("smooth", "pi")),
-    Parameter("n_plays", 20, "-", "plays of the Prandtl-Ishlinskii fit"),
-    Parameter("n_relays_eq12", 20, "-", "relays of the equal-gain model (Eq. 12)"),
-    Parameter("trim_start", 0.0, "s", "settling time trimmed from the start"),
-    Parameter("decimate", 1, "-", "block-mean decimation factor"),
+    Parameter("n_plays", 20, "-", "plays of the Prandtl-Ishlinskii fit", minimum=1),
+    Parameter("n_relays_eq12", 20, "-", "relays of the equal-gain model (Eq. 12)", minimum=1),
+    Parameter("trim_start", 0.0, "s", "settling time trimmed from the start", minimum=0.0),
+    Parameter("decimate", 1, "-", "block-mean decimation factor", minimum=1),
 ]
 
 
@@ -69,8 +69,6 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     record = read_record(path, time=p.time_column, input=p.input_column, output=p.output_column)
     if p.trim_start > 0.0 or p.decimate > 1:
         record = preprocess(record, trim_start=p.trim_start, decimate=p.decimate)
-    if not 0.0 < p.split_fraction <= 1.0:
-        raise ValueError(f"split_fraction must lie in (0, 1], got {p.split_fraction!r}")
     t, u, y = record.time, record.input, record.output
     unit = record.units["output"]
     n_fit = t.size if p.split_fraction == 1.0 else record.split_index(t[0] + p.split_fraction * (t[-1] - t[0]))

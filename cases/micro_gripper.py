@@ -49,14 +49,14 @@ from exudyn_atcm.model import paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
-    Parameter("n_cells", 24, "-", "rigid cells per bender"),
-    Parameter("length", 0.04, "m", "bender length L"),
-    Parameter("width", 10e-3, "m", "bender width b"),
-    Parameter("half_spacing", 5e-3, "m", "distance of each bender's axis from the symmetry axis"),
-    Parameter("jaw_reach", 5e-3, "m", "jaw point beyond the tip along the tip tangent, a"),
+    Parameter("n_cells", 24, "-", "rigid cells per bender", minimum=1),
+    Parameter("length", 0.04, "m", "bender length L", exclusive_minimum=0.0),
+    Parameter("width", 10e-3, "m", "bender width b", exclusive_minimum=0.0),
+    Parameter("half_spacing", 5e-3, "m", "distance of each bender's axis from the symmetry axis", exclusive_minimum=0.0),
+    Parameter("jaw_reach", 5e-3, "m", "jaw point beyond the tip along the tip tangent, a", minimum=0.0),
     Parameter("jaw_offset", 0.0, "m", "jaw point from the bender axis towards the symmetry axis, c"),
-    Parameter("object_stiffness", 200.0, "N/m", "stiffness k of the grasped object"),
-    Parameter("stiff_object", 1e5, "N/m", "stiffness of the stiff object (blocked-force limit)"),
+    Parameter("object_stiffness", 200.0, "N/m", "stiffness k of the grasped object", minimum=0.0),
+    Parameter("stiff_object", 1e5, "N/m", "stiffness of the stiff object (blocked-force limit)", exclusive_minimum=0.0),
     Parameter("n_steps", 20, "-", "static steps per voltage cycle"),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
     Parameter("animation", True, "-", "also write a GIF of the gripper closing on the object"),

@@ -55,25 +55,25 @@ PARAMETERS = [
     Parameter("voltage", 1500.0, "V", "drive voltage"),
     Parameter("kinematics", "linear", "-", "small-deflection response scaled to the voltage, or nonlinear statics", choices=("linear", "nonlinear")),
     Parameter("cell", "rigid", "-", "cell model", choices=("rigid", "six-bar")),
-    Parameter("passive_thickness", 0.2e-3, "m", "passive layer thickness h1 (evaluate mode)"),
-    Parameter("passive_modulus", 70e9, "Pa", "passive layer Young's modulus E1 (evaluate mode)"),
-    Parameter("n_cells", 3, "-", "number of cells (evaluate mode)"),
-    Parameter("passive_density", 1550.0, "kg/m^3", "passive layer density"),
-    Parameter("active_thickness", 0.3e-3, "m", "active (MFC) layer thickness h2"),
-    Parameter("active_modulus", 30.336e9, "Pa", "active layer Young's modulus E2"),
-    Parameter("active_density", 5440.0, "kg/m^3", "active layer density"),
-    Parameter("cell_length", 29e-3, "m", "cell length"),
-    Parameter("width", 28e-3, "m", "width of both layers"),
-    Parameter("thickness_min", 0.05e-3, "m", "optimise: smallest passive thickness"),
-    Parameter("thickness_max", 1.5e-3, "m", "optimise: largest passive thickness"),
-    Parameter("modulus_min", 20e9, "Pa", "optimise: smallest passive modulus"),
-    Parameter("modulus_max", 70e9, "Pa", "optimise: largest passive modulus"),
-    Parameter("cells_min", 2, "-", "optimise: fewest cells"),
-    Parameter("cells_max", 4, "-", "optimise: most cells"),
-    Parameter("f1_min", 20.0, "Hz", "lower bound of the first bending frequency"),
-    Parameter("maxiter", 30, "-", "optimise: generations of differential evolution"),
-    Parameter("popsize", 10, "-", "optimise: population size per design variable"),
-    Parameter("workers", 1, "-", "optimise: worker processes evaluating the population"),
+    Parameter("passive_thickness", 0.2e-3, "m", "passive layer thickness h1 (evaluate mode)", exclusive_minimum=0.0),
+    Parameter("passive_modulus", 70e9, "Pa", "passive layer Young's modulus E1 (evaluate mode)", exclusive_minimum=0.0),
+    Parameter("n_cells", 3, "-", "number of cells (evaluate mode)", minimum=1),
+    Parameter("passive_density", 1550.0, "kg/m^3", "passive layer density", exclusive_minimum=0.0),
+    Parameter("active_thickness", 0.3e-3, "m", "active (MFC) layer thickness h2", exclusive_minimum=0.0),
+    Parameter("active_modulus", 30.336e9, "Pa", "active layer Young's modulus E2", exclusive_minimum=0.0),
+    Parameter("active_density", 5440.0, "kg/m^3", "active layer density", exclusive_minimum=0.0),
+    Parameter("cell_length", 29e-3, "m", "cell length", exclusive_minimum=0.0),
+    Parameter("width", 28e-3, "m", "width of both layers", exclusive_minimum=0.0),
+    Parameter("thickness_min", 0.05e-3, "m", "optimise: smallest passive thickness", exclusive_minimum=0.0),
+    Parameter("thickness_max", 1.5e-3, "m", "optimise: largest passive thickness", exclusive_minimum=0.0),
+    Parameter("modulus_min", 20e9, "Pa", "optimise: smallest passive modulus", exclusive_minimum=0.0),
+    Parameter("modulus_max", 70e9, "Pa", "optimise: largest passive modulus", exclusive_minimum=0.0),
+    Parameter("cells_min", 2, "-", "optimise: fewest cells", minimum=1),
+    Parameter("cells_max", 4, "-", "optimise: most cells", minimum=1),
+    Parameter("f1_min", 20.0, "Hz", "lower bound of the first bending frequency", minimum=0.0),
+    Parameter("maxiter", 30, "-", "optimise: generations of differential evolution", minimum=1),
+    Parameter("popsize", 10, "-", "optimise: population size per design variable", minimum=1),
+    Parameter("workers", 1, "-", "optimise: worker processes evaluating the population", minimum=1),
     Parameter("check_nonlinear", True, "-", "optimise: also find the thickness optimum with nonlinear kinematics"),
 ]
 
@@ -204,10 +204,6 @@ def _column(table, name):
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     # the voltage the user gave, against the MFC's rating (and the kV check): once per run
     PiezoDrive(p.voltage).check_voltage_range(p.voltage, p.voltage, what=f"voltage={p.voltage:g} V", stacklevel=2)
-    for name in ("passive_thickness", "passive_modulus", "active_thickness", "active_modulus", "cell_length",
-                 "width", "passive_density", "active_density"):
-        if not p[name] > 0.0:
-            raise ValueError(f"{name} must be > 0, got {p[name]!r}")
     if p.mode == "optimise":
         if not (0.0 < p.thickness_min < p.thickness_max and 0.0 < p.modulus_min < p.modulus_max and 1 <= p.cells_min <= p.cells_max):
             raise ValueError("optimise: need 0 < thickness_min < thickness_max, 0 < modulus_min < modulus_max and "

@@ -54,18 +54,18 @@ from exudyn_atcm.plots import (
 )
 
 PARAMETERS = [
-    Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),
-    Parameter("cycles", 3, "-", "number of input periods simulated (last_cycle_change needs >= 3)"),
+    Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)", exclusive_minimum=0.0),
+    Parameter("cycles", 3, "-", "number of input periods simulated (last_cycle_change needs >= 3)", minimum=1),
     Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
               "ritz: n_cells assumed modes of the whole bender)",
               choices=tuple(CELL_KINDS)),
-    Parameter("n_cells", 3, "-", "number of cells"),
-    Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
+    Parameter("n_cells", 3, "-", "number of cells", minimum=1),
+    Parameter("cell_length", 29e-3, "m", "length of one cell L_j", exclusive_minimum=0.0),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
-    Parameter("damping", 0.02, "-", "modal damping ratio of the first bending mode"),
-    Parameter("step", 1e-4, "s", "time step"),
+    Parameter("damping", 0.02, "-", "modal damping ratio of the first bending mode", minimum=0.0),
+    Parameter("step", 1e-4, "s", "time step", exclusive_minimum=0.0),
     Parameter("record_every", 1e-3, "s", "recording interval [s] (0: every step); the solution and the scalars (from every "
-              "accepted step) are the same, the files smaller (an interval coarser than the program is warned about)"),
+              "accepted step) are the same, the files smaller (an interval coarser than the program is warned about)", minimum=0.0),
     Parameter("animation", True, "-", "also write a GIF animation of the actuator"),
 ]
 
@@ -86,10 +86,6 @@ def build(p: Parameters) -> BendingActuator:
 
 
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
-    if p.cycles < 1:
-        raise ValueError(f"cycles must be >= 1, got {p.cycles}")
-    if p.record_every < 0.0:
-        raise ValueError(f"record_every must be >= 0 s (0: every step), got {p.record_every}")
     result = simulate(build(p), p.cycles * p.period, step=p.step, progress=ctx.progress,
                       record_every=p.record_every if p.record_every > 0.0 else None)
     every = result.every_step  # every accepted step: the scalars do not depend on record_every

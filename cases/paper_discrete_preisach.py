@@ -25,17 +25,17 @@ from exudyn_atcm.model import PiecewiseLinear, paper_stroke_preisach
 from exudyn_atcm.plots import Curve, plot_loops, plot_relays, plot_time_series
 
 PARAMETERS = [
-    Parameter("n_relays", 6, "-", "number of equal-gain relays (the paper: 6)"),
+    Parameter("n_relays", 6, "-", "number of equal-gain relays (the paper: 6)", minimum=1),
     Parameter("exponents", "exact", "-", "exponents of the continuous model", choices=("exact", "rounded")),
-    Parameter("loop_samples", 2000, "-", "samples of the major loop used for identification"),
+    Parameter("loop_samples", 2000, "-", "samples of the major loop used for identification", minimum=4),
     Parameter(
         "voltage_points",
         (-500.0, 1500.0, 0.0, 1200.0, 300.0, 900.0, -200.0, 1500.0, -500.0),
         "V",
         "input corner voltages, reached in equal time segments",
     ),
-    Parameter("segment_time", 0.5, "s", "duration of each input segment"),
-    Parameter("samples_per_segment", 200, "-", "time samples per segment"),
+    Parameter("segment_time", 0.5, "s", "duration of each input segment", exclusive_minimum=0.0),
+    Parameter("samples_per_segment", 200, "-", "time samples per segment", minimum=1),
 ]
 
 
@@ -47,8 +47,6 @@ def loop_area_from_series(u: np.ndarray, y: np.ndarray) -> float:
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if len(p.voltage_points) < 2:
         raise ValueError(f"voltage_points must hold at least 2 voltages, got {p.voltage_points}")
-    if p.samples_per_segment < 1 or p.loop_samples < 4 or p.segment_time <= 0.0:
-        raise ValueError("samples_per_segment >= 1, loop_samples >= 4 and segment_time > 0 are required")
     continuous = paper_stroke_preisach(rounded=(p.exponents == "rounded"))
 
     # the "measured" major loop: one full cycle from the reset state

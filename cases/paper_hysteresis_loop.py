@@ -34,8 +34,8 @@ PARAMETERS = [
     Parameter("x_m2", 28e-6, "m", "descending-branch stroke at U_m"),
     Parameter("r1_rounded", 1.5, "-", "the paper's rounded ascending exponent"),
     Parameter("r2_rounded", 2.0, "-", "the paper's rounded descending exponent"),
-    Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),
-    Parameter("cycles", 2, "-", "number of input periods"),
+    Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)", exclusive_minimum=0.0),
+    Parameter("cycles", 2, "-", "number of input periods", minimum=1),
     Parameter("samples_per_period", 400, "-", "time samples per period (even, so T/2 is sampled)"),
 ]
 
@@ -48,8 +48,6 @@ def loop_area_from_series(u: np.ndarray, y: np.ndarray) -> float:
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.samples_per_period < 2 or p.samples_per_period % 2:
         raise ValueError(f"samples_per_period must be an even integer >= 2, got {p.samples_per_period}")
-    if p.cycles < 1:
-        raise ValueError(f"cycles must be >= 1, got {p.cycles}")
     # the loop's voltages as given, against the MFC's rating (and the kV check), before the model is built
     PiezoDrive(0.0).check_voltage_range(min(p.u_min, p.u_max), max(p.u_min, p.u_max), stacklevel=2,
                                         what=f"u_min={p.u_min:g} V, u_max={p.u_max:g} V")

@@ -25,11 +25,11 @@ from exudyn_atcm.model import PAPER_D33, PAPER_ELECTRODE_SPACING, PAPER_LOOP, Tr
 from exudyn_atcm.plots import axis_label, display_scale, new_figure, plot_time_series, save_figure
 
 PARAMETERS = [
-    Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)"),
-    Parameter("cycles", 1, "-", "number of input periods in the table"),
+    Parameter("period", 1.0, "s", "period T of the triangle input (Eq. 11)", exclusive_minimum=0.0),
+    Parameter("cycles", 1, "-", "number of input periods in the table", minimum=1),
     Parameter("points_per_period", 20, "-", "table intervals per period (even, so the reversals are table points)"),
     Parameter("exponents", "rounded", "-", "continuous model exponents", choices=("rounded", "exact")),
-    Parameter("fine_factor", 50, "-", "fine samples per table interval for the interpolation error"),
+    Parameter("fine_factor", 50, "-", "fine samples per table interval for the interpolation error", minimum=1),
 ]
 
 
@@ -44,8 +44,6 @@ def _stroke(model, t: np.ndarray, signal: Triangle, period: float) -> np.ndarray
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.points_per_period < 2 or p.points_per_period % 2:
         raise ValueError(f"points_per_period must be an even integer >= 2, got {p.points_per_period}")
-    if p.cycles < 1 or p.fine_factor < 1:
-        raise ValueError(f"cycles and fine_factor must be >= 1, got {p.cycles} and {p.fine_factor}")
     model = paper_stroke_preisach(rounded=(p.exponents == "rounded"))
     loop = PAPER_LOOP
     signal = Triangle(0.5 * (loop["u_min [V]"] + loop["u_max [V]"]), 0.5 * (loop["u_max [V]"] - loop["u_min [V]"]), p.period)

@@ -37,15 +37,15 @@ from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunCon
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
-    Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)"),
+    Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)", minimum=1),
     Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam", "rod")),
-    Parameter("length", 0.06, "m", "bender length L (two segments of L/2)"),
-    Parameter("width", 10e-3, "m", "bender width"),
-    Parameter("spacing", 0.02, "m", "distance between the two benders"),
+    Parameter("length", 0.06, "m", "bender length L (two segments of L/2)", exclusive_minimum=0.0),
+    Parameter("width", 10e-3, "m", "bender width", exclusive_minimum=0.0),
+    Parameter("spacing", 0.02, "m", "distance between the two benders", exclusive_minimum=0.0),
     Parameter("voltage", 500.0, "V", "largest voltage magnitude U_max (one segment +U, the other -U)"),
     Parameter("n_steps", 24, "-", "static steps of the cycle 0 -> +U -> -U -> 0 (multiple of 4)"),
     Parameter("animation", True, "-", "also write a GIF of the moving stage"),
-    Parameter("animation_scale", 5.0, "-", "displacement magnification of the drawings"),
+    Parameter("animation_scale", 5.0, "-", "displacement magnification of the drawings", exclusive_minimum=0.0),
 ]
 
 CFC = Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)

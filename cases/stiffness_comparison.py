@@ -34,32 +34,28 @@ from exudyn_atcm.cells import CELL_KINDS
 from exudyn_atcm.plots import Curve, plot_loops
 
 PARAMETERS = [
-    Parameter("n_cells", 3, "-", "number of cells"),
+    Parameter("n_cells", 3, "-", "number of cells", minimum=1),
     Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
               "not ritz, which refuses the tip force of the compliance run)", choices=tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)),
-    Parameter("cell_length", 29e-3, "m", "length of one cell L_j"),
-    Parameter("width", 28e-3, "m", "width b of both layers"),
-    Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness"),
-    Parameter("E1", 70e9, "Pa", "passive layer Young's modulus"),
-    Parameter("rho1", 1550.0, "kg/m^3", "passive layer density"),
-    Parameter("h2", 0.3e-3, "m", "active (MFC) layer thickness"),
-    Parameter("E2", 30.336e9, "Pa", "active layer Young's modulus"),
-    Parameter("rho2", 5440.0, "kg/m^3", "active layer density"),
+    Parameter("cell_length", 29e-3, "m", "length of one cell L_j", exclusive_minimum=0.0),
+    Parameter("width", 28e-3, "m", "width b of both layers", exclusive_minimum=0.0),
+    Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness", exclusive_minimum=0.0),
+    Parameter("E1", 70e9, "Pa", "passive layer Young's modulus", exclusive_minimum=0.0),
+    Parameter("rho1", 1550.0, "kg/m^3", "passive layer density", exclusive_minimum=0.0),
+    Parameter("h2", 0.3e-3, "m", "active (MFC) layer thickness", exclusive_minimum=0.0),
+    Parameter("E2", 30.336e9, "Pa", "active layer Young's modulus", exclusive_minimum=0.0),
+    Parameter("rho2", 5440.0, "kg/m^3", "active layer density", exclusive_minimum=0.0),
     Parameter("voltage", 1500.0, "V", "highest voltage of the ramp"),
-    Parameter("n_voltages", 6, "-", "voltages in the ramp 0 ... voltage"),
+    Parameter("n_voltages", 6, "-", "voltages in the ramp 0 ... voltage", minimum=2),
     Parameter("tip_force", 0.01, "N", "small tip force (perpendicular to the axis) for the compliance"),
     Parameter("elastica_alpha", 2.0, "-", "load parameter F L^2/EI of the large-deflection run (composite)"),
-    Parameter("elastica_cells", 24, "-", "rigid cells of the large-deflection run (a coarse chain is far from the elastica)"),
+    Parameter("elastica_cells", 24, "-", "rigid cells of the large-deflection run (a coarse chain is far from the elastica)", minimum=1),
 ]
 
 MODELS = ("composite", "paper")
 
 
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
-    if p.n_voltages < 2:
-        raise ValueError(f"n_voltages must be >= 2, got {p.n_voltages}")
-    if p.elastica_cells < 1:  # checked before the runs, not after them
-        raise ValueError(f"elastica_cells must be >= 1, got {p.elastica_cells}")
     # the voltage the user gave, against the MFC's rating (and the kV check): once per run, quoted as given;
     # the solves of the ramp's voltages below are not checked again (each would warn about its own voltage)
     PiezoDrive(p.voltage).check_voltage_range(min(0.0, p.voltage), max(0.0, p.voltage),

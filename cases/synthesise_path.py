@@ -95,8 +95,8 @@ PARAMETERS = [
     Parameter("rocker_pivot_height", 0.02, "m", "evaluate: height of the rocker's ground pivot D* (design variable)"),
     Parameter("coupler_point_x", 0.025, "m", "evaluate: coupler point from B along B -> C (design variable)"),
     Parameter("coupler_point_y", 0.02, "m", "evaluate: coupler point from B normal to B -> C (design variable)"),
-    Parameter("coupler_length", 0.05, "m", "distance B* - C* (fixed)"),
-    Parameter("n_cells", 3, "-", "rigid cells of the crank bender"),
+    Parameter("coupler_length", 0.05, "m", "distance B* - C* (fixed)", exclusive_minimum=0.0),
+    Parameter("n_cells", 3, "-", "rigid cells of the crank bender", minimum=1),
     Parameter("n_steps", 4, "-", "static steps per voltage cycle (the precision voltages are added)"),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
     Parameter("precision_voltages", (-500.0, 0.0, 500.0, 1000.0, 1500.0), "V",
@@ -110,13 +110,13 @@ PARAMETERS = [
     Parameter("reference_cells", 0, "-", "crank cells of the reference design's simulation; 0: n_cells"),
     Parameter("method", "differential_evolution", "-", "synthesise: optimiser (Nelder-Mead starts at the middle of the bounds)",
               choices=("differential_evolution", "nelder-mead")),
-    Parameter("maxiter", 15, "-", "synthesise: generations of differential evolution (Nelder-Mead: at most 60 x as many iterations)"),
-    Parameter("popsize", 6, "-", "synthesise: population size per design variable"),
-    Parameter("xatol", 1e-5, "-", "synthesise: Nelder-Mead tolerance, fraction of each range"),
-    Parameter("fatol", 1e-6, "-", "synthesise: Nelder-Mead tolerance on the RMS distance, fraction of its value on the initial simplex"),
-    Parameter("workers", 2, "-", "synthesise: worker processes evaluating the population"),
+    Parameter("maxiter", 15, "-", "synthesise: generations of differential evolution (Nelder-Mead: at most 60 x as many iterations)", minimum=1),
+    Parameter("popsize", 6, "-", "synthesise: population size per design variable", minimum=1),
+    Parameter("xatol", 1e-5, "-", "synthesise: Nelder-Mead tolerance, fraction of each range", exclusive_minimum=0.0, exclusive_maximum=1.0),
+    Parameter("fatol", 1e-6, "-", "synthesise: Nelder-Mead tolerance on the RMS distance, fraction of its value on the initial simplex", minimum=0.0, exclusive_maximum=1.0),
+    Parameter("workers", 2, "-", "synthesise: worker processes evaluating the population", minimum=1),
     Parameter("compare", True, "-", "synthesise: also the linear-drive design and the both-branch design"),
-    Parameter("path_steps", 40, "-", "synthesise: static steps per cycle of the plotted paths and the GIF"),
+    Parameter("path_steps", 40, "-", "synthesise: static steps per cycle of the plotted paths and the GIF", minimum=2),
     Parameter("animation", True, "-", "synthesise: write a GIF of the synthesised mechanism"),
 ]
 
@@ -310,13 +310,6 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
                 raise ValueError(f"{what} must be finite [m], got {value!r}")
     if p.mode == "evaluate":
         return evaluate(p)
-    for name, low in (("maxiter", 1), ("popsize", 1), ("workers", 1), ("path_steps", 2)):
-        if p[name] < low:
-            raise ValueError(f"{name} must be >= {low}, got {p[name]!r}")
-    if not 0.0 < p.xatol < 1.0:
-        raise ValueError(f"xatol must be in (0, 1) (a fraction of each range), got {p.xatol!r}")
-    if not 0.0 <= p.fatol < 1.0:
-        raise ValueError(f"fatol must be in [0, 1) (a fraction of the RMS distance on the initial simplex), got {p.fatol!r}")
     return synthesise(p, ctx)
 
 

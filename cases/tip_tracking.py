@@ -40,18 +40,18 @@ CELL_LENGTH = 29e-3  # m, the cell of the record's stroke
 VOLTAGE_LIMITS = (-500.0, 1500.0)  # V, the MFC's range in the paper
 
 PARAMETERS = [
-    Parameter("duration", 4.0, "s", "simulated time"),
+    Parameter("duration", 4.0, "s", "simulated time", exclusive_minimum=0.0),
     Parameter("tip_mean", 7e-3, "m", "mean wanted tip deflection"),
     Parameter("tip_amplitudes", (4.5e-3, 2e-3), "m", "amplitudes of the two tones"),
-    Parameter("frequencies", (0.25, 0.75), "Hz", "frequencies of the two tones"),
-    Parameter("settle", 0.5, "s", "start-up left out of the error figures"),
+    Parameter("frequencies", (0.25, 0.75), "Hz", "frequencies of the two tones", exclusive_minimum=0.0),
+    Parameter("settle", 0.5, "s", "start-up left out of the error figures", minimum=0.0),
     Parameter("kp", 2e4, "V/m", "proportional gain"),
     Parameter("ki", 1e7, "V/(m s)", "integral gain"),
     Parameter("kd", 800.0, "V s/m", "derivative gain"),
-    Parameter("sample_time", 1e-3, "s", "controller sample time"),
-    Parameter("n_levels", 40, "-", "grid levels of the identified Preisach model"),
+    Parameter("sample_time", 1e-3, "s", "controller sample time", exclusive_minimum=0.0),
+    Parameter("n_levels", 40, "-", "grid levels of the identified Preisach model", minimum=1),
     Parameter("cell", "rigid", "-", "cell model", choices=("rigid", "six-bar")),
-    Parameter("step", 2e-4, "s", "time step"),
+    Parameter("step", 2e-4, "s", "time step", exclusive_minimum=0.0),
 ]
 
 METHODS = ("linear", "feedforward", "pid", "pid_feedforward")

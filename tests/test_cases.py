@@ -249,6 +249,57 @@ def test_parameter_types():
         Parameter("x", None)
 
 
+@pytest.mark.parametrize(
+    "bounds, good, bad, message",
+    [
+        ({"exclusive_minimum": 0.0}, [1e-9, 5.0], [0.0, -1.0], r"x must be > 0 \[m\], got"),
+        ({"minimum": 0.0}, [0.0, 2.0], [-1e-12], r"x must be >= 0 \[m\], got -1e-12"),
+        ({"exclusive_minimum": 0.0, "maximum": 1.0}, [1.0, 0.5], [0.0, 1.0000001], r"x must be > 0 and <= 1 \[m\]"),
+        ({"minimum": 0.0, "exclusive_maximum": 1.0}, [0.0, 0.999], [1.0], r"x must be >= 0 and < 1 \[m\], got 1.0"),
+    ],
+)
+def test_declared_bounds_refuse_values_outside_them(bounds, good, bad, message):
+    p = Parameter("x", 0.5, "m", **bounds)
+    for value in good:
+        assert p.check(value) == value and p.parse(repr(value)) == value
+    for value in bad:
+        with pytest.raises(ValueError, match=message):
+            p.check(value)
+        with pytest.raises(ValueError, match=message):
+            p.parse(repr(value))
+
+
+def test_bounds_of_ints_and_lists_and_their_declaration():
+    n = Parameter("n", 3, "-", minimum=1)
+    assert n.parse("1") == 1
+    with pytest.raises(ValueError, match=r"^n must be >= 1, got 0$"):  # no unit for "-"
+        n.parse("0")
+    f = Parameter("f", (0.25, 0.75), "Hz", exclusive_minimum=0.0)
+    assert f.parse("1, 2") == (1.0, 2.0)
+    with pytest.raises(ValueError, match=r"f must be > 0 \[Hz\] \(every item\), got \(0.25, -1.0\)"):
+        f.parse("0.25, -1")
+    assert "step = 0.0001 [s] (float, > 0): time step" == Parameter("step", 1e-4, "s", "time step",
+                                                                    exclusive_minimum=0.0).describe()
+    with pytest.raises(ValueError, match="default of 'x' must be > 0, got -1.0"):
+        Parameter("x", -1.0, "m", exclusive_minimum=0.0)
+    with pytest.raises(ValueError, match="bounds need a number parameter"):
+        Parameter("cell", "rigid", minimum=0.0)
+    with pytest.raises(ValueError, match="minimum of 'x' must be a number, got '0'"):
+        Parameter("x", 1.0, minimum="0")
+
+
+def test_a_case_refuses_a_value_outside_its_declared_range_before_it_runs():
+    # the four-bar's step is used only after its static sweep: the bound refuses it when it is read
+    case = load_case(CASES / "compliant_four_bar.py")
+    with pytest.raises(CaseError, match=r"case compliant_four_bar: step must be > 0 \[s\], got -1.0; valid parameters"):
+        case.resolve(["step=-1"])
+    with pytest.raises(CaseError, match=r"dynamic_period must be >= 0 \[s\], got -0.5"):  # 0: none; < 0 was a silent none
+        case.resolve({"dynamic_period": -0.5})
+    identify = load_case(CASES / "identify_and_predict.py")
+    with pytest.raises(CaseError, match=r"trim_start must be >= 0 \[s\], got -1.0"):  # was ignored when negative
+        identify.resolve(["trim_start=-1"])
+
+
 def test_python_values_are_checked_too():
     case = load_case(CASES / "paper_stroke_table.py")
     assert case.resolve({"period": 2}).period == 2.0

@@ -91,6 +91,8 @@ def test_lbfgsb_with_finite_differences_and_a_callable_objective():
         ({"bounds": {"xx": (0, 1)}}, GridError, "did you mean 'x'?"),
         ({"bounds": {"x": (1, 1)}}, GridError, "low < high"),
         ({"bounds": {"mode": (0, 1)}}, GridError, "must be float or int"),
+        ({"bounds": {"delay": (-1.0, 1.0)}}, GridError,
+         "bounds: delay must be >= 0 [s], got -1.0 (the case's declared range)"),
         ({"bounds": {"n": (1, 3)}, "method": "nelder-mead"}, ValueError, "need method='differential_evolution'"),
         ({"bounds": {"x": (0, 1)}, "method": "newton"}, ValueError, "method must be one of"),
         ({"bounds": {"x": (0, 1)}, "fatol": -1.0}, ValueError, "fatol must be a number in [0, inf)"),

@@ -238,6 +238,8 @@ def test_samples_crossed_with_a_grid(synthetic):
         ({"samples": 0, "bounds": {"x": (0, 1)}}, "n must be an integer >= 1, got 0"),
         ({"samples": 2, "bounds": {"x": (1, 0)}}, "low <= high"),
         ({"samples": 2, "bounds": {"mode": (1, 0)}}, "'mode' is a str parameter"),
+        ({"grid": {"delay": [0.0, -1.0]}}, "delay must be >= 0 [s], got -1.0"),
+        ({"samples": 2, "bounds": {"delay": (-1.0, 1.0)}}, "samples: delay must be >= 0 [s], got -1.0 (the case's declared range)"),
         ({}, "nothing to vary"),
     ],
 )
@@ -260,6 +262,7 @@ def test_bad_study_specifications_are_one_line_errors(synthetic, kwargs, message
         ("n=1:2:3", "error: --grid n: n is an integer parameter but '1:2:3' gives non-integer values [1.0, 1.5, 2.0]"),
         ("x=1:2", "error: --grid x: a float range needs the number of values, START:STOP:N, got '1:2'"),
         ("x", "error: --grid expects NAME=START:STOP:N or NAME=A,B,C, got 'x'"),
+        ("delay=-1:1:3", "error: case synthetic_study: delay must be >= 0 [s], got -1.0"),
     ],
 )
 def test_bad_grid_specs_on_the_command_line(spec, message, tmp_path, capsys):

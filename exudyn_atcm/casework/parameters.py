@@ -1,5 +1,5 @@
-"""Declared parameters of a case: :class:`Parameter` (name, default, unit, help, choices) and the
-typed values of one run, :class:`Parameters`; :class:`CaseError` for a case that cannot be found,
+"""Declared parameters of a case: :class:`Parameter` (name, default, unit, help, choices, bounds)
+and the typed values of one run, :class:`Parameters`; :class:`CaseError` for a case that cannot be found,
 loaded or configured.
 """
 
@@ -15,6 +15,8 @@ from ..suggestions import close_names
 __all__ = ["Parameter", "Parameters", "CaseError", "closest", "json_value"]
 
 _TYPES = ("float", "int", "bool", "str", "floats")
+#: bound fields of a :class:`Parameter` and their comparison
+_BOUNDS = {"minimum": ">=", "exclusive_minimum": ">", "maximum": "<=", "exclusive_maximum": "<"}
 _TRUE = {"true", "yes", "on", "1"}
 _FALSE = {"false", "no", "off", "0"}
 
@@ -70,6 +72,12 @@ class Parameter:
         One-line description.
     choices : tuple, optional
         Allowed values (for ``str`` parameters, typically).
+    minimum, exclusive_minimum, maximum, exclusive_maximum : float, optional
+        Bounds of a number (``float``, ``int``; for a list of floats, of every item), in the
+        parameter's unit, as in JSON Schema: ``value >= minimum``, ``value > exclusive_minimum``,
+        ``value <= maximum``, ``value < exclusive_maximum``.  A value outside is refused when
+        the command line or a sweep's grid is read, before anything runs; ``exudyn-atcm list``
+        shows them.  Example: ``Parameter("step", 1e-4, "s", "time step", exclusive_minimum=0.0)``.
     """
 
     name: str
@@ -77,6 +85,10 @@ class Parameter:
     unit: str = "-"
     help: str = ""
     choices: tuple | None = None
+    minimum: float | None = None
+    exclusive_minimum: float | None = None
+    maximum: float | None = None
+    exclusive_maximum: float | None = None
     kind: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
@@ -89,12 +101,23 @@ class Parameter:
             object.__setattr__(self, "choices", tuple(self.choices))
             if self.default not in self.choices:
                 raise ValueError(f"default of {self.name!r} must be one of {self.choices}, got {self.default!r}")
+        bounds = {key: getattr(self, key) for key in _BOUNDS}
+        given = {key: value for key, value in bounds.items() if value is not None}
+        if given and self.kind not in ("float", "int", "floats"):
+            raise ValueError(f"{', '.join(given)} of {self.name!r}: bounds need a number parameter (float, int or "
+                             f"a list of floats), it is a {self.kind} parameter")
+        for key, value in given.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value):
+                raise ValueError(f"{key} of {self.name!r} must be a number, got {value!r}")
+        if given and not self._in_bounds(self.default):
+            raise ValueError(f"default of {self.name!r} must be {self._bounds_text()}, got {self.default!r}")
 
     def describe(self) -> str:
         """``name = default [unit] (type): help``."""
         default = ",".join(repr(v) for v in self.default) if self.kind == "floats" else repr(self.default)
         choices = f", one of {'/'.join(map(str, self.choices))}" if self.choices else ""
-        return f"{self.name} = {default} [{self.unit}] ({self.kind}{choices}): {self.help}"
+        bounds = f", {self._bounds_text()}" if self._bounds_text() else ""
+        return f"{self.name} = {default} [{self.unit}] ({self.kind}{choices}{bounds}): {self.help}"
 
     def parse(self, text: str) -> Any:
         """Convert the text of ``--set NAME=TEXT`` to the parameter's type.
@@ -147,7 +170,27 @@ class Parameter:
             raise ValueError(f"{self.name} must be {self._kind_text()}, got {value!r}")
         if self.choices is not None and value not in self.choices:
             raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.choices))}, got {value!r}")
+        self.check_range(value)
         return value
+
+    def check_range(self, value: Any) -> None:
+        """Raise ``ValueError`` if the number ``value`` (a tuple: any of its items) is outside the declared bounds."""
+        if not self._in_bounds(value):
+            unit = "" if self.unit == "-" else f" [{self.unit}]"
+            items = " (every item)" if isinstance(value, tuple) else ""
+            raise ValueError(f"{self.name} must be {self._bounds_text()}{unit}{items}, got {value!r}")
+
+    def _in_bounds(self, value: Any) -> bool:
+        values = value if isinstance(value, tuple) else (value,)
+        return all((self.minimum is None or v >= self.minimum)
+                   and (self.exclusive_minimum is None or v > self.exclusive_minimum)
+                   and (self.maximum is None or v <= self.maximum)
+                   and (self.exclusive_maximum is None or v < self.exclusive_maximum) for v in values)
+
+    def _bounds_text(self) -> str:
+        """``"> 0"``, ``">= 1 and <= 10"``; empty without bounds."""
+        parts = [f"{sign} {getattr(self, key):g}" for key, sign in _BOUNDS.items() if getattr(self, key) is not None]
+        return " and ".join(parts)
 
     def _empty_allowed(self) -> bool:
         return self.kind == "floats" and len(self.default) == 0

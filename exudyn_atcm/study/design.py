@@ -163,6 +163,11 @@ def sample_points(
             raise GridError(f"samples: bounds of {parameter.name!r} must be (low, high), got {bounds[parameter.name]!r}") from None
         if not (math.isfinite(low) and math.isfinite(high)) or low > high:
             raise GridError(f"samples: bounds of {parameter.name!r} must be finite with low <= high, got ({low!r}, {high!r}) (empty range)")
+        try:  # every sample lies in [low, high]: both ends must be values the case accepts
+            parameter.check_range(low)
+            parameter.check_range(high)
+        except ValueError as exc:
+            raise GridError(f"samples: {exc} (the case's declared range)") from None
         if parameter.kind == "int":
             if not (low.is_integer() and high.is_integer()):
                 raise GridError(f"samples: bounds of the int parameter {parameter.name!r} must be integers, got ({low!r}, {high!r})")

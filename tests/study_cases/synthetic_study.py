@@ -24,7 +24,7 @@ PARAMETERS = [
     Parameter("a", 1.0, "1/m", "coefficient of x^2"),
     Parameter("mode", "plain", "-", "a string parameter", choices=("plain", "other")),
     Parameter("fail_below", -1e30, "m", "runs with x below this raise ValueError"),
-    Parameter("delay", 0.0, "s", "sleep this long in each run"),
+    Parameter("delay", 0.0, "s", "sleep this long in each run", minimum=0.0),
     Parameter("crash_at", -1e30, "m", "a run with x equal to this ends its process at once (a crashing solver)"),
     Parameter("log_dir", "", "-", "directory receiving one file per executed run ('' = none)"),
 ]
