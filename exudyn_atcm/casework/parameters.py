@@ -76,8 +76,8 @@ class Parameter:
         Bounds of a number (``float``, ``int``; for a list of floats, of every item), in the
         parameter's unit, as in JSON Schema: ``value >= minimum``, ``value > exclusive_minimum``,
         ``value <= maximum``, ``value < exclusive_maximum``.  A value outside is refused when
-        the command line or a sweep's grid is read, before anything runs; ``exudyn-atcm list``
-        shows them.  Example: ``Parameter("step", 1e-4, "s", "time step", exclusive_minimum=0.0)``.
+        ``--set``, a sweep's grid or samples, or an optimisation's bounds are read, before
+        anything runs; ``exudyn-atcm list`` shows them.  Example: ``Parameter("step", 1e-4, "s", "time step", exclusive_minimum=0.0)``.
     """
 
     name: str
@@ -173,12 +173,14 @@ class Parameter:
         self.check_range(value)
         return value
 
-    def check_range(self, value: Any) -> None:
-        """Raise ``ValueError`` if the number ``value`` (a tuple: any of its items) is outside the declared bounds."""
-        if not self._in_bounds(value):
-            unit = "" if self.unit == "-" else f" [{self.unit}]"
-            items = " (every item)" if isinstance(value, tuple) else ""
-            raise ValueError(f"{self.name} must be {self._bounds_text()}{unit}{items}, got {value!r}")
+    def check_range(self, *values: Any) -> None:
+        """Raise ``ValueError`` for the first of ``values`` (numbers; a tuple: any of its items) outside the
+        declared bounds; a range ``(low, high)`` of a sweep or an optimisation passes both ends."""
+        for value in values:
+            if not self._in_bounds(value):
+                unit = "" if self.unit == "-" else f" [{self.unit}]"
+                items = " (every item)" if isinstance(value, tuple) else ""
+                raise ValueError(f"{self.name} must be {self._bounds_text()}{unit}{items}, got {value!r}")
 
     def _in_bounds(self, value: Any) -> bool:
         values = value if isinstance(value, tuple) else (value,)

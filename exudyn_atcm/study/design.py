@@ -164,8 +164,7 @@ def sample_points(
         if not (math.isfinite(low) and math.isfinite(high)) or low > high:
             raise GridError(f"samples: bounds of {parameter.name!r} must be finite with low <= high, got ({low!r}, {high!r}) (empty range)")
         try:  # every sample lies in [low, high]: both ends must be values the case accepts
-            parameter.check_range(low)
-            parameter.check_range(high)
+            parameter.check_range(low, high)
         except ValueError as exc:
             raise GridError(f"samples: {exc} (the case's declared range)") from None
         if parameter.kind == "int":

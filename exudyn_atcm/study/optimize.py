@@ -204,8 +204,7 @@ def optimize(
         if not (math.isfinite(low) and math.isfinite(high) and low < high):
             raise GridError(f"bounds: {name!r} must be finite with low < high, got ({low!r}, {high!r})")
         try:  # the optimiser may try either end: both must be values the case accepts
-            parameter.check_range(low)
-            parameter.check_range(high)
+            parameter.check_range(low, high)
         except ValueError as exc:
             raise GridError(f"bounds: {exc} (the case's declared range)") from None
         names.append(name)
