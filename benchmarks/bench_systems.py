@@ -15,7 +15,6 @@ import numpy as np
 
 from exudyn_atcm import simulate
 from exudyn_atcm.casework import find_case
-from exudyn_atcm.mechanism import Bender
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import Triangle
 
@@ -42,19 +41,10 @@ def four_bar(n_cells: int, cell: str):
     return module.build_mechanism(p, paper_strain_preisach(), Triangle(500.0, 1000.0, PERIOD))
 
 
-def with_cell(mech, cell: str):
-    """``mech`` with every bender rebuilt with ``cell`` (same name, laminate, segments, pose, drives)."""
-    for b in list(mech.benders):
-        mech.components[b.name] = Bender(b.name, width=b.width, passive=b.passive, active=b.active,
-                                         segments=b.segments, base=b.base_position, angle=b.angle, cell=cell,
-                                         stiffness=b.stiffness, active_side=b.active_side, damping=b.damping)
-    return mech
-
-
 def gripper(n_cells: int, cell: str):
     module = case_module("micro_gripper")
-    p = module.CASE.resolve({"n_cells": n_cells})
-    return with_cell(module.build_mechanism(p, p.object_stiffness, Triangle(500.0, 1000.0, PERIOD)), cell)
+    p = module.CASE.resolve({"n_cells": n_cells, "cell": cell})
+    return module.build_mechanism(p, p.object_stiffness, Triangle(500.0, 1000.0, PERIOD))
 
 
 MECHANISMS = {"four_bar": four_bar, "gripper": gripper}

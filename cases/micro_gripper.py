@@ -49,7 +49,9 @@ from exudyn_atcm.model import paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
-    Parameter("n_cells", 24, "-", "rigid cells per bender", minimum=1),
+    Parameter("n_cells", 24, "-", "cells per bender (rod: its modes; 4 are plenty)", minimum=1),
+    Parameter("cell", "rigid", "-", "cell model of the benders; the *_chain_* scalars describe the rigid-cell chain",
+              choices=("rigid", "six-bar", "beam", "rod")),
     Parameter("length", 0.04, "m", "bender length L", exclusive_minimum=0.0),
     Parameter("width", 10e-3, "m", "bender width b", exclusive_minimum=0.0),
     Parameter("half_spacing", 5e-3, "m", "distance of each bender's axis from the symmetry axis", exclusive_minimum=0.0),
@@ -77,7 +79,7 @@ def build_mechanism(p: Parameters, object_stiffness: float | None, voltage=0.0) 
     for name, side, sign in (("upper", "left", 1.0), ("lower", "right", -1.0)):
         drive = PiezoDrive(voltage, hysteresis=paper_strain_preisach(rounded=p.exponents == "rounded"))
         bender = Bender(name, width=p.width, passive=CFC, active=MFC, length=L, n_cells=p.n_cells,
-                        drive=drive, base=(0.0, sign * d), active_side=side)
+                        drive=drive, base=(0.0, sign * d), active_side=side, cell=p.cell)
         jaw = Link(f"{name}_jaw", {"root": (L, sign * d), "jaw": (L + a, sign * (d - c))},
                    mass=2e-4, inertia=2e-4 * (a * a + c * c) / 12.0)
         mech.add(bender, jaw).ground(bender.base).weld(bender.tip, jaw.point("root"))
