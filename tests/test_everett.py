@@ -73,8 +73,9 @@ def test_everett_fit_recovers_a_spread_density_exactly():
     truth = EverettPreisach(EDGES, ALPHA, BETA, WEIGHTS)
     u = np.concatenate([np.linspace(x0, x1, 80, endpoint=False) for x0, x1 in zip(HISTORY[:-1], HISTORY[1:])])
     y = truth.apply(u)
-    everett, rep_e = EverettPreisach.fit(u, y, N, input_range=(-1.0, 1.0), smoothing=0.0)
-    _, rep_d = DiscretePreisach.fit(u, y, N, input_range=(-1.0, 1.0), smoothing=0.0)
+    # no regularisation at all (prior="smooth" with smoothing 0): the plain least squares
+    everett, rep_e = EverettPreisach.fit(u, y, N, input_range=(-1.0, 1.0), smoothing=0.0, prior="smooth")
+    _, rep_d = DiscretePreisach.fit(u, y, N, input_range=(-1.0, 1.0), smoothing=0.0, prior="smooth")
     # the cell basis is the truth's own: the output is reproduced to round-off (NNLS tolerance)
     assert rep_e.model_errors["fit"]["max"] < 1e-8 * np.ptp(y)
     # the relay grid cannot: its staircase error stays

@@ -48,15 +48,15 @@ def non_pi_results():
     u, y, n_fit = record(truth, MAJOR, 2)
     out = {}
     _, out["everett_pi"] = EverettPreisach.fit(u, y, 30, n_fit=n_fit, prior="pi")
-    _, out["everett_smooth"] = EverettPreisach.fit(u, y, 30, n_fit=n_fit)
+    _, out["everett_smooth"] = EverettPreisach.fit(u, y, 30, n_fit=n_fit, prior="smooth")
     _, out["discrete_pi"] = DiscretePreisach.fit(u, y, 30, n_fit=n_fit, prior="pi")
-    _, out["discrete_smooth"] = DiscretePreisach.fit(u, y, 30, n_fit=n_fit)
+    _, out["discrete_smooth"] = DiscretePreisach.fit(u, y, 30, n_fit=n_fit, prior="smooth")
     _, out["discrete_pi_8"] = DiscretePreisach.fit(u, y, 30, n_fit=n_fit, prior="pi", relays_per_cell=8)
     _, out["pi"] = PrandtlIshlinskii.fit(u, y, 20, n_fit=n_fit)
     errors = {k: held_out_percent(r, y, n_fit) for k, r in out.items()}
     # the upper bound: the same Everett fit on first-order reversal curves, which cover the triangle
     uf, yf, nf = record(truth, forc_input(), 3)
-    _, forc = EverettPreisach.fit(uf, yf, 30, n_fit=nf)
+    _, forc = EverettPreisach.fit(uf, yf, 30, n_fit=nf, prior="smooth")
     errors["everett_forc"] = held_out_percent(forc, yf, nf)
     return errors, out
 
@@ -80,7 +80,7 @@ def test_pi_prior_is_within_1_2x_of_the_pi_fit_on_a_pi_truth():
     """On a record of a PI operator (the PI fit's own family) trained on major loops only."""
     u, y, n_fit = record(pi_truth(), MAJOR, 4)
     _, everett = EverettPreisach.fit(u, y, 30, n_fit=n_fit, prior="pi")
-    _, smooth = EverettPreisach.fit(u, y, 30, n_fit=n_fit)
+    _, smooth = EverettPreisach.fit(u, y, 30, n_fit=n_fit, prior="smooth")
     _, pi = PrandtlIshlinskii.fit(u, y, 20, n_fit=n_fit)
     _, relays = DiscretePreisach.fit(u, y, 30, n_fit=n_fit, prior="pi", relays_per_cell=8)
     e_pi, e_ev, e_sm, e_re = (held_out_percent(r, y, n_fit) for r in (pi, everett, smooth, relays))

@@ -42,6 +42,9 @@ def test_offset_only_shifts_input_and_output():
     np.testing.assert_allclose(shifted.apply(u - 0.5), plain.apply(u) + 2.0, rtol=0, atol=1e-15)
 
 
+# the random stroke history below takes the fitted model far beyond the inputs it was fitted on
+# (-4100 V): an algebraic identity of the operator, not a use of the fitted model
+@pytest.mark.filterwarnings("ignore::exudyn_atcm.errors.InputRangeWarning")
 def test_fitted_model_inverts_with_its_offset():
     u, y = _paper_record()
     model, _ = PrandtlIshlinskii.fit(u, y, 10)

@@ -5,11 +5,61 @@ from __future__ import annotations
 import abc
 import math
 import numbers
+import warnings
 from typing import Any
 
 import numpy as np
 
 from .._checks import finite_array
+from ..errors import InputRangeWarning
+
+#: Output units read as a length (a displacement or stroke), in SI and the usual sub-units.
+LENGTH_UNITS = frozenset({"m", "mm", "um", "µm", "μm", "nm", "cm", "micron", "microns"})
+
+
+def quantity_from_unit(unit: str, quantity: str | None = None) -> str | None:
+    """The output quantity a fit records: ``quantity`` if given, else read from ``unit``.
+
+    A length unit (``"m"``, ``"mm"``, ``"um"``, ...) gives ``"displacement"``; any other unit,
+    ``"-"`` or ``""`` gives ``None`` (not stated: a dimensionless output may be a strain or a
+    normalised output).  A stated ``quantity`` must be a non-empty string, and ``"strain"`` (a
+    dimensionless quantity) is refused with a length unit.
+
+    Raises
+    ------
+    ValueError
+        For a ``quantity`` that is not ``None`` or a non-empty string, or a strain in a length unit.
+    """
+    if not isinstance(unit, str):
+        raise ValueError(f"output_unit must be a string such as 'm', '-' or '', got {unit!r}")
+    length = unit.strip() in LENGTH_UNITS
+    if quantity is None:
+        return "displacement" if length else None
+    if not isinstance(quantity, str) or not quantity.strip():
+        raise ValueError(f"output_quantity must be None or a non-empty string such as 'strain' or 'displacement', "
+                         f"got {quantity!r}")
+    if quantity == "strain" and length:
+        raise ValueError(f"output_quantity 'strain' is dimensionless, but output_unit is the length {unit!r}: a "
+                         "displacement measured over a length is a strain only after dividing by that length")
+    return quantity
+
+
+def json_safe(value: Any) -> Any:
+    """``value`` with numpy scalars and arrays as Python numbers and lists (for :attr:`fit_info`)."""
+    if isinstance(value, dict):
+        return {str(k): json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return json_safe(value.tolist())
+    if isinstance(value, (np.bool_, bool)):
+        return bool(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, (np.floating, float)):
+        v = float(value)
+        return v if math.isfinite(v) else None
+    return value
 
 
 def check_input(u: Any) -> float:
@@ -35,11 +85,63 @@ class HysteresisOperator(abc.ABC):
     #: The parameter sets state it; :class:`~exudyn_atcm.model.drive.PiezoDrive` accepts ``"strain"``
     #: or ``None`` only.  Set it with :meth:`with_output_quantity`.
     output_quantity: str | None = None
+    #: Unit of the output: ``"-"`` (strain), ``"m"`` (displacement), ``""`` (not stated).  Set by the fits.
+    output_unit: str = ""
+    #: ``(u_low, u_high)``: the input range of the samples a fitted model was fitted to (``None``
+    #: for a model that was not fitted).  Beyond it a fitted model extrapolates.
+    fitted_range: tuple[float, float] | None = None
+    #: What the fit did (JSON-serialisable: method, settings, sample counts, fitted range,
+    #: output unit and quantity); ``None`` for a model that was not fitted.
+    fit_info: dict | None = None
+
+    @property
+    def saturation_range(self) -> tuple[float, float] | None:
+        """``(u_low, u_high)``: beyond it the output saturates; ``None`` if the operator has no such range."""
+        return None
 
     @property
     def input_range(self) -> tuple[float, float] | None:
-        """``(u_low, u_high)``: beyond it the output saturates; ``None`` if the operator has no such range."""
-        return None
+        """Where the model is valid: :attr:`fitted_range` for a fitted model, else :attr:`saturation_range`.
+
+        A fitted model extrapolates beyond its fitted range (:meth:`apply` warns); a model
+        that was not fitted saturates beyond its own range (or has none: ``None``).
+        """
+        return self.fitted_range if self.fitted_range is not None else self.saturation_range
+
+    def set_fit_metadata(self, fitted_range: tuple[float, float], fit_info: dict, output_unit: str = "",
+                         output_quantity: str | None = None) -> "HysteresisOperator":
+        """Record what a fit found (every fit calls it): the fitted input range, the output unit and
+        quantity (:func:`quantity_from_unit`) and ``fit_info``; returns the operator."""
+        low, high = (float(v) for v in fitted_range)
+        if not (math.isfinite(low) and math.isfinite(high) and high >= low):
+            raise ValueError(f"fitted_range must be finite with high >= low, got {fitted_range!r}")
+        quantity = quantity_from_unit(output_unit, output_quantity)
+        self.fitted_range = (low, high)
+        self.output_unit = output_unit
+        self.output_quantity = quantity
+        self.fit_info = json_safe({**fit_info, "fitted_range": [low, high], "output_unit": output_unit,
+                                   "output_quantity": quantity})
+        return self
+
+    def check_fitted_range(self, low: float, high: float, *, stacklevel: int = 3) -> None:
+        """Warn (:class:`~exudyn_atcm.errors.InputRangeWarning`) if inputs in ``[low, high]`` leave
+        the :attr:`fitted_range` of a fitted model (nothing for a model that was not fitted)."""
+        fitted = self.fitted_range
+        if fitted is None:
+            return
+        f_lo, f_hi = fitted
+        slack = 1e-9 * max(f_hi - f_lo, abs(f_lo), abs(f_hi), 1e-300)
+        beyond = []
+        if high > f_hi + slack:
+            beyond.append(f"up to {high:g}, {high - f_hi:g} above")
+        if low < f_lo - slack:
+            beyond.append(f"down to {low:g}, {f_lo - low:g} below")
+        if beyond:
+            warnings.warn(
+                f"{type(self).__name__} was fitted on inputs {f_lo:g} ... {f_hi:g}; the inputs go "
+                + " and ".join(beyond) + ": there the model extrapolates beyond the data it was fitted to "
+                "(measure the wider range and fit again, or keep the input within the fitted range)",
+                InputRangeWarning, stacklevel=stacklevel)
 
     def with_output_quantity(self, quantity: str | None) -> "HysteresisOperator":
         """Set :attr:`output_quantity` (e.g. ``"strain"`` or ``"stroke"``) and return the operator."""
@@ -77,6 +179,10 @@ class HysteresisOperator(abc.ABC):
         """Outputs for a whole input series, starting from the reset state.
 
         The operator's own memory is left as it was: the series is run from a reset copy.
+        A fitted model warns once (:class:`~exudyn_atcm.errors.InputRangeWarning`, with the
+        range and the farthest input) when the series leaves its :attr:`fitted_range`; a
+        model's own saturation is part of its definition and is not warned about here
+        (:class:`~exudyn_atcm.model.drive.PiezoDrive` says it for a simulation).
 
         Parameters
         ----------
@@ -89,6 +195,8 @@ class HysteresisOperator(abc.ABC):
             One output per input.
         """
         inputs = finite_array("u_series", u_series, min_length=0)
+        if inputs.size and self.fitted_range is not None:
+            self.check_fitted_range(float(inputs.min()), float(inputs.max()))
         saved = self.checkpoint()
         try:
             self.reset()

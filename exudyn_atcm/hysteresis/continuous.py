@@ -104,13 +104,13 @@ class ContinuousPreisach(StaircasePreisach):
         return cls(u_min, u_max, y_min, y_max, r1, r2)
 
     @property
-    def input_range(self) -> tuple[float, float]:
+    def saturation_range(self) -> tuple[float, float]:
         """``(u_min, u_max)``: beyond it the output saturates at ``y_min``/``y_max``."""
         return (self.u_min, self.u_max)
 
     @classmethod
-    def fit(cls, u: Any, y: Any, *, n_fit: int | None = None,
-            output_unit: str = "") -> tuple["ContinuousPreisach", Any]:
+    def fit(cls, u: Any, y: Any, *, n_fit: int | None = None, output_unit: str = "", fit_mask: Any = None,
+            output_quantity: str | None = None) -> tuple["ContinuousPreisach", Any]:
         """Least-squares fit of the power-law model to a whole record (not three points).
 
         ``u_min``, ``u_max`` are the input's extremes over the fitted samples; ``y_min``,
@@ -125,11 +125,16 @@ class ContinuousPreisach(StaircasePreisach):
         n_fit : int, optional
             Fit the first ``n_fit`` samples and predict the rest.  Default: all.
         output_unit : str, optional
-            Unit of ``y`` for the report.
+            Unit of ``y`` (kept as the model's ``output_unit``).
+        fit_mask : array_like of bool, optional
+            Fit the samples where it is true, predict the others (instead of ``n_fit``).
+        output_quantity : str, optional
+            What ``y`` is; default from the unit (a length: ``"displacement"``).
 
         Returns
         -------
         (ContinuousPreisach, FitReport)
+            The model's ``fitted_range`` is ``(u_min, u_max)``.
 
         Raises
         ------
@@ -141,7 +146,8 @@ class ContinuousPreisach(StaircasePreisach):
         -----
         The samples before the input first reaches its minimum are left out.
         """
-        return fit_continuous(cls, u, y, n_fit=n_fit, output_unit=output_unit)
+        return fit_continuous(cls, u, y, n_fit=n_fit, output_unit=output_unit, fit_mask=fit_mask,
+                              output_quantity=output_quantity)
 
     def ascending(self, u: float) -> float:
         """Ascending major-loop branch (Eq. 8), held constant outside ``[u_min, u_max]``."""

@@ -96,6 +96,11 @@ class EverettPreisach(StaircasePreisach):
         self._y_reset = self.offset
         super().__init__()
 
+    @property
+    def saturation_range(self) -> tuple[float, float]:
+        """``(edges[0], edges[-1])``: below it every relay is off, above it every relay is on."""
+        return (self._edges[0], self._edges[-1])
+
     @classmethod
     def from_grid(cls, model: Any, u_lo: float, u_hi: float, n_levels: int) -> "EverettPreisach":
         """Spread the relays of a grid model (e.g. from :meth:`DiscretePreisach.fit`) over their cells.
@@ -111,8 +116,8 @@ class EverettPreisach(StaircasePreisach):
 
         The same procedure as :meth:`DiscretePreisach.fit
         <exudyn_atcm.hysteresis.DiscretePreisach.fit>` (same arguments: ``smoothing``,
-        ``n_fit``, ``input_range``, ``output_unit``, ``prior``, ``prior_weight``,
-        ``cv_folds``), with each relay's state replaced by the
+        ``n_fit``, ``fit_mask``, ``input_range``, ``output_unit``, ``output_quantity``,
+        ``prior`` (default ``"pi"``), ``prior_weight``, ``cv_folds``), with each relay's state replaced by the
         share of its cell that is switched on, so the identified operator is the one fitted
         (continuous output, no staircase error).  The samples before the input first comes
         down to the grid's lowest edge are left out (the memory is unknown until then).

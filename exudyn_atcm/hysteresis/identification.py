@@ -9,15 +9,23 @@ Conventions shared by every fit
 -------------------------------
 * ``u``, ``y``: the record's input and output in time order; the first ``n_fit`` samples are
   fitted, the rest is held out and only predicted (the model runs over the whole record, so
-  the held-out part is predicted with the memory the fitted part left behind).
+  the held-out part is predicted with the memory the fitted part left behind).  Instead of
+  ``n_fit`` a boolean ``fit_mask`` (one entry per sample) names the fitted samples, e.g.
+  every other cycle of the record (:func:`~exudyn_atcm.hysteresis.identify` holds out
+  interleaved cycles so that the held-out inputs lie inside the fitted range): the model
+  still runs over the whole record, only the least-squares rows are the masked samples.
 * The identified operator starts from its reset state at the first sample.  The real device's
   memory before the record is unknown, so the samples before the input has wiped that memory
   out are left out of the least squares and of the fitted-part errors (``fit_start`` in the
   :class:`~exudyn_atcm.hysteresis.fit_report.FitReport`): for the Preisach grid, until the
   input first comes down to the lowest threshold (half a cell above its minimum; for spread
   cells the lowest cell edge), from when every relay of the grid is off, whatever happened
-  before; for the Prandtl-Ishlinskii plays, until the input has come within half a play
-  spacing of both its minimum and its maximum.
+  before; for the Prandtl-Ishlinskii plays see :mod:`exudyn_atcm.hysteresis.pi_fit` (a record
+  that starts at its lowest input is fitted from its first sample).
+* Every fitted model knows its :attr:`~exudyn_atcm.hysteresis.base.HysteresisOperator.fitted_range`
+  (the input range of the fitted samples; applying it beyond warns), its output unit and
+  quantity and a JSON-serialisable ``fit_info``.  An explicit ``input_range`` that cuts the
+  fitted samples is refused.
 """
 
 from __future__ import annotations
@@ -30,7 +38,8 @@ import numpy as np
 
 from .._checks import finite_array, same_length
 from ..physical_bounds import check_element_count
-from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_cost, play_fit_cost
+from .base import quantity_from_unit
+from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_cost
 from .fit_report import FitReport, make_report
 from .nnls import single_blas_thread
 from .priors import PRIOR_STRENGTHS, PRIORS, along_lines_matrix, cross_validate_strength, solve_regularised
@@ -75,7 +84,72 @@ def check_record(u: Any, y: Any, n_fit: int | None = None, *, min_samples: int =
 MAX_FIT_LEVELS = 100
 
 
-def _levels_int(name: str, value: Any, minimum: int = 2) -> int:
+def fit_samples(u: Any, y: Any, n_fit: int | None = None, fit_mask: Any = None, *,
+                min_samples: int = MIN_SAMPLES) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """``u``, ``y`` as arrays, the boolean mask of the fitted samples and ``stop`` (one past the last).
+
+    ``n_fit`` (the first ``n_fit`` samples) or ``fit_mask`` (a boolean array, one entry per
+    sample), not both; neither: every sample.  ``ValueError`` for every bad input (see
+    :func:`check_record`; a mask of another length, not boolean, with fewer than ``min_samples``
+    fitted samples, or a constant input or output over them).
+    """
+    if fit_mask is None:
+        u_a, y_a, n_fit = check_record(u, y, n_fit, min_samples=min_samples)
+        return u_a, y_a, np.arange(u_a.size) < n_fit, n_fit
+    if n_fit is not None:
+        raise ValueError(f"give n_fit or fit_mask, not both (got n_fit={n_fit!r} and a fit_mask)")
+    u_a, y_a, _ = check_record(u, y, min_samples=min_samples)
+    mask = np.asarray(fit_mask)
+    if mask.dtype != bool or mask.shape != u_a.shape:
+        raise ValueError(f"fit_mask must be a boolean array with one entry per sample ({u_a.size}), got "
+                         f"dtype {mask.dtype} and shape {mask.shape}")
+    count = int(np.count_nonzero(mask))
+    if count < min_samples:
+        raise ValueError(f"fit_mask must select at least {min_samples} samples, got {count}")
+    if float(np.ptp(u_a[mask])) <= 0.0:
+        raise ValueError(f"u must vary over the fitted samples, got a constant input {float(u_a[mask][0])!r}")
+    if float(np.ptp(y_a[mask])) <= 0.0:
+        raise ValueError(f"y must vary over the fitted samples, got a constant output {float(y_a[mask][0])!r}")
+    return u_a, y_a, mask.copy(), int(np.flatnonzero(mask)[-1]) + 1
+
+
+def grid_range(input_range: Any, u_fit: np.ndarray) -> tuple[float, float]:
+    """The grid's input range: ``input_range`` (checked to hold every fitted input) or the fitted inputs'."""
+    low, high = float(u_fit.min()), float(u_fit.max())
+    if input_range is None:
+        return low, high
+    try:
+        u_lo, u_hi = (float(v) for v in input_range)
+    except (TypeError, ValueError):
+        raise ValueError(f"input_range must be a pair (u_lo, u_hi) of numbers, got {input_range!r}") from None
+    if not (math.isfinite(u_lo) and math.isfinite(u_hi) and u_hi > u_lo):
+        raise ValueError(f"input_range must be finite with u_hi > u_lo, got {input_range!r}")
+    slack = 1e-9 * (high - low)
+    if u_lo > low + slack or u_hi < high - slack:
+        raise ValueError(f"input_range ({u_lo:g}, {u_hi:g}) cuts the fitted samples, whose input spans {low:g} ... "
+                         f"{high:g}: beyond the grid the model would saturate where the data go on; give a range "
+                         "that holds every fitted input, or none (the fitted inputs' range)")
+    return u_lo, u_hi
+
+
+def sample_counts(mask: np.ndarray, start: int) -> dict[str, int]:
+    """Sample counts of a fit for its ``fit_info``: record, fitted (least-squares rows), held out, first row."""
+    after = np.arange(mask.size) >= start
+    return {"record": int(mask.size), "fitted": int(np.count_nonzero(mask & after)),
+            "held_out": int(np.count_nonzero(~mask & after)), "fit_start": int(start),
+            "left_out_before_start": int(np.count_nonzero(mask & ~after))}
+
+
+def record_fit(model: Any, report: FitReport, mask: np.ndarray, start: int, u_fit: np.ndarray, output_unit: str,
+               output_quantity: str | None) -> None:
+    """Set a fitted model's metadata (fitted range, unit, quantity, ``fit_info``) from its fit."""
+    model.set_fit_metadata((float(u_fit.min()), float(u_fit.max())),
+                           {"method": report.method, "settings": report.settings,
+                            "samples": sample_counts(mask, start), "notes": list(report.notes)},
+                           output_unit, output_quantity)
+
+
+def levels_int(name: str, value: Any, minimum: int = 2) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     return int(value)
@@ -91,7 +165,7 @@ def nonnegative_float(name: str, value: Any) -> float:
     return number
 
 
-def _first_near(u: np.ndarray, target: float, tolerance: float) -> int:
+def first_near(u: np.ndarray, target: float, tolerance: float) -> int:
     hits = np.flatnonzero(np.abs(u - target) <= tolerance)
     return int(hits[0]) if hits.size else u.size
 
@@ -100,22 +174,25 @@ def _first_near(u: np.ndarray, target: float, tolerance: float) -> int:
 
 def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float = 1e-3, n_fit: int | None = None,
                  input_range: tuple[float, float] | None = None, output_unit: str = "",
-                 basis: str = "relays", prior: str = "smooth", prior_weight: float | None = None,
-                 cv_folds: int = 5, relays_per_cell: int = 1) -> tuple[Any, FitReport]:
+                 basis: str = "relays", prior: str = "pi", prior_weight: float | None = None,
+                 cv_folds: int = 5, relays_per_cell: int = 1, fit_mask: Any = None,
+                 output_quantity: str | None = None) -> tuple[Any, FitReport]:
     """Body of :meth:`DiscretePreisach.fit` (``basis="relays"``) and :meth:`EverettPreisach.fit`
     (``basis="cells"``: each weight spread over its grid cell).  With ``relays_per_cell > 1``
     the relay fit identifies the spread cells' weights and realises them as the finer relay grid
     of :func:`~exudyn_atcm.hysteresis.relay_gram.refined_relays`."""
     if basis not in ("relays", "cells"):
         raise ValueError(f"basis must be 'relays' or 'cells', got {basis!r}")
-    refine = _levels_int("relays_per_cell", relays_per_cell, minimum=1)
+    refine = levels_int("relays_per_cell", relays_per_cell, minimum=1)
     if basis == "cells" and refine != 1:
         raise ValueError(f"relays_per_cell applies to DiscretePreisach.fit only (EverettPreisach spreads each weight "
                          f"over its whole cell), got relays_per_cell={relays_per_cell!r}")
     spread = "cells" if basis == "cells" or refine > 1 else "relays"
     started = time.perf_counter()
-    u_a, y_a, n_fit = check_record(u, y, n_fit)
-    n_levels = _levels_int("n_levels", n_levels)
+    quantity_from_unit(output_unit, output_quantity)
+    u_a, y_a, mask, stop = fit_samples(u, y, n_fit, fit_mask)
+    masked = None if fit_mask is None else mask  # None: the contiguous rows start .. n_fit - 1
+    n_levels = levels_int("n_levels", n_levels)
     if n_levels > MAX_FIT_LEVELS:
         relays = n_levels * (n_levels + 1) // 2
         raise ValueError(
@@ -132,21 +209,15 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     cross_validate = prior == "pi" and prior_weight is None
     if cross_validate and (isinstance(cv_folds, bool) or not isinstance(cv_folds, (int, np.integer)) or cv_folds < 2):
         raise ValueError(f"cv_folds must be an integer >= 2, got {cv_folds!r}")
-    if input_range is not None:
-        try:
-            u_lo, u_hi = (float(v) for v in input_range)
-        except (TypeError, ValueError):
-            raise ValueError(f"input_range must be a pair (u_lo, u_hi) of numbers, got {input_range!r}") from None
-        if not (math.isfinite(u_lo) and math.isfinite(u_hi) and u_hi > u_lo):
-            raise ValueError(f"input_range must be finite with u_hi > u_lo, got {input_range!r}")
-    else:
-        u_lo, u_hi = float(u_a[:n_fit].min()), float(u_a[:n_fit].max())
+    u_fit = u_a[mask]
+    u_lo, u_hi = grid_range(input_range, u_fit)
     # distinct relay states: a state changes only at a sample whose input crossed a threshold
     thresholds = u_lo + (np.arange(n_levels) + 0.5) * (u_hi - u_lo) / n_levels
-    crossed = (np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="right")) != 0) | (
-        np.diff(np.searchsorted(thresholds, u_a[:n_fit], side="left")) != 0)
+    crossed = (np.diff(np.searchsorted(thresholds, u_a[:stop], side="right")) != 0) | (
+        np.diff(np.searchsorted(thresholds, u_a[:stop], side="left")) != 0)
     changes = 1 + int(np.count_nonzero(crossed))
-    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, n_fit, spread, distinct_rows=changes,
+    rows_total = int(np.count_nonzero(mask))
+    check_cost(f"{cls.__name__}.fit", grid_fit_cost(n_levels, max(stop, rows_total), spread, distinct_rows=changes,
                                                     cv_folds=cv_folds if cross_validate else 0,
                                                     cv_strengths=len(PRIOR_STRENGTHS)),
                "use fewer levels (n_levels) or decimate the record (exudyn_atcm.io.measurements.preprocess)")
@@ -155,24 +226,31 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     # all grid relays are off once the input is at or below the lowest threshold (for relays
     # spread over their cells: at or below the lowest cell edge)
     lowest = float(alpha.min()) if spread == "relays" else u_lo + 1e-12 * (u_hi - u_lo)
-    low = np.flatnonzero(u_a[:n_fit] <= lowest)
-    start = int(low[0]) if low.size else n_fit
+    low = np.flatnonzero(u_a[:stop] <= lowest)
+    start = int(low[0]) if low.size else stop
+    rows = np.flatnonzero(mask[start:stop]) + start
     notes = []
     if start > 0:
         notes.append(
             f"samples 0..{start - 1} left out: the memory before the input first reaches its minimum is unknown"
         )
-    if n_fit - start < MIN_SAMPLES:
+    else:
+        notes.append("every fitted sample used: the record starts at its lowest input, where every relay of the "
+                     "grid is off whatever the history before it")
+    if rows.size < MIN_SAMPLES:
         raise ValueError(
-            f"u: only {n_fit - start} fitted samples remain after the input first reaches its minimum "
+            f"u: only {rows.size} fitted samples remain after the input first reaches its minimum "
             f"(sample {start}); at least {MIN_SAMPLES} are needed. Start the record at the input minimum."
         )
-    scale = float(np.ptp(y_a[start:n_fit])) or 1.0
-    with single_blas_thread():  # see exudyn_atcm.hysteresis.nnls
+    scale = float(np.ptp(y_a[rows])) or 1.0
+
+    def gram_of(first: int, end: int, mask_rows: Any) -> tuple:
         if spread == "relays":
-            gram, rhs, colsum, ysum, m = relay_gram(alpha, beta, u_a, y_a / scale, start, n_fit)
-        else:
-            gram, rhs, colsum, ysum, m = cell_gram(edges, index, u_a, y_a / scale, start, n_fit)
+            return relay_gram(alpha, beta, u_a, y_a / scale, first, end, mask=mask_rows)
+        return cell_gram(edges, index, u_a, y_a / scale, first, end, mask=mask_rows)
+
+    with single_blas_thread():  # see exudyn_atcm.hysteresis.nnls
+        gram, rhs, colsum, ysum, m = gram_of(start, stop, masked)
     mean_s = colsum / m
     gram_c = gram - m * np.outer(mean_s, mean_s)
     rhs_c = rhs - mean_s * ysum
@@ -187,18 +265,25 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
         ptp_lap = (dp.T @ dp).tocsr()
         strength = prior_weight
         if cross_validate:
-            if (n_fit - start) < cv_folds * MIN_SAMPLES:
+            if rows.size < cv_folds * MIN_SAMPLES:
                 raise ValueError(f"cv_folds = {cv_folds} blocks of at least {MIN_SAMPLES} samples need {cv_folds * MIN_SAMPLES} "
-                                 f"fitted samples, got {n_fit - start}; give prior_weight or fewer folds")
-            bounds = np.linspace(start, n_fit, cv_folds + 1).round().astype(int)
+                                 f"fitted samples, got {rows.size}; give prior_weight, fewer folds or prior='smooth'")
+            # contiguous blocks of the fitted rows (of the masked samples, in time order)
+            if masked is None:
+                bounds = np.linspace(start, stop, cv_folds + 1).round().astype(int)
+                blocks = [(int(a), int(b), None, slice(a, b)) for a, b in zip(bounds[:-1], bounds[1:])]
+            else:
+                cuts = np.linspace(0, rows.size, cv_folds + 1).round().astype(int)
+                blocks = []
+                for a, b in zip(cuts[:-1], cuts[1:]):
+                    fold = np.zeros(u_a.size, dtype=bool)
+                    fold[rows[a:b]] = True
+                    blocks.append((int(rows[a]), int(rows[b - 1]) + 1, fold, rows[a:b]))
             folds = []
             with single_blas_thread():
-                for a, b in zip(bounds[:-1], bounds[1:]):
-                    if spread == "relays":
-                        stats = relay_gram(alpha, beta, u_a, y_a / scale, int(a), int(b))
-                    else:
-                        stats = cell_gram(edges, index, u_a, y_a / scale, int(a), int(b))
-                    folds.append((*stats, float(np.sum((y_a[a:b] / scale) ** 2))))
+                for first, end, fold, picked in blocks:
+                    stats = gram_of(first, end, fold)
+                    folds.append((*stats, float(np.sum((y_a[picked] / scale) ** 2))))
                 strength, cv_table = cross_validate_strength(folds, dtd, smoothing, ptp_lap)
             for row in cv_table:
                 row["cv_rms"] *= scale
@@ -226,90 +311,44 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
         model = cls(alpha, beta, weights, offset=offset)
     elapsed = time.perf_counter() - started
     report = make_report(
-        model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
+        model, u_a, y_a, stop if masked is None else u_a.size, start, f"{cls.__name__}.fit",
         settings={"n_levels": n_levels, "n_relays": int(getattr(model, "n_relays", alpha.size)),
                   "relays_per_cell": refine, "smoothing": smoothing,
                   "smoothing_weight": lam, "input_range": [u_lo, u_hi], "basis": basis, **prior_settings},
-        notes=notes, output_unit=output_unit, fit_time=elapsed, coverage_levels=n_levels,
+        notes=notes, output_unit=output_unit, fit_time=elapsed, coverage_levels=n_levels, fit_mask=masked,
     )
-    return model, report
-
-
-# ------------------------------------------------------------------------------ PI fit
-
-def fit_prandtl_ishlinskii(cls: type, u: Any, y: Any, n: int, *, n_fit: int | None = None,
-                           output_unit: str = "") -> tuple[Any, FitReport]:
-    """Body of :meth:`PrandtlIshlinskii.fit` (see there)."""
-    from scipy.optimize import nnls
-
-    started = time.perf_counter()
-    u_a, y_a, n_fit = check_record(u, y, n_fit)
-    n = check_element_count("n", _levels_int("n", n), "plays")
-    check_cost(f"{cls.__name__}.fit", play_fit_cost(n, n_fit),
-               "use fewer plays (n; 10 ... 40 resolve a measured loop) or decimate the record")
-    u_fit = u_a[:n_fit]
-    span = float(np.ptp(u_fit))
-    radii = span * np.arange(1, n) / (2.0 * n)
-    tolerance = 0.5 * span / n
-    start = max(_first_near(u_fit, float(u_fit.min()), tolerance), _first_near(u_fit, float(u_fit.max()), tolerance))
-    if n_fit - start < MIN_SAMPLES:
-        raise ValueError(
-            f"u: only {n_fit - start} fitted samples remain after the input has reached both its minimum and its "
-            f"maximum (sample {start}); at least {MIN_SAMPLES} are needed"
-        )
-    # play outputs from the reset state z = 0, as PrandtlIshlinskii.apply runs them
-    z = np.zeros(radii.size)
-    plays = np.empty((n_fit, radii.size))
-    for k in range(n_fit):
-        z = np.maximum(u_a[k] - radii, np.minimum(u_a[k] + radii, z))
-        plays[k] = z
-    design = np.column_stack([u_fit, plays])[start:]
-    target = y_a[start:n_fit]
-    scale = float(np.ptp(target)) or 1.0
-    # p0 > 0 keeps the operator strictly increasing, so that its analytic inverse exists
-    p0_min = 1e-3 * scale / span
-    target_shift = target / scale - (p0_min / scale) * design[:, 0]
-    mean_d, mean_t = design.mean(axis=0), float(target_shift.mean())
-    coef, _ = nnls(design - mean_d, target_shift - mean_t, maxiter=50 * design.shape[1])
-    coef = coef * scale
-    coef[0] += p0_min
-    offset = float(np.mean(target - design @ coef))
-    model = cls(radii, coef[1:], coef[0], offset=offset)
-    notes = []
-    if start > 0:
-        notes.append(f"samples 0..{start - 1} left out: the play states before the input has covered its range "
-                     "depend on the unknown history")
-    report = make_report(model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
-                         settings={"n": n, "radii": radii.tolist()}, notes=notes, output_unit=output_unit,
-                         fit_time=time.perf_counter() - started)
+    record_fit(model, report, mask, start, u_fit, output_unit, output_quantity)
     return model, report
 
 
 # ------------------------------------------------------------------------------ continuous fit
 
-def fit_continuous(cls: type, u: Any, y: Any, *, n_fit: int | None = None,
-                   output_unit: str = "") -> tuple[Any, FitReport]:
+def fit_continuous(cls: type, u: Any, y: Any, *, n_fit: int | None = None, output_unit: str = "",
+                   fit_mask: Any = None, output_quantity: str | None = None) -> tuple[Any, FitReport]:
     """Body of :meth:`ContinuousPreisach.fit` (see there)."""
     from scipy.optimize import least_squares
 
     started = time.perf_counter()
-    u_a, y_a, n_fit = check_record(u, y, n_fit)
-    check_cost(f"{cls.__name__}.fit", continuous_fit_cost(u_a.size),
+    quantity_from_unit(output_unit, output_quantity)
+    u_a, y_a, mask, stop = fit_samples(u, y, n_fit, fit_mask)
+    check_cost(f"{cls.__name__}.fit", continuous_fit_cost(stop),
                "decimate the record (exudyn_atcm.io.measurements.preprocess)")
-    u_fit, y_fit = u_a[:n_fit], y_a[:n_fit]
+    u_fit = u_a[mask]
     u_min, u_max = float(u_fit.min()), float(u_fit.max())
-    start = _first_near(u_fit, u_min, 1e-3 * (u_max - u_min))
-    if n_fit - start < MIN_SAMPLES:
-        raise ValueError(f"u: only {n_fit - start} fitted samples remain after the input first reaches its minimum")
-    scale = float(np.ptp(y_fit[start:]))
-    y0 = float(y_fit[start:].min())
+    start = first_near(u_a[:stop], u_min, 1e-3 * (u_max - u_min))
+    rows = np.flatnonzero(mask[start:stop]) + start
+    if rows.size < MIN_SAMPLES:
+        raise ValueError(f"u: only {rows.size} fitted samples remain after the input first reaches its minimum")
+    y_rows = y_a[rows]
+    scale = float(np.ptp(y_rows))
+    y0 = float(y_rows.min())
 
     def model_of(x: np.ndarray) -> Any:
         low, span, r1, r2 = x
         return cls(u_min, u_max, y0 + scale * low, y0 + scale * (low + span), r1, r2)
 
     def residuals(x: np.ndarray) -> np.ndarray:
-        return (model_of(x).apply(u_fit)[start:] - y_fit[start:]) / scale
+        return (model_of(x).apply(u_a[:stop])[rows] - y_rows) / scale
 
     result = least_squares(residuals, x0=[0.0, 1.0, 1.5, 1.5],
                            bounds=([-1.0, 1e-6, 1.0, 1.0], [1.0, 3.0, 50.0, 50.0]), x_scale=[0.1, 0.1, 0.5, 0.5])
@@ -317,7 +356,9 @@ def fit_continuous(cls: type, u: Any, y: Any, *, n_fit: int | None = None,
     notes = [] if result.success else [f"least squares stopped without convergence: {result.message}"]
     if start > 0:
         notes.append(f"samples 0..{start - 1} left out: the memory before the input first reaches its minimum is unknown")
-    report = make_report(model, u_a, y_a, n_fit, start, f"{cls.__name__}.fit",
+    masked = None if fit_mask is None else mask
+    report = make_report(model, u_a, y_a, stop if masked is None else u_a.size, start, f"{cls.__name__}.fit",
                          settings={"u_min": u_min, "u_max": u_max, "evaluations": int(result.nfev)},
-                         notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started)
+                         notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started, fit_mask=masked)
+    record_fit(model, report, mask, start, u_fit, output_unit, output_quantity)
     return model, report

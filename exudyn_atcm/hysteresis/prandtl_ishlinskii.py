@@ -9,7 +9,7 @@ import numpy as np
 from .._checks import finite_array, finite_float, same_length
 from ..physical_bounds import check_element_count
 from .base import HysteresisOperator, check_input
-from .identification import fit_prandtl_ishlinskii
+from .pi_fit import fit_prandtl_ishlinskii
 
 
 class PrandtlIshlinskii(HysteresisOperator):
@@ -135,14 +135,15 @@ class PrandtlIshlinskii(HysteresisOperator):
                 f"p0={self.p0!r}{extra})")
 
     @classmethod
-    def fit(cls, u: Any, y: Any, n: int, *, n_fit: int | None = None,
-            output_unit: str = "") -> tuple["PrandtlIshlinskii", Any]:
+    def fit(cls, u: Any, y: Any, n: int, *, n_fit: int | None = None, fit_mask: Any = None,
+            output_unit: str = "", output_quantity: str | None = None,
+            initial: str = "auto") -> tuple["PrandtlIshlinskii", Any]:
         """Fit ``n`` plays (radius 0 included) with non-negative weights to a record.
 
         The radii are ``r_j = j·Δu/(2n)``, ``j = 1 … n−1`` (``Δu`` the input range of the fitted
-        samples); the play outputs along the record follow from the input alone (from the
-        reset state, as :meth:`apply` runs them), so ``p0``, the weights and the offset are a
-        linear least-squares problem, solved with SciPy's NNLS under ``p_j >= 0`` and
+        samples); the play outputs along the record follow from the input and the plays' state
+        at its start (``initial``), so ``p0``, the weights and the offset are a linear
+        least-squares problem, solved with SciPy's NNLS under ``p_j >= 0`` and
         ``p0 >= 10⁻³ Δy/Δu``: a strictly increasing operator, so :meth:`inverse` exists.
 
         Parameters
@@ -153,22 +154,36 @@ class PrandtlIshlinskii(HysteresisOperator):
             Number of plays including the radius-0 one, ``>= 2``.
         n_fit : int, optional
             Fit the first ``n_fit`` samples and predict the rest.  Default: all.
+        fit_mask : array_like of bool, optional
+            Fit the samples where it is true (one entry per sample), predict the others; instead
+            of ``n_fit``.
         output_unit : str, optional
-            Unit of ``y`` for the report.
+            Unit of ``y`` (``"m"``, ``"-"``, ...); kept as the model's :attr:`output_unit`.
+        output_quantity : str, optional
+            What ``y`` is (``"strain"``, ``"displacement"``, ...); default from the unit (a
+            length: ``"displacement"``, else not stated).
+        initial : {"auto", "rest", "descended", "covered"}, optional
+            The plays' state at the record's start (:mod:`exudyn_atcm.hysteresis.pi_fit`):
+            ``"auto"`` (default) fits a record that starts at its lowest input from its first
+            sample, at rest or as after a descent, whichever fits better; any other record
+            from where the input has covered its range.
 
         Returns
         -------
         (PrandtlIshlinskii, FitReport)
+            The model (its ``input_offset`` puts the plays, from the reset state, where the fit
+            took them; its :attr:`fitted_range` is the fitted inputs' range) and its errors.
 
         Raises
         ------
         ValueError
             For fewer than 10 samples, non-finite values, different lengths, a constant input
-            or output, or ``n < 2``.
+            or output, ``n < 2``, an unknown ``initial`` or a strain in a length unit.
 
         Notes
         -----
-        The samples before the input has come within ``Δu/(2n)`` of both its minimum and its
-        maximum are left out (the play states depend on the history before the record).
+        Which samples were left out and which initial state was used is in the report's notes
+        and ``settings`` (``initial``, ``initial_rms``).
         """
-        return fit_prandtl_ishlinskii(cls, u, y, n, n_fit=n_fit, output_unit=output_unit)
+        return fit_prandtl_ishlinskii(cls, u, y, n, n_fit=n_fit, fit_mask=fit_mask, output_unit=output_unit,
+                                      output_quantity=output_quantity, initial=initial)

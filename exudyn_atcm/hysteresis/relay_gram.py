@@ -91,8 +91,9 @@ def smoothness_matrix(index: np.ndarray, n_levels: int) -> Any:
 
 
 def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
-               chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
-    """Normal equations of ``y ≈ c + S w`` over samples ``start .. stop - 1``.
+               chunk: int = 2048, mask: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+    """Normal equations of ``y ≈ c + S w`` over samples ``start .. stop - 1`` (only those where
+    ``mask`` is true, if given: the relay states still run over every sample).
 
     ``S[k, r]`` is the state of relay ``r`` after sample ``k`` of ``u`` from all relays off
     (relay rule of Mayergoyz 2003: on if ``u >= alpha``, else off if ``u <= beta``, else
@@ -110,7 +111,7 @@ def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray
     for k in range(stop):
         v = u[k]
         state = (v >= alpha) | (state & (v > beta))
-        if k < start:
+        if k < start or (mask is not None and not mask[k]):
             continue
         bits = np.packbits(state)
         key = bits.tobytes()
@@ -135,7 +136,15 @@ def relay_gram(alpha: np.ndarray, beta: np.ndarray, u: np.ndarray, y: np.ndarray
         gram += (block * c[:, None]).T @ block
         rhs += block.T @ sum_a[first:first + chunk]
         colsum += block.T @ c
-    return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
+    return (gram, rhs, colsum, *_row_totals(y, start, stop, mask))
+
+
+def _row_totals(y: np.ndarray, start: int, stop: int, mask: np.ndarray | None) -> tuple[float, int]:
+    """``sum(y)`` and the number of the rows used (``start .. stop - 1``, where ``mask`` is true)."""
+    if mask is None:
+        return float(np.sum(y[start:stop])), stop - start
+    rows = mask[start:stop]
+    return float(np.sum(y[start:stop][rows])), int(np.count_nonzero(rows))
 
 
 class CellFractions(StaircasePreisach):
@@ -165,7 +174,7 @@ class CellFractions(StaircasePreisach):
 
 
 def cell_gram(edges: np.ndarray, index: np.ndarray, u: np.ndarray, y: np.ndarray, start: int, stop: int,
-              chunk: int = 2048) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+              chunk: int = 2048, mask: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
     """As :func:`relay_gram` for relays spread over their grid cells (see :class:`EverettPreisach`)."""
     fractions = CellFractions(edges, index)
 
@@ -173,10 +182,11 @@ def cell_gram(edges: np.ndarray, index: np.ndarray, u: np.ndarray, y: np.ndarray
         for k in range(stop):
             yield fractions.commit(float(u[k]))
 
-    return chunked_gram(rows(), index.shape[0], y, start, stop, chunk)
+    return chunked_gram(rows(), index.shape[0], y, start, stop, chunk, mask)
 
 
-def chunked_gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chunk: int) -> tuple:
+def chunked_gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chunk: int,
+                 mask: np.ndarray | None = None) -> tuple:
     gram = np.zeros((n_r, n_r))
     rhs = np.zeros(n_r)
     colsum = np.zeros(n_r)
@@ -191,7 +201,7 @@ def chunked_gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chun
         colsum[:] += s.sum(axis=0)
 
     for k, state in enumerate(rows):
-        if k >= start:
+        if k >= start and (mask is None or mask[k]):
             block[filled] = state
             block_y[filled] = y[k]
             filled += 1
@@ -200,7 +210,7 @@ def chunked_gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chun
                 filled = 0
     if filled:
         flush(filled)
-    return gram, rhs, colsum, float(np.sum(y[start:stop])), stop - start
+    return (gram, rhs, colsum, *_row_totals(y, start, stop, mask))
 
 
 def nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: Any) -> np.ndarray:
