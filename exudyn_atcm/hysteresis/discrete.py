@@ -141,6 +141,8 @@ class DiscretePreisach(StaircasePreisach):
         report: bool = False,
         output_unit: str = "",
         levels: str = "paper",
+        fit_mask: Any = None,
+        output_quantity: str | None = None,
     ) -> Any:
         """Identify ``n`` equal-gain relays from a measured major loop (the paper's Eq. 12).
 
@@ -199,10 +201,16 @@ class DiscretePreisach(StaircasePreisach):
         levels : {"paper", "centred"}, optional
             Switching level of each relay within its gain step (see above); default the
             paper's.
+        fit_mask : array_like of bool, optional
+            Only the monotone segments within the samples where it is true are branches (the
+            others are held out in the report).
+        output_quantity : str, optional
+            What ``y`` is; default from ``output_unit`` (a length: ``"displacement"``).
 
         Returns
         -------
         DiscretePreisach or (DiscretePreisach, FitReport)
+            The model's ``fitted_range`` is the record's (or masked samples') input range.
 
         Raises
         ------
@@ -212,7 +220,8 @@ class DiscretePreisach(StaircasePreisach):
             that cross by more than the tolerance (not a hysteresis loop).
         """
         return identify_from_loop(cls, u, y, n, reversal_tolerance=reversal_tolerance, coverage=coverage,
-                                  report=report, output_unit=output_unit, levels=levels)
+                                  report=report, output_unit=output_unit, levels=levels, fit_mask=fit_mask,
+                                  output_quantity=output_quantity)
 
     @classmethod
     def fit(

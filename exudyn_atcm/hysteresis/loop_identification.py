@@ -18,7 +18,8 @@ from .._checks import finite_array, positive_int, same_length
 from ..physical_bounds import check_element_count
 from .fit_cost import check_cost, finite_squares, loop_fit_cost
 from .fit_report import make_report
-from .identification import nonnegative_float
+from .base import quantity_from_unit
+from .identification import nonnegative_float, record_fit
 from ..errors import AccuracyWarning
 
 
@@ -108,9 +109,14 @@ LEVEL_RULES = {"paper": 0.0, "centred": 0.5}
 
 def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance: float = 0.0,
                        coverage: float = 0.9, report: bool = False, output_unit: str = "",
-                       levels: str = "paper") -> Any:
-    """Body of :meth:`DiscretePreisach.from_loop` (see there for the rule)."""
+                       levels: str = "paper", fit_mask: Any = None, output_quantity: str | None = None) -> Any:
+    """Body of :meth:`DiscretePreisach.from_loop` (see there for the rule).
+
+    With ``fit_mask`` (boolean, one entry per sample) only the monotone segments lying in the
+    masked samples are branches, and the others are held out in the report.
+    """
     started = time.perf_counter()
+    quantity_from_unit(output_unit, output_quantity)
     if levels not in LEVEL_RULES:
         raise ValueError(f"levels must be one of {', '.join(repr(k) for k in LEVEL_RULES)}, got {levels!r}")
     u_a = finite_array("u", u, min_length=2)
@@ -119,14 +125,22 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     n = check_element_count("n", positive_int("n", n), "relays")
     finite_squares("u", u_a)
     finite_squares("y", y_a)
+    mask = np.ones(u_a.size, dtype=bool)
+    if fit_mask is not None:
+        mask = np.asarray(fit_mask)
+        if mask.dtype != bool or mask.shape != u_a.shape or mask.sum() < 2:
+            raise ValueError(f"fit_mask must be a boolean array with one entry per sample ({u_a.size}) selecting at "
+                             f"least 2, got dtype {mask.dtype} and shape {mask.shape}")
     check_cost(f"{cls.__name__}.from_loop", loop_fit_cost(n, u_a.size),
                "use fewer relays (n; the error on the loop is below one gain step (y_max - y_min)/n)")
     reversal_tolerance = nonnegative_float("reversal_tolerance", reversal_tolerance)
     coverage = nonnegative_float("coverage", coverage)
     if coverage > 1.0:
         raise ValueError(f"coverage must lie in [0, 1], got {coverage!r}")
-    span = float(np.ptp(u_a))
+    span = float(np.ptp(u_a[mask]))
     segments = monotone_segments(u_a, reversal_tolerance * span)
+    if fit_mask is not None:  # segments whose inner samples are all fitted (the ends are shared)
+        segments = [s for s in segments if mask[s[0] + 1:s[1]].all() and (mask[s[0]] or mask[s[1]])]
     major = [s for s in segments if u_a[s[1]] != u_a[s[0]] and abs(u_a[s[1]] - u_a[s[0]]) >= coverage * span]
     for rising, missing in ((True, "ascending (rising u)"), (False, "descending (falling u)")):
         if not any(s[2] == rising for s in major):
@@ -189,10 +203,10 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
         notes.append(text)
         warnings.warn(f"from_loop: {text}", AccuracyWarning, stacklevel=3)
     model = cls(alpha, beta, np.full(n, gain), offset=y_min)
-    if not report:
-        return model
     fit_report = make_report(model, u_a, y_a, u_a.size, 0, f"{cls.__name__}.from_loop",
                              settings={"n": n, "reversal_tolerance": reversal_tolerance, "coverage": coverage,
                                        "levels": level_rule},
-                             notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started)
-    return model, fit_report
+                             notes=notes, output_unit=output_unit, fit_time=time.perf_counter() - started,
+                             fit_mask=fit_mask if fit_mask is None else mask)
+    record_fit(model, fit_report, mask, 0, u_a[mask], output_unit, output_quantity)
+    return (model, fit_report) if report else model

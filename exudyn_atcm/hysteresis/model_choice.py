@@ -13,14 +13,22 @@ reset state, so the held-out part starts from the memory the fitted part left):
 * ``continuous``: :meth:`ContinuousPreisach.fit` (the paper's power law, Eqs. 8-10); inverse by
   bisection.
 
+Which samples are fitted and which held out: :mod:`exudyn_atcm.hysteresis.record_split` (by
+default the held-out inputs lie inside the fitted input range: the first 60 % of the record
+when that covers it, else interleaved cycles; a warning names an uncovered range).
+
 The result, a :class:`ModelChoice`, ranks them by held-out RMS error (in % of the output range
-of the fitted part), with parameter count, fit time and whether a continuous inverse exists
+of the whole record, one reference for every family and part), with parameter count, fit time and whether a continuous inverse exists
 (:func:`exudyn_atcm.hysteresis.inverse.inverse_operator`: the staircase models reach only
 their step values), and names the chosen model: the one with the fewest parameters among those
 whose held-out RMS error is within ``1 + simpler_margin`` (default 1.1) of the best, so a model
 with more parameters has to predict clearly better to be chosen.  A family that cannot be fitted
 to the record (e.g. no full major-loop branch in the fitted part for ``equal_gain``) is listed
-with the reason instead of an error.
+with the reason instead of an error.  When the chosen model's held-out RMS error is not below
+the best linear model's by a clear margin (``linear_margin``: the linear model's error must be
+at least ``1 + linear_margin`` times the chosen model's, default 1.25), an
+:class:`~exudyn_atcm.errors.AccuracyWarning` says that the record shows no hysteresis the
+models can use (pure noise, a time-reversed record, a nearly linear actuator).
 """
 
 from __future__ import annotations
@@ -39,9 +47,11 @@ from .continuous import ContinuousPreisach
 from .discrete import DiscretePreisach
 from .everett import EverettPreisach
 from .fit_report import FitReport, make_report
+from .base import quantity_from_unit
 from .identification import check_record
 from .prandtl_ishlinskii import PrandtlIshlinskii
-from ..errors import SetupWarning
+from .record_split import choose_split
+from ..errors import AccuracyWarning, SetupWarning
 
 __all__ = ["FAMILIES", "Candidate", "ModelChoice", "identify"]
 
@@ -63,7 +73,7 @@ class Candidate:
     label : str
         Family and size, e.g. ``"everett (30 levels)"``.
     held_out_rms_percent, fit_rms_percent : float
-        RMS error on the held-out and the fitted part, % of the output range of the fitted part
+        RMS error on the held-out and the fitted part, % of the output range of the whole record
         (NaN if the family could not be fitted).
     parameters : int
         Identified numbers: weights or thresholds, gains, offset, input range as they apply.
@@ -118,14 +128,22 @@ class ModelChoice:
     n_samples, n_fit : int
         Record length and first held-out sample.
     output_range : float
-        Output range of the fitted part, all its samples (output units): the one reference of
-        every candidate's ``%`` figures (a :class:`FitReport`'s own refers to its fitted samples).
+        Output range of the whole record (output units): the one reference of every
+        candidate's ``%`` figures (and of each :class:`FitReport`'s).
     output_unit : str
         Unit of the output.
     simpler_margin : float
         The choice rule's margin (see the module).
     input, output : numpy.ndarray
         The record (for plots; each candidate's ``report.predicted`` is its prediction).
+    fit_mask : numpy.ndarray
+        The fitted samples (the others are held out).
+    split : str
+        How the record was split (e.g. ``"interleaved cycles (...)"``).
+    linear_held_out_rms_percent : float
+        Held-out RMS error of the best linear model (least squares on the fitted samples), %.
+    output_quantity : str or None
+        What the output is (from the unit, or as given).
     """
 
     candidates: list
@@ -137,6 +155,10 @@ class ModelChoice:
     simpler_margin: float = 0.1
     input: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
     output: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+    fit_mask: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=bool), repr=False)
+    split: str = ""
+    linear_held_out_rms_percent: float = math.nan
+    output_quantity: str | None = None
 
     @property
     def model(self) -> Any:
@@ -153,9 +175,14 @@ class ModelChoice:
     def to_text(self) -> str:
         """The ranked table as fixed-width text."""
         unit = f" {self.output_unit}" if self.output_unit else ""
+        if self.split.startswith("the first") or not self.split:
+            parts = f"fitted samples 0..{self.n_fit - 1}, held out {self.n_fit}..{self.n_samples - 1}"
+        else:
+            parts = (f"fitted {int(self.fit_mask.sum())} samples, held out {int((~self.fit_mask).sum())}: "
+                     f"{self.split}")
         lines = [
-            f"model choice on held-out data: fitted samples 0..{self.n_fit - 1}, held out {self.n_fit}..{self.n_samples - 1}, "
-            f"output range {self.output_range:.4g}{unit}",
+            f"model choice on held-out data: {parts}; [%] of the whole record's output range "
+            f"{self.output_range:.4g}{unit}",
             f"{'rank':<5}{'model':<34}{'held-out RMS [%]':>17}{'fit RMS [%]':>12}{'parameters':>11}{'fit time [s]':>13}"
             f"  {'invertible':<22}",
         ]
@@ -168,6 +195,9 @@ class ModelChoice:
                          f"{c.parameters:>11d}{c.fit_time:>13.3g}  {('yes, ' if c.invertible else 'no, ') + c.inverse:<22}")
         lines.append(f"* chosen: {self.chosen.label} (fewest parameters within {1 + self.simpler_margin:.3g}x "
                      "the best held-out RMS error)")
+        if not math.isnan(self.linear_held_out_rms_percent):
+            lines.append(f"best linear model: held-out RMS {self.linear_held_out_rms_percent:.3f} % "
+                         f"({self.linear_held_out_rms_percent / self.chosen.held_out_rms_percent:.3g}x the chosen model's)")
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -175,8 +205,12 @@ class ModelChoice:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-serialisable contents."""
+        linear = self.linear_held_out_rms_percent
         return {"chosen": self.chosen.family, "chosen_label": self.chosen.label, "n_samples": self.n_samples,
-                "n_fit": self.n_fit, "output_range": self.output_range, "output_unit": self.output_unit,
+                "n_fit": self.n_fit, "split": self.split, "fitted_samples": int(self.fit_mask.sum()),
+                "output_range": self.output_range, "output_range_of": "whole record", "output_unit": self.output_unit,
+                "output_quantity": self.output_quantity,
+                "linear_held_out_rms [% of range]": None if math.isnan(linear) else float(linear),
                 "simpler_margin": self.simpler_margin, "candidates": [c.to_dict() for c in self.candidates]}
 
     def write_json(self, path: str | Path) -> Path:
@@ -194,25 +228,33 @@ def _record_arrays(record: Any, y: Any) -> tuple[Any, Any, str, Any]:
     return record, y, "", None
 
 
-def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = None,
-             families: tuple[str, ...] = FAMILIES, n_levels: int = 30, n_plays: int = 20, n_relays: int = 20,
-             smoothing: float = 1e-3, prior: str = "pi", reversal_tolerance: float = 0.02, levels: str = "paper",
-             simpler_margin: float = 0.1, output_unit: str | None = None, relays_per_cell: int = 1) -> ModelChoice:
+def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int | None = None,
+             fit_mask: Any = None, families: tuple[str, ...] = FAMILIES, n_levels: int = 30, n_plays: int = 20,
+             n_relays: int = 20, smoothing: float = 1e-3, prior: str = "pi", reversal_tolerance: float = 0.02,
+             levels: str = "paper", simpler_margin: float = 0.1, output_unit: str | None = None,
+             relays_per_cell: int = 1, output_quantity: str | None = None,
+             linear_margin: float = 0.25) -> ModelChoice:
     """Fit every hysteresis family to a record and choose one by its held-out error.
 
     Parameters
     ----------
     u : array_like or Record
         Input samples in time order, or a measured record
-        (:class:`exudyn_atcm.io.measurements.Record`; then ``y`` is left out and the split is by
-        time).
+        (:class:`exudyn_atcm.io.measurements.Record`; then ``y`` is left out, the fraction of
+        ``split`` is of the duration and the output unit is the record's).
     y : array_like, optional
         Output samples (omit with a record).
-    split : float, optional
-        Fraction of the record fitted (of the duration for a record, of the samples for
-        arrays), in ``(0, 1)``; the rest is held out.  Default 0.6.
+    split : {"auto", "cycles"} or float, optional
+        Which samples are held out (:mod:`exudyn_atcm.hysteresis.record_split`): ``"auto"``
+        (default) the last 40 % when the first 60 % covers their inputs, else interleaved whole
+        cycles inside the fitted range; ``"cycles"`` interleaved cycles; a fraction in
+        ``(0, 1)``: that share of the record (of the duration for a record, of the samples for
+        arrays) is fitted, the rest held out.  An :class:`~exudyn_atcm.errors.AccuracyWarning`
+        names held-out inputs beyond the fitted range.
     n_fit : int, optional
         First held-out sample, instead of ``split``.
+    fit_mask : array_like of bool, optional
+        The fitted samples (one entry per sample), instead of ``split``.
     families : tuple of str, optional
         Which of :data:`FAMILIES` to fit (default all).
     n_levels : int, optional
@@ -234,11 +276,17 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
         A model with more parameters is chosen only if its held-out RMS error is below
         ``1 + simpler_margin`` times that of every simpler one within reach (default 0.1).
     output_unit : str, optional
-        Unit of ``y`` (default: the record's, or ``""``).
+        Unit of ``y`` (default: the record's, or ``""``); every fitted model keeps it.
     relays_per_cell : int, optional
         Of the ``discrete`` fit: ``k > 1`` fits the weights as spread cells and realises each
         cell as ``k × k`` relays (see :meth:`DiscretePreisach.fit`); the parameter count is the
         fitted weights' (default 1).
+    output_quantity : str, optional
+        What ``y`` is (``"strain"``, ``"displacement"``, ...); default from the unit (a length
+        unit: ``"displacement"``).
+    linear_margin : float, optional
+        Warn unless the best linear model's held-out RMS error is at least ``1 + linear_margin``
+        times the chosen model's (default 0.25).
 
     Returns
     -------
@@ -248,10 +296,11 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
     ------
     ValueError
         For a bad record (see :func:`~exudyn_atcm.hysteresis.identification.check_record`), no
-        held-out part, an unknown family, or no family that could be fitted.
+        held-out part, an unknown family or split, or no family that could be fitted.
     """
     u_in, y_in, unit, t = _record_arrays(u, y)
     unit = unit if output_unit is None else output_unit
+    quantity = quantity_from_unit(unit, output_quantity)
     u_a, y_a, _ = check_record(u_in, y_in)
     if not families or any(f not in FAMILIES for f in families):
         raise ValueError(f"families must be a non-empty selection of {FAMILIES}, got {families!r}")
@@ -259,40 +308,42 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
         raise ValueError(f"relays_per_cell must be an integer >= 1, got {relays_per_cell!r}")
     if not (isinstance(simpler_margin, (int, float)) and 0.0 <= simpler_margin < 10.0):
         raise ValueError(f"simpler_margin must be a number in [0, 10), got {simpler_margin!r}")
-    if n_fit is None:
-        if not (isinstance(split, (int, float)) and 0.0 < split < 1.0):
-            raise ValueError(f"split must be a fraction in (0, 1) (the rest is held out), got {split!r}")
-        if t is not None:
-            n_fit = int(np.searchsorted(t, t[0] + split * (t[-1] - t[0]), side="left"))
-        else:
-            n_fit = int(round(split * u_a.size))
-    if isinstance(n_fit, bool) or not isinstance(n_fit, (int, np.integer)) or not 10 <= n_fit < u_a.size:
-        raise ValueError(f"n_fit must be an integer in [10, {u_a.size - 1}] (a held-out part is needed), got {n_fit!r}")
-    n_fit = int(n_fit)
+    if not (isinstance(linear_margin, (int, float)) and 0.0 <= linear_margin < 100.0):
+        raise ValueError(f"linear_margin must be a number in [0, 100), got {linear_margin!r}")
+    mask, how = choose_split(u_a, t, split, n_fit, fit_mask)
+    contiguous = how.startswith("the first")
+    n_fit = int(np.argmin(mask)) if contiguous else int(u_a.size)
+    rows = {"n_fit": n_fit} if contiguous else {"fit_mask": mask}
+    fit_unit = {"output_unit": unit, "output_quantity": quantity}
 
     def fit_one(family: str) -> tuple[str, Any, FitReport, int]:
         if family == "equal_gain":
-            model, fitted = DiscretePreisach.from_loop(u_a[:n_fit], y_a[:n_fit], n_relays, reversal_tolerance=reversal_tolerance,
-                                                       report=True, output_unit=unit, levels=levels)
-            low = np.flatnonzero(u_a[:n_fit] <= float(model.beta.min()))
+            if contiguous:
+                model, fitted = DiscretePreisach.from_loop(u_a[:n_fit], y_a[:n_fit], n_relays,
+                                                           reversal_tolerance=reversal_tolerance, report=True,
+                                                           levels=levels, **fit_unit)
+            else:
+                model, fitted = DiscretePreisach.from_loop(u_a, y_a, n_relays, reversal_tolerance=reversal_tolerance,
+                                                           report=True, levels=levels, fit_mask=mask, **fit_unit)
+            low = np.flatnonzero(u_a <= float(model.beta.min()))
             start = int(low[0]) if low.size else 0
             report = make_report(model, u_a, y_a, n_fit, start, "DiscretePreisach.from_loop", settings=fitted.settings,
-                                 notes=fitted.notes, output_unit=unit, fit_time=fitted.fit_time)
+                                 notes=fitted.notes, output_unit=unit, fit_time=fitted.fit_time,
+                                 fit_mask=None if contiguous else mask)
             return f"equal_gain ({n_relays} relays, {levels})", model, report, 2 * n_relays + 2
         if family in ("discrete", "everett"):
             options = {"relays_per_cell": relays_per_cell} if family == "discrete" else {}
             cls = DiscretePreisach if family == "discrete" else EverettPreisach
-            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, n_fit=n_fit, output_unit=unit, prior=prior,
-                                    **options)
+            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, prior=prior, **rows, **fit_unit, **options)
             refined = f", {relays_per_cell}x{relays_per_cell} relays per cell" if options and relays_per_cell != 1 else ""
             return f"{family} ({n_levels} levels, {prior}{refined})", model, report, n_levels * (n_levels + 1) // 2 + 1
         if family == "prandtl_ishlinskii":
-            model, report = PrandtlIshlinskii.fit(u_a, y_a, n_plays, n_fit=n_fit, output_unit=unit)
+            model, report = PrandtlIshlinskii.fit(u_a, y_a, n_plays, **rows, **fit_unit)
             return f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1
-        model, report = ContinuousPreisach.fit(u_a, y_a, n_fit=n_fit, output_unit=unit)
+        model, report = ContinuousPreisach.fit(u_a, y_a, **rows, **fit_unit)
         return "continuous (power law)", model, report, 6
 
-    output_range = float(np.ptp(y_a[:n_fit]))  # one reference for every family's % figures
+    output_range = float(np.ptp(y_a))  # the whole record's: one reference for every family's % figures
     candidates = []
     failed = []
     for family in families:
@@ -318,5 +369,14 @@ def identify(u: Any, y: Any = None, *, split: float = 0.6, n_fit: int | None = N
     if failed:
         warnings.warn("identify: not fitted: " + "; ".join(f"{c.family} ({c.failure})" for c in failed),
                       SetupWarning, stacklevel=2)
+    linear = 100.0 * chosen.report.linear_errors["held_out"]["rms"] / output_range
+    if not linear >= (1.0 + linear_margin) * chosen.held_out_rms_percent:
+        warnings.warn(
+            f"identify: the chosen model ({chosen.label}) predicts the held-out part at {chosen.held_out_rms_percent:.3g} % "
+            f"RMS of the output range, the best straight line y = a u + b at {linear:.3g} % ({linear / chosen.held_out_rms_percent:.3g}x, "
+            f"less than the {1 + linear_margin:.3g}x asked by linear_margin): the record shows no hysteresis the models "
+            "can use (noise, a time-reversed or mislabelled record, or a nearly linear actuator); check the channels "
+            "and their order before using the model", AccuracyWarning, stacklevel=2)
     return ModelChoice(candidates + failed, chosen, int(u_a.size), n_fit, output_range, unit, float(simpler_margin),
-                       input=u_a, output=y_a)
+                       input=u_a, output=y_a, fit_mask=mask, split=how, linear_held_out_rms_percent=linear,
+                       output_quantity=quantity)
