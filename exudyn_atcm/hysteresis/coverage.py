@@ -114,10 +114,14 @@ class TriangleCoverage:
         n = self.n_levels + below + above
         mask = np.zeros((n, n), dtype=bool)
         h = (self.u_hi - self.u_lo) / self.n_levels
-        low = self.u_lo - below * h
+        last = self.n_levels - 1
 
         def index(v: float) -> int:
-            return min(max(int((v - low) / h), 0), n - 1)
+            # the grid's own cells hold [u_lo, u_hi] with both ends; beyond, cells of the same size
+            k = int(np.floor((v - self.u_lo) / h))
+            if self.u_lo <= v <= self.u_hi:
+                k = min(max(k, 0), last)
+            return min(max(k + below, 0), n - 1)
 
         for piece in _pieces(u):
             for first, last, rising in reversal_curves(piece, 0.5 * h):

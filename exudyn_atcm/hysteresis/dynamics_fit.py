@@ -71,7 +71,13 @@ def creep_from_step(t: Any, y: Any, *, y_before: float = 0.0, n_lags: int = 2, t
     ------
     ValueError
         For records of different lengths, non-finite values, negative or non-increasing
-        times, too few samples, ``n_lags < 1`` or a step height of zero.
+        times, too few samples, ``n_lags < 1`` or a step height of zero; and for a record
+        that relaxes after its step (jumps, then settles below the jump): a creep law only
+        adds to the step, so its fit would report a wrong step height.  The message gives the
+        fit with coefficients of either sign (step, time constants, coefficients) and the
+        reason.  A record counts as relaxing when that fit leaves less than
+        :data:`RELAXATION_RATIO` of the creep fit's RMS residual, the creep fit misses by more
+        than 1 % of the step, and the signed coefficients sum below zero.
 
     Notes
     -----
@@ -107,8 +113,47 @@ def creep_from_step(t: Any, y: Any, *, y_before: float = 0.0, n_lags: int = 2, t
     step = float(x[0])
     if step == 0.0:
         raise ValueError("y: the record shows no step (the fitted step height is 0)")
-    info = {"rms": float(np.sqrt(np.mean(res ** 2))), "tau_start": start}
+    rms = float(np.sqrt(np.mean(res ** 2)))
+    _refuse_relaxation(t_a, y_a, start, fit_tau, rms)
+    info = {"rms": rms, "tau_start": start}
     return Creep(tau_a, x[1:] / step), step, info
+
+
+#: A record relaxes when a fit with coefficients of either sign leaves less than this share of the
+#: creep fit's RMS residual (and the creep fit misses by more than 1 % of the step).
+RELAXATION_RATIO = 0.3
+
+
+def _refuse_relaxation(t: np.ndarray, y: np.ndarray, tau_start: np.ndarray, fit_tau: bool, rms: float) -> None:
+    """``ValueError`` with the reason and the signed fit when ``y`` relaxes after the step (see
+    :func:`creep_from_step`): a creep law only adds to the step (``c_k >= 0``)."""
+    def signed(tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        basis = _step_basis(t, tau)
+        x, *_ = np.linalg.lstsq(basis, y, rcond=None)
+        return x, y - basis @ x
+
+    tau = tau_start
+    if fit_tau:
+        low, high = 0.1 * float(t[1] - t[0]), 10.0 * float(t[-1])
+        x0 = np.clip(np.log(tau), np.log(low) + 1e-9, np.log(high) - 1e-9)
+        tau = np.sort(np.exp(least_squares(lambda lt: signed(np.exp(lt))[1], x0,
+                                           bounds=(np.log(low), np.log(high))).x))
+    x, res = signed(tau)
+    signed_rms = float(np.sqrt(np.mean(res ** 2)))
+    step = float(x[0])
+    if step == 0.0 or not (signed_rms < RELAXATION_RATIO * rms and rms > 0.01 * abs(step)):
+        return
+    c = x[1:] / step
+    if not float(np.sum(c)) < 0.0:
+        return
+    raise ValueError(
+        f"y relaxes after the step: it jumps by {step:.4g} and settles at {step * (1.0 + float(np.sum(c))):.4g} "
+        f"(a least-squares fit with coefficients of either sign: tau = {np.round(tau, 6).tolist()} s, "
+        f"c = {np.round(c, 4).tolist()}, RMS {signed_rms:.3g}); a creep law (c_k >= 0) only adds to the step, so "
+        f"its best fit (RMS {rms:.3g}) would give a wrong step height. Creep cannot represent relaxation: check "
+        "the record (drift, a force or a thermal effect after the step), or fit the creep from a record that "
+        "creeps in the direction of the step"
+    )
 
 
 def play_outputs(u: Any, radii: Any) -> np.ndarray:

@@ -57,7 +57,8 @@ class PiezoDrive:
     rated_range : (float, float) or None, optional
         Rated voltage range of the MFC [V]; default ``(-500, 1500)``, the MFC P1 type.
         Voltages outside it, or outside the operator's ``input_range`` (where its output
-        saturates), give one ``RuntimeWarning`` per run; so does a non-zero program whose
+        saturates, or for a fitted operator the range it was fitted on, beyond which it
+        extrapolates), give one ``InputRangeWarning`` per run; so does a non-zero program whose
         peak ``|U|`` stays below :data:`KV_SUSPECT_FRACTION` of the rating's largest magnitude
         (3 V for the default: a program written in kV).  ``None``: no rating check.
 
@@ -159,7 +160,8 @@ class PiezoDrive:
         """Warn once if voltages in ``[u_low, u_high]`` [V] leave the operator's input range or the rating.
 
         Outside the hysteresis operator's ``input_range`` its output saturates (5000 V gives
-        the 1500 V answer); outside :attr:`rated_range` the MFC is driven beyond its rating.
+        the 1500 V answer) or, for a fitted operator (its ``fitted_range``), extrapolates beyond
+        the data it was fitted on; outside :attr:`rated_range` the MFC is driven beyond its rating.
         One ``RuntimeWarning`` lists each range and how far the voltages go beyond it; ``what``
         (e.g. ``"drive 'crank'"``) names the drive in it.  A second ``RuntimeWarning`` is given
         when a non-zero program peaks below :data:`KV_SUSPECT_FRACTION` of the rating's largest
@@ -170,10 +172,18 @@ class PiezoDrive:
         if op_range is not None:
             text = _outside(u_low, u_high, op_range)
             if text:
-                problems.append(
-                    f"{text} the hysteresis operator's input range {op_range[0]:g} ... {op_range[1]:g} V, "
-                    "where its output saturates (larger voltages give the same strain)"
-                )
+                fitted = getattr(self.hysteresis, "operator", self.hysteresis)  # the operator of a WithDynamics
+                if getattr(fitted, "fitted_range", None) is not None:
+                    problems.append(
+                        f"{text} the range {op_range[0]:g} ... {op_range[1]:g} V the hysteresis operator was fitted "
+                        "on, beyond which it extrapolates from data it never saw (saturates or goes on linearly, "
+                        "not as the actuator does); measure the wider range and fit again"
+                    )
+                else:
+                    problems.append(
+                        f"{text} the hysteresis operator's input range {op_range[0]:g} ... {op_range[1]:g} V, "
+                        "where its output saturates (larger voltages give the same strain)"
+                    )
         if self.rated_range is not None:
             text = _outside(u_low, u_high, self.rated_range)
             if text:
