@@ -114,13 +114,13 @@ class TriangleCoverage:
         n = self.n_levels + below + above
         mask = np.zeros((n, n), dtype=bool)
         h = (self.u_hi - self.u_lo) / self.n_levels
-        last = self.n_levels - 1
+        top = self.n_levels - 1
 
         def index(v: float) -> int:
             # the grid's own cells hold [u_lo, u_hi] with both ends; beyond, cells of the same size
             k = int(np.floor((v - self.u_lo) / h))
             if self.u_lo <= v <= self.u_hi:
-                k = min(max(k, 0), last)
+                k = min(max(k, 0), top)
             return min(max(k + below, 0), n - 1)
 
         for piece in _pieces(u):
