@@ -128,6 +128,35 @@ def test_creep_from_a_noisy_step_record():
     np.testing.assert_allclose(given.c, CREEP.c, rtol=0.02)
 
 
+@pytest.mark.parametrize("fit_tau", [True, False])
+def test_creep_from_step_refuses_a_record_that_relaxes_with_the_signed_fit(fit_tau):
+    # truth (issue 28): the output jumps to 1 and relaxes to 0.8 with one time constant of 0.5 s,
+    # y = 1 - 0.2 (1 - exp(-t / 0.5)), 0.1 % noise.  A creep law (c >= 0) cannot follow it: before
+    # issue 28 the fit returned "no creep" with a step of 0.81 (0.19 off at t = 0), silently.
+    t = np.arange(2001) * 0.0025
+    y = 1.0 - 0.2 * (1.0 - np.exp(-t / 0.5)) + 0.001 * np.random.default_rng(3).standard_normal(t.size)
+    with pytest.raises(ValueError, match=r"y relaxes after the step: it jumps by .* a creep law \(c_k >= 0\) only "
+                                         r"adds to the step") as caught:
+        creep_from_step(t, y, n_lags=1, tau=[0.5] if not fit_tau else None, fit_tau=fit_tau)
+    # the signed fit in the message: the jump (within 0.002), the settled output (within 0.002), the
+    # truth's time constant (within 3 %) and coefficient (within 0.005); noise 0.1 % of the jump
+    text = str(caught.value)
+    jump = float(text.split("jumps by ")[1].split(" ")[0])
+    settled = float(text.split("settles at ")[1].split(" ")[0])
+    tau = float(text.split("tau = [")[1].split("]")[0])
+    c = float(text.split("c = [")[1].split("]")[0])
+    assert jump == pytest.approx(1.0, abs=0.002) and settled == pytest.approx(0.8, abs=0.002)
+    assert tau == pytest.approx(0.5, rel=0.03) and c == pytest.approx(-0.2, abs=0.005)
+
+
+def test_creep_from_step_keeps_a_flat_noisy_step():
+    # no creep at all, 0.2 % noise: neither creep nor relaxation (a signed fit of noise is no better)
+    t = np.arange(1001) * 0.005
+    y = 0.5 + 0.001 * np.random.default_rng(4).standard_normal(t.size)
+    creep, step, _ = creep_from_step(t, y)
+    assert step == pytest.approx(0.5, abs=0.002) and creep.long_term_gain == pytest.approx(1.0, abs=0.01)
+
+
 def test_creep_from_step_refuses_bad_records():
     with pytest.raises(ValueError, match="t must be times since the step"):
         creep_from_step([-1.0, 0.0, 1.0], [1.0, 1.0, 1.0])

@@ -239,6 +239,20 @@ def test_a_drive_warns_for_a_fitted_pi_model_beyond_its_range():
         drive.static_strain(1400.0)
 
 
+def test_fit_rate_lag_operator_knows_its_range():
+    from exudyn_atcm.hysteresis.dynamics_fit import fit_rate_lag
+
+    t = np.linspace(0.0, 1.0, 401)
+    u = 400.0 * (1.0 - np.cos(2 * np.pi * 2.0 * t))  # 0 ... 800 V from rest at 0
+    truth = PrandtlIshlinskii(np.arange(1, 5) * 100.0, np.full(4, 1e-7), 2e-7)
+    model, _ = fit_rate_lag([(t, u, truth.apply(u))], 5)
+    assert model.operator.fitted_range == (0.0, 800.0) and model.input_range == (0.0, 800.0)
+    assert model.operator.fit_info["method"] == "fit_rate_lag"
+    json.dumps(model.operator.fit_info, allow_nan=False)
+    with pytest.warns(InputRangeWarning, match=r"fitted on inputs 0 \.\.\. 800; the inputs go up to 1200"):
+        model.apply(1.5 * u, t)
+
+
 # ----------------------------------------------------------------------------- part 3: units on the model
 def test_fits_record_the_output_unit_and_quantity():
     u = corners_path([0, 1000, 0, 1000, 0], 10.0)

@@ -311,6 +311,9 @@ class WithDynamics(HysteresisOperator):
         if t is None:
             raise ValueError(f"t is required: {type(self).__name__}.apply(u_series, t) needs the sample times [s]")
         t_a = sample_times("t", t, u_a.size) if u_a.size else np.zeros(0)
+        check = getattr(self.operator, "check_fitted_range", None)
+        if u_a.size and callable(check):  # a fitted operator warns beyond the range it was fitted on
+            check(float(u_a.min()), float(u_a.max()))
         saved = self.checkpoint()
         try:
             self.reset()

@@ -281,7 +281,11 @@ def fit_rate_lag(records: Any, n_plays: int, *, creep: Creep | None = None,
     T = float(np.exp(best.x))
     x, residuals = solve(T)
     _, plain = solve(low)
-    model = WithDynamics(PrandtlIshlinskii(radii, x[1:-2], float(x[0]), offset=float(x[-2] - x[-1])), creep, RateLag(T))
+    operator = PrandtlIshlinskii(radii, x[1:-2], float(x[0]), offset=float(x[-2] - x[-1]))
     info = {"T": T, "rms": [float(np.sqrt(np.mean(r ** 2))) for r in residuals],
             "rms_rate_independent": [float(np.sqrt(np.mean(r ** 2))) for r in plain]}
+    operator.set_fit_metadata((float(u_all.min()), float(u_all.max())),
+                              {"method": "fit_rate_lag", "settings": {"n_plays": n, "radii": radii, **info},
+                               "samples": {"records": len(recs), "fitted": int(u_all.size)}})
+    model = WithDynamics(operator, creep, RateLag(T))
     return model, info
