@@ -4,8 +4,9 @@ The paper's actuator (three 29 mm cells, CFC on MFC) is driven through a hystere
 that plays the real MFC: the known non-uniform Preisach model behind the shipped record
 (``exudyn_atcm.model.reference_record.reference_preisach``, as free strain of a 29 mm cell).  The
 compensation does not know it: it uses the Preisach model *identified* from the noisy record
-``cases/data/preisach_record.csv`` (:meth:`EverettPreisach.fit`, ``n_levels`` grid), as a
-designer would.  The wanted tip deflection is a slow two-tone wave (a major swing with minor
+``cases/data/preisach_record.csv`` (:meth:`EverettPreisach.fit`, ``n_levels`` grid, its default
+``prior="pi"``: the minor loops inside the major swing follow the measured edges of the
+Preisach triangle the way a play operator's would), as a designer would.  The wanted tip deflection is a slow two-tone wave (a major swing with minor
 loops inside), turned into a wanted free strain by the constant-curvature arc of a beam bent
 by a pure moment, ``tip_y = (1 - cos(κL))/κ`` (Timoshenko 1925), ``κ`` the free curvature.
 
