@@ -60,14 +60,14 @@ def _dense_reference(columns, y, start, index, n_levels, lam):
 
 @pytest.mark.parametrize("smoothing", [1e-3, 1e-1])
 def test_discrete_fit_is_the_dense_nnls_optimum(smoothing):
-    """12 levels (78 relays) on a noisy record: the fitted weights minimise the same regularised
-    least squares as SciPy's dense NNLS on the relay states simulated relay by relay
+    """12 levels (78 relays) on a noisy record, the smoothness prior (issue 28 made "pi" the default):
+    the fitted weights minimise the same regularised least squares as SciPy's dense NNLS on the relay states simulated relay by relay
     (``tests/relays.py``): objectives equal to 1e-9 (the fit adds a 1e-10 relative ridge)."""
     alpha_t, beta_t, weights_t, offset_t = known_grid_model(12)
     u = corners_path(FIT_CORNERS, 0.03)
     y = relay_outputs(alpha_t, beta_t, weights_t, offset_t, u)
     y = y + 0.01 * np.ptp(y) * np.random.default_rng(4).standard_normal(u.size)
-    model, report = DiscretePreisach.fit(u, y, 12, smoothing=smoothing, input_range=(-1.0, 1.0))
+    model, report = DiscretePreisach.fit(u, y, 12, smoothing=smoothing, input_range=(-1.0, 1.0), prior="smooth")
     alpha, beta, index = relay_grid(-1.0, 1.0, 12)
     columns = np.column_stack([relay_outputs([a], [b], [1.0], 0.0, u) for a, b in zip(alpha, beta)])
     reference, objective = _dense_reference(columns, y, report.fit_start, index, 12, report.settings["smoothing_weight"])
@@ -81,7 +81,7 @@ def test_everett_fit_is_the_dense_nnls_optimum():
     u = corners_path(FIT_CORNERS, 0.03)
     y = relay_outputs(alpha_t, beta_t, weights_t, offset_t, u)
     y = y + 0.01 * np.ptp(y) * np.random.default_rng(5).standard_normal(u.size)
-    model, report = EverettPreisach.fit(u, y, 10, input_range=(-1.0, 1.0))
+    model, report = EverettPreisach.fit(u, y, 10, input_range=(-1.0, 1.0), prior="smooth")
     alpha, beta, index = relay_grid(-1.0, 1.0, 10)
     edges = np.linspace(-1.0, 1.0, 11)
     columns = np.column_stack([EverettPreisach(edges, alpha, beta, np.eye(alpha.size)[k]).apply(u)
@@ -118,7 +118,7 @@ def test_grid_and_loop_fits_are_refused_beyond_the_limits():
     long = corners_path([-1, 1] * 17, 0.001)  # 66 001 samples: a dense Gram matrix of each sample's cells
     with pytest.raises(ValueError, match=r"EverettPreisach.fit refused before starting: it would take about .* s .*"
                                          r"\(4950 relays, 66001 samples\), more than 600 s"):
-        EverettPreisach.fit(long, long**2, 99)
+        EverettPreisach.fit(long, long**2, 99, prior="smooth")  # no cross-validation: the time limit alone
     # refused by the count bound (physical_bounds) before the cost estimate is reached
     with pytest.raises(ValueError, match=r"n = 100000000 relays is more than 100000 relays"):
         DiscretePreisach.from_loop(u, u**2 + np.gradient(u), 10**8)

@@ -86,7 +86,7 @@ def test_pi_fit_from_rest_is_within_1_1x_of_the_plain_least_squares_pi(preisach_
     reference = rms((design - mean_d) @ coef + mean_y - y)
     applied = rms(model.apply(u) - y)  # the model from its reset state reproduces the fitted history
     assert applied == pytest.approx(report.model_errors["fit"]["rms"], rel=1e-9)
-    assert applied <= 1.1 * reference  # measured 0.97x (descended chosen)
+    assert applied <= 1.1 * reference  # measured 0.76x (the descended state chosen)
     # before issue 28 the fit waited until the input had covered its range: the last cycle only
     _, waited = PrandtlIshlinskii.fit(u, y, 20, initial="covered")
     assert waited.fit_start > 0.85 * u.size
@@ -127,7 +127,7 @@ def test_identify_on_a_growing_amplitude_record_predicts_within_2x_its_fit_error
     # the held-out inputs lie inside the fitted input range (checked here from the mask)
     assert u[~mask].max() <= u[mask].max() and u[~mask].min() >= u[mask].min()
     chosen = choice.chosen
-    assert chosen.held_out_rms_percent <= 2.0 * chosen.fit_rms_percent  # measured 1.1x
+    assert chosen.held_out_rms_percent <= 2.0 * chosen.fit_rms_percent  # measured 0.79x (0.57 % and 0.72 %)
     # % of the whole record's output range, recomputed from the prediction
     held = rms(chosen.report.predicted[~mask] - y[~mask])
     assert chosen.held_out_rms_percent == pytest.approx(100 * held / np.ptp(y), rel=1e-12)
