@@ -129,7 +129,8 @@ def fit_prandtl_ishlinskii(cls: type, u: Any, y: Any, n: int, *, n_fit: int | No
                          "input is fitted from its first sample")
     else:
         rms = ", ".join(f"{name} {solutions[name][3]:.4g}" for name in solutions)
-        notes.append(f"every sample fitted from the first: the plays start {chosen} at u = {u0:g} "
+        state = "at rest" if chosen == "rest" else "descended (as after a descent from far above)"
+        notes.append(f"every sample fitted from the first: the plays start {state} at u = {u0:g} "
                      + ("(the record starts at its lowest input; chosen by the least-squares residual, RMS "
                         f"{rms}{' ' + output_unit if output_unit else ''})" if len(solutions) > 1 else "(initial state given)"))
     masked = None if fit_mask is None else mask
