@@ -18,15 +18,14 @@ fitted part) show what the hysteresis model gains.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import InputRangeWarning
 from ..io.atomic import write_json
+from .base import HysteresisOperator
 from .coverage import TriangleCoverage, runs
 
 __all__ = ["FitReport", "error_measures", "make_report"]
@@ -223,10 +222,8 @@ def make_report(
     ``n_samples``); the others from ``fit_start`` on are held out.  Inputs of the held-out
     part beyond the fitted input range are said in a note (the prediction there extrapolates).
     """
-    with warnings.catch_warnings():
-        # the report says itself where the held-out input leaves the fitted range (a note below)
-        warnings.simplefilter("ignore", InputRangeWarning)
-        predicted = operator.apply(u)
+    # the report says itself where the held-out input leaves the fitted range (a note below)
+    predicted = operator.apply(u, check_range=False) if isinstance(operator, HysteresisOperator) else operator.apply(u)
     notes = list(notes or [])
     after = np.arange(u.size) >= fit_start
     if fit_mask is None:
