@@ -16,7 +16,8 @@ The channel list, in the file's order:
   ``label`` (else ``blockName``);
 * plain arrays: every numeric vector variable (named by the variable), every matrix cut into
   its columns (``data(:,1)``, ``data(:,2)``, ...; into rows ``data(1,:)`` ... when it is wider
-  than tall), and the numeric fields of a plain struct (named by the field).
+  than tall), and the numeric fields of a plain struct (named by the field).  Scalars (a
+  sample rate, a gain), text, logical and complex arrays are no channels.
 
 Without ``variable`` the file's one export is used; several are refused (choose with
 ``variable``); a file without an export gives its numeric top-level variables, or, if it has
@@ -106,9 +107,9 @@ def _numeric(value: Any) -> np.ndarray | None:
 
 
 def _array_channels(name: str, value: Any, unit: str, where: str) -> list[Channel]:
-    """A vector as one channel, a matrix as its columns (its rows if wider than tall)."""
+    """A vector as one channel, a matrix as its columns (its rows if wider than tall); a scalar is none."""
     array = _numeric(value)
-    if array is None or array.size == 0:
+    if array is None or array.size <= 1:
         return []
     if array.ndim <= 1 or sum(d > 1 for d in array.shape) <= 1:
         return [Channel(name, array.astype(float).ravel(), unit, where)]
