@@ -196,3 +196,72 @@ def test_files_that_are_not_matlab_files_or_v7_3_without_h5py(tmp_path, monkeypa
     text.write_text("0,1,2\n1,2,3\n")
     with pytest.raises(ValueError, match=r"variable applies to MATLAB files only, got variable = 'x'"):
         read_record(text, variable="x")
+
+
+# ------------------------------------------------------------------ MATLAB v7.3 (HDF5) with h5py
+def write_v73(path, build):
+    """A file in MATLAB's v7.3 layout: HDF5 behind a 512-byte user block with MATLAB's header.
+
+    Arrays are stored transposed (MATLAB is column-major), text as UTF-16 code units with
+    ``MATLAB_class = "char"``, a struct as a group, a struct array as a group of reference
+    datasets into ``#refs#``.
+    """
+    h5py = pytest.importorskip("h5py")
+    with h5py.File(str(path), "w", userblock_size=512) as f:
+        build(f, h5py)
+    header = b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Jan  1 00:00:00 2024 HDF5 schema 1.00 .".ljust(116)
+    with open(path, "r+b") as handle:
+        handle.write(header + b"\x00" * 8 + b"\x00\x02" + b"IM")
+    return path
+
+
+def numeric(group, name, values):
+    data = group.create_dataset(name, data=np.atleast_2d(values))  # a 1 x n row in MATLAB: n x 1 here
+    data.attrs["MATLAB_class"] = np.bytes_("double")
+    return data
+
+
+def text(group, name, value):
+    data = group.create_dataset(name, data=np.array([[ord(c)] for c in value], dtype=np.uint16))
+    data.attrs["MATLAB_class"] = np.bytes_("char")
+    return data
+
+
+def test_v7_3_plain_arrays_with_h5py(tmp_path):
+    def build(f, h5py):
+        numeric(f, "data", np.column_stack([T, U, Y_UM]).T)  # MATLAB N x 3, stored 3 x N
+        text(f, "note", "bench 3")
+
+    rec = read_record(write_v73(tmp_path / "big.mat", build), units={"output": "um"})
+    assert_record(rec)
+    assert rec.names["output"] == "data(:,3)"
+
+
+def test_v7_3_dspace_export_with_h5py(tmp_path):
+    def build(f, h5py):
+        refs = f.create_group("#refs#")
+        count = iter(range(1000))
+
+        def ref(make):
+            name = f"r{next(count)}"
+            make(refs, name)
+            return refs[name].ref
+
+        run = f.create_group("run3")
+        run.attrs["MATLAB_class"] = np.bytes_("struct")
+        x = run.create_group("X")
+        x.attrs["MATLAB_class"] = np.bytes_("struct")
+        numeric(x, "Data", T[:, None])
+        text(x, "Name", "Time")
+        y = run.create_group("Y")  # a 1 x 2 struct array: each field a 2 x 1 dataset of references
+        y.attrs["MATLAB_class"] = np.bytes_("struct")
+        for field, values in (("Name", ["Model Root/amp/U", "Model Root/laser/x"]), ("Unit", ["V", "um"]),
+                              ("Data", [U, Y_UM])):
+            make = text if field != "Data" else numeric
+            y.create_dataset(field, data=np.array([[ref(lambda g, n, v=v: make(g, n, v if field != "Data" else v[:, None]))]
+                                                   for v in values], dtype=h5py.ref_dtype))
+
+    rec = read_record(write_v73(tmp_path / "run.mat", build))
+    assert_record(rec)
+    assert rec.units == {"time": "s", "input": "V", "output": "m"}
+    assert rec.names == {"time": "Time", "input": "Model Root/amp/U", "output": "Model Root/laser/x"}
