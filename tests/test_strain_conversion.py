@@ -18,7 +18,7 @@ import pytest
 
 import exudyn_atcm as atcm
 from exudyn_atcm.errors import AccuracyWarning
-from exudyn_atcm.hysteresis import ContinuousPreisach, DiscretePreisach, EverettPreisach, PrandtlIshlinskii
+from exudyn_atcm.hysteresis import DiscretePreisach, EverettPreisach, PrandtlIshlinskii
 from exudyn_atcm.hysteresis.creep import Creep, CreepHysteresis
 from exudyn_atcm.hysteresis.dynamics import RateLag, WithDynamics
 from exudyn_atcm.hysteresis.output_scale import scaled_output
