@@ -1,7 +1,8 @@
-"""Results and files: :class:`Result`, the package's CSV format, measured records, atomic writes and the
-terminal progress display.
+"""Results and files: :class:`Result`, the package's CSV format, measured records (text and MATLAB files, units),
+atomic writes and the terminal progress display.
 
-May import: numpy (matplotlib only inside :meth:`Result.plot`, through :mod:`exudyn_atcm.plots`).
+May import: numpy, scipy.io (MATLAB files), h5py where installed (MATLAB v7.3 files; optional), matplotlib only
+inside :meth:`Result.plot`, through :mod:`exudyn_atcm.plots`.
 """
 
 from .csv_files import CsvHeader, read_csv_header

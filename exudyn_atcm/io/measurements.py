@@ -1,14 +1,16 @@
-"""Measured input-output records (time, input, output) read from text files, split and preprocessed.
+"""Measured input-output records (time, input, output) read from text or MATLAB files, split and preprocessed.
 
 A *record* is what a designer measures on an actuator: the time [s], the input (usually the
 voltage [V]) and the output (a displacement [m] or strain [-]) sampled together.
-:func:`read_record` reads one from a CSV or whitespace-separated text file; :meth:`Record.split`
+:func:`read_record` reads one from a CSV or whitespace-separated text file or a MATLAB file
+(:mod:`exudyn_atcm.io.matlab_records`), with the units the file states or ``units=`` gives
+(:mod:`exudyn_atcm.io.units`); :meth:`Record.split`
 divides it by time into a part to fit a model on and a held-out part to check the prediction;
 :func:`preprocess` removes an output offset and a linear drift, trims a settling start and
 decimates, each step optional and written into :attr:`Record.processing`.
 
 Nothing is dropped silently: rows holding a NaN (or an empty cell) in a selected column are
-dropped and counted in a ``RuntimeWarning``; a cell that is not a number is an error naming
+dropped and counted in a :class:`~exudyn_atcm.errors.SuspectFileWarning`; a cell that is not a number is an error naming
 the line.
 """
 
@@ -16,7 +18,7 @@ from __future__ import annotations
 
 import math
 import re
-import warnings
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Union
 
@@ -25,7 +27,9 @@ import numpy as np
 from .._checks import positive_int
 from .preprocessing import preprocess
 from .record import Record
-from .file_checks import SuspectFileWarning, check_header_names, check_volt_column, warn_unterminated_last_line
+from .record_columns import Columns, build_record
+from .file_checks import check_header_names, warn_unterminated_last_line
+from .matlab_records import is_matlab_file, matlab_columns
 
 __all__ = ["Record", "read_record", "preprocess"]  # preprocess: see exudyn_atcm.io.preprocessing
 
@@ -126,31 +130,30 @@ def _column(header: list[str] | None, choice: Any, default: int, parameter: str,
     return index
 
 
-#: Header units converted to SI by :func:`read_record` (``si=True``): unit -> (factor, SI unit).
-_SI_SCALE = {
-    "ms": (1e-3, "s"), "µs": (1e-6, "s"), "μs": (1e-6, "s"), "us": (1e-6, "s"),
-    "mV": (1e-3, "V"), "kV": (1e3, "V"),
-    "mm": (1e-3, "m"), "µm": (1e-6, "m"), "μm": (1e-6, "m"), "um": (1e-6, "m"), "nm": (1e-9, "m"),
-}
-
-
 def read_record(
     path: Union[str, Path],
     time: ColumnChoice | None = None,
     input: ColumnChoice | None = None,  # noqa: A002 - the record's input column
     output: ColumnChoice | None = None,
     *,
+    units: Mapping[str, str] | None = None,
     comment: str = "#",
     min_samples: int = 2,
     si: bool = True,
+    variable: str | None = None,
 ) -> Record:
-    """Read a measured (time, input, output) record from a text file.
+    """Read a measured (time, input, output) record from a text or MATLAB file.
 
-    The file holds one sample per line, the cells separated by commas, semicolons, tabs or
+    A text file holds one sample per line, the cells separated by commas, semicolons, tabs or
     blanks.  Lines starting with ``comment`` are skipped, as are blank lines.  The first other
     line is a header if any of its cells is not a number; a header cell ``name [unit]`` gives
     the unit.  A blank leading column (lines starting with the separator, as some instruments
     write) is ignored.
+
+    A MATLAB file (``.mat``, or any file starting with MATLAB's header) is read with
+    :func:`scipy.io.loadmat`: plain arrays (vectors, or the columns of a matrix) or the struct
+    exports of real-time systems, see :mod:`exudyn_atcm.io.matlab_records`.  Its channels take
+    the place of the columns; everything else (units, NaN rows, SI) is the same.
 
     Parameters
     ----------
@@ -158,40 +161,67 @@ def read_record(
         The file.
     time, input, output : str or int, optional
         Column names (full header text such as ``"voltage [V]"`` or the name alone,
-        case-insensitive) or zero-based indices counted after a dropped blank leading column.
+        case-insensitive) or zero-based indices counted after a dropped blank leading column;
+        for a MATLAB file channel names or indices (see :mod:`~exudyn_atcm.io.matlab_records`).
         Defaults: columns 0, 1 and 2.
+    units : mapping, optional
+        Units of the columns, e.g. ``{"time": "ms", "input": "V", "output": "um"}``: for files
+        that state none (a header-less file, a header without ``[unit]``, a MATLAB array), or to
+        confirm the file's; a unit that differs from the one the file states is an error.  They
+        are converted to SI like the file's (``si``).  Keys ``"time"``, ``"input"``,
+        ``"output"``; the time unit must be a time.  Without it a column whose unit the file does
+        not state has the unit ``""`` (unknown; the time is taken as seconds), and
+        ``Record.processing`` says so: a record of unknown output unit is not taken for a strain
+        anywhere (:func:`~exudyn_atcm.model.strain_conversion.record_to_strain` refuses it).
     comment : str, optional
-        Comment prefix (default ``#``).
+        Comment prefix of text files (default ``#``).
     min_samples : int, optional
         Fewest valid rows accepted (default 2).
     si : bool, optional
-        Convert columns whose header unit is a decimal multiple of s, V or m (``ms``, ``µs``,
-        ``mV``, ``kV``, ``mm``, ``µm``/``um``, ``nm``) to SI, as the rest of the package
+        Convert columns whose unit is a decimal multiple of s, V or m (``ms``, ``µs``,
+        ``mV``, ``kV``, ``cm``, ``mm``, ``µm``/``um``, ``nm``) or microstrain (``µε``) to SI
+        (:data:`~exudyn_atcm.io.units.SI_SCALE`), as the rest of the package
         expects (``t_split`` in seconds, drives in volts, strains from metres); each
         conversion is listed in ``Record.processing`` (default True).  ``False`` keeps the
         file's numbers and units.
+    variable : str, optional
+        MATLAB files only: the variable holding the record (a matrix, a struct of vectors or
+        a recorder's export); default: found (see :mod:`~exudyn_atcm.io.matlab_records`).
 
     Returns
     -------
     Record
-        With ``units`` from the header (``"s"`` assumed for time when the header has none).
+        With ``units`` from the file and ``units`` (``"s"`` assumed for time when neither has one).
 
     Raises
     ------
     ValueError
         If the file is missing, a selected cell is not a number (the line is named), fewer than
-        ``min_samples`` valid rows remain, or the times are not strictly increasing.
+        ``min_samples`` valid rows remain, the times are not strictly increasing, a unit given
+        conflicts with the file's, or a MATLAB file cannot be read (v7.3 without h5py, no
+        numeric data, channels of different lengths; the message says which).
 
     Warns
     -----
-    RuntimeWarning
+    SuspectFileWarning
         When rows holding NaN or empty cells in a selected column are dropped (with their count
-        and the first line numbers).
+        and the first line numbers or sample indices).
     """
     path = Path(path)
     min_samples = positive_int("min_samples", min_samples)
     if not path.is_file():
-        raise ValueError(f"path must be an existing text file, got {str(path)!r}")
+        raise ValueError(f"path must be an existing text file or MATLAB file, got {str(path)!r}")
+    if is_matlab_file(path):
+        columns = matlab_columns(path, time, input, output, variable=variable)
+    else:
+        if variable is not None:
+            raise ValueError(f"variable applies to MATLAB files only, got variable = {variable!r} for the text file {path}")
+        columns = _text_columns(path, time, input, output, comment)
+    return build_record(columns, source=str(path), units=units, si=si, min_samples=min_samples)
+
+
+def _text_columns(path: Path, time: Any, input: Any, output: Any, comment: str) -> Columns:  # noqa: A002
+    """The three chosen columns of a text file (NaN for empty cells), with the header's names and units."""
     header: list[str] | None = None
     header_text = ""
     rows: list[tuple[int, list[str]]] = []
@@ -224,7 +254,7 @@ def read_record(
                 "'data_rows' line (written by Result.to_csv) end every line, so this one was cut off and its "
                 "last number may be cut short"
             )
-        warn_unterminated_last_line(str(path), unterminated[0], unterminated[1], stacklevel=3)
+        warn_unterminated_last_line(str(path), unterminated[0], unterminated[1], stacklevel=4)
     if not rows:
         raise ValueError(f"{path}: no data rows")
     # a blank leading column: empty in the header (if any) and in every row
@@ -251,45 +281,12 @@ def read_record(
                 data[r, c] = float(cell)
             except ValueError:
                 raise ValueError(f"{path}: line {number}, column {k} ({key}) must be a number, got {cell!r}") from None
-    bad = ~np.all(np.isfinite(data), axis=1)
-    processing: list[str] = []
-    if bad.any():
-        lines = [rows[i][0] for i in np.flatnonzero(bad)[:5]]
-        message = (
-            f"{path}: dropped {int(bad.sum())} of {len(rows)} rows with NaN, infinite or empty cells in the "
-            f"time/input/output columns (first at lines {lines})"
-        )
-        if 2 * int(bad.sum()) > len(rows):
-            message += (
-                f"; that is most of the record ({100.0 * bad.sum() / len(rows):.0f} %): check the columns chosen "
-                f"(time={indices['time']}, input={indices['input']}, output={indices['output']}), the separator "
-                "and the decimal mark"
-            )
-        warnings.warn(message, SuspectFileWarning, stacklevel=2)
-        processing.append(f"dropped {int(bad.sum())} rows with non-finite values")
-        data = data[~bad]
-    if data.shape[0] < min_samples:
-        raise ValueError(f"{path}: {data.shape[0]} valid rows, at least min_samples = {min_samples} are needed")
-    names, units = {}, {}
+    names, file_units = {}, {}
     for key, k in indices.items():
         if header is not None and k < len(header):
-            names[key], units[key] = _split_name(header[k])
+            names[key], file_units[key] = _split_name(header[k])
         else:
-            names[key], units[key] = key, ""
-    if not units["time"]:
-        units["time"] = "s"
-    if not isinstance(si, bool):
-        raise ValueError(f"si must be True or False, got {si!r}")
-    for c, key in enumerate(("time", "input", "output")):
-        if units[key] == "V":
-            check_volt_column(str(path), f"{names[key]} [V]", data[:, c], stacklevel=3)
-    if si:
-        for c, key in enumerate(("time", "input", "output")):
-            factor_unit = _SI_SCALE.get(units[key])
-            if factor_unit is not None:
-                factor, base = factor_unit
-                data[:, c] *= factor
-                processing.append(f"{key} converted from {units[key]} to {base} (x {factor:g})")
-                units[key] = base
-    return Record(data[:, 0], data[:, 1], data[:, 2], units=units, names=names,
-                  processing=tuple(processing), source=str(path))
+            names[key], file_units[key] = key, ""
+    hint = (f"check the columns chosen (time={indices['time']}, input={indices['input']}, output={indices['output']}), "
+            "the separator and the decimal mark")
+    return Columns(data, names, file_units, [n for n, _ in rows], "lines", "rows", hint)

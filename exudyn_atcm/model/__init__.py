@@ -32,6 +32,7 @@ from .reference_record import (
 )
 from .signals import Constant, CsvSignal, ForcProgram, PiecewiseLinear, Signal, Sine, Steps, Triangle
 from .strain_sources import InStepStrain, TableStrain
+from .strain_conversion import model_to_strain, record_to_strain, strain_from_displacement, strain_from_tip_deflection
 
 __all__ = [
     "Layer", "PLAUSIBLE_RANGES", "Laminate", "STIFFNESS_MODELS",
@@ -39,6 +40,7 @@ __all__ = [
     "Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram",
     "Controller", "PIDController",
     "InStepStrain", "TableStrain",
+    "strain_from_displacement", "strain_from_tip_deflection", "record_to_strain", "model_to_strain",
     "RecordingSchedule", "recording_schedule",
     "paper_stroke_preisach", "paper_strain_preisach", "PAPER_CITATION", "PAPER_LOOP", "PAPER_D33",
     "PAPER_ELECTRODE_SPACING",

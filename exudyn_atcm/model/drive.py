@@ -9,7 +9,8 @@ from typing import Any, Callable, Union
 
 from .._checks import finite_float, positive_float
 from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE, check_physical
-from ..errors import InputRangeWarning
+from ..errors import InputRangeWarning, SetupWarning
+from ..io.units import is_length
 
 VoltageProgram = Union[float, Callable[[float], float]]
 
@@ -52,8 +53,12 @@ class PiezoDrive:
         Without it, the free strain is linear: ``d33 U / electrode_spacing`` (Eq. 3).
         The operator's output must be the free strain: an operator whose
         ``output_quantity`` is set to anything but ``"strain"`` (e.g. the paper's stroke
-        model :func:`~exudyn_atcm.model.parameter_sets.paper_stroke_preisach`, ``"stroke"``) is
-        refused; ``None`` (not stated) is accepted.
+        model :func:`~exudyn_atcm.model.parameter_sets.paper_stroke_preisach`, ``"stroke"``, or
+        a model fitted on a displacement, ``"displacement"``), or whose ``output_unit`` is a
+        length, is refused with how to convert it
+        (:func:`~exudyn_atcm.model.strain_conversion.model_to_strain`); ``None`` (not stated)
+        is accepted, with a :class:`~exudyn_atcm.errors.SetupWarning` for a fitted operator
+        (``fit_info`` set) whose output unit is unknown.
     rated_range : (float, float) or None, optional
         Rated voltage range of the MFC [V]; default ``(-500, 1500)``, the MFC P1 type.
         Voltages outside it, or outside the operator's ``input_range`` (where its output
@@ -103,15 +108,7 @@ class PiezoDrive:
                     f"hysteresis must be a hysteresis operator with methods {', '.join(_OPERATOR_METHODS)}; "
                     f"got {type(hysteresis).__name__!s} lacking {', '.join(missing)}"
                 )
-            quantity = getattr(hysteresis, "output_quantity", None)
-            if quantity is not None and quantity != "strain":
-                raise ValueError(
-                    f"hysteresis must give the free strain [-] of the active layer, got an operator whose "
-                    f"output is {quantity!r}. The drive turns strain into each cell's stroke itself "
-                    "(stroke = strain x cell length); use a strain-valued operator, e.g. "
-                    "exudyn_atcm.model.parameter_sets.paper_strain_preisach() instead of paper_stroke_preisach(), "
-                    "or scale your operator's output to strain"
-                )
+            _check_output_quantity(hysteresis)
             _check_strain_magnitude(_output_bound(hysteresis), "the hysteresis operator's output range", stacklevel=4)
         self.hysteresis = hysteresis
         if rated_range is None:
@@ -248,6 +245,43 @@ def _outside(u_low: float, u_high: float, bounds: tuple[float, float]) -> str:
     if u_low < bounds[0]:
         parts.append(f"reach {u_low:g} V, {bounds[0] - u_low:g} V below")
     return " and ".join(parts) and "they " + " and ".join(parts)
+
+
+#: How to turn a displacement-valued model into the strain a drive takes (named in the refusal).
+CONVERSION_HINT = (
+    "convert it with exudyn_atcm.model.strain_conversion.model_to_strain(model, gauge_length=l0) (a free patch's "
+    "elongation measured over l0 [m]; a paper-style cell stroke: l0 = the cell length) or model_to_strain(model, "
+    "laminate=actuator.laminate, length=s) (a free bender's deflection at arc length s [m]), or convert the record "
+    "with record_to_strain(record, ...) and identify the model again"
+)
+
+
+def _check_output_quantity(operator: Any) -> None:
+    """Refuse an operator that states a non-strain output or a length unit; warn about a fitted one of unknown unit."""
+    quantity = getattr(operator, "output_quantity", None)
+    unit = getattr(operator, "output_unit", "") or ""
+    if quantity is not None and quantity != "strain":
+        raise ValueError(
+            f"hysteresis must give the free strain [-] of the active layer, got an operator whose output is "
+            f"{quantity!r}" + (f" [{unit}]" if unit else "") + ". The drive turns strain into each cell's stroke "
+            "itself (stroke = strain x cell length); use a strain-valued operator (e.g. "
+            "exudyn_atcm.model.parameter_sets.paper_strain_preisach() instead of paper_stroke_preisach()), or "
+            + CONVERSION_HINT
+        )
+    if quantity is None and is_length(unit):
+        raise ValueError(
+            f"hysteresis must give the free strain [-] of the active layer, got an operator whose output unit is "
+            f"{unit!r}, a length: it was identified on a displacement; " + CONVERSION_HINT
+        )
+    if quantity is None and not unit and getattr(operator, "fit_info", None) is not None:
+        warnings.warn(
+            "the hysteresis operator was fitted on a record whose output unit is unknown; the drive takes its output "
+            "as the free strain [-]. If the record was a strain, say so (operator.with_output_quantity('strain')); "
+            "if it was a displacement, give its unit (read_record(..., units={'output': 'um'})) and "
+            + CONVERSION_HINT,
+            SetupWarning,
+            stacklevel=3,
+        )
 
 
 def _output_bound(operator: Any) -> float:
