@@ -6,7 +6,7 @@
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
 ``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``), results and files
-(``Result``, ``read_csv``, ``read_record``, ``preprocess``), closed loop (``PIDController``), the errors
+(``Result``, ``read_csv``, ``read_record``, ``preprocess``, ``load_model`` for a saved hysteresis model), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``), the warning categories (``AtcmWarning``
 and its subclasses, see :mod:`exudyn_atcm.errors`) and the submodules
 ``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
@@ -23,6 +23,7 @@ from .io.result import read_csv
 from .model.drive import PiezoDrive
 from .model.materials import Layer
 from .io.measurements import preprocess, read_record
+from .hysteresis import load_model
 from .model.damping import RayleighDamping
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .io.result import Result
@@ -59,6 +60,7 @@ __all__ = [
     "read_csv",
     "read_record",
     "preprocess",
+    "load_model",
     "PIDController",
     "AtcmWarning",
     "InputRangeWarning",

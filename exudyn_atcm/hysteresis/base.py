@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array
+from .model_files import SavableModel
 
 
 def check_input(u: Any) -> float:
@@ -22,7 +23,7 @@ def check_input(u: Any) -> float:
     return value
 
 
-class HysteresisOperator(abc.ABC):
+class HysteresisOperator(SavableModel, abc.ABC):
     """A rate-independent hysteresis operator with an explicit, committed memory.
 
     The memory changes only in :meth:`commit`, so :meth:`evaluate` can be called any number

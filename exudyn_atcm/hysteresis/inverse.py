@@ -21,6 +21,7 @@ they are committed; :attr:`BisectionInverse.clip_count` and ``largest_clip`` kee
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 from .base import HysteresisOperator, check_input
@@ -38,6 +39,7 @@ class ShiftedPIInverse(HysteresisOperator):
     """
 
     def __init__(self, model: PrandtlIshlinskii) -> None:
+        self.model = copy.deepcopy(model)  # the forward model, kept for save()
         self.offset = model.offset
         self._inverse = model.inverse()
         self.clip_count = 0
