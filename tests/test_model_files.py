@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import json
 import os
+import re
+import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -378,3 +381,40 @@ def test_missing_files_and_non_text_are_refused(tmp_path):
         load_model(tmp_path / "model.json")
     with pytest.raises(ModelFileError, match="is a directory"):
         load_model(tmp_path)
+
+
+# ----------------------------------------------------------------------------- the documentation
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "identification.rst"
+
+
+def saved_model_section() -> str:
+    text = DOCS.read_text(encoding="utf-8")
+    start = text.index("Saving and loading a model\n---")
+    end = text.index("\n---", start + 60)  # the next section's underline
+    return text[start:end]
+
+
+def test_the_documented_example_file_is_what_save_writes(tmp_path):
+    section = saved_model_section()
+    example = json.loads(python_or_json_blocks(section, "json")[0])
+    model = ContinuousPreisach(-500.0, 1500.0, -2e-06, 4.4e-05, 1.6, 2.2)
+    model.output_quantity, model.output_unit, model.fitted_range = "displacement", "m", (-500.0, 1500.0)
+    model.fit_info = {"method": "ContinuousPreisach.fit", "samples": 3751, "fitted_samples": 3751}
+    written = json.loads(model_text(model))
+    assert written.pop("package_version") == exudyn_atcm.__version__
+    assert example.pop("package_version") == "0.2.0"
+    assert example == written
+    loaded = model_from_document({**example, "package_version": "0.2.0"}, "docs")
+    same_bits(loaded.apply(U), model.apply(U))
+
+
+def test_the_documented_save_and_load_runs(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    first = python_or_json_blocks(saved_model_section(), "python")[0]
+    exec(compile(first, "docs/identification.rst", "exec"), {"__name__": "__docs__"})  # noqa: S102
+    assert (tmp_path / "my_actuator_model.json").is_file()
+
+
+def python_or_json_blocks(section: str, language: str) -> list[str]:
+    blocks = re.findall(rf"^\.\. code-block:: {language}\n\n((?:    [^\n]*\n|\n)+)", section, re.MULTILINE)
+    return [textwrap.dedent(block) for block in blocks]

@@ -36,6 +36,7 @@ class ShiftedPIInverse(HysteresisOperator):
     that is :meth:`PrandtlIshlinskii.inverse` with the bookkeeping of the other inverses (``clip_count``).
 
     Every output is reachable (a PI operator with ``p0 > 0`` is unbounded), so nothing is clipped.
+    ``model`` is a copy of the forward model (what :meth:`save` writes; loading inverts it again).
     """
 
     def __init__(self, model: PrandtlIshlinskii) -> None:
