@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from .model_files import SavableModel  # the save() method of every operator
 from .._checks import finite_array
-from .model_files import SavableModel
 
 
 def check_input(u: Any) -> float:
