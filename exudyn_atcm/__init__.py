@@ -6,16 +6,17 @@
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
 ``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``), results and files
-(``Result``, ``read_csv``, ``read_record``, ``preprocess``, ``load_model`` for a saved hysteresis model), closed loop (``PIDController``), the errors
+(``Result``, ``read_csv``, ``read_record``, ``preprocess``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``), the warning categories (``AtcmWarning``
 and its subclasses, see :mod:`exudyn_atcm.errors`) and the submodules
-``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
+``hysteresis`` (operators, fits, inverses; ``load_model`` reads a saved one) and ``signals`` (voltage programs).  Everything
 else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
 ``exudyn_atcm.model.feedforward``, ...): see the API reference.
 """
 
 from . import deprecated_paths, hysteresis
 from .model import signals
+from .hysteresis import load_model
 from ._version import __version__
 from .mechanism.actuator import BendingActuator
 from .model.control import PIDController
@@ -23,7 +24,6 @@ from .io.result import read_csv
 from .model.drive import PiezoDrive
 from .model.materials import Layer
 from .io.measurements import preprocess, read_record
-from .hysteresis import load_model
 from .model.damping import RayleighDamping
 from .mechanism import Bender, Flexure, Link, Mechanism, MechanismError, Segment
 from .io.result import Result
@@ -58,9 +58,9 @@ __all__ = [
     "SolverError",
     "SimulationInterrupted",
     "read_csv",
+    "load_model",
     "read_record",
     "preprocess",
-    "load_model",
     "PIDController",
     "AtcmWarning",
     "InputRangeWarning",
