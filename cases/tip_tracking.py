@@ -34,13 +34,13 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PIDController, PiezoDrive, Result, read_record, simulate
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.hysteresis import EverettPreisach, FitReport, HysteresisOperator, load_model, make_report
-from exudyn_atcm.io.record import Record
 from exudyn_atcm.model import feedforward_program, linear_program, reference_preisach
 from exudyn_atcm.plots import axis_label, new_figure, save_figure
 
@@ -96,8 +96,9 @@ def strain_for_tip(actuator: BendingActuator, tip: np.ndarray) -> np.ndarray:
     return np.interp(tip, y, kappa) / actuator.curvature_per_strain
 
 
-def saved_model(path: Path, record: Record) -> tuple[HysteresisOperator, FitReport]:
-    """The designer's stroke model read from ``path`` (see the module), and its report on the record.
+def saved_model(path: Path, record: Any) -> tuple[HysteresisOperator, FitReport]:
+    """The designer's stroke model read from ``path`` (see the module), and its report on ``record`` (a
+    :class:`~exudyn_atcm.io.record.Record`).
 
     Raises
     ------

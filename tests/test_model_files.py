@@ -208,7 +208,7 @@ def test_a_failed_save_leaves_the_existing_file_whole(ops, tmp_path):
     with pytest.raises(ValueError, match=r"fit_info: its keys must be strings, got 1"):
         bad.save(path)
     bad.fit_info = {"when": object()}
-    with pytest.raises(ValueError, match=r"fit_info\.when: a object is not JSON data"):
+    with pytest.raises(ValueError, match=r"fit_info\.when: 'object' values are not JSON data"):
         bad.save(path)
     assert path.read_bytes() == before
     assert sorted(os.listdir(tmp_path)) == ["m.json"]  # no temporary file left behind

@@ -61,6 +61,7 @@ _MAX_DEPTH = 16
 class ModelFileError(ValueError):
     """A saved model that cannot be read; the message names the file, the field, the value and what is allowed."""
 
+
 # ----------------------------------------------------------------------------- writing
 def model_document(model: Any) -> dict:
     """The saved-model document of ``model`` (what :func:`~.model_files.save_model` writes as JSON).
@@ -168,8 +169,8 @@ def _json_data(value: Any, where: str) -> Any:
             raise ValueError(f"cannot save {where}: {float(value)!r} is not finite (strict JSON has no NaN or "
                              "Infinity; use None for a missing value)")
         return float(value)
-    raise ValueError(f"cannot save {where}: a {type(value).__name__} is not JSON data (allowed: dict, list, str, "
-                     "number, bool, None)")
+    raise ValueError(f"cannot save {where}: {type(value).__name__!r} values are not JSON data (allowed: dict, "
+                     "list, str, number, bool, None)")
 
 
 # ----------------------------------------------------------------------------- reading
