@@ -21,7 +21,10 @@ predictions written as ``<case>_model_choice.csv`` and drawn in ``<case>_model_c
 
 Outputs: the time series (measured, predicted, error), the Preisach fit's
 :class:`~exudyn_atcm.hysteresis.fit_report.FitReport` as ``<case>_fit_report.json`` (and all
-four reports in the case JSON's notes), plots of the loop and the time series.  Key scalars:
+four reports in the case JSON's notes), the fitted Preisach model itself as ``<case>_model.json``
+(``model.save``; read it with :func:`exudyn_atcm.load_model`, or drive ``tip_tracking`` with it:
+``--set model=out/identify_and_predict_model.json``; its output unit is the record's), plots of
+the loop and the time series.  Key scalars:
 the held-out RMS error of each model, of the best linear model, and for the shipped record
 the Preisach fit's held-out RMS error divided by the known noise level.
 """
@@ -42,6 +45,7 @@ from exudyn_atcm.hysteresis import (
     PrandtlIshlinskii,
     identify,
     make_report,
+    save_model,
 )
 from exudyn_atcm.model import REFERENCE
 from exudyn_atcm.plots import plot_fit, plot_model_choice
@@ -79,6 +83,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         choice = identify(u, y, n_fit=n_fit, n_levels=p.n_levels, smoothing=p.smoothing, prior=p.prior, n_plays=p.n_plays,
                           n_relays=p.n_relays_eq12, reversal_tolerance=0.02, output_unit=unit)
         print(choice.to_text())
+        model = choice.candidate("everett").model
         report = choice.candidate("everett").report
         grid_report = choice.candidate("discrete").report
         pi_report = choice.candidate("prandtl_ishlinskii").report
@@ -87,8 +92,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         eq12_report = make_report(eq12.model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
                                   notes=eq12.report.notes, output_unit=unit)
     else:
-        _, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
-                                        prior=p.prior)
+        model, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                            prior=p.prior)
         _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
                                               prior=p.prior)
         _, pi_report = PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit)
@@ -135,6 +140,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if ctx.out_dir is not None:
         written = report.write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json")
         notes["fit_report_file"] = written.name
+        if not getattr(model, "output_unit", ""):  # the record's output unit, kept in the saved model
+            model.output_unit = unit
+        notes["model_file"] = save_model(model, Path(ctx.out_dir) / f"{ctx.case}_model.json").name
     return CaseOutput(result, scalars, tables=tables, notes=notes)
 
 

@@ -21,18 +21,27 @@ step:
 
 Key scalars: the RMS (and largest) tracking error of each after ``settle`` seconds, and the
 ratio of (a)'s RMS error to (d)'s.
+
+A saved model instead of the identification: ``--set model=path.json`` (a file written by
+``model.save``, e.g. ``identify_and_predict``'s ``<case>_model.json``) is the designer's model
+of (a), (b) and (d), of any rate-independent family; like the record it must give the stroke
+[m] of the 29 mm cell against the voltage (``output_unit`` ``"m"``), so the feedforward asks it
+for the wanted stroke, ``CELL_LENGTH`` times the wanted free strain.  Its linear model and fit
+error are measured on the record from its first sample at the lowest input (where every
+Preisach model's memory is known).
 """
 
 from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PIDController, PiezoDrive, Result, read_record, simulate
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
-from exudyn_atcm.hysteresis import EverettPreisach
+from exudyn_atcm.hysteresis import EverettPreisach, FitReport, HysteresisOperator, load_model, make_report
 from exudyn_atcm.model import feedforward_program, linear_program, reference_preisach
 from exudyn_atcm.plots import axis_label, new_figure, save_figure
 
@@ -51,6 +60,8 @@ PARAMETERS = [
     Parameter("kd", 800.0, "V s/m", "derivative gain"),
     Parameter("sample_time", 1e-3, "s", "controller sample time", exclusive_minimum=0.0),
     Parameter("n_levels", 40, "-", "grid levels of the identified Preisach model", minimum=1),
+    Parameter("model", "", "-", "saved model (JSON, model.save) of the cell's stroke [m] against voltage used "
+              "instead of identifying one from the record (empty: identify it)"),
     Parameter("cell", "rigid", "-", "cell model", choices=("rigid", "six-bar")),
     Parameter("step", 2e-4, "s", "time step", exclusive_minimum=0.0),
 ]
@@ -86,6 +97,29 @@ def strain_for_tip(actuator: BendingActuator, tip: np.ndarray) -> np.ndarray:
     return np.interp(tip, y, kappa) / actuator.curvature_per_strain
 
 
+def saved_model(path: Path, record: Any) -> tuple[HysteresisOperator, FitReport]:
+    """The designer's stroke model read from ``path`` (see the module), and its report on ``record`` (a
+    :class:`~exudyn_atcm.io.record.Record`).
+
+    Raises
+    ------
+    ValueError
+        If the file holds no rate-independent operator, or one whose output is not in metres.
+    """
+    model = load_model(path)
+    if not isinstance(model, HysteresisOperator) or getattr(model, "time_dependent", False):
+        raise ValueError(f"model: {str(path)!r} holds a {type(model).__name__}; tip_tracking's feedforward inverts a "
+                         "rate-independent hysteresis operator of the voltage [V] (save the operator itself)")
+    unit = getattr(model, "output_unit", "")
+    if unit != "m":
+        raise ValueError(f"model: {str(path)!r} gives output_unit {unit!r}; tip_tracking needs the stroke [m] of the "
+                         "record's 29 mm cell against the voltage, like the record (identify_and_predict saves it so; "
+                         "set model.output_unit = 'm' before model.save if that is what it gives)")
+    u, y = record.input, record.output
+    report = make_report(model, u, y, u.size, int(np.argmin(u)), f"saved model {path.name}", output_unit=unit)
+    return model, report
+
+
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     if len(p.tip_amplitudes) != len(p.frequencies):
         raise ValueError(f"tip_amplitudes and frequencies must have the same length, got {p.tip_amplitudes}, {p.frequencies}")
@@ -97,23 +131,29 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         value = p.tip_mean + sum(a * np.sin(2 * math.pi * f * t) for a, f in zip(p.tip_amplitudes, p.frequencies))
         return float(value) if value.ndim == 0 else value
 
+    record = read_record(RECORD, time="time", input="voltage", output="displacement")
+    saved = saved_model(Path(p.model), record) if p.model else None  # a bad file is refused before anything runs
+
     # four simulations of the same actuator: announced once as a whole, before the preparation
     # (the feedforward program of a long duration takes a while), one progress display across them
     probe = build(p, 0.0)
     plan = ctx.plan([PlannedRun(probe, p.duration, p.step, label=LABELS[name]) for name in METHODS])
 
-    # the designer's model: identified from the noisy record, then expressed as strain
-    record = read_record(RECORD, time="time", input="voltage", output="displacement")
-    stroke_model, report = EverettPreisach.fit(record.input, record.output, p.n_levels)
-    model = EverettPreisach(stroke_model.edges, stroke_model.alpha, stroke_model.beta,
-                            stroke_model.weights / CELL_LENGTH, offset=stroke_model.offset / CELL_LENGTH)
+    if saved is not None:  # the designer's model from a file: asked for the wanted stroke
+        model, report = saved
+        wanted_per_strain = CELL_LENGTH
+    else:  # the designer's model: identified from the noisy record, then expressed as strain
+        stroke_model, report = EverettPreisach.fit(record.input, record.output, p.n_levels)
+        model = EverettPreisach(stroke_model.edges, stroke_model.alpha, stroke_model.beta,
+                                stroke_model.weights / CELL_LENGTH, offset=stroke_model.offset / CELL_LENGTH)
+        wanted_per_strain = 1.0
 
     times = np.arange(0.0, p.duration + 0.5 * p.sample_time, p.sample_time)
     strain_wanted = strain_for_tip(probe, wanted(times))
     slope = report.linear_model["a"] / CELL_LENGTH
     intercept = report.linear_model["b"] / CELL_LENGTH
     linear, linear_info = linear_program(slope, intercept, times, strain_wanted, VOLTAGE_LIMITS)
-    feedforward, ff_info = feedforward_program(model, times, strain_wanted, VOLTAGE_LIMITS)
+    feedforward, ff_info = feedforward_program(model, times, wanted_per_strain * strain_wanted, VOLTAGE_LIMITS)
 
     def pid(ff):
         return PIDController(p.kp, p.ki, p.kd, sample_time=p.sample_time, setpoint=wanted,
@@ -151,6 +191,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         "controller_pid": results["pid"].info["controller"],
         "controller_pid_feedforward": results["pid_feedforward"].info["controller"],
         "error_window [s]": [p.settle, p.duration],
+        "designer_model": f"saved: {p.model}" if p.model else f"EverettPreisach.fit of {RECORD.name}, {p.n_levels} levels",
     }
     return CaseOutput(result, scalars, notes=notes)
 

@@ -10,13 +10,14 @@ Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``Bendi
 ``model_to_strain``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``), the warning categories (``AtcmWarning``
 and its subclasses, see :mod:`exudyn_atcm.errors`) and the submodules
-``hysteresis`` (operators, fits, inverses) and ``signals`` (voltage programs).  Everything
+``hysteresis`` (operators, fits, inverses; ``load_model`` reads a saved one) and ``signals`` (voltage programs).  Everything
 else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
 ``exudyn_atcm.model.feedforward``, ...): see the API reference.
 """
 
 from . import deprecated_paths, hysteresis
 from .model import signals
+from .hysteresis import load_model
 from ._version import __version__
 from .mechanism.actuator import BendingActuator
 from .model.control import PIDController
@@ -59,6 +60,7 @@ __all__ = [
     "SolverError",
     "SimulationInterrupted",
     "read_csv",
+    "load_model",
     "read_record",
     "preprocess",
     "record_to_strain",

@@ -16,6 +16,11 @@ Identification from records: :mod:`exudyn_atcm.hysteresis.identification` (fit r
 inverses: :func:`inverse_operator` (:mod:`exudyn_atcm.hysteresis.inverse`).  Feed-forward
 programs and the synthetic reference record build on voltage programs and live in
 :mod:`exudyn_atcm.model`.
+
+Saved models: every operator and wrapper has ``save(path)`` (JSON), :func:`load_model` reads it
+back (:mod:`exudyn_atcm.hysteresis.model_files`; the format:
+:mod:`exudyn_atcm.hysteresis.model_format`; how a new family registers itself:
+:mod:`exudyn_atcm.hysteresis.model_registry`).
 """
 
 from .base import HysteresisOperator
@@ -28,6 +33,10 @@ from .staircase import StaircasePreisach
 
 from .fit_report import FitReport, error_measures, make_report
 from .inverse import inverse_operator
+from . import model_kinds  # noqa: F401 - registers the package's model kinds for save/load_model
+from .model_files import load_model, save_model
+from .model_format import ModelFileError
+from .model_registry import register_model_kind
 
 __all__ = [
     "HysteresisOperator",
@@ -42,4 +51,8 @@ __all__ = [
     "FitReport",
     "error_measures",
     "make_report",
+    "load_model",
+    "save_model",
+    "ModelFileError",
+    "register_model_kind",
 ]

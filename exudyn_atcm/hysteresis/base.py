@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .model_files import SavableModel  # the save() method of every operator
 from .._checks import finite_array
 from ..errors import InputRangeWarning
 
@@ -72,7 +73,7 @@ def check_input(u: Any) -> float:
     return value
 
 
-class HysteresisOperator(abc.ABC):
+class HysteresisOperator(SavableModel, abc.ABC):
     """A rate-independent hysteresis operator with an explicit, committed memory.
 
     The memory changes only in :meth:`commit`, so :meth:`evaluate` can be called any number

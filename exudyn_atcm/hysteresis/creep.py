@@ -35,6 +35,7 @@ import numpy as np
 from scipy.optimize import nnls
 
 from .._checks import finite_array, same_length, sample_times
+from .model_files import SavableModel
 
 __all__ = ["Creep", "CreepHysteresis"]
 
@@ -52,7 +53,7 @@ def _lag_states(h: np.ndarray, t: np.ndarray, tau: np.ndarray) -> np.ndarray:
     return z
 
 
-class Creep:
+class Creep(SavableModel):
     """Linear creep ``y = h + Σ c_k z_k``, ``τ_k z_k' = h − z_k`` (see the module).
 
     Parameters
@@ -141,7 +142,7 @@ class Creep:
         return f"Creep(tau={self.tau.tolist()!r}, c={self.c.tolist()!r})"
 
 
-class CreepHysteresis:
+class CreepHysteresis(SavableModel):
     """A hysteresis operator followed by a :class:`Creep` (offline: records with sample times).
 
     Parameters

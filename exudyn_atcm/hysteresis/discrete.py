@@ -80,6 +80,7 @@ class DiscretePreisach(StaircasePreisach):
         self._beta_low = float(beta_a.min())
         if isinstance(max_table_entries, bool) or not isinstance(max_table_entries, (int, np.integer)) or max_table_entries < 0:
             raise ValueError(f"max_table_entries must be an integer >= 0, got {max_table_entries!r}")
+        self.max_table_entries = int(max_table_entries)
 
         order = np.lexsort((beta_a, alpha_a))  # by alpha, ties by beta
         self._alpha_sorted: list[float] = alpha_a[order].tolist()

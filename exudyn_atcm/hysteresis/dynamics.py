@@ -35,6 +35,7 @@ import numpy as np
 from .._checks import finite_array, finite_float, positive_float, sample_times
 from .base import HysteresisOperator, check_input
 from .creep import Creep
+from .model_files import SavableModel
 
 __all__ = ["lag_step", "LagSum", "RateLag", "WithDynamics"]
 
@@ -53,7 +54,7 @@ def lag_step(z: np.ndarray, h_old: float, h_new: float, dt: float, tau: np.ndarr
     return z + (h_old - z) * one_minus_a + (h_new - h_old) * (1.0 - ramp)
 
 
-class LagSum:
+class LagSum(SavableModel):
     """Linear block ``y = d h + Σ_j g_j z_j``, ``τ_j z_j' = h − z_j`` (transfer function ``d + Σ g_j/(1 + τ_j s)``).
 
     Parameters
@@ -162,7 +163,7 @@ class LagSum:
         return f"LagSum(d={self.d!r}, tau={self.tau.tolist()!r}, g={self.g.tolist()!r})"
 
 
-class RateLag:
+class RateLag(SavableModel):
     """First-order lag ``T y' = w − y`` after an operator (Hammerstein rate dependence).
 
     Why a lag after the operator, not rate-dependent play weights: for a given ``T`` the model

@@ -21,6 +21,7 @@ they are committed; :attr:`BisectionInverse.clip_count` and ``largest_clip`` kee
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 from .base import HysteresisOperator, check_input
@@ -35,9 +36,11 @@ class ShiftedPIInverse(HysteresisOperator):
     that is :meth:`PrandtlIshlinskii.inverse` with the bookkeeping of the other inverses (``clip_count``).
 
     Every output is reachable (a PI operator with ``p0 > 0`` is unbounded), so nothing is clipped.
+    ``model`` is a copy of the forward model (what :meth:`save` writes; loading inverts it again).
     """
 
     def __init__(self, model: PrandtlIshlinskii) -> None:
+        self.model = copy.deepcopy(model)  # the forward model, kept for save()
         self.offset = model.offset
         self._inverse = model.inverse()
         self.clip_count = 0
