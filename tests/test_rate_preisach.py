@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 
 from exudyn_atcm.errors import OutOfReachWarning
-
 from exudyn_atcm.hysteresis import EverettPreisach, fit_rate_preisach
 from exudyn_atcm.hysteresis.creep import Creep
 from exudyn_atcm.hysteresis.dynamics import LagSum, RateLag, WithDynamics
@@ -93,6 +92,26 @@ def test_record_rates_are_the_cycle_frequencies_for_full_cycles():
     u = np.cos(2 * np.pi * 25.0 * t)  # 10 full cycles
     rates = record_rates([(t, u, u), (t, u[::-1].copy(), u)])
     np.testing.assert_allclose(rates, 25.0, rtol=1e-3)
+
+
+def test_family_truth_is_scaled_and_its_loops_are_not_point_symmetric():
+    op = rate_family_truth(lag=False, creep=False)
+    assert op.apply([-500.0, 1500.0])[-1] == pytest.approx(-1.5e-4 + 1.2e-3, rel=1e-12)
+    # a Prandtl-Ishlinskii major loop is point-symmetric about its centre: up(u) + down(u_lo + u_hi - u) = y_lo + y_hi
+    u = np.linspace(-500.0, 1500.0, 201)
+    branches = op.apply(np.concatenate([u, u[::-1]]))
+    up, down = branches[:201], branches[201:]  # down[k] is at u[::-1][k] = u_lo + u_hi - u[k]
+    asymmetry = np.max(np.abs(up + down - (up[0] + up[-1]))) / np.ptp(up)
+    assert asymmetry > 0.05  # measured 0.14 of the range
+
+
+def test_growing_cycles_start_and_end_at_rest_at_the_lowest_voltage():
+    t, u = growing_cycles(40.0, peaks=[0.5, 1.0])
+    assert t.size == 501 and t[1] == pytest.approx(1e-4)
+    assert u[0] == u[-1] == -500.0 and u[250] == pytest.approx(-500.0)
+    assert u[:250].max() == pytest.approx(500.0) and u.max() == pytest.approx(1500.0)
+    with pytest.raises(ValueError, match=r"peaks must lie in \(0, 1\], got \[0.5, 1.5\]"):
+        growing_cycles(40.0, peaks=[0.5, 1.5])
 
 
 # ------------------------------------------------------------------ identification on the known family

@@ -208,7 +208,9 @@ def fit_rate_preisach(records: Any, n_levels: int, *, creep: Creep | None = None
         lags at rest; e.g. sine, triangle or growing-amplitude cycles at a few rates.  At least
         two records whose rates differ by :data:`MIN_RATE_RATIO` (one is enough with ``T`` given).
         Samples before a record first comes within :data:`KNOWN_MEMORY_TOLERANCE` of the lowest
-        edge are left out of the least squares (the operator's memory is unknown there).
+        edge are left out of the least squares (the operator's memory is unknown there), and the
+        lags' states at that sample are fitted as free (their free decay ``e^{−(t − t₀)/τ_j}`` is
+        one more least-squares column per lag, not a weight of the model).
     n_levels : int
         Grid levels over the input range of all records, ``2 ... 100``; ``n(n + 1)/2`` cells.
     creep : Creep, optional
@@ -282,8 +284,9 @@ def fit_rate_preisach(records: Any, n_levels: int, *, creep: Creep | None = None
     for i, (_, u, _) in enumerate(recs):
         hits = np.flatnonzero(u <= known)
         if not hits.size:
-            raise ValueError(f"records[{i}] never comes down to the lowest input {u_lo!r} of the records (its lowest is "
-                             f"{float(u.min())!r}): its memory is never known; start every record at the lowest input")
+            raise ValueError(f"records[{i}] never comes down to the lowest input {u_lo!r} of the records "
+                             f"(its lowest is {float(u.min())!r}): its memory is never known; start every record at "
+                             "the lowest input")
         starts.append(int(hits[0]))
         if hits[0] > 0:
             notes.append(f"records[{i}]: samples 0..{int(hits[0]) - 1} left out (the memory is unknown until the input "

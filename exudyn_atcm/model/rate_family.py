@@ -79,7 +79,8 @@ def rate_family_truth(lag: bool = True, creep: bool = True) -> WithDynamics | Ev
     return WithDynamics(operator, creep_law, rate_lag)
 
 
-def growing_cycles(frequency: float, peaks: Any = None, sample_rate: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+def growing_cycles(frequency: float, peaks: Any = None,
+                   sample_rate: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Raised-cosine cycles from the lowest voltage, one per peak, at ``frequency`` [Hz].
 
     Cycle ``i`` runs ``u = u_min + p_i (u_max − u_min)(1 − cos 2π f t)/2`` over one period, so the
