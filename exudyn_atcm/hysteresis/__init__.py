@@ -13,7 +13,8 @@ effect), ``commit(u)`` (accept ``u``), ``reset()``, ``apply(u_series)`` and
 
 Identification from records: :mod:`exudyn_atcm.hysteresis.identification` (fit reports:
 :func:`make_report`), and :func:`identify` (every family fitted and ranked on held-out data);
-inverses: :func:`inverse_operator` (:mod:`exudyn_atcm.hysteresis.inverse`).  Feed-forward
+inverses: :func:`inverse_operator` (:mod:`exudyn_atcm.hysteresis.inverse`); rate families with
+asymmetric loops: :func:`fit_rate_preisach` (an Everett operator, a creep law and a rate lag).  Feed-forward
 programs and the synthetic reference record build on voltage programs and live in
 :mod:`exudyn_atcm.model`.
 
@@ -37,6 +38,7 @@ from . import model_kinds  # noqa: F401 - registers the package's model kinds fo
 from .model_files import load_model, save_model
 from .model_format import ModelFileError
 from .model_registry import register_model_kind
+from .rate_preisach import fit_rate_preisach
 
 __all__ = [
     "HysteresisOperator",
@@ -48,6 +50,7 @@ __all__ = [
     "ModelChoice",
     "identify",
     "inverse_operator",
+    "fit_rate_preisach",
     "FitReport",
     "error_measures",
     "make_report",

@@ -108,10 +108,13 @@ class BisectionInverse(HysteresisOperator):
         f = self.model.evaluate
         lo, hi = self.u_lo, self.u_hi
         y_lo, y_hi = float(f(lo)), float(f(hi))
+        # an output beyond the reachable ones by rounding only (e.g. a saturated output returned by a
+        # lag's inverse) is reached, not clipped
+        rounding = 1e-12 * max(y_hi - y_lo, abs(y_hi), abs(y_lo))
         if y >= y_hi:
-            return hi, y - y_hi
+            return hi, (0.0 if y - y_hi <= rounding else y - y_hi)
         if y <= y_lo:
-            return lo, y - y_lo
+            return lo, (0.0 if y_lo - y <= rounding else y - y_lo)
         # invariant: f(lo) < y <= f(hi)
         while hi - lo > self.tolerance:
             mid = 0.5 * (lo + hi)
