@@ -12,7 +12,7 @@ from .bender import Bender
 from .connections import Force, Joint, Pin, Slider, Spring, Stop, Torque, Weld, joint_label
 from .flexure import Flexure
 from .link import Link
-from .realisation import count_degrees_of_freedom
+from .realisation import check_redundancy, count_degrees_of_freedom
 from .points import GROUND, MechanismError, PointRef, check_name, closest
 
 Component = Union[Bender, Link, Flexure]
@@ -349,19 +349,31 @@ class Mechanism:
         return count_degrees_of_freedom(self)
 
     # ------------------------------------------------------------------ checks
-    def check(self, *, grounded: bool = True) -> None:
+    def check(self, *, grounded: bool = True, redundancy: bool = True) -> None:
         """Check the whole mechanism; raises :class:`MechanismError` naming the parts.
 
         Checks: at least one component; a connection to the ground; every component
         connected to the ground through joints; every joint's points coincide in the
         reference pose (slider: ``q`` on the axis line through ``p``) within
-        ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator.
+        ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator;
+        no dependent (redundant) joints: the rank of the constraint Jacobian of the built
+        multibody model in the reference pose, the same check for every cell kind
+        (:mod:`exudyn_atcm.mbs.redundancy`).  Dependent joints are refused, naming them: joints
+        that repeat what others fix (three pins pairwise at one point: remove one), or a chain
+        of cells that cannot stretch (rigid, six-bar, rod) held straight between two points at
+        exactly its length (a bender welded to the ground at both ends: use ``cell="beam"``,
+        whose elements stretch, or let one end slide).  :meth:`degrees_of_freedom` counts them
+        without refusing.  (The redundancy check needs the package's Exudyn layer, which
+        ``import exudyn_atcm`` loads; the description modules imported alone leave it out.)
 
         Parameters
         ----------
         grounded : bool, optional
-            ``False`` leaves out the two ground checks (for :func:`exudyn_atcm.add_to`, where
-            the user's own joints may hold the mechanism).
+            ``False`` leaves out the two ground checks and the redundancy check (for
+            :func:`exudyn_atcm.add_to`, where the user's own joints may hold the mechanism).
+        redundancy : bool, optional
+            ``False`` leaves out the redundancy check (it builds the multibody model; every solve
+            makes it on the model it builds).
         """
         if not self.components:
             raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")
@@ -376,6 +388,8 @@ class Mechanism:
         self._check_connected()
         self._check_assembly()
         self._check_drives()
+        if redundancy:
+            check_redundancy(self)
 
     def _check_connected(self) -> None:
         parent = {name: name for name in [GROUND, *self.components]}
