@@ -37,7 +37,6 @@ The :mod:`exudyn_atcm.mbs` package holds the package's only Exudyn calls.
 from __future__ import annotations
 
 import math
-from contextlib import contextmanager
 
 import exudyn as exu
 import numpy as np
@@ -65,7 +64,7 @@ from .cells import add_mechanism_bender
 from .chains.six_bar import six_bar_end_mass
 from .node_chain import beam_end_key, weld_node
 from .mass_damping import MassDampers, part_mass_damping_factor
-from .redundancy import CELLS_LABEL, refuse_redundant
+from .redundancy import CELLS_LABEL, end_label, labelled, refuse_redundant
 
 #: The cell kinds' realisation modules (:mod:`exudyn_atcm.mbs.chains`), imported and so registered with it.
 REALISATIONS = chains.MODULES
@@ -102,19 +101,9 @@ class _Builder:
     def zeros(self) -> np.ndarray:
         return np.zeros(self.n_sources)
 
-    @contextmanager
     def _labelled(self, label: str):
-        """Label the objects added inside the block as realising ``label`` (for the redundancy check's messages)."""
-        first = self.mbs.systemData.NumberOfObjects()
-        yield
-        for obj in range(first, self.mbs.systemData.NumberOfObjects()):
-            self.model.constraint_labels.setdefault(obj, label)
-
-    def _end_label(self, bender: Bender, end: str) -> str:
-        """The joints at a bender end, for messages (``"weld(b.tip, ground)"``), or ``"the tip of bender 'b'"``."""
-        point = PointRef(bender.name, end)
-        labels = [joint_label(j) for j in self.mech.joints if point in (j.p, j.q)]
-        return " and ".join(labels) if labels else f"the {end} of bender {bender.name!r}"
+        """Label the objects added inside this ``with`` block as realising ``label`` (redundancy messages)."""
+        return labelled(self.mbs, self.model, label)
 
     # ---------------------------------------------------------------- ground and groups
     def build(self) -> MechanismModel:
@@ -283,7 +272,7 @@ class _Builder:
     def _end_hinges(self) -> None:
         for bender in self.mech.benders:
             for end in ("base", "tip"):
-                with self._labelled(self._end_label(bender, end)):
+                with self._labelled(end_label(self.mech, bender, end)):
                     self._end_hinge(bender, end)
 
     def _end_hinge(self, bender: Bender, end: str) -> None:
@@ -447,10 +436,8 @@ def build(mechanism: Mechanism, stroke_path: str = "prestep", refuse_dependent: 
     if len(tolerances) == 1 and None not in tolerances and model.static_relative_tolerance is None:
         model.static_absolute_tolerance, model.static_relative_tolerance = tolerances.pop()
     if model.static_absolute_tolerance is not None:
-        # one absolute tolerance for the whole residual: a part's own small one (a rod's moments, 1e-12 EI/L)
-        # must not lie below the round-off floor of beam elements beside it, which Newton cannot pass (a
-        # 4-mode rod welded to 16 beam elements failed at load factor 0 with 1.5e-13 N m against the
-        # beams' 8e-9 N); the relative tolerance keeps the rod's equations resolved
+        # one absolute tolerance for the whole residual: a rod's own (1e-12 EI/L) must not lie below the round-off
+        # floor of beam elements beside it (a rod welded to 16 elements: 1.5e-13 N m against 8e-9 N, load factor 0)
         model.static_absolute_tolerance = max(model.static_absolute_tolerance, model.newton_tolerance_floor)
     mbs.Assemble()
     model.resolve_indices()

@@ -26,19 +26,40 @@ documentation).  Two kinds of redundancy occur:
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import exudyn as exu
 import numpy as np
 from scipy.linalg import svd
 
+from ..mechanism.assembly import Mechanism
+from ..mechanism.bender import Bender
 from ..mechanism.connections import joint_label
-from ..mechanism.points import MechanismError
+from ..mechanism.points import MechanismError, PointRef
 from . import solver_runs as runs
 from .model import MechanismModel
 
-__all__ = ["constraint_jacobian", "dependent_constraints", "refuse_redundant", "CELLS_LABEL"]
+__all__ = ["constraint_jacobian", "dependent_constraints", "refuse_redundant", "labelled", "end_label", "CELLS_LABEL"]
 
 #: Label of the constraints inside a bender's chain of cells (``CELLS_LABEL.format(name=...)``).
 CELLS_LABEL = "the cells of bender {name!r}"
+
+
+@contextmanager
+def labelled(mbs, model: MechanismModel, label: str):
+    """Context manager: the Exudyn objects added inside the block realise ``label`` (``model.constraint_labels``;
+    an object labelled already keeps its label)."""
+    first = mbs.systemData.NumberOfObjects()
+    yield
+    for obj in range(first, mbs.systemData.NumberOfObjects()):
+        model.constraint_labels.setdefault(obj, label)
+
+
+def end_label(mech: Mechanism, bender: Bender, end: str) -> str:
+    """The joints at a bender end, for messages (``"weld(b.tip, ground)"``), or ``"the tip of bender 'b'"``."""
+    point = PointRef(bender.name, end)
+    labels = [joint_label(j) for j in mech.joints if point in (j.p, j.q)]
+    return " and ".join(labels) if labels else f"the {end} of bender {bender.name!r}"
 
 
 def constraint_jacobian(mbs) -> np.ndarray:

@@ -33,7 +33,7 @@ from typing import Callable
 
 import exudyn as exu
 import numpy as np
-from scipy.linalg import LinAlgError, cho_factor, eigh, qr
+from scipy.linalg import LinAlgError, cho_factor, eig, eigh, qr
 
 from .model import MechanismModel
 from .tangent import TangentPlan
@@ -119,7 +119,9 @@ class StabilityProbe:
         self.model = model
         self.plan = TangentPlan(model.mbs)
         self.use_mass = True
+        self._k_reference: np.ndarray | None = None
         kr, mr = self._reduced()
+        self._k_reference = self._k
         with _one_blas_thread():
             try:
                 cho_factor(mr)
@@ -135,11 +137,12 @@ class StabilityProbe:
         """``N^T K_T N`` and ``N^T M N`` (the identity without mass) at the model's current state, symmetrised."""
         self.model.before_linearisation()
         ts = self.plan.system(mass=self.use_mass)
-        k = ts["K"]
+        k = self._k = ts["K"]
         with _one_blas_thread():
             basis = null_space(ts["Cq"], k.shape[0])
             self._basis = basis
             kr = basis.T @ k @ basis
+            self._kr = kr
             if not self.use_mass:
                 return 0.5 * (kr + kr.T), np.eye(kr.shape[0])
             mr = basis.T @ ts["M"] @ basis
@@ -171,6 +174,27 @@ class StabilityProbe:
         margin = lowest / self.reference
         state = "unstable" if margin < -CRITICAL_MARGIN else ("critical" if margin <= CRITICAL_MARGIN else "stable")
         return Stability(state, margin, lowest, mode)
+
+
+    def critical_load_factor(self) -> float:
+        """The load factor at which the last checked state's loading path lost stability, estimated linearly.
+
+        Along a path from the unloaded reference (load factor 0, tangent ``K_0``) to the last
+        checked state (load factor 1, tangent ``K_1``), the tangent taken as
+        ``K_0 + f (K_1 - K_0)`` in the last state's free directions: the smallest ``f`` in
+        ``(0, 1]`` that makes it singular (the classical linear buckling estimate; exact for a
+        column that stays straight, approximate where the path bends before it buckles).
+        ``nan`` when there is none.
+        """
+        basis = self._basis
+        k0 = basis.T @ self._k_reference @ basis
+        k0 = 0.5 * (k0 + k0.T)
+        k1 = 0.5 * (self._kr + self._kr.T)
+        with _one_blas_thread():
+            # (K_0 + f (K_1 - K_0)) v = 0  <=>  K_0 v = f (K_0 - K_1) v
+            values = eig(k0, k0 - k1, right=False)
+        factors = [v.real for v in values if np.isfinite(v) and abs(v.imag) <= 1e-9 * abs(v) and 0.0 < v.real <= 1.0]
+        return min(factors) if factors else math.nan
 
 
 def snapshot(model: MechanismModel) -> Callable[[], None]:

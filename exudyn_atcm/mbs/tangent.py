@@ -68,6 +68,9 @@ class TangentPlan:
         #: the rows (ODE2 then AE indices, AE offset by the ODE2 size) each coordinate changes
         self.rows = [np.array(sorted(r), dtype=int) for r in rows]
         self.groups = _groups(rows)
+        # per group: the (row, column) entries its differences fill, as flat index arrays
+        self._entries = [(np.concatenate([self.rows[i] for i in g]),
+                          np.concatenate([np.full(self.rows[i].size, i) for i in g])) for g in self.groups]
 
     def system(self, relative_step: float = 1e-7, mass: bool = True) -> dict:
         """Mass matrix, tangent stiffness and constraint Jacobian at the current state.
@@ -130,16 +133,14 @@ class TangentPlan:
             r0 = residual(q0)
             h = relative_step * (1.0 + np.abs(q0))
             derivative = np.zeros((n2 + self.n_ae, n2))
-            for group in self.groups:
-                qp = q0.copy()
-                qp[group] += h[group]
+            qp = q0.copy()
+            for group, (rows, columns) in zip(self.groups, self._entries):
+                qp[group] = q0[group] + h[group]
                 rp = residual(qp)
                 qp[group] = q0[group] - h[group]
                 rm = residual(qp)
-                d = rp - rm
-                for i in group:
-                    rows = self.rows[i]
-                    derivative[rows, i] = d[rows] / (2.0 * h[i])
+                qp[group] = q0[group]
+                derivative[rows, columns] = (rp[rows] - rm[rows]) / (2.0 * h[columns])
             solver.FinalizeSolver(mbs, settings)
         finally:
             sd.SetSystemState(systemStateList=initial_state, configuration=ini)

@@ -356,24 +356,20 @@ class Mechanism:
         connected to the ground through joints; every joint's points coincide in the
         reference pose (slider: ``q`` on the axis line through ``p``) within
         ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator;
-        no dependent (redundant) joints: the rank of the constraint Jacobian of the built
-        multibody model in the reference pose, the same check for every cell kind
-        (:mod:`exudyn_atcm.mbs.redundancy`).  Dependent joints are refused, naming them: joints
-        that repeat what others fix (three pins pairwise at one point: remove one), or a chain
-        of cells that cannot stretch (rigid, six-bar, rod) held straight between two points at
-        exactly its length (a bender welded to the ground at both ends: use ``cell="beam"``,
-        whose elements stretch, or let one end slide).  :meth:`degrees_of_freedom` counts them
-        without refusing.  (The redundancy check needs the package's Exudyn layer, which
-        ``import exudyn_atcm`` loads; the description modules imported alone leave it out.)
+        no dependent joints (the rank of the built model's constraint Jacobian in the reference
+        pose, for every cell kind, :mod:`exudyn_atcm.mbs.redundancy`): refused naming them, as
+        joints that repeat what others fix (three pins pairwise at one point) or a chain of
+        cells that cannot stretch held straight between two points at its length (a rigid, six-bar
+        or rod bender welded to the ground at both ends; beam elements stretch).
+        :meth:`degrees_of_freedom` counts them without refusing.  (This check needs the Exudyn
+        layer that ``import exudyn_atcm`` loads.)
 
         Parameters
         ----------
         grounded : bool, optional
-            ``False`` leaves out the two ground checks and the redundancy check (for
-            :func:`exudyn_atcm.add_to`, where the user's own joints may hold the mechanism).
+            ``False`` leaves out the ground and redundancy checks (for :func:`exudyn_atcm.add_to`).
         redundancy : bool, optional
-            ``False`` leaves out the redundancy check (it builds the multibody model; every solve
-            makes it on the model it builds).
+            ``False`` leaves out the redundancy check (each solve makes it on the model it builds).
         """
         if not self.components:
             raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")

@@ -32,7 +32,7 @@ from .dynamic_run import integrate, mark_partial
 from .step_record import StepRecord, check_view
 from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
-from .static_stability import stability_probe, warn_unstable
+from .static_stability import load_path_note, stability_probe, warn_unstable
 from ..errors import SolverError
 from .run_checks import is_interrupt
 from ..model.strain_sources import InStepStrain
@@ -58,7 +58,8 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     rows.add(0.0, source_volts, strains)
     warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
     warn_few_modes(mech, model.truncation_errors())
-    warn_unstable(describe(mech), [(f"load factor 1 (the loads and {what} in full)", probe.last)])
+    warn_unstable(describe(mech), [(f"load factor 1 (the loads and {what} in full)", probe.last)],
+                  load_path_note(probe))
     return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto",
                         "stability": probe.last.state})
 
@@ -161,7 +162,8 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             if is_interrupt(exc.__cause__ or exc):
                 raise SimulationInterrupted(0.0) from None
             raise
-        warn_unstable(describe(mech), [("the initial state at t = 0 (the loads in full)", probe.last)])
+        warn_unstable(describe(mech), [("the initial state at t = 0 (load factor 1: the loads in full)", probe.last)],
+                      load_path_note(probe))
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)

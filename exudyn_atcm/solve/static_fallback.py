@@ -62,7 +62,9 @@ def equilibrium_with_fallback(model, *, static: Callable[[], None], relaxation: 
     unstable : callable, optional
         ``unstable()`` is True when the model's current state, a converged static solution, is an
         unstable equilibrium; then the relaxation follows the path instead (method
-        ``"relaxation+static"`` or ``"relaxation"`` when it found another equilibrium).
+        ``"relaxation+static"`` or ``"relaxation"`` when it found a stable equilibrium).  When it
+        finds none, the static solution is restored (method ``"static"``); the last call of
+        ``unstable`` is always about the state returned when the method is ``"static"``.
     snapshot : callable, optional
         ``snapshot()`` saves the model's state and returns a function restoring it (needed with
         ``unstable``: the unstable static solution is restored when the relaxation fails).
@@ -85,11 +87,18 @@ def equilibrium_with_fallback(model, *, static: Callable[[], None], relaxation: 
         first, restore = exc, None
     if restore is not None:  # converged, but unstable: follow the path by relaxation, else keep it
         try:
-            return _relax(model, relaxation, relax_target, omega1, polish, size, None, subject, what, load_steps,
-                          advice)
+            method = _relax(model, relaxation, relax_target, omega1, polish, size, None, subject, what, load_steps,
+                            advice)
+            if not unstable():
+                return method
         except SolverError:
-            restore()
-            return "static"
+            pass
+        # no stable state on the path (a perfectly symmetric load has no side to go to): the static solution
+        # is the equilibrium the path reaches, and the caller warns about its stability (checked again, so
+        # that the last check is of the state returned)
+        restore()
+        unstable()
+        return "static"
     return _relax(model, relaxation, relax_target, omega1, polish, size, first, subject, what, load_steps, advice)
 
 

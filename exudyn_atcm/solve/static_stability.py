@@ -29,7 +29,7 @@ from ..mbs.stability import CRITICAL_MARGIN, Stability, StabilityProbe
 from ..mechanism.assembly import Mechanism
 from .mechanism_checks import lowest_first_frequency
 
-__all__ = ["stability_probe", "warn_unstable", "CRITICAL_MARGIN"]
+__all__ = ["stability_probe", "warn_unstable", "load_path_note"]
 
 
 def stability_probe(mech: Mechanism, model) -> StabilityProbe:
@@ -43,12 +43,25 @@ def stability_probe(mech: Mechanism, model) -> StabilityProbe:
     return StabilityProbe(model, omega * omega)
 
 
+def load_path_note(probe: StabilityProbe) -> str:
+    """For an unstable or critical equilibrium solved from the reference pose: the load factor at which its loading
+    path lost stability (:meth:`~exudyn_atcm.mbs.stability.StabilityProbe.critical_load_factor`), as a sentence for
+    :func:`warn_unstable`; ``""`` for a stable one or when there is no estimate."""
+    if probe.last is None or probe.last.state == "stable":
+        return ""
+    factor = probe.critical_load_factor()
+    if not math.isfinite(factor):
+        return ""
+    return (f"The loading path lost its stability at about load factor {factor:.3g} (a linear estimate from the "
+            "unloaded and the final stiffness; exact for a column that stays straight)")
+
+
 def _describe(s: Stability) -> str:
     return (f"omega_1^2/omega_ref^2 = {s.margin:.3g}, a lowest frequency of {s.frequency:.3g} Hz "
             "(negative: an unstable direction)")
 
 
-def warn_unstable(subject: str, states: list[tuple[str, Stability]], stacklevel: int = 3) -> None:
+def warn_unstable(subject: str, states: list[tuple[str, Stability]], note: str = "", stacklevel: int = 3) -> None:
     """One :class:`~exudyn_atcm.errors.StabilityWarning` for the unstable and critical equilibria of a run.
 
     Parameters
@@ -58,6 +71,8 @@ def warn_unstable(subject: str, states: list[tuple[str, Stability]], stacklevel:
     states : list of (str, Stability)
         ``(where, stability)`` per equilibrium, ``where`` as ``"load factor 1 (voltage 0 V)"`` or
         ``"sweep point 3 (voltage 500 V)"``; stable ones are left out of the message.
+    note : str
+        A last sentence (:func:`load_path_note`).
     stacklevel : int
         Counted from this function.
     """
@@ -84,4 +99,4 @@ def warn_unstable(subject: str, states: list[tuple[str, Stability]], stacklevel:
             f"snap-through): {_describe(first)}, below {CRITICAL_MARGIN:g} of the unloaded mechanism's; its pose "
             f"depends on imperfections the model does not hold, amplified about {1.0 / max(abs(first.margin), 1e-300):.3g}"
             " times. Add the imperfection you expect, or keep the loads away from this limit")
-    warnings.warn("; ".join(parts), StabilityWarning, stacklevel=stacklevel + 1)
+    warnings.warn("; ".join(parts) + (f". {note}" if note else ""), StabilityWarning, stacklevel=stacklevel + 1)
