@@ -34,7 +34,7 @@ from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .mbs import add_to
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
-                     RunCostWarning, SetupWarning, SuspectFileWarning)
+                     RunCostWarning, SetupWarning, StabilityWarning, SuspectFileWarning)
 
 __all__ = [
     "__version__",
@@ -69,6 +69,7 @@ __all__ = [
     "AtcmWarning",
     "InputRangeWarning",
     "AccuracyWarning",
+    "StabilityWarning",
     "OutOfReachWarning",
     "RunCostWarning",
     "SetupWarning",

@@ -23,6 +23,7 @@ __all__ = [
     "AtcmWarning",
     "InputRangeWarning",
     "AccuracyWarning",
+    "StabilityWarning",
     "OutOfReachWarning",
     "RunCostWarning",
     "SetupWarning",
@@ -51,6 +52,17 @@ class AccuracyWarning(AtcmWarning, RuntimeWarning):
     a step adjusted to divide ``t_end``, too few cells, the ritz model's linearisation, a
     linearisation about a state that is not an equilibrium (or an unstable one), a fitted
     model used outside the data it was fitted to.  The message says what to change."""
+
+
+class StabilityWarning(AccuracyWarning):
+    """A static equilibrium was found, but it is unstable or at a stability limit (critical): the
+    lowest eigenvalue of the constrained tangent stiffness is negative or near zero (a column
+    above its buckling load held straight, a mechanism at a snap-through point).  A real
+    mechanism would not rest there, or its pose depends on imperfections the model does not
+    hold.  The message gives the load factor or sweep point and what to do (add an imperfection,
+    reduce the loads).  An :class:`AccuracyWarning`, so filters for those catch it; filter it on
+    its own to reject unstable designs in a study (``warnings.simplefilter("error",
+    StabilityWarning)``)."""
 
 
 class OutOfReachWarning(AtcmWarning, RuntimeWarning):

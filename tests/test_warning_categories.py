@@ -28,8 +28,8 @@ from exudyn_atcm.solve.run_checks import check_step_against_frequency, time_grid
 from _actuator_geometries import REF_A
 
 PACKAGE = pathlib.Path(exudyn_atcm.__file__).resolve().parent
-CATEGORIES = ("InputRangeWarning", "AccuracyWarning", "OutOfReachWarning", "RunCostWarning", "SetupWarning",
-              "SuspectFileWarning", "AtcmDeprecationWarning")
+CATEGORIES = ("InputRangeWarning", "AccuracyWarning", "StabilityWarning", "OutOfReachWarning", "RunCostWarning",
+              "SetupWarning", "SuspectFileWarning", "AtcmDeprecationWarning")
 
 
 def _warn_calls():

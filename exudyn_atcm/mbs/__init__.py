@@ -13,13 +13,14 @@ step hooks shared with user code, the solver settings and runs
 (:mod:`~exudyn_atcm.mbs.solver_settings`, :mod:`~exudyn_atcm.mbs.solver_runs`) and the
 constrained eigenfrequencies (:mod:`~exudyn_atcm.mbs.eigen`).
 
-On import it registers its degrees-of-freedom count with the description layer
+On import it registers its degrees-of-freedom count and its check of dependent joints
+(:mod:`~exudyn_atcm.mbs.redundancy`) with the description layer
 (:mod:`exudyn_atcm.mechanism.realisation`), which never imports this one.
 """
 
 from __future__ import annotations
 
-from ..mechanism.realisation import register_dof_counter
+from ..mechanism.realisation import register_dof_counter, register_redundancy_check
 from .builder import build
 from .hooks import StepHooks, add_post_newton, add_post_step, add_pre_step, step_hooks
 from .linear import DofReport, degrees_of_freedom
@@ -30,7 +31,12 @@ __all__ = ["add_to", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_s
 
 
 def _count(mechanism) -> DofReport:
-    return degrees_of_freedom(build(mechanism))
+    return degrees_of_freedom(build(mechanism, refuse_dependent=False))
+
+
+def _refuse_dependent(mechanism) -> None:
+    build(mechanism)  # refuses dependent constraints, naming the joints
 
 
 register_dof_counter(_count)
+register_redundancy_check(_refuse_dependent)

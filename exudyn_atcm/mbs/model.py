@@ -173,6 +173,8 @@ class MechanismModel:
     varying_mass_benders: list[str] = field(default_factory=list)
     # assumed-mode benders: name -> estimate() of the tip error [m] at the current static state from the left-out modes
     truncation_estimators: dict = field(default_factory=dict)
+    # Exudyn object number -> the joint it realises, for messages ("pin(a.tip, b.base)", "the cells of bender 'b'")
+    constraint_labels: dict[int, str] = field(default_factory=dict)
     _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
     _written_factor: float | None = None       # load factor at which every load was last written
     _connectors: tuple | None = None           # (spring count, connector_reader()) of connector_forces()

@@ -12,7 +12,7 @@ from .bender import Bender
 from .connections import Force, Joint, Pin, Slider, Spring, Stop, Torque, Weld, joint_label
 from .flexure import Flexure
 from .link import Link
-from .realisation import count_degrees_of_freedom
+from .realisation import check_redundancy, count_degrees_of_freedom
 from .points import GROUND, MechanismError, PointRef, check_name, closest
 
 Component = Union[Bender, Link, Flexure]
@@ -349,19 +349,27 @@ class Mechanism:
         return count_degrees_of_freedom(self)
 
     # ------------------------------------------------------------------ checks
-    def check(self, *, grounded: bool = True) -> None:
+    def check(self, *, grounded: bool = True, redundancy: bool = True) -> None:
         """Check the whole mechanism; raises :class:`MechanismError` naming the parts.
 
         Checks: at least one component; a connection to the ground; every component
         connected to the ground through joints; every joint's points coincide in the
         reference pose (slider: ``q`` on the axis line through ``p``) within
-        ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator.
+        ``1e-9`` times the mechanism's size; drives do not share one hysteresis operator;
+        no dependent joints (the rank of the built model's constraint Jacobian in the reference
+        pose, for every cell kind, :mod:`exudyn_atcm.mbs.redundancy`): refused naming them, as
+        joints that repeat what others fix (three pins pairwise at one point) or a chain of
+        cells that cannot stretch held straight between two points at its length (a rigid, six-bar
+        or rod bender welded to the ground at both ends; beam elements stretch).
+        :meth:`degrees_of_freedom` counts them without refusing.  (This check needs the Exudyn
+        layer that ``import exudyn_atcm`` loads.)
 
         Parameters
         ----------
         grounded : bool, optional
-            ``False`` leaves out the two ground checks (for :func:`exudyn_atcm.add_to`, where
-            the user's own joints may hold the mechanism).
+            ``False`` leaves out the ground and redundancy checks (for :func:`exudyn_atcm.add_to`).
+        redundancy : bool, optional
+            ``False`` leaves out the redundancy check (each solve makes it on the model it builds).
         """
         if not self.components:
             raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")
@@ -376,6 +384,8 @@ class Mechanism:
         self._check_connected()
         self._check_assembly()
         self._check_drives()
+        if redundancy:
+            check_redundancy(self)
 
     def _check_connected(self) -> None:
         parent = {name: name for name in [GROUND, *self.components]}

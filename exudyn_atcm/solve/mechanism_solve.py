@@ -32,6 +32,7 @@ from .dynamic_run import integrate, mark_partial
 from .step_record import StepRecord, check_view
 from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
+from .static_stability import load_path_note, stability_probe, warn_unstable
 from ..errors import SolverError
 from .run_checks import is_interrupt
 from ..model.strain_sources import InStepStrain
@@ -50,12 +51,17 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     strains = source_values(model, strains_by_drive, "solve_static")
     source_volts = source_values(model, volts, "solve_static")
     check_drive_ranges(model, source_volts, strains)
-    method = equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, describe_voltages(volts))
+    probe = stability_probe(mech, model)
+    what = describe_voltages(volts)
+    method = equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, what, probe)
     rows = Rows(model)
     rows.add(0.0, source_volts, strains)
     warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
     warn_few_modes(mech, model.truncation_errors())
-    return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto"})
+    warn_unstable(describe(mech), [(f"load factor 1 (the loads and {what} in full)", probe.last)],
+                  load_path_note(probe))
+    return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto",
+                        "stability": probe.last.state})
 
 
 def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
@@ -94,10 +100,13 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     previous = np.zeros(len(model.sources))
     methods = []
     truncation: dict[str, float] = {}
+    probe = stability_probe(mech, model)
+    states = []
     for i, per_drive in enumerate(table):
         volts, strains = source_table[i], strain_table[i]
-        methods.append(equilibrium(mech, model, previous, strains, i == 0, None,
-                                    f"sweep point {i}, {describe_voltages(per_drive)}"))
+        where = f"sweep point {i} ({describe_voltages(per_drive)})"
+        methods.append(equilibrium(mech, model, previous, strains, i == 0, None, where, probe))
+        states.append((where, probe.last))
         runs.set_current_as_initial(model, zero_velocity=True)
         rows.add(float(i), volts, strains)
         previous = strains
@@ -105,8 +114,10 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
             truncation[name] = max(error, truncation.get(name, 0.0))
     warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
     warn_few_modes(mech, truncation)
-    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table)},
-                       base=("point", "-"))
+    warn_unstable(describe(mech), states)
+    unstable = [i for i, (_, s) in enumerate(states) if s.state != "stable"]
+    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table),
+                        "unstable_points": ",".join(map(str, unstable))}, base=("point", "-"))
 
 
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
@@ -142,14 +153,17 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         raise ValueError(f"sources: one strain source per drive ({len(model.sources)}), got {len(sources)}")
     strains0 = np.array([s.trial(0.0) for s in sources])
     if np.any(strains0 != 0.0) or model.loads:
+        probe = stability_probe(mech, model)
         try:
-            equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0")
+            equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0", probe)
         except KeyboardInterrupt:
             raise SimulationInterrupted(0.0) from None
         except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
             if is_interrupt(exc.__cause__ or exc):
                 raise SimulationInterrupted(0.0) from None
             raise
+        warn_unstable(describe(mech), [("the initial state at t = 0 (load factor 1: the loads in full)", probe.last)],
+                      load_path_note(probe))
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
@@ -279,14 +293,16 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     model = mb.build(mech)
     if voltage is None and loaded:
         zero = np.zeros(len(model.sources))
-        equilibrium(mech, model, zero, zero, True, None, "the loads at zero strain")
+        # the stable branch is followed; an unstable state is reported by the negative frequency itself
+        equilibrium(mech, model, zero, zero, True, None, "the loads at zero strain", stability_probe(mech, model))
         runs.set_current_as_initial(model, zero_velocity=True)
     elif voltage is not None:
         volts = drive_voltages(mech, voltage)
         strains = source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
                                  "eigenfrequencies")
         check_drive_ranges(model, source_values(model, volts, "eigenfrequencies"), strains)
-        equilibrium(mech, model, np.zeros_like(strains), strains, True, None, describe_voltages(volts))
+        equilibrium(mech, model, np.zeros_like(strains), strains, True, None, describe_voltages(volts),
+                    stability_probe(mech, model))
         runs.set_current_as_initial(model, zero_velocity=True)
     else:
         model.scale_loads(0.0)

@@ -17,6 +17,7 @@ from .static_fallback import equilibrium_with_fallback
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
+from ..mbs.stability import StabilityProbe, snapshot
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
@@ -98,12 +99,15 @@ def static_scales(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray
 
 
 def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, end: np.ndarray, from_reference: bool,
-                 load_steps: int | None, what: str) -> str:
+                 load_steps: int | None, what: str, probe: StabilityProbe | None = None) -> str:
     """Static equilibrium with the strains moved from ``start`` to ``end``; returns the method used.
 
     From the reference pose the loads are raised with the strains; otherwise they stay.
     First Exudyn's static solver in load steps, then (as for a lone actuator) dynamic
-    relaxation polished by one static step.
+    relaxation polished by one static step.  With a stability ``probe``
+    (:func:`~exudyn_atcm.solve.static_stability.stability_probe`), a converged but unstable static
+    solution is replaced by the relaxation's stable one when there is one
+    (:mod:`~exudyn_atcm.solve.static_fallback`), and ``probe.last`` holds the final state's stability.
     """
     # From the reference pose Exudyn's load factor raises the loads (as for a lone actuator, so
     # that a one-bender mechanism takes the very same Newton path); later sweep points keep
@@ -130,9 +134,14 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
         last.staticSolver.useLoadFactor = False
         runs.run_static(model, last, lambda f: f)
 
-    return equilibrium_with_fallback(
+    method = equilibrium_with_fallback(
         model, static=lambda: runs.run_static(model, settings, lambda f: f), relaxation=relaxation, relax_target=1.0,
         omega1=omega1, polish=polish, size=mech.size, subject=describe(mech), what=what,
         load_steps=load_steps,
         advice=f"Expected rotation about {rot:.3g} rad. Use more cells, reduce the loads, check that the mechanism is "
-               "not locked, or pass load_steps.")
+               "not locked, or pass load_steps.",
+        unstable=None if probe is None else lambda: probe.check().state == "unstable",
+        snapshot=None if probe is None else lambda: snapshot(model))
+    if probe is not None and method != "static":
+        probe.check()  # the relaxation's state (a converged static state was checked on the way)
+    return method

@@ -233,6 +233,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
     model.truncation_estimators[bender.name] = truncation
     if by_parameter:
         model.varying_mass_benders.append(bender.name)  # the runs let Exudyn re-read it every step
+    model.springs.append((obj, K, "dampingMatrix"))  # the relaxation damps the modes at its factor times K
     model.strain_writers.append(write_strains)
     model.linearisation_hooks.append(linearise)
     add_post_newton(mbs, check_tip)
