@@ -31,7 +31,7 @@ from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .mbs import add_to
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
-                     RunCostWarning, SetupWarning, SuspectFileWarning)
+                     RunCostWarning, SetupWarning, SuspectFileWarning, WriteError)
 
 __all__ = [
     "__version__",
@@ -56,6 +56,7 @@ __all__ = [
     "Result",
     "SolverError",
     "SimulationInterrupted",
+    "WriteError",
     "read_csv",
     "read_record",
     "preprocess",

@@ -31,12 +31,14 @@ from .reference_record import (
     write_reference_record,
 )
 from .signals import Constant, CsvSignal, ForcProgram, PiecewiseLinear, Signal, Sine, Steps, Triangle
+from .sampled_program import SampledProgram
 from .strain_sources import InStepStrain, TableStrain
 
 __all__ = [
     "Layer", "PLAUSIBLE_RANGES", "Laminate", "STIFFNESS_MODELS",
     "PiezoDrive", "MFC_P1_RATED_RANGE", "PLAUSIBLE_STRAIN", "KV_SUSPECT_FRACTION",
     "Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram",
+    "SampledProgram",
     "Controller", "PIDController",
     "InStepStrain", "TableStrain",
     "RecordingSchedule", "recording_schedule",
