@@ -63,7 +63,7 @@ MAX_OPERATOR_ELEMENTS = 100_000
 #: about 10 kB per cell (measured; 1e5 rigid cells: about 20 s and 1.2 GB before the first step),
 #: and a static solve of a few thousand cells already takes minutes.  Counts below the bound are
 #: announced by the run-time estimate when they take long
-#: (:func:`exudyn_atcm.solve.build_cost.warn_if_large`).
+#: (:mod:`exudyn_atcm.mechanism.build_cost`).
 MAX_CELLS = 100_000
 
 

@@ -24,6 +24,7 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
+from ..mechanism.build_cost import warn_if_large
 from ..mechanism.points import MechanismError, PointRef, closest
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
@@ -186,6 +187,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
         raise MechanismError(
             f"add_to: component(s) {clash} are already in this MainSystem (added by an earlier add_to); "
             "give the second copy other names (e.g. Bender('b2', ...)), or add both in one Mechanism")
+    warn_if_large(mechanism, "add_to", stacklevel=3)  # before the build: for many cells it is the dear part
     model = add_mechanism(mbs, mechanism, free_end_bodies=True)
     sources = [InStepStrain(drive) for drive in model.sources]
     handle = MechanismHandle(mechanism, model, sources)

@@ -29,6 +29,8 @@ from .mechanism_checks import check_drive_ranges, check_steps, feedback_controll
 from ..io.result import Result
 from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
+from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
+from .long_runs import is_announced
 from .step_record import StepRecord, check_view
 from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
@@ -44,6 +46,7 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`)."""
     if load_steps is not None:
         load_steps = positive_int("load_steps", load_steps)
+    warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build: it may be the dear part
     model = mb.build(mech)
     volts = drive_voltages(mech, voltage)
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
@@ -60,7 +63,6 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
 
 def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
     """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`)."""
-    model = mb.build(mech)
     drives = mech.drives
     if isinstance(voltages, Mapping):
         series = {}
@@ -79,6 +81,8 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     else:
         values = finite_array("voltages", voltages)
         table = [{name: float(v) for name in drives} for v in values]
+    warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
+    model = mb.build(mech)
     source_table = np.array([source_values(model, per_drive, f"static_sweep point {i}")
                              for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
     for drive in model.sources:
@@ -297,7 +301,10 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     the equilibrium under the loads at zero strain (a lone actuator's ``tip_force``).
     """
     n = positive_int("n", n)
-    model = mb.build(mech)
+    announced = warn_if_large(mech, "eigenfrequencies", equilibria=int(voltage is not None or loaded), eigen=True,
+                              quiet=is_announced(), stacklevel=5)
+    model = mb.build(mech)  # its coordinates, counted, make the eigenproblem's estimate exact
+    warn_if_eigen_long(len(model.coordinates()), describe(mech), quiet=announced or is_announced(), stacklevel=5)
     if voltage is None and loaded:
         zero = np.zeros(len(model.sources))
         equilibrium(mech, model, zero, zero, True, None, "the loads at zero strain")
