@@ -9,8 +9,6 @@ announced (:class:`~exudyn_atcm.errors.RunCostWarning`) before the expensive par
 * :func:`build_estimate` -- wall time [s] and memory [bytes] of building a mechanism, from each
   cell kind's measured :attr:`~exudyn_atcm.cells.CellKind.build_cost`
   (``benchmarks/bench_build_cost.py``);
-Here, below the Exudyn layer, so that :func:`~exudyn_atcm.add_to` announces too.
-
 * :func:`warn_if_large` -- the announcement of a static solve, a static sweep, an eigenvalue
   analysis or an :func:`~exudyn_atcm.add_to` whose build and solves are predicted to take more
   than :data:`~exudyn_atcm.solve.run_checks.LONG_RUN_SECONDS` or whose model needs more than
@@ -19,6 +17,7 @@ Here, below the Exudyn layer, so that :func:`~exudyn_atcm.add_to` announces too.
 
 A cell count above :data:`~exudyn_atcm.physical_bounds.MAX_CELLS` is refused where it is given
 (:class:`~exudyn_atcm.Bender`, :class:`~exudyn_atcm.BendingActuator`, :class:`~exudyn_atcm.Flexure`).
+The module lives below the Exudyn layer, so that :func:`~exudyn_atcm.add_to` announces too.
 """
 
 from __future__ import annotations
