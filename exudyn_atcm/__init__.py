@@ -34,7 +34,7 @@ from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .mbs import add_to
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
-                     RunCostWarning, SetupWarning, StabilityWarning, SuspectFileWarning)
+                     RunCostWarning, SetupWarning, StabilityWarning, SuspectFileWarning, WriteError)
 
 __all__ = [
     "__version__",
@@ -59,6 +59,7 @@ __all__ = [
     "Result",
     "SolverError",
     "SimulationInterrupted",
+    "WriteError",
     "read_csv",
     "load_model",
     "read_record",

@@ -19,7 +19,9 @@ written for ``RuntimeWarning`` keep working; :class:`AtcmDeprecationWarning` is 
 from __future__ import annotations
 
 __all__ = [
+    "annotate",
     "SolverError",
+    "WriteError",
     "AtcmWarning",
     "InputRangeWarning",
     "AccuracyWarning",
@@ -32,8 +34,34 @@ __all__ = [
 ]
 
 
+def annotate(exc: BaseException, note: str) -> BaseException:
+    """Add ``note`` to ``exc`` (``BaseException.add_note``, shown under the message) and return it.
+
+    The package names the context of an error raised by the user's own code (the voltage program,
+    the drive and the simulated time) this way, so that the error keeps its type and message.
+    A note already there is not added twice; before Python 3.11 (no notes) nothing is added.
+    """
+    add_note = getattr(exc, "add_note", None)
+    if add_note is not None and note not in getattr(exc, "__notes__", ()):
+        add_note(note)
+    return exc
+
+
 class SolverError(RuntimeError):
     """The multibody solver failed; the message says where, what was tried and what to change."""
+
+
+class WriteError(OSError):
+    """A file or directory the user asked for could not be written; the message names the path and why.
+
+    An ``OSError`` because the operating system refused the write (no permission, disk full, a name
+    too long, a path that is a directory or empty): code that guards its writes with
+    ``except OSError`` (what ``open`` raises for the same causes) catches it too.  ``errno`` is the
+    failed call's error number when there was one, and ``filename`` the path as given.
+    """
+
+    def __str__(self) -> str:  # the message as written, not OSError's "[Errno n] strerror: filename"
+        return str(self.args[0]) if len(self.args) == 1 else super().__str__()
 
 
 class AtcmWarning(UserWarning):

@@ -13,8 +13,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-__all__ = ["PHYSICAL_LIMITS", "MAX_OPERATOR_ELEMENTS", "MFC_P1_RATED_RANGE", "KV_SUSPECT_FRACTION", "check_physical",
-           "check_element_count"]
+__all__ = ["PHYSICAL_LIMITS", "MAX_OPERATOR_ELEMENTS", "MAX_CELLS", "MFC_P1_RATED_RANGE", "KV_SUSPECT_FRACTION",
+           "DAMPING_RATIO_SUSPECT", "check_physical", "check_element_count", "check_cell_count"]
 
 #: Rated operating voltage of the MFC P1 type [V] (d33 mode, -500 ... +1500 V; Smart Material
 #: Corp. data sheet; the paper drives its MFC over exactly this range).
@@ -27,6 +27,15 @@ MFC_P1_RATED_RANGE = (-500.0, 1500.0)
 #: small-signal program of the package (a 1 % triangle, -5 ... 15 V); at 3 V the MFC's free
 #: strain is about 3e-6, 0.2 % of its full stroke.
 KV_SUSPECT_FRACTION = 2e-3
+
+#: A modal damping ratio (the ``damping=`` of a bender, an actuator or a flexure) at or above this
+#: is most likely a percentage written as a number (``damping=5`` for 5 %, ``damping=1`` for 1 %):
+#: a ratio of 1 is critical damping, at which the bender no longer vibrates at its first mode.
+#: Fibre-composite laminates have about 0.005 ... 0.05 (0.5 ... 5 %; the package's default is
+#: 0.02), and even the most dissipative viscoelastic layers stay below about 0.5 (loss factor 1).
+#: A ratio below 1 cannot be told from a percentage (0.5 may be 50 % or a mistyped 0.5 %), so it
+#: is not warned about.
+DAMPING_RATIO_SUSPECT = 1.0
 
 
 #: name -> (lowest, highest, unit, why): values outside ``[lowest, highest]`` cannot be physical.
@@ -46,6 +55,16 @@ PHYSICAL_LIMITS: dict[str, tuple[float, float, str, str]] = {
 #: more levels than a 16-bit measurement resolves over its range (65 536) cannot be identified
 #: from any record (the paper's model has 6 relays), and each element costs time in every step.
 MAX_OPERATOR_ELEMENTS = 100_000
+
+#: Largest number of cells (modes for the ``ritz`` and ``rod`` cells) of one bender, actuator or
+#: flexure.  The chains of cells converge at second order, so 1e5 cells leave a discretisation
+#: error of about 1e-10 of the length, below what Exudyn's Newton tolerance resolves: more cells
+#: cannot change an answer.  They only cost: building the Exudyn model takes 30 ... 600 µs and
+#: about 10 kB per cell (measured; 1e5 rigid cells: about 20 s and 1.2 GB before the first step),
+#: and a static solve of a few thousand cells already takes minutes.  Counts below the bound are
+#: announced by the run-time estimate when they take long
+#: (:mod:`exudyn_atcm.mechanism.build_cost`).
+MAX_CELLS = 100_000
 
 
 def check_physical(name: str, value: float, owner: str) -> float:
@@ -95,5 +114,33 @@ def check_element_count(name: str, value: Any, what: str) -> Any:
             f"{name} = {value!r} {what} is more than {MAX_OPERATOR_ELEMENTS} {what}, which no record can identify "
             f"(a 16-bit measurement resolves 65536 levels; the paper's model has 6 relays) and which would compute "
             f"for minutes per run; use at most {MAX_OPERATOR_ELEMENTS} (tens to hundreds are typical)"
+        )
+    return value
+
+
+def check_cell_count(name: str, value: Any, owner: str) -> Any:
+    """``value`` if it is at most :data:`MAX_CELLS`, else a ``ValueError`` saying why.
+
+    Parameters
+    ----------
+    name : str
+        The parameter (``"n_cells"``), for the message.
+    value : int
+        The count (its type and lower bound are checked by the caller).
+    owner : str
+        What it belongs to (``"bender 'b'"``, ``"BendingActuator"``), for the message.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` exceeds :data:`MAX_CELLS`.
+    """
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and value > MAX_CELLS:
+        raise ValueError(
+            f"{owner}: {name} = {value!r} is more than {MAX_CELLS} cells, which cannot change any answer (the "
+            f"discretisation error at {MAX_CELLS} cells, about 1e-10 of the length, is below the solver's tolerance) "
+            f"and would take minutes and gigabytes to build (about 10 kB and up to 0.6 ms per cell) before the first "
+            f"step; use at most {MAX_CELLS} (tens to hundreds of cells are typical; modes of the ritz and rod "
+            "cells: a few to tens)"
         )
     return value

@@ -343,7 +343,8 @@ def test_record_every_thins_without_changing_the_solution():
 
 
 def test_record_every_is_checked():
-    for bad in (0, -1, 0.0, float("nan"), "10", True):
+    # 0 and 0.0 are not here: they mean every step, as on the command line (tests/test_runtime_noise.py)
+    for bad in (-1, -0.5, float("nan"), float("inf"), "10", "0", True, False):
         with pytest.raises(ValueError, match="record_every"):
             recording_schedule(bad, 1e-4)
 

@@ -22,6 +22,9 @@ class AncfCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 60, 110, 185 and 288 µs per step at 3, 10, 20 and 40
     # elements; the fit a + b n
     cost_per_step = (49e-6, 6.1e-6, 0.0)
+    # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 87, 66 and 48 µs and 6.7, 3.7 and 3.1 kB
+    # per element at 200, 800 and 3200 elements; the fit n (a + b n) s, n (m + k n) bytes
+    build_cost = (5.9e-5, 0.0, 3.8e3, 0.0)
     limits = ("coarse meshes lock in strongly bent states: use >= 8 elements for large deflections; in a mechanism "
               "a cantilever only (base welded to the ground, tip free)")
 

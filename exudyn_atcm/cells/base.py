@@ -66,6 +66,11 @@ class CellKind:
     cost_per_step : tuple of float or None
         ``(a, b, c)`` [s]: measured wall time per accepted step ``a + b n + c n^2`` for ``n`` cells
         (``None``: not measured; no run-time estimate).
+    build_cost : tuple of float or None
+        ``(a, b, m, k)``: measured wall time ``n (a + b n)`` [s] and memory ``n (m + k n)`` [bytes]
+        of building the Exudyn model of ``n`` cells, before the first step
+        (``benchmarks/bench_build_cost.py``; ``None``: not measured, the build is left out of the
+        estimate).
     limits : str
         Known limits, stated in the documentation.
     stroke_paths : tuple of str
@@ -88,6 +93,7 @@ class CellKind:
     joint_label: ClassVar[str] = "cell joints"
     realises_mass_damping: ClassVar[bool] = False
     cost_per_step: ClassVar[tuple[float, float, float] | None] = None
+    build_cost: ClassVar[tuple[float, float, float, float] | None] = None
     limits: ClassVar[str] = ""
     static_tolerances: ClassVar[tuple[float, float] | None] = None
     stroke_paths: ClassVar[tuple[str, ...]] = ("prestep", "offsets", "user_function")
@@ -131,6 +137,13 @@ class CellKind:
             return None
         a, b, c = self.cost_per_step
         return a + n_cells * (b + c * n_cells)
+
+    def estimate_build(self, n_cells: int) -> tuple[float, float] | None:
+        """Measured wall time [s] and memory [bytes] of building ``n_cells`` cells, or ``None`` if not measured."""
+        if self.build_cost is None:
+            return None
+        a, b, m, k = self.build_cost
+        return n_cells * (a + b * n_cells), n_cells * (m + k * n_cells)
 
     # --------------------------------------------------------------- identity by name
     def __eq__(self, other: object) -> bool:

@@ -24,5 +24,8 @@ class BeamCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 36, 79, 95 and 139 µs per step at 3, 10, 20 and 40
     # elements; the fit a + b n
     cost_per_step = (40e-6, 2.6e-6, 0.0)
+    # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 41, 36 and 36 µs and 8.8, 3.3 and 3.0 kB
+    # per element at 200, 800 and 3200 elements; the fit n (a + b n) s, n (m + k n) bytes
+    build_cost = (3.7e-5, 0.0, 3.4e3, 0.0)
     limits = ("Newton's absolute tolerance must be at least the model's floor (MechanismHandle."
               "newton_tolerance_floor) in a user's own solve")

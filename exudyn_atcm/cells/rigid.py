@@ -22,6 +22,9 @@ class RigidCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 33, 70, 132 and 196 µs per step at 3, 10, 20 and 40
     # cells; the fit a + b n
     cost_per_step = (28e-6, 4.4e-6, 0.0)
+    # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 146, 209 and 150 µs and 10.9, 7.6 and 7.3
+    # kB per cell at 200, 800 and 3200 cells; the fit n (a + b n) s, n (m + k n) bytes
+    build_cost = (1.6e-4, 0.0, 8.1e3, 0.0)
     realises_mass_damping = True
     # the torque-actuated chain is nearly linear in its rotations: with the absolute tolerance 1e-8
     # Newton stopped after its first step at small voltages, missing ~19 % of the second-order

@@ -29,6 +29,9 @@ class RitzCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 13, 24, 33 and 57 µs per step at 3, 10, 20 and 40
     # modes; the fit a + b n
     cost_per_step = (10e-6, 1.2e-6, 0.0)
+    # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 0.003, 0.015 and 0.31 s and 2.7, 4.0 and
+    # 64.5 MB at 8, 32 and 128 modes (dense in the modes); the fit n (a + b n) s, n (m + k n) bytes
+    build_cost = (1.9e-4, 1.3e-5, 9.1e4, 2.2e3)
     limits = ("dynamics linearised about the quasi-static arc (a warning above 0.05 rad of dynamic tip "
               "rotation); no tip loads; in a mechanism a cantilever only (base welded to the ground, tip free)")
 

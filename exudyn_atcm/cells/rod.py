@@ -31,6 +31,9 @@ class RodCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.2 s, best of 3, lone actuator): 93, 70 and 79 µs per step at 3, 6 and
     # 12 modes (a profile of the 3-mode run: 68 µs); the machine's noise is larger than the trend
     cost_per_step = (70e-6, 0.8e-6, 0.0)
+    # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 0.016, 0.056 and 0.83 s and 0, 0.3 and
+    # 8.2 MB at 8, 32 and 128 modes (dense in the modes); the fit n (a + b n) s, memory k = 8.2 MB / 128^2
+    build_cost = (1.3e-3, 3.1e-5, 0.0, 500.0)
     limits = ("one laminate per bender (segments with their own drives: each segment's n_cells modes on its own "
               "length); inextensible and shear-rigid (Euler-Bernoulli); the tip pose's "
               "linearisation is re-evaluated in every step and Newton pass, the mass matrix once per step")

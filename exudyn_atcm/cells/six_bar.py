@@ -23,6 +23,9 @@ class SixBarCell(CellKind):
     # bench_run_cost.py of 2026-11-26 (0.5 s, best of 2): 306, 863, 1554 and 3478 µs per step at 3, 10, 20 and
     # 40 cells; the fit a + b n + c n^2
     cost_per_step = (140e-6, 61e-6, 0.55e-6)
+    # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 821, 1118 and 694 µs and 32, 30 and 30 kB
+    # per cell at 200, 800 and 3200 cells; the fit n (a + b n) s, n (m + k n) bytes
+    build_cost = (8.2e-4, 0.0, 3.1e4, 0.0)
     realises_mass_damping = True
     limits = ("about 10x the rigid chain's cost per step; the shear mode lowers the dynamic stiffness at few "
               "cells; a passive strip (no active layer) cannot be made of it")

@@ -12,8 +12,10 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
 
+from ..errors import WriteError
+
 __all__ = ["atomic_path", "write_atomic", "write_text", "write_json", "make_directory", "describe_os_error",
-           "WriteError", "FILE_MODE"]
+           "write_error", "WriteError", "FILE_MODE"]
 
 
 def _file_mode() -> int:
@@ -23,10 +25,6 @@ def _file_mode() -> int:
 
 
 FILE_MODE = _file_mode()
-
-
-class WriteError(OSError):
-    """A file or directory the user asked for could not be written; the message says which and why."""
 
 
 _REASONS = {
@@ -42,6 +40,20 @@ _REASONS = {
 }
 
 
+def write_error(path: str | os.PathLike, reason: str, exc: OSError | None = None, *,
+                what: str = "write") -> WriteError:
+    """A :class:`~exudyn_atcm.errors.WriteError` ``"cannot {what} {path!r}: {reason}"`` with ``filename`` set
+    to the path as given and ``errno`` to that of ``exc`` (the failed call), if any.  ``what`` may end
+    in ``{path}`` to place the path itself (``"write {path} into '/tmp'"``)."""
+    quoted = repr(os.fspath(path))
+    action = what.replace("{path}", quoted) if "{path}" in what else f"{what} {quoted}"
+    error = WriteError(f"cannot {action}: {reason}")
+    error.filename = os.fspath(path)
+    if exc is not None:
+        error.errno = exc.errno
+    return error
+
+
 def describe_os_error(exc: OSError) -> str:
     """The reason of an ``OSError`` in words, without errno numbers or temporary file names."""
     reason = _REASONS.get(exc.errno or -1)
@@ -52,13 +64,15 @@ def describe_os_error(exc: OSError) -> str:
 
 def make_directory(path: str | os.PathLike, what: str = "output directory") -> Path:
     """Create ``path`` with its parents if missing; ``WriteError`` naming it and the reason on failure."""
+    if os.fspath(path) == "":
+        raise write_error(path, "the name is empty", what=f"create the {what}")
     directory = Path(path)
     try:
         directory.mkdir(parents=True, exist_ok=True)
-    except FileExistsError:
-        raise WriteError(f"cannot create the {what} {os.fspath(path)!r}: a file of that name exists") from None
+    except FileExistsError as exc:
+        raise write_error(path, "a file of that name exists", exc, what=f"create the {what}") from None
     except OSError as exc:
-        raise WriteError(f"cannot create the {what} {os.fspath(path)!r}: {describe_os_error(exc)}") from None
+        raise write_error(path, describe_os_error(exc), exc, what=f"create the {what}") from None
     return directory
 
 
@@ -86,21 +100,32 @@ def atomic_path(path: str | os.PathLike, *, make_dirs: bool = False) -> Iterator
     ValueError
         If the directory does not exist and ``make_dirs`` is false.
     WriteError
-        If the file cannot be written; the message names ``path`` and the reason (not the
+        If the file cannot be written (also an empty path, a name too long for the file system,
+        a path that is a directory); the message names ``path`` and the reason (not the
         temporary file).
     """
+    if os.fspath(path) == "":
+        raise write_error(path, "the file name is empty (give the name of the file to write)")
     target = Path(path)
-    directory = target.resolve().parent
-    if not directory.is_dir():
+    try:
+        directory = target.resolve().parent
+        missing = not directory.is_dir()
+    except OSError as exc:  # a name longer than the file system allows, a loop of links ...
+        raise write_error(path, describe_os_error(exc), exc) from None
+    if missing:
         if not make_dirs:
             raise ValueError(f"path must be in an existing directory, got {os.fspath(path)!r}")
         make_directory(directory, "directory")
-    if target.is_dir():
-        raise WriteError(f"cannot write {os.fspath(path)!r}: it is a directory")
+    try:
+        is_directory = target.is_dir()
+    except OSError as exc:
+        raise write_error(path, describe_os_error(exc), exc) from None
+    if is_directory:
+        raise write_error(path, "it is a directory (give a file name in it)")
     try:
         fd, tmp = tempfile.mkstemp(prefix=".tmp_", suffix=target.suffix, dir=directory)
     except OSError as exc:
-        raise WriteError(f"cannot write {os.fspath(path)!r} into {str(directory)!r}: {describe_os_error(exc)}") from None
+        raise write_error(path, describe_os_error(exc), exc, what=f"write {{path}} into {str(directory)!r}") from None
     os.close(fd)
     try:
         os.chmod(tmp, FILE_MODE)  # mkstemp makes 0600 files; give the usual permissions
@@ -112,7 +137,7 @@ def atomic_path(path: str | os.PathLike, *, make_dirs: bool = False) -> Iterator
         except OSError:
             pass
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
-            raise WriteError(f"cannot write {os.fspath(path)!r}: {describe_os_error(exc)}") from None
+            raise write_error(path, describe_os_error(exc), exc) from None
         raise
 
 

@@ -72,6 +72,8 @@ class CsvHeader:
 
 def _read_lines(path: str | os.PathLike) -> tuple[str, list[str]]:
     name = os.fspath(path)
+    if name == "":
+        raise ValueError("path must name a CSV file, got '' (an empty path)")
     try:
         with open(name, encoding="utf-8-sig", newline=None) as handle:  # -sig: a leading BOM is not text
             return name, handle.read().split("\n")

@@ -210,8 +210,9 @@ class Result(Mapping):
             ``[``, ``]``, a line break or an invisible character; a parameter named
             ``data_rows`` or ``info.*``; a parameter or info value that would not read back as
             itself (an arbitrary object); a ``time`` series that goes back.
-        exudyn_atcm.io.atomic.WriteError
-            (an ``OSError``) if the file cannot be written, naming the file and the reason.
+        exudyn_atcm.errors.WriteError
+            (an ``OSError``) if the file cannot be written, naming the file and the reason (an empty
+            path, a name too long for the file system, a directory, no permission, a full disk).
         """
         comments = self.header_comment_lines()  # validates before the file is touched
         header = self.column_header()

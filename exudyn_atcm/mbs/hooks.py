@@ -8,11 +8,17 @@ registered function in order.  The package registers its hysteresis hooks there
 
 Exudyn calls ``PreStep`` before every attempted step and ``PostStep`` after every accepted
 step (and once at ``t = 0``), both with the step's end time ``t``.
+
+An exception raised by one of your step functions is passed on as it is, with a note naming the
+function and ``t``; Exudyn then stops and reports it as its ``ModelError`` whose ``__cause__`` is
+your exception.
 """
 
 from __future__ import annotations
 
 from typing import Any, Callable
+
+from ..errors import annotate
 
 StepFunction = Callable[[Any, float], bool]
 
@@ -42,22 +48,33 @@ class StepHooks:
 
     def pre_step(self, mbs, t: float) -> bool:
         """Exudyn's ``PreStep`` user function: runs :attr:`pre` in order."""
-        ok = True
-        for f in self.pre:
-            ok = (f(mbs, t) is not False) and ok
-        return ok
+        return _run_all(self.pre, mbs, t, "pre")
 
     def post_step(self, mbs, t: float) -> bool:
         """Exudyn's ``PostStep`` user function: runs :attr:`post` in order."""
-        ok = True
-        for f in self.post:
-            ok = (f(mbs, t) is not False) and ok
-        return ok
+        return _run_all(self.post, mbs, t, "post")
 
     def install(self, mbs) -> None:
         """Make this object the system's ``PreStep`` and ``PostStep`` user functions."""
         mbs.SetPreStepUserFunction(self.pre_step)
         mbs.SetPostStepUserFunction(self.post_step)
+
+
+def _run_all(functions: list[StepFunction], mbs, t: float, which: str) -> bool:
+    """Run every function; an exception of the user's own passes on with a note naming it and ``t``."""
+    ok = True
+    for f in functions:
+        try:
+            ok = (f(mbs, t) is not False) and ok
+        except Exception as exc:
+            if not getattr(f, "__module__", "").startswith(_PACKAGE):  # the package's hooks add their own note
+                name = getattr(f, "__qualname__", type(f).__name__)
+                annotate(exc, f"(raised by the {which}-step function {name!r} at t = {t:.9g} s)")
+            raise
+    return ok
+
+
+_PACKAGE = __name__.split(".")[0] + "."
 
 
 def _current(getter) -> Any:

@@ -6,6 +6,12 @@ and eigenfrequencies about the current state.  A run works on any built model wi
 attributes of :class:`SolvableModel` (:class:`~exudyn_atcm.mbs.model.MechanismModel`);
 Exudyn's failures are raised as
 :class:`ExudynFailure` with the time or load factor reached.
+
+An exception raised inside the runs' step hooks (the user's voltage program, controller or load
+function, or anything the hooks call) is not a solver failure: Exudyn catches it and gives up the
+step (reporting a Newton failure after reducing the step), so the hooks keep the first one
+(:class:`HookErrors`) and the run raises it as it is, its type and message unchanged, with a note
+saying in which hook and at which time it arose.
 """
 
 from __future__ import annotations
@@ -16,6 +22,7 @@ from typing import Any, Callable, Protocol
 import exudyn as exu
 import numpy as np
 
+from ..errors import annotate
 from .eigen import constrained_eigenfrequencies
 from .solver_settings import dynamic_settings
 
@@ -46,6 +53,29 @@ class ExudynFailure(RuntimeError):
         self.time = time
 
 
+class HookErrors:
+    """The first exception raised in a solve's step hooks, to be raised as itself after the solve.
+
+    Use :meth:`keep` in each hook's ``except Exception`` clause (then re-raise, which makes Exudyn
+    stop) and :meth:`raise_first` where the solve's own failure is handled.
+    """
+
+    def __init__(self, solve: str) -> None:
+        self.solve = solve
+        self.first: Exception | None = None
+
+    def keep(self, exc: Exception, hook: str, where: str) -> None:
+        """Remember ``exc`` (the first one only) with a note naming the hook and ``where`` (``"t = 0.02 s"``)."""
+        if self.first is None:
+            self.first = exc
+            annotate(exc, f"(in the {hook} hook of {self.solve} at {where}; the solve stopped there)")
+
+    def raise_first(self) -> None:
+        """Raise the exception kept, if any, as it is (not chained to Exudyn's report of it)."""
+        if self.first is not None:
+            raise self.first from None
+
+
 def quiet_console():
     """Silence Exudyn's console output (solver messages) until :func:`restore_console`."""
     exu.config.printToConsole = False
@@ -64,9 +94,14 @@ def _apply_tolerance_floor(model: SolvableModel, newton) -> None:
 def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float], float]) -> None:
     """Solve statically; the strain follows the load factor ``f`` in [0, 1] via ``strain_at_factor``."""
     mbs = model.mbs
+    errors = HookErrors("Exudyn's static solver")
 
     def pre(mbs_, t):
-        model.set_strain(strain_at_factor(min(max(t, 0.0), 1.0)))
+        try:
+            model.set_strain(strain_at_factor(min(max(t, 0.0), 1.0)))
+        except Exception as exc:
+            errors.keep(exc, "pre-step", f"load factor {t:.6g}")
+            raise
         return True
 
     _apply_tolerance_floor(model, settings.staticSolver.newton)
@@ -83,6 +118,7 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
     try:
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001 - any Exudyn failure is reported with context
+        errors.raise_first()
         t = _solver_time(solver)
         raise ExudynFailure(f"{type(exc).__name__}: {exc}", t) from exc
     finally:
@@ -90,6 +126,7 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
         mbs.SetPreStepUserFunction(0)
         model.uf_strains = saved_uf
     if not ok:
+        errors.raise_first()
         raise ExudynFailure("static Newton iteration did not converge", _solver_time(solver))
     # the static solver ends at load factor 1: make sure the final strain is exact
     model.set_strain(strain_at_factor(1.0))
@@ -149,10 +186,16 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
         x = min(max(t / t_ramp, 0.0), 1.0)
         return x * x * (3.0 - 2.0 * x)
 
+    errors = HookErrors("the dynamic relaxation of a static solve")
+
     def pre(mbs_, t):
         f = ramp(t)
-        model.set_strain(f * strain)
-        model.scale_loads(f)
+        try:
+            model.set_strain(f * strain)
+            model.scale_loads(f)
+        except Exception as exc:
+            errors.keep(exc, "pre-step", f"ramp {f:.6g}")
+            raise
         return True
 
     def post(mbs_, t):
@@ -181,6 +224,7 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
     try:
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001
+        errors.raise_first()
         raise ExudynFailure(f"{type(exc).__name__}: {exc}", _solver_time(solver) / t_end) from exc
     finally:
         restore_console()
@@ -191,6 +235,7 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
             mbs.SetObjectParameter(item, name, d)
         model.scale_loads(1.0)
     if not ok:
+        errors.raise_first()
         raise ExudynFailure("dynamic relaxation did not converge", _solver_time(solver) / t_end)
     model.set_strain(strain)
     return tail["change"]
@@ -200,24 +245,34 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
                 post_step: Callable[[float], None]) -> dict:
     """Integrate in time; ``pre_step(t)`` before each attempted step, ``post_step(t)`` after each accepted one.
 
-    A hook returning ``False`` stops the integration cleanly (Exudyn ends the run).
+    A hook returning ``False`` stops the integration cleanly (Exudyn ends the run).  An exception
+    raised in a hook is raised as it is after Exudyn stops (:class:`HookErrors`), not as a failure.
 
     Returns solver statistics.
     """
     mbs = model.mbs
     counts = {"attempts": 0}
+    errors = HookErrors("the time integration")
 
     if pre_step is not None:
         def pre(mbs_, t):
             counts["attempts"] += 1
-            return pre_step(t) is not False  # False: stop the run (e.g. Ctrl-C caught in the hook)
+            try:
+                return pre_step(t) is not False  # False: stop the run (e.g. Ctrl-C caught in the hook)
+            except Exception as exc:
+                errors.keep(exc, "pre-step", f"t = {t:.9g} s (the step being attempted)")
+                raise
     else:
         def pre(mbs_, t):
             counts["attempts"] += 1
             return True
 
     def post(mbs_, t):
-        return post_step(t) is not False
+        try:
+            return post_step(t) is not False
+        except Exception as exc:
+            errors.keep(exc, "post-step", f"t = {t:.9g} s (an accepted step)")
+            raise
 
     _apply_tolerance_floor(model, settings.timeIntegration.newton)
     mbs.SetPreStepUserFunction(pre)
@@ -227,12 +282,14 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
     try:
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001
+        errors.raise_first()
         raise ExudynFailure(f"{type(exc).__name__}: {exc}", _solver_time(solver)) from exc
     finally:
         restore_console()
         mbs.SetPreStepUserFunction(0)
         mbs.SetPostStepUserFunction(0)
     if not ok:
+        errors.raise_first()
         raise ExudynFailure("Newton iteration did not converge even at the minimum step size",
                             _solver_time(solver))
     it = solver.it

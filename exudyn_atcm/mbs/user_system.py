@@ -5,6 +5,12 @@ The convention of ``exudyn.robotics`` and ``exudyn.beams``: :func:`add_to` adds 
 sensors.  The drives' hysteresis runs in the step through :class:`~exudyn_atcm.mbs.hooks.StepHooks`
 (trial in ``PreStep``, commit in ``PostStep``), so any solver the user calls
 (``mbs.SolveDynamic``, ``exudyn.SolveStatic``...) takes the voltage programs into account.
+
+An error a voltage program or controller raises in those hooks reaches the user through Exudyn,
+which reports any exception of a user function as its own ``ModelError`` (a ``ValueError``): the
+original exception is that error's ``__cause__``, unchanged, with notes naming the program, the
+drive and the time (Exudyn's message quotes them too).  The package's own solves
+(:func:`exudyn_atcm.simulate` ...) raise the original exception itself.
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
+from ..mechanism.build_cost import warn_if_large
 from ..mechanism.points import MechanismError, PointRef, closest
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
@@ -27,7 +34,7 @@ from .items import position_marker, rigid_marker
 from .model import MechanismModel
 from .tolerance_floor import ToleranceFloor
 from .recording import make_result
-from ..errors import SetupWarning
+from ..errors import SetupWarning, annotate
 
 #: Key in ``mbs.variables``: the component names already added by :func:`add_to`.
 ADDED_VARIABLE = "exudyn_atcm.added_components"
@@ -180,6 +187,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
         raise MechanismError(
             f"add_to: component(s) {clash} are already in this MainSystem (added by an earlier add_to); "
             "give the second copy other names (e.g. Bender('b2', ...)), or add both in one Mechanism")
+    warn_if_large(mechanism, "add_to", stacklevel=3)  # before the build: for many cells it is the dear part
     model = add_mechanism(mbs, mechanism, free_end_bodies=True)
     sources = [InStepStrain(drive) for drive in model.sources]
     handle = MechanismHandle(mechanism, model, sources)
@@ -191,6 +199,19 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
     # SetPostStepUserFunction silently replaces the package's hooks (no actuation, or a hysteresis
     # memory never committed).  Count the calls of each and warn once when one of them stops.
     calls = {"pre_since_post": 0, "post_without_pre": 0, "warned": False}
+    labels = [f"drive {', '.join(repr(n) for n, j in model.drive_source.items() if j == k)} added by exudyn_atcm.add_to"
+              for k in range(n)]
+
+    def each_source(t: float, hook: str, step) -> list:
+        out = []
+        for k, source in enumerate(sources):
+            try:
+                out.append(step(source, t))
+            except Exception as exc:  # the user's program or controller: its own error, naming the drive
+                annotate(exc, f"({labels[k]}, in its {hook}-step hook at t = {t:.9g} s; Exudyn reports this as its "
+                              "ModelError, whose __cause__ is this exception)")
+                raise
+        return out
 
     def _hooks_replaced(which: str, t: float) -> None:
         if not calls["warned"]:
@@ -207,7 +228,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
         if calls["pre_since_post"] > 50:  # a few repeats are step rejections; 50 without a post step is not
             _hooks_replaced("post", t)
         model.time = t
-        model.set_strains(np.array([s.trial(t) for s in sources]))
+        model.set_strains(np.array(each_source(t, "pre", InStepStrain.trial)))
         return True
 
     def post_step(mbs_, t: float) -> bool:
@@ -216,7 +237,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
             if calls["post_without_pre"] > 1:  # the first post step (t = 0 initial state) may come alone
                 _hooks_replaced("pre", t)
         calls["pre_since_post"] = 0
-        handle._record(t, [s.commit(t) for s in sources])
+        handle._record(t, each_source(t, "post", InStepStrain.commit))
         return True
 
     if handle.newton_tolerance_floor > 0.0:  # beam cells: raise a user's solve's tolerance to what they reach

@@ -25,6 +25,7 @@ from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
 from .damped import MaterialDamped
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
+from ..physical_bounds import check_cell_count
 
 #: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
 CELL_TYPES = tuple(CELL_KINDS)
@@ -38,7 +39,8 @@ class BendingActuator(MaterialDamped):
     Parameters
     ----------
     n_cells : int
-        Number of cells ``N >= 1``, linked base-to-end; the first interface is clamped.
+        Number of cells ``N >= 1``, linked base-to-end; the first interface is clamped.  At most
+        :data:`~exudyn_atcm.physical_bounds.MAX_CELLS` (1e5: more cannot change an answer).
     cell_length : float
         Length of one cell ``L_j`` [m], > 0.  The actuator length is ``N L_j``.
     width : float
@@ -103,7 +105,8 @@ class BendingActuator(MaterialDamped):
         (``alpha`` [1/s] on the masses, ``beta`` [s] on the stiffnesses), which does not depend
         on the length; ``alpha > 0`` needs ``cell="rigid"`` or ``"six-bar"`` (see
         :mod:`exudyn_atcm.model.damping`, and :meth:`~exudyn_atcm.RayleighDamping.from_log_decrement`
-        for a measured decay).
+        for a measured decay).  A ratio of 1 or more (``damping=5`` meant as 5 %?) gives an
+        :class:`~exudyn_atcm.errors.InputRangeWarning`.
 
     Raises
     ------
@@ -134,7 +137,7 @@ class BendingActuator(MaterialDamped):
         stiffness: str = "composite",
         damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO,
     ) -> None:
-        self.n_cells = positive_int("n_cells", n_cells)
+        self.n_cells = check_cell_count("n_cells", positive_int("n_cells", n_cells), "BendingActuator")
         self.cell_length = positive_float("cell_length", cell_length)
         self.width = positive_float("width", width)
         warn_implausible("cell_length", self.cell_length, "length", "BendingActuator")

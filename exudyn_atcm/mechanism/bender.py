@@ -15,6 +15,7 @@ from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
+from ..physical_bounds import MAX_CELLS, check_cell_count
 from .damped import MaterialDamped
 from .points import PointRef, check_name, unknown_point
 
@@ -34,7 +35,8 @@ class Segment:
     length : float
         Segment length [m], > 0.
     n_cells : int
-        Number of cells of the segment, >= 1.
+        Number of cells of the segment, >= 1 and at most
+        :data:`~exudyn_atcm.physical_bounds.MAX_CELLS` (1e5: more cannot change an answer).
     drive : PiezoDrive, optional
         Drive of the segment's active layer; ``None``: unpowered (zero free strain).
     """
@@ -45,7 +47,8 @@ class Segment:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "length", positive_float("length", self.length))
-        object.__setattr__(self, "n_cells", positive_int("n_cells", self.n_cells))
+        object.__setattr__(self, "n_cells", check_cell_count("n_cells", positive_int("n_cells", self.n_cells),
+                                                             "Segment"))
         if self.drive is not None and not isinstance(self.drive, PiezoDrive):
             raise ValueError(f"drive must be a PiezoDrive or None, got {self.drive!r}")
 
@@ -113,7 +116,9 @@ class Bender(MaterialDamped):
         (``alpha`` [1/s] on the masses, ``beta`` [s] on the stiffnesses), independent of how a
         strip is split into benders: two benders of one laminate welded end to end are then
         damped exactly as one bender of the summed length.  ``alpha > 0`` needs
-        ``cell="rigid"`` or ``"six-bar"`` (see :mod:`exudyn_atcm.model.damping`).
+        ``cell="rigid"`` or ``"six-bar"`` (see :mod:`exudyn_atcm.model.damping`).  A ratio of 1
+        or more (``damping=5`` meant as 5 %?) gives an
+        :class:`~exudyn_atcm.errors.InputRangeWarning`.
 
     Notes
     -----
@@ -159,6 +164,7 @@ class Bender(MaterialDamped):
                 raise ValueError(
                     f"bender {name!r}: give length [m] and n_cells (and a drive), or segments; "
                     f"got length={length!r}, n_cells={n_cells!r}")
+            check_cell_count("n_cells", n_cells, f"bender {name!r}")
             segments = (Segment(length, n_cells, drive),)
         if active is None:
             powered = [k + 1 for k, s in enumerate(segments) if s.drive is not None]
@@ -191,6 +197,8 @@ class Bender(MaterialDamped):
         self.stiffness = stiffness
         self.active_side = active_side
         self.damping: float | RayleighDamping = check_damping(damping, cell=cell, owner=owner)
+        if self.n_cells > MAX_CELLS:  # segments within the bound can sum beyond it
+            check_cell_count("n_cells (all segments)", self.n_cells, owner)
 
     # ------------------------------------------------------------------ geometry
     @property

@@ -11,12 +11,13 @@ import numpy as np
 from .._checks import positive_float, positive_int, warn_implausible
 from ..model.laminate import Laminate
 from ..model.materials import PLAUSIBLE_RANGES, Layer
-from ..model.damping import RayleighDamping, check_damping
+from ..model.damping import RayleighDamping, check_damping, damping_already_checked
 from .bender import DEFAULT_DAMPING_RATIO, Bender
 from .link import point_pair
 from .damped import MaterialDamped
 from .points import MechanismError, PointRef, check_name, unknown_point
 from ..errors import InputRangeWarning
+from ..physical_bounds import check_cell_count
 
 FLEXURE_MODELS = ("prbm", "cells")
 
@@ -45,7 +46,8 @@ class Flexure(MaterialDamped):
         ``"cells"``: a passive chain of ``n_cells`` rigid cells (a :class:`Bender` without
         active layer).
     n_cells : int, optional
-        Cells of the ``"cells"`` model (default 4).
+        Cells of the ``"cells"`` model (default 4), at most
+        :data:`~exudyn_atcm.physical_bounds.MAX_CELLS`.
     gamma : float, optional
         Characteristic radius factor, 0 < gamma <= 1 (default 0.8517, Howell's value for an
         end force).
@@ -55,7 +57,8 @@ class Flexure(MaterialDamped):
         A float: modal damping ratio of the strip's first clamped-free mode [-] (default
         0.02), i.e. ``beta = 2 zeta / omega_1`` of this strip.  A
         :class:`~exudyn_atcm.RayleighDamping`: the material's damping (``alpha`` [1/s] on
-        the masses, ``beta`` [s] on the stiffnesses), independent of the strip's length.
+        the masses, ``beta`` [s] on the stiffnesses), independent of the strip's length.  A
+        ratio of 1 or more (a percentage?) gives an :class:`~exudyn_atcm.errors.InputRangeWarning`.
     """
 
     def __init__(self, name: str, *, base: tuple[float, float], tip: tuple[float, float], width: float,
@@ -72,7 +75,7 @@ class Flexure(MaterialDamped):
         if not isinstance(model, str) or model not in FLEXURE_MODELS:
             raise ValueError(f"model must be one of {FLEXURE_MODELS}, got {model!r}")
         self.model = model
-        self.n_cells = positive_int("n_cells", n_cells)
+        self.n_cells = check_cell_count("n_cells", positive_int("n_cells", n_cells), f"flexure {name!r}")
         self.gamma = positive_float("gamma", gamma)
         if self.gamma > 1.0:
             raise ValueError(f"gamma must be in (0, 1], got {gamma!r}")
@@ -163,8 +166,9 @@ class Flexure(MaterialDamped):
 
     def as_bender(self) -> Bender:
         """The ``"cells"`` model: a passive :class:`Bender` of ``n_cells`` rigid cells with this name."""
-        return Bender(self.name, width=self.width, passive=self.layer, active=None, length=self.length,
-                      n_cells=self.n_cells, base=self.base_position, angle=self.angle, damping=self.damping)
+        with damping_already_checked():  # a damping ratio was warned about where the flexure was made
+            return Bender(self.name, width=self.width, passive=self.layer, active=None, length=self.length,
+                          n_cells=self.n_cells, base=self.base_position, angle=self.angle, damping=self.damping)
 
     def segment_masses(self) -> list[tuple[float, float, np.ndarray]]:
         """PRBM: (mass [kg], inertia about the centre [kg m²], centre [m]) of the base and tip segments."""

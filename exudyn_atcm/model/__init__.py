@@ -31,6 +31,7 @@ from .reference_record import (
     write_reference_record,
 )
 from .signals import Constant, CsvSignal, ForcProgram, PiecewiseLinear, Signal, Sine, Steps, Triangle
+from .sampled_program import SampledProgram
 from .strain_sources import InStepStrain, TableStrain
 from .strain_conversion import model_to_strain, record_to_strain, strain_from_displacement, strain_from_tip_deflection
 
@@ -38,6 +39,7 @@ __all__ = [
     "Layer", "PLAUSIBLE_RANGES", "Laminate", "STIFFNESS_MODELS",
     "PiezoDrive", "MFC_P1_RATED_RANGE", "PLAUSIBLE_STRAIN", "KV_SUSPECT_FRACTION",
     "Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram",
+    "SampledProgram",
     "Controller", "PIDController",
     "InStepStrain", "TableStrain",
     "strain_from_displacement", "strain_from_tip_deflection", "record_to_strain", "model_to_strain",

@@ -30,6 +30,11 @@ one side) has the damping ratio ``zeta = delta / sqrt(4 pi^2 + delta^2)``
 (:func:`damping_ratio_from_log_decrement`); :meth:`~exudyn_atcm.RayleighDamping.from_log_decrement` turns a
 decrement measured at a frequency into the material coefficient.
 
+A damping ratio at or above :data:`~exudyn_atcm.physical_bounds.DAMPING_RATIO_SUSPECT` (1: critical
+damping) is most likely a percentage (``damping=5`` meant as 5 %) and gives an
+:class:`~exudyn_atcm.errors.InputRangeWarning` naming the parameter and the value, wherever a ratio is
+given (:func:`check_damping`, :meth:`RayleighDamping.from_damping_ratio`; :func:`warn_damping_ratio`).
+
 ``MASS_DAMPING_CELLS`` lists the cells that realise ``alpha M`` exactly (``"rigid"`` and
 ``"six-bar"``: all their masses are rigid bodies, see ``exudyn_atcm.mbs.mass_damping``); the
 continuum cells refuse ``alpha > 0`` (:func:`check_damping`).
@@ -37,14 +42,22 @@ continuum cells refuse ``alpha > 0`` (:func:`check_damping`).
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
 import numbers
+import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
+from ..errors import InputRangeWarning
+from ..physical_bounds import DAMPING_RATIO_SUSPECT
 
 __all__ = ["DEFAULT_DAMPING_RATIO", "MASS_DAMPING_CELLS", "RayleighDamping", "check_damping", "damping_ratio_from_log_decrement",
-           "log_decrement_from_damping_ratio"]
+           "log_decrement_from_damping_ratio", "warn_damping_ratio", "damping_already_checked"]
+
+_CHECKED: contextvars.ContextVar[bool] = contextvars.ContextVar("exudyn_atcm_damping_checked", default=False)
 
 #: The cells that realise the mass-proportional part ``alpha M`` exactly: every mass of theirs is
 #: a rigid body, which gets a force ``-alpha m v`` at its centre of mass and a torque
@@ -65,6 +78,49 @@ def _real(name: str, value: object, *, allow_zero: bool = True) -> float:
     if x < 0.0 or (x == 0.0 and not allow_zero):
         raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {value!r}")
     return x
+
+
+def warn_damping_ratio(value: float, owner: str, name: str = "damping", *, stacklevel: int = 3) -> None:
+    """Warn (:class:`~exudyn_atcm.errors.InputRangeWarning`) when a damping ratio looks like a percentage.
+
+    A ratio ``>=`` :data:`~exudyn_atcm.physical_bounds.DAMPING_RATIO_SUSPECT` (1, critical damping) is
+    most likely a percentage written as a number: ``damping=5`` for 5 % is a ratio of 500 %.
+    Quiet inside :func:`damping_already_checked`.
+
+    Parameters
+    ----------
+    value : float
+        The ratio [-], already checked to be a finite number >= 0.
+    owner : str
+        Who takes it (``"bender 'b'"``), for the message.
+    name : str, optional
+        The parameter's name in the message (``"damping"``, ``"zeta"``).
+    stacklevel : int, optional
+        Passed to ``warnings.warn``: the frame the warning points at (default: the caller's caller).
+    """
+    if value < DAMPING_RATIO_SUSPECT or _CHECKED.get():
+        return
+    state = "critical damping" if value == 1.0 else f"{value:g} times critical damping"
+    warnings.warn(
+        f"{owner}: {name} = {value!r} is a damping ratio of {100.0 * value:g} % ({state}: the mode no longer vibrates)"
+        f"; fibre-composite laminates have about 0.005 ... 0.05 (0.5 ... 5 %, the default is "
+        f"{DEFAULT_DAMPING_RATIO}). The ratio is a fraction, not a percentage: if you meant {value:g} %, give "
+        f"{name}={value / 100.0:g}",
+        InputRangeWarning,
+        stacklevel=stacklevel + 1,
+    )
+
+
+@contextlib.contextmanager
+def damping_already_checked() -> Iterator[None]:
+    """Within this block :func:`warn_damping_ratio` is quiet: the package rebuilds a part (a
+    :class:`~exudyn_atcm.BendingActuator` as its one-bender mechanism, a flexure as its cells) from a
+    ratio that was warned about where the user gave it."""
+    token = _CHECKED.set(True)
+    try:
+        yield
+    finally:
+        _CHECKED.reset(token)
 
 
 def damping_ratio_from_log_decrement(delta: float) -> float:
@@ -128,10 +184,13 @@ class RayleighDamping:
     def from_damping_ratio(cls, zeta: float, frequency_hz: float) -> RayleighDamping:
         """Stiffness-proportional damping with the ratio ``zeta`` [-] at ``frequency_hz`` [Hz].
 
-        ``beta = 2 zeta / omega`` with ``omega = 2 pi frequency_hz`` (and ``alpha = 0``).
+        ``beta = 2 zeta / omega`` with ``omega = 2 pi frequency_hz`` (and ``alpha = 0``).  A ``zeta``
+        of 1 or more (a percentage?) gives an :class:`~exudyn_atcm.errors.InputRangeWarning`
+        (:func:`warn_damping_ratio`).
         """
         z = _real("zeta", zeta)
         f = _real("frequency_hz", frequency_hz, allow_zero=False)
+        warn_damping_ratio(z, "RayleighDamping.from_damping_ratio", "zeta", stacklevel=2)
         return cls(0.0, 2.0 * z / (2.0 * math.pi * f))
 
     @classmethod
@@ -171,7 +230,7 @@ class RayleighDamping:
         return 2.0 * self.damping_ratio(frequency_hz)
 
 
-def check_damping(damping: object, *, cell: str | CellKind, owner: str) -> float | RayleighDamping:
+def check_damping(damping: object, *, cell: str | CellKind, owner: str, stacklevel: int = 3) -> float | RayleighDamping:
     """The ``damping=`` argument of a bender: a damping ratio ``>= 0`` or a :class:`~exudyn_atcm.RayleighDamping`.
 
     Parameters
@@ -183,6 +242,9 @@ def check_damping(damping: object, *, cell: str | CellKind, owner: str) -> float
         whose ``realises_mass_damping`` is true (the package's: ``MASS_DAMPING_CELLS``).
     owner : str
         Who is checking (for the message), e.g. ``"bender 'b'"``.
+    stacklevel : int, optional
+        Frames from this function's caller to the line the warning points at (default 3: the
+        caller of the constructor that calls this).
 
     Returns
     -------
@@ -194,6 +256,12 @@ def check_damping(damping: object, *, cell: str | CellKind, owner: str) -> float
     ValueError
         For a bool, a non-number, a negative or non-finite ratio, or ``alpha > 0`` with a cell
         that cannot realise mass-proportional damping (the message names the cell).
+
+    Warns
+    -----
+    InputRangeWarning
+        For a ratio of 1 or more (``damping=5`` meant as 5 %?), naming ``damping`` and the value
+        (:func:`warn_damping_ratio`).
     """
     if isinstance(damping, RayleighDamping):
         cell = cell_kind(cell)
@@ -207,4 +275,5 @@ def check_damping(damping: object, *, cell: str | CellKind, owner: str) -> float
         raise ValueError(f"damping must be a finite damping ratio >= 0 or a RayleighDamping, got {damping!r}")
     if float(damping) < 0.0:
         raise ValueError(f"damping must be a damping ratio >= 0 or a RayleighDamping, got {damping!r}")
+    warn_damping_ratio(float(damping), owner, stacklevel=stacklevel)
     return float(damping)

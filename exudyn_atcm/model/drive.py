@@ -7,9 +7,11 @@ import numbers
 import warnings
 from typing import Any, Callable, Union
 
+import numpy as np
+
 from .._checks import finite_float, positive_float
 from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE, check_physical
-from ..errors import InputRangeWarning, SetupWarning
+from ..errors import InputRangeWarning, SetupWarning, annotate
 from ..io.units import is_length
 
 VoltageProgram = Union[float, Callable[[float], float]]
@@ -124,13 +126,55 @@ class PiezoDrive:
             self.rated_range = (low, high)
 
     def voltage_at(self, t: float) -> float:
-        """Voltage [V] at time ``t`` [s]; raises ``ValueError`` if the program returns a non-finite value."""
+        """Voltage [V] at time ``t`` [s] from the program (or the controller).
+
+        Raises
+        ------
+        ValueError
+            If the program returns anything but a finite real number (``None``, a string such as
+            ``"5"``, a bool, an array of several values, NaN): the message names the program, the
+            value and ``t``.
+        Exception
+            Whatever the program itself raises, as it is (its type and message), with a note
+            naming the program and ``t`` (:func:`~exudyn_atcm.errors.annotate`).
+        """
         if self._voltage_fn is None:
             return float(self.voltage)
-        value = float(self._voltage_fn(t))
+        try:
+            raw = self._voltage_fn(t)
+        except Exception as exc:  # the user's code: its own error, with where it came from
+            annotate(exc, f"raised by {self.program_name()} at t = {t:.9g} s")
+            raise
+        if isinstance(raw, float):  # the usual case first (numpy floats included)
+            value = float(raw)
+        else:
+            value = self._number(raw, t)
         if not math.isfinite(value):
-            raise ValueError(f"voltage program returned {value!r} at t = {t!r} s; it must return finite volts")
+            raise ValueError(f"{self.program_name()} returned {value!r} at t = {t!r} s; it must return finite volts [V]")
         return value
+
+    def _number(self, raw: Any, t: float) -> float:
+        """``raw`` as volts if it is a real number (or a 0-d numeric array), else a ``ValueError`` naming the program."""
+        if isinstance(raw, numbers.Real) and not isinstance(raw, (bool, np.bool_)):
+            return float(raw)
+        if isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "iuf":
+            return float(raw)
+        raise ValueError(
+            f"{self.program_name()} returned {raw!r} ({type(raw).__name__}) at t = {t!r} s; a voltage program must "
+            "return a finite number of volts [V] (a float), as PiezoDrive(voltage=...) takes one: a string such as "
+            "'5', None or a bool is not taken as a voltage")
+
+    def program_name(self) -> str:
+        """The voltage program in messages: ``"the voltage program 'ramp'"``, ``"the controller PIDController"``."""
+        if self.controller is not None:
+            return f"the controller {type(self.controller).__name__}"
+        program = self.voltage
+        if not callable(program):
+            return f"the constant voltage {program!r} V"
+        name = getattr(program, "__qualname__", None)  # functions and methods; not objects with __call__
+        if isinstance(name, str):
+            return f"the voltage program {name!r}"
+        return f"the voltage program {type(program).__name__}"
 
     def linear_strain(self, voltage: float) -> float:
         """Free strain without hysteresis, ``d33 U / t_IDE`` (Eq. 3) [-]."""

@@ -16,7 +16,7 @@ import numpy as np
 
 from .._checks import finite_array, same_length
 from ..hysteresis.inverse import inverse_operator
-from .signals import PiecewiseLinear
+from .sampled_program import SampledProgram
 from ..errors import OutOfReachWarning
 
 __all__ = ["feedforward_program", "linear_program"]
@@ -24,7 +24,7 @@ __all__ = ["feedforward_program", "linear_program"]
 
 def feedforward_program(
     model: Any, times: Any, wanted: Any, input_range: tuple[float, float] | None = None
-) -> tuple[PiecewiseLinear, dict]:
+) -> tuple[SampledProgram, dict]:
     """Voltage program [V] whose response through ``model`` is the wanted output.
 
     Parameters
@@ -40,9 +40,11 @@ def feedforward_program(
 
     Returns
     -------
-    (PiecewiseLinear, dict)
-        The program, and ``{"clipped_samples", "largest_clip", "samples"}``: how many wanted
-        outputs were unreachable and by how much at most (output units).
+    (SampledProgram, dict)
+        The program (linear between the samples; the run checks measure it by its reversals,
+        not its sample spacing: :class:`~exudyn_atcm.model.sampled_program.SampledProgram`), and
+        ``{"clipped_samples", "largest_clip", "samples"}``: how many wanted outputs were
+        unreachable and by how much at most (output units).
 
     Warns
     -----
@@ -66,11 +68,11 @@ def feedforward_program(
             OutOfReachWarning,
             stacklevel=2,
         )
-    return PiecewiseLinear(t, volts), info
+    return SampledProgram(t, volts), info
 
 
 def linear_program(slope: float, intercept: float, times: Any, wanted: Any,
-                   input_range: tuple[float, float] | None = None) -> tuple[PiecewiseLinear, dict]:
+                   input_range: tuple[float, float] | None = None) -> tuple[SampledProgram, dict]:
     """Voltage program of a linear model ``y = slope·u + intercept`` (no hysteresis), for comparison.
 
     Voltages outside ``input_range`` are clipped and counted as in :func:`feedforward_program`.
@@ -96,4 +98,4 @@ def linear_program(slope: float, intercept: float, times: Any, wanted: Any,
                 stacklevel=2,
             )
         volts = clipped
-    return PiecewiseLinear(t, volts), info
+    return SampledProgram(t, volts), info

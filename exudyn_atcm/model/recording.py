@@ -85,29 +85,34 @@ def recording_schedule(record_every: Any, step: float) -> RecordingSchedule:
     Parameters
     ----------
     record_every : None, int or float
-        ``None``: every accepted step.  An ``int`` (Python or numpy integer) ``n >= 1``: every
-        ``n``-th accepted step.  A ``float`` > 0: an interval in seconds (the first accepted
-        step at or after each multiple is recorded; a multiple of ``step`` gives evenly spaced
-        records).
+        ``None`` or ``0`` (``0.0``): every accepted step.  An ``int`` (Python or numpy integer)
+        ``n >= 1``: every ``n``-th accepted step.  A ``float`` > 0: an interval in seconds (the
+        first accepted step at or after each multiple is recorded; a multiple of ``step`` gives
+        evenly spaced records; an interval up to the step records every step).  Zero means
+        every step in Python as on the command line (``--set record_every=0`` of the cases).
     step : float
         The solver step [s].
 
     Raises
     ------
     ValueError
-        For anything else, naming the value.
+        For anything else (a negative or non-finite value, a bool, a string), naming the value.
     """
+    allowed = "None or 0 (every step), an int number of steps >= 1 or a float interval [s] > 0"
     if record_every is None:
         return RecordingSchedule(steps=1, step=step)
     if isinstance(record_every, (bool, np.bool_)):
-        raise ValueError(f"record_every must be None, an int number of steps >= 1 or a float interval [s] > 0, got {record_every!r}")
+        raise ValueError(f"record_every must be {allowed}, got {record_every!r}")
+    if isinstance(record_every, (numbers.Real, np.integer, np.floating)) and record_every == 0:
+        return RecordingSchedule(steps=1, step=step)
     if isinstance(record_every, (numbers.Integral, np.integer)):
         if record_every < 1:
-            raise ValueError(f"record_every as a number of steps must be >= 1, got {record_every!r}")
+            raise ValueError(f"record_every as a number of steps must be >= 1 (or 0: every step), got {record_every!r}")
         return RecordingSchedule(steps=int(record_every), step=step)
     if isinstance(record_every, (numbers.Real, np.floating)):
         value = float(record_every)
         if not (math.isfinite(value) and value > 0.0):
-            raise ValueError(f"record_every as an interval must be a finite time > 0 [s], got {record_every!r}")
+            raise ValueError(f"record_every as an interval must be a finite time > 0 [s] (or 0: every step), "
+                             f"got {record_every!r}")
         return RecordingSchedule(interval=value, step=step)
-    raise ValueError(f"record_every must be None, an int number of steps >= 1 or a float interval [s] > 0, got {record_every!r}")
+    raise ValueError(f"record_every must be {allowed}, got {record_every!r}")

@@ -22,6 +22,7 @@ import numpy as np
 from ..io.result import Result
 from ..mechanism.actuator import BendingActuator
 from ..mechanism import Bender, Flexure, Link, Mechanism
+from ..model.damping import damping_already_checked
 
 __all__ = ["BenderShape", "MechanismShape", "mechanism_shape", "actuator_as_mechanism"]
 
@@ -201,9 +202,10 @@ def actuator_as_mechanism(actuator, result, name: str = "actuator"):
     """
     if not isinstance(actuator, BendingActuator):
         raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
-    bender = Bender(name, width=actuator.width, passive=actuator.passive, active=actuator.active,
-                    length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive,
-                    stiffness=actuator.stiffness, damping=actuator.damping)
+    with damping_already_checked():  # a damping ratio was warned about where the actuator was made
+        bender = Bender(name, width=actuator.width, passive=actuator.passive, active=actuator.active,
+                        length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive,
+                        stiffness=actuator.stiffness, damping=actuator.damping)
     mech = Mechanism(name).add(bender).ground(bender.base)
     zeros = np.zeros(result.n_rows)
     series = {"time": result_column(result, "time"), f"{name}.voltage": result_column(result, "voltage"),

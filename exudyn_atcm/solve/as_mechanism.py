@@ -19,6 +19,7 @@ from ..io.result import Result
 from ..mechanism.actuator import BendingActuator
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
+from ..model.damping import damping_already_checked
 
 from .interrupts import SimulationInterrupted
 
@@ -49,9 +50,10 @@ def actuator_mechanism(actuator: BendingActuator, tip_force: tuple[float, float]
     if refusal is not None and tuple(map(float, tip_force)) != (0.0, 0.0):
         raise ValueError(f"tip_force must be (0, 0) for cell={actuator.cell.name!r}, got {tuple(tip_force)!r}: "
                          f"{refusal}")
-    bender = Bender(NAME, width=actuator.width, passive=actuator.passive, active=actuator.active,
-                    length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive, cell=actuator.cell,
-                    stiffness=actuator.stiffness, damping=actuator.damping)
+    with damping_already_checked():  # a damping ratio was warned about where the actuator was made
+        bender = Bender(NAME, width=actuator.width, passive=actuator.passive, active=actuator.active,
+                        length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive, cell=actuator.cell,
+                        stiffness=actuator.stiffness, damping=actuator.damping)
     mech = Mechanism(NAME).add(bender).ground(bender.base)
     fx = finite_float("tip_force[0]", tip_force[0])
     fy = finite_float("tip_force[1]", tip_force[1])

@@ -2,15 +2,16 @@
 
 :func:`integrate` runs Exudyn's implicit solver with the path's pre-step and post-step hooks
 behind an :class:`~exudyn_atcm.solve.interrupts.InterruptGuard`: Ctrl-C (or SIGTERM turned into
-it) stops the run cleanly, an error the user's own functions raised is re-raised as it was,
-and any other solver failure becomes a :class:`~exudyn_atcm.errors.SolverError` saying when it
+it) stops the run cleanly, an error raised in the hooks (the user's voltage program, controller,
+load function or progress callback) is raised as it was, with a note of the hook and the time
+(:class:`~exudyn_atcm.mbs.solver_runs.HookErrors`), and any other solver failure becomes a :class:`~exudyn_atcm.errors.SolverError` saying when it
 failed, what was tried and what to change.  :func:`mark_partial` marks the ``info`` of a run
 stopped early.
 """
 
 from __future__ import annotations
 
-from typing import Any, Callable, Sequence
+from typing import Any, Callable
 
 from ..errors import SolverError
 from ..mbs import solver_runs as runs
@@ -20,8 +21,7 @@ __all__ = ["integrate", "mark_partial"]
 
 
 def integrate(model: Any, settings: Any, pre_step: Callable[[float], Any] | None, post_step: Callable[[float], Any], *,
-              what: str, advice: str, step: float, last_time: Callable[[], float],
-              user_errors: Sequence[BaseException] = ()) -> tuple[dict | None, bool]:
+              what: str, advice: str, step: float, last_time: Callable[[], float]) -> tuple[dict | None, bool]:
     """Integrate ``model`` in time; returns ``(solver statistics or None, interrupted)``.
 
     Parameters
@@ -38,21 +38,17 @@ def integrate(model: Any, settings: Any, pre_step: Callable[[float], Any] | None
         The step [s], quoted in the failure message.
     last_time : callable
         ``last_time()`` [s]: the last accepted step, quoted in the failure message.
-    user_errors : sequence of exceptions
-        Errors the hooks caught from the user's own functions (a voltage program, a load
-        function): the first is re-raised as it is instead of a solver failure.
-
     Raises
     ------
     SolverError
         When Exudyn's Newton iteration failed even at the minimum step.
+    Exception
+        Whatever a hook raised (the user's own code), as it is.
     """
     guard = InterruptGuard()
     try:
         return runs.run_dynamic(model, settings, guard.wrap(pre_step), guard.wrap(post_step)), guard.interrupted
     except runs.ExudynFailure as exc:
-        if user_errors:
-            raise user_errors[0] from None
         if is_interrupt(exc):
             return None, True
         newton = settings.timeIntegration.newton

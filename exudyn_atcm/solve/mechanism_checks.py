@@ -27,6 +27,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..mechanism.points import MechanismError
+from ..mechanism.build_cost import build_estimate
 from .drive_cost import extra_drive_cost
 from .run_checks import check_record_interval, check_step_against_frequency, check_step_against_program, warn_if_long
 
@@ -141,7 +142,8 @@ def check_steps(mech: Mechanism, grid: Any, t_end: float, schedule: Any = None) 
     check_step_against_frequency(grid, frequency, what=which, stacklevel=5)
     cell, parts = cost_parts(mech)
     warn_if_long(cell, parts, grid.n_steps, parts=cost_description(mech),
-                 extra_per_step=extra_drive_cost(mech.drives.values(), grid.step), stacklevel=5)
+                 extra_per_step=extra_drive_cost(mech.drives.values(), grid.step), build=build_estimate(mech),
+                 stacklevel=5)
 
 
 def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[Any, str]]:

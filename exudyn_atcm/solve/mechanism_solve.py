@@ -29,11 +29,13 @@ from .mechanism_checks import check_drive_ranges, check_steps, feedback_controll
 from ..io.result import Result
 from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
+from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
+from .long_runs import is_announced
 from .step_record import StepRecord, check_view
 from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from .static_stability import load_path_note, stability_probe, warn_unstable
-from ..errors import SolverError
+from ..errors import SolverError, annotate
 from .run_checks import is_interrupt
 from ..model.strain_sources import InStepStrain
 
@@ -45,6 +47,7 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`)."""
     if load_steps is not None:
         load_steps = positive_int("load_steps", load_steps)
+    warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build: it may be the dear part
     model = mb.build(mech)
     volts = drive_voltages(mech, voltage)
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
@@ -66,7 +69,6 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
 
 def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
     """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`)."""
-    model = mb.build(mech)
     drives = mech.drives
     if isinstance(voltages, Mapping):
         series = {}
@@ -85,6 +87,8 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     else:
         values = finite_array("voltages", voltages)
         table = [{name: float(v) for name in drives} for v in values]
+    warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
+    model = mb.build(mech)
     source_table = np.array([source_values(model, per_drive, f"static_sweep point {i}")
                              for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
     for drive in model.sources:
@@ -151,7 +155,17 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         sources = [InStepStrain(drive) for drive in model.sources]
     elif len(sources) != len(model.sources):
         raise ValueError(f"sources: one strain source per drive ({len(model.sources)}), got {len(sources)}")
-    strains0 = np.array([s.trial(0.0) for s in sources])
+    where = describe(mech)
+    # each source's drive(s), for the note on an error the user's program or controller raises
+    labels = [f"drive {', '.join(repr(n) for n, j in model.drive_source.items() if j == k)} of {where}"
+              for k in range(len(sources))]
+    strains0 = np.zeros(len(sources))
+    for k, source in enumerate(sources):
+        try:
+            strains0[k] = source.trial(0.0)
+        except Exception as exc:  # the user's own error, as it is, naming the drive
+            annotate(exc, f"({labels[k]}, at the start of simulate)")
+            raise
     if np.any(strains0 != 0.0) or model.loads:
         probe = stability_probe(mech, model)
         try:
@@ -194,7 +208,6 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
                         reduce=None if schedule.every_step else every_step_columns)
     read_forces = model.connector_reader() if layout.n_forces else None  # its plan made once
     q_view = model.coordinates()  # Exudyn's coordinate vector stays in place during a run (checked after it)
-    user_errors: list[ValueError] = []
 
     trial = np.zeros(n_src)  # the attempted step's strains, written in place (the hot path)
     indexed_sources = list(enumerate(sources))
@@ -212,16 +225,20 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     only_trial = sources[0].trial if n_src == 1 else None
 
     def pre_step(t: float) -> None:
+        # an error raised here (the user's program, controller or load function) is raised as it is
+        # after the solve (mbs.solver_runs.HookErrors); the note names the drive or the loads
         model.time = t
+        k = 0
         try:
             if only_trial is not None:  # one drive (every actuator): no loop
                 trial[0] = only_trial(t)
             else:
                 for k, source in indexed_sources:
                     trial[k] = source.trial(t)
+            k = -1
             write_strains(trial)
-        except ValueError as exc:  # a voltage program or load function gave nonsense: report it as such
-            user_errors.append(exc)
+        except Exception as exc:
+            annotate(exc, f"({labels[k]})" if k >= 0 else f"(writing the strains and loads of {where})")
             raise
 
     strain_slice = slice(1 + n_src, 1 + 2 * n_src)
@@ -241,14 +258,22 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
         if observers or clock is not None:
             t = snap_time(t, grid.step)  # observed times on the step grid, as recorded
             for controller, read in observers:
-                controller.observe(t, read(row[strain_slice].copy()))
+                try:
+                    controller.observe(t, read(row[strain_slice].copy()))
+                except Exception as exc:  # the user's controller: its own error, naming it
+                    annotate(exc, f"(raised by {type(controller).__name__}.observe at t = {t:.9g} s, the controller of "
+                                  f"{where})")
+                    raise
             if clock is not None:
-                clock(t)
+                try:
+                    clock(t)
+                except Exception as exc:
+                    annotate(exc, f"(raised by the progress callback at t = {t:.9g} s)")
+                    raise
 
     stats, interrupted = integrate(
         model, sim_settings, pre_step, post_step, what=describe(mech), step=grid.step,
         last_time=lambda: snap_time(float(record.last[0]), grid.step) if record.last is not None else 0.0,
-        user_errors=user_errors,
         advice="Try a smaller step, a slower voltage program, more cells, or check that the mechanism is not locked "
                "(mechanism.degrees_of_freedom()).")
     # every accepted step's row was written by the post-step hook (the guard stops passing steps
@@ -290,7 +315,10 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     the equilibrium under the loads at zero strain (a lone actuator's ``tip_force``).
     """
     n = positive_int("n", n)
-    model = mb.build(mech)
+    announced = warn_if_large(mech, "eigenfrequencies", equilibria=int(voltage is not None or loaded), eigen=True,
+                              quiet=is_announced(), stacklevel=5)
+    model = mb.build(mech)  # its coordinates, counted, make the eigenproblem's estimate exact
+    warn_if_eigen_long(len(model.coordinates()), describe(mech), quiet=announced or is_announced(), stacklevel=5)
     if voltage is None and loaded:
         zero = np.zeros(len(model.sources))
         # the stable branch is followed; an unstable state is reported by the negative frequency itself

@@ -58,33 +58,17 @@ import numpy as np
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from .interrupts import InterruptGuard, SimulationInterrupted, WallClock, is_interrupt
+from ..mechanism.build_cost import LARGE_MODEL_BYTES, build_detail
 from .drive_cost import drive_share
 from .long_runs import is_announced, long_run_message
 from ..errors import AccuracyWarning, InputRangeWarning, RunCostWarning
 
 __all__ = [
-    "MIN_STEPS_PER_FEATURE",
-    "COMFORTABLE_STEPS_PER_FEATURE",
-    "MIN_STEPS_PER_MODE_PERIOD",
-    "SLOW_PROGRAM_FACTOR",
-    "LONG_RUN_SECONDS",
-    "COST_PER_STEP",
-    "TimeGrid",
-    "time_grid",
-    "snap_time",
-    "snap_times",
-    "check_step_against_program",
-    "check_record_interval",
-    "program_feature",
-    "MIN_RECORDS_PER_FEATURE",
-    "corners_on_grid",
-    "check_step_against_frequency",
-    "estimate_run_time",
-    "warn_if_long",
-    "InterruptGuard",
-    "SimulationInterrupted",
-    "WallClock",
-    "is_interrupt",
+    "MIN_STEPS_PER_FEATURE", "COMFORTABLE_STEPS_PER_FEATURE", "MIN_STEPS_PER_MODE_PERIOD", "SLOW_PROGRAM_FACTOR",
+    "LONG_RUN_SECONDS", "COST_PER_STEP", "TimeGrid", "time_grid", "snap_time", "snap_times",
+    "check_step_against_program", "check_record_interval", "program_feature", "MIN_RECORDS_PER_FEATURE",
+    "corners_on_grid", "check_step_against_frequency", "estimate_run_time", "warn_if_long",
+    "InterruptGuard", "SimulationInterrupted", "WallClock", "is_interrupt",
 ]
 
 #: Fewest solver steps per feature of the voltage program; fewer are refused (see module notes).
@@ -420,8 +404,14 @@ def estimate_run_time(cell: str | CellKind, n_cells: int, n_steps: int, extra_pe
 
 
 def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: float | None = None,
-                 parts: str | None = None, extra_per_step: float = 0.0, stacklevel: int = 4) -> float | None:
+                 parts: str | None = None, extra_per_step: float = 0.0, build: tuple[float, float] = (0.0, 0.0),
+                 stacklevel: int = 4) -> float | None:
     """Warn (``RuntimeWarning``) when :func:`estimate_run_time` exceeds ``limit`` [s]; returns the estimate.
+
+    ``build`` is the wall time [s] and memory [bytes] of building the model
+    (:func:`~exudyn_atcm.solve.build_cost.build_estimate`): the time is added to the estimate, and
+    a model needing more than :data:`~exudyn_atcm.solve.build_cost.LARGE_MODEL_BYTES` is announced
+    whatever its time.
 
     Quiet inside :func:`~exudyn_atcm.solve.long_runs.announced_up_front` (a run of several
     simulations announced as a whole by :class:`~exudyn_atcm.solve.run_plan.RunPlan`).
@@ -431,10 +421,12 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
     benders and flexures and its links).
     """
     limit = LONG_RUN_SECONDS if limit is None else limit
-    estimate = estimate_run_time(cell, n_cells, n_steps, extra_per_step)
-    if estimate is not None and estimate > limit and not is_announced():  # a plan announced the whole run
-        per_step = estimate / max(n_steps, 1)
-        detail = (f"{n_steps} steps of {parts or f'{n_cells} {cell_kind(cell).name} cells'} at ~{per_step * 1e6:.3g} "
-                  f"µs per step, measured{drive_share(extra_per_step)}")
+    stepping = estimate_run_time(cell, n_cells, n_steps, extra_per_step)
+    estimate = None if stepping is None else stepping + build[0]
+    large = build[1] > LARGE_MODEL_BYTES
+    if estimate is not None and (estimate > limit or large) and not is_announced():  # a plan announced the whole run
+        detail = (f"{n_steps} steps of {parts or f'{n_cells} {cell_kind(cell).name} cells'} at "
+                  f"~{stepping / max(n_steps, 1) * 1e6:.3g} µs per step, measured{drive_share(extra_per_step)}"
+                  + (f"; {build_detail(*build)}" if build[0] > 0.1 * estimate or large else ""))
         warnings.warn(long_run_message(estimate, detail), RunCostWarning, stacklevel=stacklevel)
     return estimate

@@ -46,6 +46,7 @@ from ..mechanism.assembly import Mechanism
 from .long_runs import announced_up_front, long_run_message
 from .mechanism_checks import cost_description, cost_parts
 from .drive_cost import drive_share, extra_drive_cost
+from ..mechanism.build_cost import build_estimate
 from .run_checks import LONG_RUN_SECONDS, estimate_run_time, time_grid
 
 __all__ = ["PlannedRun", "RunPlan", "estimate_simulation", "PACE_FACTOR"]
@@ -102,19 +103,24 @@ def estimate_simulation(system: Any, t_end: float, step: float) -> tuple[float |
     A :class:`~exudyn_atcm.BendingActuator` counts its cells, a
     :class:`~exudyn_atcm.Mechanism` its cells and bodies
     (:func:`~exudyn_atcm.solve.mechanism_checks.cost_parts`); both add what their drives cost beyond
-    the one the cells' measured costs include (:func:`~exudyn_atcm.solve.drive_cost.extra_drive_cost`).
+    the one the cells' measured costs include (:func:`~exudyn_atcm.solve.drive_cost.extra_drive_cost`)
+    and the build of the model (:func:`~exudyn_atcm.mechanism.build_cost.build_estimate`).
     """
     grid = time_grid(t_end, step, warn=False)
     n_steps = grid.n_steps
     if isinstance(system, Mechanism):
         cell, parts = cost_parts(system)
         extra = extra_drive_cost(system.drives.values(), grid.step)
-        return estimate_run_time(cell, parts, n_steps, extra), n_steps, cost_description(system), extra
+        estimate = estimate_run_time(cell, parts, n_steps, extra)
+        build = build_estimate(system)[0]
+        return None if estimate is None else estimate + build, n_steps, cost_description(system), extra
     cell, n_cells = getattr(system, "cell", None), getattr(system, "n_cells", None)
     if cell is None or n_cells is None:
         raise ValueError(f"PlannedRun.system must be a BendingActuator or a Mechanism, got {type(system).__name__}")
     extra = extra_drive_cost([system.drive], grid.step)
-    return estimate_run_time(cell, n_cells, n_steps, extra), n_steps, f"{n_cells} {cell.name} cells", extra
+    estimate = estimate_run_time(cell, n_cells, n_steps, extra)
+    build = (cell.estimate_build(n_cells) or (0.0, 0.0))[0]
+    return None if estimate is None else estimate + build, n_steps, f"{n_cells} {cell.name} cells", extra
 
 
 class RunPlan:

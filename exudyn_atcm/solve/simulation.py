@@ -165,9 +165,10 @@ def simulate(
         ``t_end`` and at least every 0.5 s of wall time (for progress bars).  It may raise
         ``KeyboardInterrupt`` to stop the run (see Raises).
     record_every : int or float, optional
-        Recording interval: ``None`` (default) records every accepted step; an ``int`` ``n``
-        every ``n``-th accepted step; a ``float`` an interval in seconds (a multiple of the
-        step gives evenly spaced records).  The first and the last instant are always
+        Recording interval: ``None`` (default) or ``0`` records every accepted step (``0`` as
+        on the command line, ``--set record_every=0``); an ``int`` ``n`` every ``n``-th accepted
+        step; a ``float`` an interval in seconds (a multiple of the step gives evenly spaced
+        records).  The first and the last instant are always
         recorded.  The solution is the same; only memory and output shrink.
 
     Returns
