@@ -23,7 +23,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "tip_gap"]
+__all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "step_check", "tip_gap"]
 
 
 @numba.njit(cache=True)
@@ -168,23 +168,33 @@ def _gather(coordinates, reference, base_start, rod_start, size):  # pragma: no 
 
 
 @numba.njit(cache=True)
-def linearisation(coordinates, velocities, base_start, rod_start, reference, h, lam, stiffness, phi_hat, integration,
-                  weights, phi_hat_tip, parameters, mass, tangent, force, x1, offset):  # pragma: no cover - compiled
+def linearisation(coordinates, velocities, accelerations, base_start, rod_start, reference, h, lam, stiffness,
+                  phi_hat, integration, weights, phi_hat_tip, parameters, mass, tangent, force, x1,
+                  offset):  # pragma: no cover - compiled
     """Everything the rod's items need for one step or Newton pass, written into the last five arrays.
 
-    ``coordinates`` / ``velocities``: the system's ODE2 arrays; the base node's three coordinates
-    start at ``base_start`` (displacements from ``reference``), the modes at ``rod_start``; the
-    state of linearisation is ``z + h z_dot``.  ``lam``: the tie's current multipliers, or an empty
-    array to leave out the geometric stiffness.  ``parameters``: length, mass per length, rotary
-    inertia.  Writes ``mass``, ``tangent = stiffness + kg``, ``force = -g + kg u`` (``u``: ``z`` as
-    Exudyn's coordinates, the base's displacements from ``reference``), ``x1`` and ``offset`` (see
-    :func:`rod_matrices`; ``kg`` = :func:`geometric_stiffness` at ``-lam``).
+    ``coordinates`` / ``velocities`` / ``accelerations``: the system's ODE2 arrays; the base node's
+    three coordinates start at ``base_start`` (displacements from ``reference``), the modes at
+    ``rod_start``.  The state of linearisation is the second-order prediction of a step ``h`` [s]:
+    ``z + h z_dot + h^2 / 2 z_ddot`` with the rates ``z_dot + h z_ddot`` (``h = 0``: the state itself;
+    an empty ``accelerations``: ``z + h z_dot`` and ``z_dot``).  ``lam``: the tie's current
+    multipliers, or an empty array to leave out the geometric stiffness.  ``parameters``: length,
+    mass per length, rotary inertia.  Writes ``mass``, ``tangent = stiffness + kg``,
+    ``force = -g + kg u`` (``u``: ``z`` as Exudyn's coordinates, the base's displacements from
+    ``reference``), ``x1`` and ``offset`` (see :func:`rod_matrices`; ``kg`` =
+    :func:`geometric_stiffness` at ``-lam``).
     """
     size = mass.shape[0]
     z = _gather(coordinates, reference, base_start, rod_start, size)
     z_dot = _gather(velocities, np.zeros(3), base_start, rod_start, size)
-    for i in range(size):
-        z[i] += h * z_dot[i]
+    if h != 0.0 and accelerations.shape[0] > 0:
+        z_ddot = _gather(accelerations, np.zeros(3), base_start, rod_start, size)
+        for i in range(size):
+            z[i] += h * z_dot[i] + 0.5 * h * h * z_ddot[i]
+            z_dot[i] += h * z_ddot[i]
+    else:
+        for i in range(size):
+            z[i] += h * z_dot[i]
     theta = _rotations(z, phi_hat)
     m_, f_, x1_, off_ = _matrices(z, z_dot, theta, phi_hat, integration, weights, parameters[0], parameters[1],
                                   parameters[2], phi_hat_tip)
@@ -200,6 +210,60 @@ def linearisation(coordinates, velocities, base_start, rod_start, reference, h, 
             for r in range(size):
                 tangent[i, r] += kg[i, r]
                 force[i] += kg[i, r] * (z[r] - reference[r] if r < 3 else z[r])
+
+
+@numba.njit(cache=True)
+def step_check(coordinates, velocities, accelerations, base_start, rod_start, tip_start, reference, tip_reference,
+               lam, phi_hat, integration, weights, phi_hat_tip, parameters, factor, limits, tip_limit, mass, force, x1,
+               offset):  # pragma: no cover - compiled
+    """After a dynamic step's Newton solve: how far its state is from the solution of the exact equations.
+
+    The step was solved with the items ``mass``, ``force`` (``-g``) and the tie ``x1``, ``offset``
+    evaluated at a predicted state (:func:`linearisation`, without the geometric stiffness).  At the
+    solved state ``z``, ``z_dot``, ``z_ddot`` (the system's ODE2 arrays, as in :func:`linearisation`;
+    the tip node's coordinates from ``tip_start``, plus ``tip_reference``):
+
+    * the tip node's distance from the exact tip position ``P(z)``, over ``tip_limit`` [m];
+    * the equations of motion evaluated there differ from the solved ones by
+      ``dr = (M(z) - mass) z_ddot - (-g(z, z_dot) - force) - (x1(z) - x1)^T lam`` (``lam``: the tie's
+      multipliers, Exudyn's sign); Newton's correction of the accelerations is about ``M^-1 dr``,
+      of the coordinates ``factor M^-1 dr`` (``factor``: the integrator's ``beta' h^2``): its
+      largest ``|factor (M^-1 dr)_i| / limits_i`` (``limits``: the allowed change of each coordinate,
+      [m] for ``X``, ``Y``, [rad] for the rotations).
+
+    Returns the larger ratio.  Above 1 the items evaluated at the solved state are written into
+    ``mass``, ``force``, ``x1`` and ``offset`` (to be handed to Exudyn for another Newton solve);
+    else they are left as they were.
+    """
+    size = mass.shape[0]
+    z = _gather(coordinates, reference, base_start, rod_start, size)
+    z_dot = _gather(velocities, np.zeros(3), base_start, rod_start, size)
+    z_ddot = _gather(accelerations, np.zeros(3), base_start, rod_start, size)
+    m_, f_, x1_, off_ = _matrices(z, z_dot, _rotations(z, phi_hat), phi_hat, integration, weights, parameters[0],
+                                  parameters[1], parameters[2], phi_hat_tip)
+    ratio = 0.0
+    for r in range(2):  # the tip position P = x1 z - offset
+        p = -off_[r]
+        for i in range(size):
+            p += x1_[r, i] * z[i]
+        ratio = max(ratio, abs(tip_reference[r] + coordinates[tip_start + r] - p) / tip_limit)
+    dr = np.zeros(size)
+    for i in range(size):
+        d = force[i] - f_[i]
+        for r in range(size):
+            d += (m_[i, r] - mass[i, r]) * z_ddot[r]
+        if lam.shape[0] >= 2:
+            d -= (x1_[0, i] - x1[0, i]) * lam[0] + (x1_[1, i] - x1[1, i]) * lam[1]
+        dr[i] = d
+    da = np.linalg.solve(m_, dr)
+    for i in range(size):
+        ratio = max(ratio, abs(factor * da[i]) / limits[i])
+    if ratio > 1.0:
+        mass[:, :] = m_
+        force[:] = f_
+        x1[:, :] = x1_
+        offset[:] = off_
+    return ratio
 
 
 @numba.njit(cache=True)

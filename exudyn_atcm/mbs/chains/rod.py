@@ -58,7 +58,7 @@ from ..items import NOVIS
 from ..model import Body
 from ..node_chain import beam_node_key
 
-__all__ = ["add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE"]
+__all__ = ["add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE", "INERTIA_TOLERANCE"]
 
 #: Largest distance [in units of the rod's length] of the tip node from the exact tip pose of
 #: the rod's coordinates that a solved state of a moving rod may keep (else the Newton solve is
@@ -69,6 +69,14 @@ TIP_TOLERANCE = 1e-8
 #: The same for a rod at rest (static solves, eigenvalue analyses): the passes converge
 #: quadratically, so round-off is reached in one or two more.
 STATIC_TIP_TOLERANCE = 1e-13
+#: Largest change [rad] of a rotation coordinate that evaluating the inertia (mass matrix, quadratic
+#: velocity vector) and the tie at a solved dynamic step's own state, instead of at the state predicted
+#: for it, may make before the step's Newton solve is repeated with them.
+INERTIA_TOLERANCE = 1e-7
+#: Coordinate change per acceleration change in the generalized-alpha Newton iteration, in units of the
+#: step squared: ``beta (1 - alpha_f) / (1 - alpha_m)``, 0.26 at the package's spectral radius 0.8
+#: (0.25 for the trapezoidal rule); an estimate, it scales the inconsistency into a coordinate change.
+NEWTON_POSITION_FACTOR = 0.25
 
 _START = exu.ConfigurationType.StartOfStep
 
@@ -93,7 +101,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
     z0 = np.concatenate([base_reference, np.zeros(n)])
     mass0, force0, x1, offset = rod_kernels.rod_matrices(z0, np.zeros(size), phi_hat, integration, weights, length,
                                                          mu, rho_i, phi_hat_tip)
-    state = {"mass": mass0, "stiffened": False}
+    state = {"mass": mass0, "stiffened": False, "h": 0.0}
     # the mass matrix changes every step: in the package's own runs it is written as the item's
     # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, from
     # model.varying_mass_benders); in a user's system (add_to), whose settings the package does not
@@ -154,37 +162,44 @@ def add_rod_bender(builder, bender: Bender) -> None:
     get_q, get_v, get_time = sd.GetODE2Coordinates, sd.GetODE2Coordinates_t, sd.GetTime
     force_output = exu.OutputVariableType.Force
     parameters = np.array([length, mu, rho_i])
-    linearisation, tip_gap = rod_kernels.linearisation, rod_kernels.tip_gap
+    linearisation, tip_gap, step_check = rod_kernels.linearisation, rod_kernels.tip_gap, rod_kernels.step_check
 
     out = (np.empty((size, size)), np.empty((size, size)), np.empty(size), np.empty((3, size)), np.empty(3))
     mass_out, tangent, force, x1_, offset_ = out
-    no_multipliers = np.empty(0)
+    no_multipliers = no_accelerations = np.empty(0)
+    get_a = sd.GetODE2Coordinates_tt
 
-    def write(coordinates: np.ndarray, velocities: np.ndarray, h: float, stiffen: bool) -> None:
-        """Linearise the rod at ``z + h z_dot``: mass matrix, quadratic velocity vector and tie; with ``stiffen``
-        also the tie's geometric stiffness at its current force (static passes and eigenvalues: a dynamic step's
-        prediction is close enough without it)."""
-        lam_ = get_output(tie, force_output) if stiffen else no_multipliers
-        base_start, rod_start, _ = indices()
-        linearisation(coordinates, velocities, base_start, rod_start, base_reference, h, lam_, K, phi_hat,
-                      integration, weights, phi_hat_tip, parameters, *out)
+    def publish(stiffen: bool) -> None:
+        """Hand the rod's items in ``out`` to Exudyn (with ``stiffen``: the tangent with the tie's geometric
+        stiffness; else ``K``, written back only if the tangent was written before)."""
         if by_parameter:
             set_parameter(obj, "massMatrix", mass_out)
         else:
             state["mass"] = mass_out  # Exudyn copies what the mass matrix function returns
         if stiffen or state["stiffened"]:
-            set_parameter(obj, "stiffnessMatrix", tangent)
+            set_parameter(obj, "stiffnessMatrix", tangent if stiffen else K)
             state["stiffened"] = stiffen
         set_parameter(obj, "forceVector", force)
         set_parameter(tie, "scalingMarker1", x1_)
         set_parameter(tie, "offset", offset_)
+
+    def write(coordinates: np.ndarray, velocities: np.ndarray, accelerations: np.ndarray, h: float,
+              stiffen: bool) -> None:
+        """Linearise the rod at the state predicted a step ``h`` ahead (``h = 0``: at the state itself): mass
+        matrix, quadratic velocity vector and tie; with ``stiffen`` also the tie's geometric stiffness at its
+        current force (static passes and eigenvalues; a dynamic step is checked by ``check_tip`` instead)."""
+        lam_ = get_output(tie, force_output) if stiffen else no_multipliers
+        base_start, rod_start, _ = indices()
+        linearisation(coordinates, velocities, accelerations, base_start, rod_start, base_reference, h, lam_, K,
+                      phi_hat, integration, weights, phi_hat_tip, parameters, *out)
+        publish(stiffen)
 
     moment_per_strain = ei * bender.curvature_sign * lam.curvature_per_strain
     set_load = mbs.SetLoadParameter
 
     def write_strains(strains: np.ndarray) -> None:
         """The actuation, and the rod linearised at the state predicted for the attempted step's end
-        (``z + h z_dot`` from the step's start)."""
+        (``z + h z_dot + h^2/2 z_ddot`` and ``z_dot + h z_ddot`` from the step's start)."""
         for load, source in actuation:
             set_load(load, "load", moment_per_strain * strains.item(source))
         base_start, rod_start, _ = indices()
@@ -192,24 +207,48 @@ def add_rod_bender(builder, bender: Bender) -> None:
             return
         h = get_time() - get_time(_START)
         velocities = get_v(_START, False)
+        accelerations = get_a(_START, False)
+        # a time step of a rod in motion, or starting to move (a static solver's load steps have neither)
         dynamic = (0.0 < h < math.inf and (any(velocities[base_start:base_start + 3])
-                                           or any(velocities[rod_start:rod_start + n])))
-        write(get_q(_START, False), velocities, h if dynamic else 0.0, not dynamic)
+                                           or any(velocities[rod_start:rod_start + n])
+                                           or any(accelerations[base_start:base_start + 3])
+                                           or any(accelerations[rod_start:rod_start + n])))
+        if dynamic:
+            state["h"] = h
+            write(get_q(_START, False), velocities, accelerations, h, False)
+        else:
+            state["h"] = 0.0
+            write(get_q(_START, False), velocities, no_accelerations, 0.0, True)
 
     limit, static_limit = TIP_TOLERANCE * length, STATIC_TIP_TOLERANCE * length
     tip_reference_xy = np.ascontiguousarray(tip_reference[:2])
+    # the largest change of a coordinate that evaluating the inertia and the tie at a solved step's own state
+    # may make before the step is solved again with them: X, Y [m], then the rotations [rad]
+    limits = np.array([limit, limit] + [INERTIA_TOLERANCE] * (size - 2))
 
     def check_tip(mbs_, t) -> float:
-        """Distance of the tip node from the exact tip pose over the tolerance; linearise there if above."""
+        """After a Newton solve: the tip node's distance from the exact tip pose, and in a time step the change
+        that the inertia and the tie evaluated at the solved state would make, over their tolerances; above 1,
+        the rod is linearised at the solved state and Exudyn repeats the Newton solve."""
         base_start, rod_start, tip_start = indices()
         if base_start < 0:
             return 0.0
         coordinates, velocities = get_q(copy=False), get_v(copy=False)
+        h = state["h"]
+        if h > 0.0:  # a time step, solved with the items evaluated at the state predicted for it
+            ratio = step_check(coordinates, velocities, get_a(copy=False), base_start, rod_start, tip_start,
+                               base_reference, tip_reference_xy, get_output(tie, force_output), phi_hat,
+                               integration, weights, phi_hat_tip, parameters, NEWTON_POSITION_FACTOR * h * h,
+                               limits, limit, mass_out, force, x1_, offset_)
+            if ratio <= 1.0:
+                return 0.0
+            publish(False)  # step_check evaluated the items at the solved state
+            return ratio
         ratio = tip_gap(coordinates, velocities, base_start, rod_start, tip_start, base_reference, tip_reference_xy,
                         phi_hat, weights, phi_hat_tip, length, limit, static_limit)
         if ratio <= 1.0:
             return 0.0
-        write(coordinates, velocities, 0.0, True)
+        write(coordinates, velocities, no_accelerations, 0.0, True)
         return ratio
 
     def linearise(strains: np.ndarray) -> None:
@@ -217,7 +256,8 @@ def add_rod_bender(builder, bender: Bender) -> None:
         if indices()[0] < 0:
             return
         coordinates = get_q(copy=False)
-        write(coordinates, np.zeros_like(coordinates), 0.0, True)
+        state["h"] = 0.0
+        write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
 
     estimate = rotation_rod.truncation_estimator(shapes, ei)
 
