@@ -260,15 +260,34 @@ def add_rod_bender(builder, bender: Bender) -> None:
         write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
 
     estimate = rotation_rod.truncation_estimator(shapes, ei)
+    followers: list[int] = []  # the follower forces on the tip node (Exudyn load indices), found at first use
+    found = [False]
+
+    def follower_force(angle: float) -> np.ndarray:
+        """The part [N] of the tip's force that turns with the tip (follower forces on the tip node), global."""
+        if not found[0]:
+            found[0] = True
+            for rec in model.loads:
+                if rec.kind == "force" and rec.follower:
+                    marker = mbs.GetMarker(mbs.GetLoad(rec.load)["markerNumber"])
+                    if int(marker.get("nodeNumber", -1)) == int(tip_node):
+                        followers.append(rec.load)
+        out = np.zeros(2)
+        c, s_ = math.cos(angle), math.sin(angle)
+        for load in followers:
+            fx, fy = mbs.GetLoadParameter(load, "loadVector")[:2]  # in the tip node's frame
+            out += (c * fx - s_ * fy, s_ * fx + c * fy)
+        return out
 
     def truncation() -> float:
         """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
-        base_start, rod_start, _ = indices()
+        base_start, rod_start, tip_start = indices()
         if base_start < 0:
             return 0.0
         coordinates = get_q(copy=False)
-        force = get_output(tie, force_output)
-        return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force)
+        force = get_output(tie, force_output)  # the force on the tip node: dead and follower loads together
+        return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force,
+                        follower_force(tip_reference[2] + coordinates[tip_start + 2]))
 
     model.truncation_estimators[bender.name] = truncation
     if by_parameter:
