@@ -24,18 +24,26 @@ The nonlinear parts (``M``, the quadratic velocity vector and the tip pose) are 
 compiled kernels and written into the items:
 
 * before every attempted step (the model's strain writer, run in the pre-step hook), at the
-  state predicted for the step's end, ``z + h z_dot``: the tip constraint becomes linear in
-  the step, ``x1 z - q_tip = offset`` with ``x1 = dP/dz`` at the prediction;
+  state predicted for the step's end to second order, ``z + h z_dot + h^2/2 z_ddot`` with the
+  rates ``z_dot + h z_ddot``: the tip constraint becomes linear in the step,
+  ``x1 z - q_tip = offset`` with ``x1 = dP/dz`` at the prediction;
 * after every Newton solve (Exudyn's ``PostNewton`` hook, static and dynamic solvers, also a
   user's own solve after :func:`~exudyn_atcm.add_to`): the tip's distance from the exact tip
-  pose of the solved ``z`` is checked; above the tolerance the constraint is linearised at
-  the solved state, with the geometric stiffness ``-lambda . d^2 P/dz^2`` of the tie's
-  current reaction, and Exudyn repeats the Newton solve (its "discontinuous iteration", up to
+  pose of the solved ``z`` is checked, and in a time step also how far the solution would move
+  if the mass matrix, the quadratic velocity vector and the tie's Jacobian were evaluated at the
+  solved state instead of the prediction (:func:`~exudyn_atcm.theory.rod_kernels.step_check`,
+  :data:`INERTIA_TOLERANCE`).  Above the tolerances the items are evaluated at the solved state
+  (at rest: the constraint with the geometric stiffness ``-lambda . d^2 P/dz^2`` of the tie's
+  current reaction) and Exudyn repeats the Newton solve (its "discontinuous iteration", up to
   ``discontinuous.maxIterations`` = 5 passes by default).  So every accepted state satisfies
   the exact nonlinear tip constraint to :data:`TIP_TOLERANCE` times the length
-  (:data:`STATIC_TIP_TOLERANCE` at rest).  With the prediction a dynamic step needs no second
-  pass (measured on the compliant four-bar at steps 1e-4 ... 5e-4 s); a static load step
-  converges quadratically in the passes;
+  (:data:`STATIC_TIP_TOLERANCE` at rest), and a time step is generalized-alpha applied to the
+  rod's exact equations of motion: second order, and energy-stable without damping, at any
+  rotation (``tests/test_rod_dynamics.py``; frozen at the step's start, as before issue 29, the
+  integration was first order once the tip turned more than about 0.5 rad and the undamped energy
+  grew).  Small motions rarely need a second pass (the compliant four-bar and the gripper: one
+  pass per step); a 1.7 rad swing needs about three (its highest mode is not resolved by the step,
+  so its prediction is poor).  A static load step converges quadratically in the passes;
 * before an eigenvalue analysis: the tangent at the static state with that geometric
   stiffness (compensated in the force vector, so the state stays an equilibrium); the next
   step's update writes ``K`` back.
@@ -148,12 +156,14 @@ def add_rod_bender(builder, bender: Bender) -> None:
     # ODE2 indices of the base's, the modes' and the tip's coordinates, read at first use (after Assemble;
     # a user's system after add_to is assembled later): nodes are numbered in the order they were added, so
     # these stay valid when items are added after them and the system is assembled again
-    ode2 = [-1, -1, -1]
+    ode2 = [-1, -1, -1, -1]
 
     def indices() -> list[int]:
-        """[base, modes, tip] ODE2 indices; -1 before the system is assembled."""
-        if ode2[0] < 0:
-            ode2[:] = [mbs.GetNodeODE2Index(base_node), mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node)]
+        """[base, modes, tip] ODE2 indices and the tie's first algebraic (multiplier) index; -1 before the system
+        is assembled."""
+        if ode2[0] < 0 and mbs.GetNodeODE2Index(base_node) >= 0:
+            ode2[:] = [mbs.GetNodeODE2Index(base_node), mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node),
+                       int(sd.GetObjectLTGAE(tie)[0])]
         return ode2
 
     sd = mbs.systemData
@@ -162,12 +172,13 @@ def add_rod_bender(builder, bender: Bender) -> None:
     get_q, get_v, get_time = sd.GetODE2Coordinates, sd.GetODE2Coordinates_t, sd.GetTime
     force_output = exu.OutputVariableType.Force
     parameters = np.array([length, mu, rho_i])
-    linearisation, tip_gap, step_check = rod_kernels.linearisation, rod_kernels.tip_gap, rod_kernels.step_check
+    linearisation, tip_gap, step_check, moving = (rod_kernels.linearisation, rod_kernels.tip_gap,
+                                                  rod_kernels.step_check, rod_kernels.moving)
 
     out = (np.empty((size, size)), np.empty((size, size)), np.empty(size), np.empty((3, size)), np.empty(3))
     mass_out, tangent, force, x1_, offset_ = out
     no_multipliers = no_accelerations = np.empty(0)
-    get_a = sd.GetODE2Coordinates_tt
+    get_a, get_ae = sd.GetODE2Coordinates_tt, sd.GetAECoordinates
 
     def publish(stiffen: bool) -> None:
         """Hand the rod's items in ``out`` to Exudyn (with ``stiffen``: the tangent with the tie's geometric
@@ -189,7 +200,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
         matrix, quadratic velocity vector and tie; with ``stiffen`` also the tie's geometric stiffness at its
         current force (static passes and eigenvalues; a dynamic step is checked by ``check_tip`` instead)."""
         lam_ = get_output(tie, force_output) if stiffen else no_multipliers
-        base_start, rod_start, _ = indices()
+        base_start, rod_start, _, _ = indices()
         linearisation(coordinates, velocities, accelerations, base_start, rod_start, base_reference, h, lam_, K,
                       phi_hat, integration, weights, phi_hat_tip, parameters, *out)
         publish(stiffen)
@@ -202,18 +213,14 @@ def add_rod_bender(builder, bender: Bender) -> None:
         (``z + h z_dot + h^2/2 z_ddot`` and ``z_dot + h z_ddot`` from the step's start)."""
         for load, source in actuation:
             set_load(load, "load", moment_per_strain * strains.item(source))
-        base_start, rod_start, _ = indices()
+        base_start, rod_start, _, _ = indices()
         if base_start < 0:  # not assembled yet: the first step's pre-step hook linearises
             return
         h = get_time() - get_time(_START)
         velocities = get_v(_START, False)
         accelerations = get_a(_START, False)
         # a time step of a rod in motion, or starting to move (a static solver's load steps have neither)
-        dynamic = (0.0 < h < math.inf and (any(velocities[base_start:base_start + 3])
-                                           or any(velocities[rod_start:rod_start + n])
-                                           or any(accelerations[base_start:base_start + 3])
-                                           or any(accelerations[rod_start:rod_start + n])))
-        if dynamic:
+        if 0.0 < h < math.inf and moving(velocities, accelerations, base_start, rod_start, n):
             state["h"] = h
             write(get_q(_START, False), velocities, accelerations, h, False)
         else:
@@ -230,14 +237,14 @@ def add_rod_bender(builder, bender: Bender) -> None:
         """After a Newton solve: the tip node's distance from the exact tip pose, and in a time step the change
         that the inertia and the tie evaluated at the solved state would make, over their tolerances; above 1,
         the rod is linearised at the solved state and Exudyn repeats the Newton solve."""
-        base_start, rod_start, tip_start = indices()
+        base_start, rod_start, tip_start, tie_start = indices()
         if base_start < 0:
             return 0.0
         coordinates, velocities = get_q(copy=False), get_v(copy=False)
         h = state["h"]
         if h > 0.0:  # a time step, solved with the items evaluated at the state predicted for it
             ratio = step_check(coordinates, velocities, get_a(copy=False), base_start, rod_start, tip_start,
-                               base_reference, tip_reference_xy, get_output(tie, force_output), phi_hat,
+                               base_reference, tip_reference_xy, get_ae(copy=False), tie_start, phi_hat,
                                integration, weights, phi_hat_tip, parameters, NEWTON_POSITION_FACTOR * h * h,
                                limits, limit, mass_out, force, x1_, offset_)
             if ratio <= 1.0:
@@ -281,7 +288,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
 
     def truncation() -> float:
         """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
-        base_start, rod_start, tip_start = indices()
+        base_start, rod_start, tip_start, _ = indices()
         if base_start < 0:
             return 0.0
         coordinates = get_q(copy=False)
