@@ -4,14 +4,17 @@ Each revision is a checkout with its own Python (a venv with that checkout insta
 benchmark scripts of each checkout run alternately, ``--rounds`` times (old, new, old, new,
 ...), so that the machine's load affects both alike; each revision's best cost per point is
 compared.  Supports ``bench_mechanisms.py`` (cost per simulated second of the four-bar and the
-gripper at equal cells per bender) and ``bench_discretisation.py`` (cost per simulated second of
-each discretisation at equal cells).
+gripper at equal cells per bender), ``bench_discretisation.py`` (cost per simulated second of
+each discretisation at equal cells) and ``bench_rod_dynamics.py`` (the rod cell's observed order,
+undamped energy drift and cost per step; the *new* checkout's script, which carries the exact
+reference, runs under both revisions' interpreters; the orders and drifts are deterministic, the
+costs the best of the rounds).
 
 Usage::
 
     python benchmarks/compare_revisions.py --old DIR:PYTHON --new DIR:PYTHON \
         [--rounds 2] [--mechanisms-args "--t-sim 0.1 --cells 4,8 --repeats 2 --reference-cells 16"] \
-        [--discretisation-args "--quick"]
+        [--discretisation-args "--quick"] [--rod-dynamics-args "--quick"]
 
 Prints a table per benchmark and writes JSON to ``benchmarks/results/`` (git-ignored).
 """
@@ -31,10 +34,10 @@ from pathlib import Path
 RESULTS = Path(__file__).resolve().parent / "results"
 
 
-def run(checkout: str, python: str, script: str, extra: str, out: Path) -> dict:
+def run(checkout: str, python: str, script: str, extra: str, out: Path, script_checkout: str | None = None) -> dict:
     out.mkdir(parents=True, exist_ok=True)
     before = set(out.glob("*.json"))
-    cmd = [python, str(Path(checkout) / "benchmarks" / script), *shlex.split(extra), "--out", str(out)]
+    cmd = [python, str(Path(script_checkout or checkout) / "benchmarks" / script), *shlex.split(extra), "--out", str(out)]
     env = dict(os.environ, MPLBACKEND="Agg")
     subprocess.run(cmd, cwd=checkout, check=True, env=env, stdout=subprocess.DEVNULL)
     (new,) = set(out.glob("*.json")) - before
@@ -50,6 +53,19 @@ def discretisation_costs(payload: dict) -> dict[str, float]:
     return {f"{name} N={m['n']}": m["cost [s/s]"] for name, ms in payload["runs"].items() for m in ms}
 
 
+def rod_dynamics_figures(payload: dict) -> dict[str, float]:
+    """Per-step costs (``cost:`` keys, the best of the rounds is kept) and the orders and drifts (deterministic)."""
+    out = {f"cost: {row['system']} [us/step]": row["wall per step [us]"] for row in payload["cost"]}
+    out.update({f"passes/step: {row['system']}": row["passes per step"] for row in payload["cost"]})
+    for row in payload["orders"]:
+        for k, order in enumerate(row["orders"]):
+            out[f"order {row['case']} halving {k + 1}"] = order
+    for row in payload["drift"]:
+        for rho in ("0.8", "1"):
+            out[f"drift {row['geometry']} {row['case']} rho {rho} [%/s]"] = row[f"drift rho {rho} [%/s]"]
+    return out
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--old", required=True, help="CHECKOUT:PYTHON of the old revision")
@@ -57,11 +73,13 @@ def main(argv=None) -> int:
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--mechanisms-args", default="--t-sim 0.1 --cells 4,8 --repeats 2 --reference-cells 16")
     parser.add_argument("--discretisation-args", default="--quick")
-    parser.add_argument("--skip", default="", help="comma-separated: mechanisms, discretisation")
+    parser.add_argument("--rod-dynamics-args", default="--quick")
+    parser.add_argument("--skip", default="", help="comma-separated: mechanisms, discretisation, rod_dynamics")
     args = parser.parse_args(argv)
     revisions = {"old": args.old.split(":", 1), "new": args.new.split(":", 1)}
     benches = {"mechanisms": ("bench_mechanisms.py", args.mechanisms_args, mechanism_costs),
-               "discretisation": ("bench_discretisation.py", args.discretisation_args, discretisation_costs)}
+               "discretisation": ("bench_discretisation.py", args.discretisation_args, discretisation_costs),
+               "rod_dynamics": ("bench_rod_dynamics.py", args.rod_dynamics_args, rod_dynamics_figures)}
     skip = {s.strip() for s in args.skip.split(",") if s.strip()}
     report = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -72,14 +90,20 @@ def main(argv=None) -> int:
             for r in range(args.rounds):
                 for rev, (checkout, python) in revisions.items():
                     print(f"{bench}: round {r + 1}/{args.rounds}, {rev} ({checkout})", flush=True)
-                    costs = costs_of(run(checkout, python, script, extra, Path(tmp) / f"{bench}-{rev}-{r}"))
+                    script_checkout = revisions["new"][0] if bench == "rod_dynamics" else None
+                    costs = costs_of(run(checkout, python, script, extra, Path(tmp) / f"{bench}-{rev}-{r}",
+                                         script_checkout))
                     for key, value in costs.items():
-                        best[rev][key] = min(value, best[rev].get(key, float("inf")))
+                        keep_last = bench == "rod_dynamics" and not key.startswith("cost:")
+                        best[rev][key] = value if keep_last else min(value, best[rev].get(key, float("inf")))
             keys = [k for k in best["old"] if k in best["new"]]
-            print(f"\n{bench}: best cost [wall s per simulated s] of {args.rounds} interleaved rounds")
-            print(f"{'point':>36} | {'old':>8} | {'new':>8} | {'new/old':>7}")
+            what = ("the rod cell: orders, drifts, best cost" if bench == "rod_dynamics"
+                    else "best cost [wall s per simulated s]")
+            print(f"\n{bench}: {what} of {args.rounds} interleaved rounds")
+            print(f"{'point':>48} | {'old':>8} | {'new':>8} | {'new/old':>7}")
             for k in keys:
-                print(f"{k:>36} | {best['old'][k]:>8.3f} | {best['new'][k]:>8.3f} | {best['new'][k] / best['old'][k]:>7.2f}")
+                ratio = best["new"][k] / best["old"][k] if best["old"][k] else float("nan")
+                print(f"{k:>48} | {best['old'][k]:>8.3f} | {best['new'][k]:>8.3f} | {ratio:>7.2f}")
             report[bench] = {k: {"old": best["old"][k], "new": best["new"][k]} for k in keys}
     RESULTS.mkdir(parents=True, exist_ok=True)
     stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")

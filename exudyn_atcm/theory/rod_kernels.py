@@ -6,9 +6,10 @@ rigid node), and the mode amplitudes ``q`` [rad].  The absolute rotation is
 ``theta(s) = Phi + sum_i q_i phi_i(s/L)``: ``p = (Phi, q)`` against the shapes ``(1, phi_1 .. phi_n)``
 (``phi_hat``), so the clamped rod of :mod:`.rotation_rod` is the case ``X = Y = Phi = 0``.
 
-The ``rod`` cell re-evaluates its mass matrix, quadratic velocity vector and the linearisation
-of its tip pose once per attempted step (and once per extra Newton pass, see
-:mod:`exudyn_atcm.mbs.chains.rod`).  In numpy that is some 35 small array operations (about
+The ``rod`` cell evaluates its mass matrix, quadratic velocity vector and the linearisation of
+its tip pose once per attempted step (:func:`linearisation`, at the state predicted for the
+step's end) and once after every Newton solve (:func:`step_check`, at the solved state, which
+also tells whether to solve again; see :mod:`exudyn_atcm.mbs.chains.rod`).  In numpy that is some 35 small array operations (about
 75 µs on the development machine); compiled, about 10 µs, so the step stays near the cost of
 Exudyn's own beam elements.  Compiled on first use and cached on disk (numba's ``cache=True``);
 imported only when a ``rod`` bender is built.
@@ -23,7 +24,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "tip_gap"]
+__all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "step_check", "moving", "tip_gap"]
 
 
 @numba.njit(cache=True)
@@ -168,23 +169,33 @@ def _gather(coordinates, reference, base_start, rod_start, size):  # pragma: no 
 
 
 @numba.njit(cache=True)
-def linearisation(coordinates, velocities, base_start, rod_start, reference, h, lam, stiffness, phi_hat, integration,
-                  weights, phi_hat_tip, parameters, mass, tangent, force, x1, offset):  # pragma: no cover - compiled
+def linearisation(coordinates, velocities, accelerations, base_start, rod_start, reference, h, lam, stiffness,
+                  phi_hat, integration, weights, phi_hat_tip, parameters, mass, tangent, force, x1,
+                  offset):  # pragma: no cover - compiled
     """Everything the rod's items need for one step or Newton pass, written into the last five arrays.
 
-    ``coordinates`` / ``velocities``: the system's ODE2 arrays; the base node's three coordinates
-    start at ``base_start`` (displacements from ``reference``), the modes at ``rod_start``; the
-    state of linearisation is ``z + h z_dot``.  ``lam``: the tie's current multipliers, or an empty
-    array to leave out the geometric stiffness.  ``parameters``: length, mass per length, rotary
-    inertia.  Writes ``mass``, ``tangent = stiffness + kg``, ``force = -g + kg u`` (``u``: ``z`` as
-    Exudyn's coordinates, the base's displacements from ``reference``), ``x1`` and ``offset`` (see
-    :func:`rod_matrices`; ``kg`` = :func:`geometric_stiffness` at ``-lam``).
+    ``coordinates`` / ``velocities`` / ``accelerations``: the system's ODE2 arrays; the base node's
+    three coordinates start at ``base_start`` (displacements from ``reference``), the modes at
+    ``rod_start``.  The state of linearisation is the second-order prediction of a step ``h`` [s]:
+    ``z + h z_dot + h^2 / 2 z_ddot`` with the rates ``z_dot + h z_ddot`` (``h = 0``: the state itself;
+    an empty ``accelerations``: ``z + h z_dot`` and ``z_dot``).  ``lam``: the tie's current
+    multipliers, or an empty array to leave out the geometric stiffness.  ``parameters``: length,
+    mass per length, rotary inertia.  Writes ``mass``, ``tangent = stiffness + kg``,
+    ``force = -g + kg u`` (``u``: ``z`` as Exudyn's coordinates, the base's displacements from
+    ``reference``), ``x1`` and ``offset`` (see :func:`rod_matrices`; ``kg`` =
+    :func:`geometric_stiffness` at ``-lam``).
     """
     size = mass.shape[0]
     z = _gather(coordinates, reference, base_start, rod_start, size)
     z_dot = _gather(velocities, np.zeros(3), base_start, rod_start, size)
-    for i in range(size):
-        z[i] += h * z_dot[i]
+    if h != 0.0 and accelerations.shape[0] > 0:
+        z_ddot = _gather(accelerations, np.zeros(3), base_start, rod_start, size)
+        for i in range(size):
+            z[i] += h * z_dot[i] + 0.5 * h * h * z_ddot[i]
+            z_dot[i] += h * z_ddot[i]
+    else:
+        for i in range(size):
+            z[i] += h * z_dot[i]
     theta = _rotations(z, phi_hat)
     m_, f_, x1_, off_ = _matrices(z, z_dot, theta, phi_hat, integration, weights, parameters[0], parameters[1],
                                   parameters[2], phi_hat_tip)
@@ -200,6 +211,100 @@ def linearisation(coordinates, velocities, base_start, rod_start, reference, h, 
             for r in range(size):
                 tangent[i, r] += kg[i, r]
                 force[i] += kg[i, r] * (z[r] - reference[r] if r < 3 else z[r])
+
+
+@numba.njit(cache=True)
+def _cholesky_solve(a, b):  # pragma: no cover - compiled
+    """Solve ``a x = b`` in place for a small symmetric positive definite ``a`` (overwritten by its factor)."""
+    size = a.shape[0]
+    for j in range(size):
+        d = a[j, j]
+        for k in range(j):
+            d -= a[j, k] * a[j, k]
+        d = math.sqrt(d)
+        a[j, j] = d
+        for i in range(j + 1, size):
+            v = a[i, j]
+            for k in range(j):
+                v -= a[i, k] * a[j, k]
+            a[i, j] = v / d
+    for i in range(size):
+        v = b[i]
+        for k in range(i):
+            v -= a[i, k] * b[k]
+        b[i] = v / a[i, i]
+    for i in range(size - 1, -1, -1):
+        v = b[i]
+        for k in range(i + 1, size):
+            v -= a[k, i] * b[k]
+        b[i] = v / a[i, i]
+
+
+@numba.njit(cache=True)
+def moving(velocities, accelerations, base_start, rod_start, n_modes):  # pragma: no cover - compiled
+    """Whether any of the rod's coordinates (the base node's three, the ``n_modes`` modes) has a non-zero rate
+    or acceleration: a time step of a rod in motion or starting to move."""
+    for i in range(3):
+        if velocities[base_start + i] != 0.0 or accelerations[base_start + i] != 0.0:
+            return True
+    for i in range(n_modes):
+        if velocities[rod_start + i] != 0.0 or accelerations[rod_start + i] != 0.0:
+            return True
+    return False
+
+
+@numba.njit(cache=True)
+def step_check(coordinates, velocities, accelerations, base_start, rod_start, tip_start, reference, tip_reference,
+               multipliers, tie_start, phi_hat, integration, weights, phi_hat_tip, parameters, factor, limits, tip_limit, mass, force, x1,
+               offset):  # pragma: no cover - compiled
+    """After a dynamic step's Newton solve: how far its state is from the solution of the exact equations.
+
+    The step was solved with the items ``mass``, ``force`` (``-g``) and the tie ``x1``, ``offset``
+    evaluated at a predicted state (:func:`linearisation`, without the geometric stiffness).  At the
+    solved state ``z``, ``z_dot``, ``z_ddot`` (the system's ODE2 arrays, as in :func:`linearisation`;
+    the tip node's coordinates from ``tip_start``, plus ``tip_reference``):
+
+    * the tip node's distance from the exact tip position ``P(z)``, over ``tip_limit`` [m];
+    * the equations of motion evaluated there differ from the solved ones by
+      ``dr = (M(z) - mass) z_ddot - (-g(z, z_dot) - force) - (x1(z) - x1)^T lam`` (``lam``: the tie's
+      multipliers, ``multipliers[tie_start:tie_start + 2]`` of the system's algebraic coordinates, Exudyn's
+      sign, the tie's force output); Newton's correction of the accelerations is about ``M^-1 dr``,
+      of the coordinates ``factor M^-1 dr`` (``factor``: the integrator's ``beta' h^2``): its
+      largest ``|factor (M^-1 dr)_i| / limits_i`` (``limits``: the allowed change of each coordinate,
+      [m] for ``X``, ``Y``, [rad] for the rotations).
+
+    Returns the larger ratio.  Above 1 the items evaluated at the solved state are written into
+    ``mass``, ``force``, ``x1`` and ``offset`` (to be handed to Exudyn for another Newton solve);
+    else they are left as they were.
+    """
+    size = mass.shape[0]
+    z = _gather(coordinates, reference, base_start, rod_start, size)
+    z_dot = _gather(velocities, np.zeros(3), base_start, rod_start, size)
+    z_ddot = _gather(accelerations, np.zeros(3), base_start, rod_start, size)
+    m_, f_, x1_, off_ = _matrices(z, z_dot, _rotations(z, phi_hat), phi_hat, integration, weights, parameters[0],
+                                  parameters[1], parameters[2], phi_hat_tip)
+    ratio = 0.0
+    for r in range(2):  # the tip position P = x1 z - offset
+        p = -off_[r]
+        for i in range(size):
+            p += x1_[r, i] * z[i]
+        ratio = max(ratio, abs(tip_reference[r] + coordinates[tip_start + r] - p) / tip_limit)
+    dr = np.zeros(size)
+    for i in range(size):
+        d = force[i] - f_[i]
+        for r in range(size):
+            d += (m_[i, r] - mass[i, r]) * z_ddot[r]
+        d -= (x1_[0, i] - x1[0, i]) * multipliers[tie_start] + (x1_[1, i] - x1[1, i]) * multipliers[tie_start + 1]
+        dr[i] = d
+    _cholesky_solve(m_.copy(), dr)  # dr becomes M^-1 dr
+    for i in range(size):
+        ratio = max(ratio, abs(factor * dr[i]) / limits[i])
+    if ratio > 1.0:
+        mass[:, :] = m_
+        force[:] = f_
+        x1[:, :] = x1_
+        offset[:] = off_
+    return ratio
 
 
 @numba.njit(cache=True)

@@ -24,18 +24,26 @@ The nonlinear parts (``M``, the quadratic velocity vector and the tip pose) are 
 compiled kernels and written into the items:
 
 * before every attempted step (the model's strain writer, run in the pre-step hook), at the
-  state predicted for the step's end, ``z + h z_dot``: the tip constraint becomes linear in
-  the step, ``x1 z - q_tip = offset`` with ``x1 = dP/dz`` at the prediction;
+  state predicted for the step's end to second order, ``z + h z_dot + h^2/2 z_ddot`` with the
+  rates ``z_dot + h z_ddot``: the tip constraint becomes linear in the step,
+  ``x1 z - q_tip = offset`` with ``x1 = dP/dz`` at the prediction;
 * after every Newton solve (Exudyn's ``PostNewton`` hook, static and dynamic solvers, also a
   user's own solve after :func:`~exudyn_atcm.add_to`): the tip's distance from the exact tip
-  pose of the solved ``z`` is checked; above the tolerance the constraint is linearised at
-  the solved state, with the geometric stiffness ``-lambda . d^2 P/dz^2`` of the tie's
-  current reaction, and Exudyn repeats the Newton solve (its "discontinuous iteration", up to
+  pose of the solved ``z`` is checked, and in a time step also how far the solution would move
+  if the mass matrix, the quadratic velocity vector and the tie's Jacobian were evaluated at the
+  solved state instead of the prediction (:func:`~exudyn_atcm.theory.rod_kernels.step_check`,
+  :data:`INERTIA_TOLERANCE`).  Above the tolerances the items are evaluated at the solved state
+  (at rest: the constraint with the geometric stiffness ``-lambda . d^2 P/dz^2`` of the tie's
+  current reaction) and Exudyn repeats the Newton solve (its "discontinuous iteration", up to
   ``discontinuous.maxIterations`` = 5 passes by default).  So every accepted state satisfies
   the exact nonlinear tip constraint to :data:`TIP_TOLERANCE` times the length
-  (:data:`STATIC_TIP_TOLERANCE` at rest).  With the prediction a dynamic step needs no second
-  pass (measured on the compliant four-bar at steps 1e-4 ... 5e-4 s); a static load step
-  converges quadratically in the passes;
+  (:data:`STATIC_TIP_TOLERANCE` at rest), and a time step is generalized-alpha applied to the
+  rod's exact equations of motion: second order, and energy-stable without damping, at any
+  rotation (``tests/test_rod_dynamics.py``; frozen at the step's start, as before issue 29, the
+  integration was first order once the tip turned more than about 0.5 rad and the undamped energy
+  grew).  Small motions rarely need a second pass (the compliant four-bar and the gripper: one
+  pass per step); a 1.7 rad swing needs about three (its highest mode is not resolved by the step,
+  so its prediction is poor).  A static load step converges quadratically in the passes;
 * before an eigenvalue analysis: the tangent at the static state with that geometric
   stiffness (compensated in the force vector, so the state stays an equilibrium); the next
   step's update writes ``K`` back.
@@ -58,7 +66,7 @@ from ..items import NOVIS
 from ..model import Body
 from ..node_chain import beam_node_key
 
-__all__ = ["add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE"]
+__all__ = ["add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE", "INERTIA_TOLERANCE"]
 
 #: Largest distance [in units of the rod's length] of the tip node from the exact tip pose of
 #: the rod's coordinates that a solved state of a moving rod may keep (else the Newton solve is
@@ -69,6 +77,14 @@ TIP_TOLERANCE = 1e-8
 #: The same for a rod at rest (static solves, eigenvalue analyses): the passes converge
 #: quadratically, so round-off is reached in one or two more.
 STATIC_TIP_TOLERANCE = 1e-13
+#: Largest change [rad] of a rotation coordinate that evaluating the inertia (mass matrix, quadratic
+#: velocity vector) and the tie at a solved dynamic step's own state, instead of at the state predicted
+#: for it, may make before the step's Newton solve is repeated with them.
+INERTIA_TOLERANCE = 1e-7
+#: Coordinate change per acceleration change in the generalized-alpha Newton iteration, in units of the
+#: step squared: ``beta (1 - alpha_f) / (1 - alpha_m)``, 0.26 at the package's spectral radius 0.8
+#: (0.25 for the trapezoidal rule); an estimate, it scales the inconsistency into a coordinate change.
+NEWTON_POSITION_FACTOR = 0.25
 
 _START = exu.ConfigurationType.StartOfStep
 
@@ -93,7 +109,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
     z0 = np.concatenate([base_reference, np.zeros(n)])
     mass0, force0, x1, offset = rod_kernels.rod_matrices(z0, np.zeros(size), phi_hat, integration, weights, length,
                                                          mu, rho_i, phi_hat_tip)
-    state = {"mass": mass0, "stiffened": False}
+    state = {"mass": mass0, "stiffened": False, "h": 0.0}
     # the mass matrix changes every step: in the package's own runs it is written as the item's
     # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, from
     # model.varying_mass_benders); in a user's system (add_to), whose settings the package does not
@@ -140,12 +156,14 @@ def add_rod_bender(builder, bender: Bender) -> None:
     # ODE2 indices of the base's, the modes' and the tip's coordinates, read at first use (after Assemble;
     # a user's system after add_to is assembled later): nodes are numbered in the order they were added, so
     # these stay valid when items are added after them and the system is assembled again
-    ode2 = [-1, -1, -1]
+    ode2 = [-1, -1, -1, -1]
 
     def indices() -> list[int]:
-        """[base, modes, tip] ODE2 indices; -1 before the system is assembled."""
-        if ode2[0] < 0:
-            ode2[:] = [mbs.GetNodeODE2Index(base_node), mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node)]
+        """[base, modes, tip] ODE2 indices and the tie's first algebraic (multiplier) index; -1 before the system
+        is assembled."""
+        if ode2[0] < 0 and mbs.GetNodeODE2Index(base_node) >= 0:
+            ode2[:] = [mbs.GetNodeODE2Index(base_node), mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node),
+                       int(sd.GetObjectLTGAE(tie)[0])]
         return ode2
 
     sd = mbs.systemData
@@ -154,62 +172,90 @@ def add_rod_bender(builder, bender: Bender) -> None:
     get_q, get_v, get_time = sd.GetODE2Coordinates, sd.GetODE2Coordinates_t, sd.GetTime
     force_output = exu.OutputVariableType.Force
     parameters = np.array([length, mu, rho_i])
-    linearisation, tip_gap = rod_kernels.linearisation, rod_kernels.tip_gap
+    linearisation, tip_gap, step_check, moving = (rod_kernels.linearisation, rod_kernels.tip_gap,
+                                                  rod_kernels.step_check, rod_kernels.moving)
 
     out = (np.empty((size, size)), np.empty((size, size)), np.empty(size), np.empty((3, size)), np.empty(3))
     mass_out, tangent, force, x1_, offset_ = out
-    no_multipliers = np.empty(0)
+    no_multipliers = no_accelerations = np.empty(0)
+    get_a, get_ae = sd.GetODE2Coordinates_tt, sd.GetAECoordinates
 
-    def write(coordinates: np.ndarray, velocities: np.ndarray, h: float, stiffen: bool) -> None:
-        """Linearise the rod at ``z + h z_dot``: mass matrix, quadratic velocity vector and tie; with ``stiffen``
-        also the tie's geometric stiffness at its current force (static passes and eigenvalues: a dynamic step's
-        prediction is close enough without it)."""
-        lam_ = get_output(tie, force_output) if stiffen else no_multipliers
-        base_start, rod_start, _ = indices()
-        linearisation(coordinates, velocities, base_start, rod_start, base_reference, h, lam_, K, phi_hat,
-                      integration, weights, phi_hat_tip, parameters, *out)
+    def publish(stiffen: bool) -> None:
+        """Hand the rod's items in ``out`` to Exudyn (with ``stiffen``: the tangent with the tie's geometric
+        stiffness; else ``K``, written back only if the tangent was written before)."""
         if by_parameter:
             set_parameter(obj, "massMatrix", mass_out)
         else:
             state["mass"] = mass_out  # Exudyn copies what the mass matrix function returns
         if stiffen or state["stiffened"]:
-            set_parameter(obj, "stiffnessMatrix", tangent)
+            set_parameter(obj, "stiffnessMatrix", tangent if stiffen else K)
             state["stiffened"] = stiffen
         set_parameter(obj, "forceVector", force)
         set_parameter(tie, "scalingMarker1", x1_)
         set_parameter(tie, "offset", offset_)
+
+    def write(coordinates: np.ndarray, velocities: np.ndarray, accelerations: np.ndarray, h: float,
+              stiffen: bool) -> None:
+        """Linearise the rod at the state predicted a step ``h`` ahead (``h = 0``: at the state itself): mass
+        matrix, quadratic velocity vector and tie; with ``stiffen`` also the tie's geometric stiffness at its
+        current force (static passes and eigenvalues; a dynamic step is checked by ``check_tip`` instead)."""
+        lam_ = get_output(tie, force_output) if stiffen else no_multipliers
+        base_start, rod_start, _, _ = indices()
+        linearisation(coordinates, velocities, accelerations, base_start, rod_start, base_reference, h, lam_, K,
+                      phi_hat, integration, weights, phi_hat_tip, parameters, *out)
+        publish(stiffen)
 
     moment_per_strain = ei * bender.curvature_sign * lam.curvature_per_strain
     set_load = mbs.SetLoadParameter
 
     def write_strains(strains: np.ndarray) -> None:
         """The actuation, and the rod linearised at the state predicted for the attempted step's end
-        (``z + h z_dot`` from the step's start)."""
+        (``z + h z_dot + h^2/2 z_ddot`` and ``z_dot + h z_ddot`` from the step's start)."""
         for load, source in actuation:
             set_load(load, "load", moment_per_strain * strains.item(source))
-        base_start, rod_start, _ = indices()
+        base_start, rod_start, _, _ = indices()
         if base_start < 0:  # not assembled yet: the first step's pre-step hook linearises
             return
         h = get_time() - get_time(_START)
         velocities = get_v(_START, False)
-        dynamic = (0.0 < h < math.inf and (any(velocities[base_start:base_start + 3])
-                                           or any(velocities[rod_start:rod_start + n])))
-        write(get_q(_START, False), velocities, h if dynamic else 0.0, not dynamic)
+        accelerations = get_a(_START, False)
+        # a time step of a rod in motion, or starting to move (a static solver's load steps have neither)
+        if 0.0 < h < math.inf and moving(velocities, accelerations, base_start, rod_start, n):
+            state["h"] = h
+            write(get_q(_START, False), velocities, accelerations, h, False)
+        else:
+            state["h"] = 0.0
+            write(get_q(_START, False), velocities, no_accelerations, 0.0, True)
 
     limit, static_limit = TIP_TOLERANCE * length, STATIC_TIP_TOLERANCE * length
     tip_reference_xy = np.ascontiguousarray(tip_reference[:2])
+    # the largest change of a coordinate that evaluating the inertia and the tie at a solved step's own state
+    # may make before the step is solved again with them: X, Y [m], then the rotations [rad]
+    limits = np.array([limit, limit] + [INERTIA_TOLERANCE] * (size - 2))
 
     def check_tip(mbs_, t) -> float:
-        """Distance of the tip node from the exact tip pose over the tolerance; linearise there if above."""
-        base_start, rod_start, tip_start = indices()
+        """After a Newton solve: the tip node's distance from the exact tip pose, and in a time step the change
+        that the inertia and the tie evaluated at the solved state would make, over their tolerances; above 1,
+        the rod is linearised at the solved state and Exudyn repeats the Newton solve."""
+        base_start, rod_start, tip_start, tie_start = indices()
         if base_start < 0:
             return 0.0
         coordinates, velocities = get_q(copy=False), get_v(copy=False)
+        h = state["h"]
+        if h > 0.0:  # a time step, solved with the items evaluated at the state predicted for it
+            ratio = step_check(coordinates, velocities, get_a(copy=False), base_start, rod_start, tip_start,
+                               base_reference, tip_reference_xy, get_ae(copy=False), tie_start, phi_hat,
+                               integration, weights, phi_hat_tip, parameters, NEWTON_POSITION_FACTOR * h * h,
+                               limits, limit, mass_out, force, x1_, offset_)
+            if ratio <= 1.0:
+                return 0.0
+            publish(False)  # step_check evaluated the items at the solved state
+            return ratio
         ratio = tip_gap(coordinates, velocities, base_start, rod_start, tip_start, base_reference, tip_reference_xy,
                         phi_hat, weights, phi_hat_tip, length, limit, static_limit)
         if ratio <= 1.0:
             return 0.0
-        write(coordinates, velocities, 0.0, True)
+        write(coordinates, velocities, no_accelerations, 0.0, True)
         return ratio
 
     def linearise(strains: np.ndarray) -> None:
@@ -217,18 +263,38 @@ def add_rod_bender(builder, bender: Bender) -> None:
         if indices()[0] < 0:
             return
         coordinates = get_q(copy=False)
-        write(coordinates, np.zeros_like(coordinates), 0.0, True)
+        state["h"] = 0.0
+        write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
 
     estimate = rotation_rod.truncation_estimator(shapes, ei)
+    followers: list[int] = []  # the follower forces on the tip node (Exudyn load indices), found at first use
+    found = [False]
+
+    def follower_force(angle: float) -> np.ndarray:
+        """The part [N] of the tip's force that turns with the tip (follower forces on the tip node), global."""
+        if not found[0]:
+            found[0] = True
+            for rec in model.loads:
+                if rec.kind == "force" and rec.follower:
+                    marker = mbs.GetMarker(mbs.GetLoad(rec.load)["markerNumber"])
+                    if int(marker.get("nodeNumber", -1)) == int(tip_node):
+                        followers.append(rec.load)
+        out = np.zeros(2)
+        c, s_ = math.cos(angle), math.sin(angle)
+        for load in followers:
+            fx, fy = mbs.GetLoadParameter(load, "loadVector")[:2]  # in the tip node's frame
+            out += (c * fx - s_ * fy, s_ * fx + c * fy)
+        return out
 
     def truncation() -> float:
         """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
-        base_start, rod_start, _ = indices()
+        base_start, rod_start, tip_start, _ = indices()
         if base_start < 0:
             return 0.0
         coordinates = get_q(copy=False)
-        force = get_output(tie, force_output)
-        return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force)
+        force = get_output(tie, force_output)  # the force on the tip node: dead and follower loads together
+        return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force,
+                        follower_force(tip_reference[2] + coordinates[tip_start + 2]))
 
     model.truncation_estimators[bender.name] = truncation
     if by_parameter:
