@@ -232,7 +232,7 @@ def test_a_drive_warns_for_a_fitted_pi_model_beyond_its_range():
     u = corners_path([0, 500, 0, 500, 0], 5.0)
     truth = PrandtlIshlinskii(np.arange(1, 10) * 70.0, np.full(9, 1e-7), 2e-7)
     model, _ = PrandtlIshlinskii.fit(u, truth.apply(u), 10)
-    drive = PiezoDrive(1400.0, hysteresis=model)
+    drive = PiezoDrive(1400.0, hysteresis=model.with_output_quantity("strain"))  # the truth is a strain
     with pytest.warns(InputRangeWarning, match=r"reach 1400 V, 900 V above the range 0 \.\.\. 500 V the hysteresis "
                                                r"operator was fitted on, beyond which it extrapolates"):
         drive.check_voltage_range(0.0, 1400.0)

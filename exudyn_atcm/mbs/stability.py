@@ -9,6 +9,13 @@ equilibrium is unstable (a buckled column held straight, a snap-through mechanis
 unstable branch); near zero, it is at a bifurcation or limit point (critical: the answer
 depends on imperfections the model does not hold).
 
+Follower (non-conservative) loads make the tangent unsymmetric: its symmetric part says nothing
+about stability (a cantilever under a follower force, Beck's column, never diverges, yet the
+symmetric part of its tangent turns indefinite).  For them the unsymmetric eigenproblem is solved
+and only *divergence*, a real eigenvalue below zero, is reported; flutter (a complex pair) is a
+dynamic instability that a static check cannot decide (Bolotin, *Nonconservative Problems of the
+Theory of Elastic Stability*, 1963): follow it with ``simulate()``.
+
 :class:`StabilityProbe` measures it relative to the same mechanism unloaded in its reference pose
 (``omega_1^2 / omega_ref^2``, for a column under an axial load about ``1 - P/P_cr``).  The cost per
 check, so that every point of a static sweep can be checked:
@@ -48,6 +55,11 @@ __all__ = ["Stability", "StabilityProbe", "CRITICAL_MARGIN", "null_space", "snap
 #: ``omega_1^2 / omega_ref^2`` below which an equilibrium is critical (at a stability limit; for a
 #: column ``P > 0.999 P_cr``): an imperfection's effect is amplified about ``1 / margin`` times.
 CRITICAL_MARGIN = 1e-3
+
+#: largest ``|K_r - K_r^T|`` relative to ``|K_r|`` (elementwise maxima) of a tangent taken as symmetric
+#: (conservative loads; the grouped differences leave about 1e-8); above it the loads are
+#: non-conservative (follower forces) and only divergence is checked (:meth:`StabilityProbe.check`).
+ASYMMETRY_TOLERANCE = 1e-5
 
 
 @dataclass(frozen=True)
@@ -143,6 +155,8 @@ class StabilityProbe:
             self._basis = basis
             kr = basis.T @ k @ basis
             self._kr = kr
+            scale = float(np.max(np.abs(kr))) if kr.size else 0.0
+            self._conservative = scale == 0.0 or float(np.max(np.abs(kr - kr.T))) <= ASYMMETRY_TOLERANCE * scale
             if not self.use_mass:
                 return 0.5 * (kr + kr.T), np.eye(kr.shape[0])
             mr = basis.T @ ts["M"] @ basis
@@ -155,6 +169,19 @@ class StabilityProbe:
         w2, vecs = eigh(kr, mr, subset_by_index=[0, 0])
         return float(w2[0]), self._basis @ vecs[:, 0]
 
+    def _lowest_divergence(self, mr: np.ndarray) -> tuple[float, np.ndarray]:
+        """The lowest real eigenvalue [1/s^2] of the unsymmetrised ``N^T K_T N v = omega^2 N^T M N v`` (a
+        follower load's tangent is not symmetric) and its mode; ``inf`` when every eigenvalue is complex."""
+        kr = self._kr
+        with _one_blas_thread():
+            values, vecs = eig(kr, mr)
+        finite = np.isfinite(values)
+        real = finite & (np.abs(values.imag) <= 1e-6 * np.maximum(np.abs(values), 1e-300))
+        if not np.any(real):
+            return math.inf, np.zeros(self._basis.shape[0])
+        k = int(np.flatnonzero(real)[np.argmin(values.real[real])])
+        return float(values.real[k]), self._basis @ vecs[:, k].real
+
     def check(self) -> Stability:
         """The :class:`Stability` of the model's current state (a static equilibrium); also kept as :attr:`last`."""
         self.last = self._check()
@@ -164,6 +191,14 @@ class StabilityProbe:
         kr, mr = self._reduced()
         if kr.shape[0] == 0:
             return Stability("stable")
+        if not self._conservative:  # follower loads: only divergence (a real eigenvalue through zero) is static
+            lowest, mode = self._lowest_divergence(mr)
+            if lowest == math.inf:
+                return Stability("stable")
+            margin = lowest / self.reference
+            state = "unstable" if margin < -CRITICAL_MARGIN else ("critical" if margin <= CRITICAL_MARGIN else "stable")
+            return Stability(state, margin if state != "stable" else math.nan, lowest if state != "stable" else math.nan,
+                             mode if state != "stable" else None)
         with _one_blas_thread():
             try:
                 cho_factor(kr - CRITICAL_MARGIN * self.reference * mr)
