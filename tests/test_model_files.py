@@ -403,9 +403,9 @@ def test_the_documented_example_file_is_what_save_writes(tmp_path):
     model.fit_info = {"method": "ContinuousPreisach.fit", "samples": 3751, "fitted_samples": 3751}
     written = json.loads(model_text(model))
     assert written.pop("package_version") == exudyn_atcm.__version__
-    assert example.pop("package_version") == "0.2.0"
+    assert example.pop("package_version") == "0.3.0"
     assert example == written
-    loaded = model_from_document({**example, "package_version": "0.2.0"}, "docs")
+    loaded = model_from_document({**example, "package_version": "0.3.0"}, "docs")
     inside = np.clip(U, -500.0, 1500.0)  # a fitted model warns beyond its fitted range
     same_bits(loaded.apply(inside), model.apply(inside))
 
