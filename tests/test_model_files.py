@@ -323,7 +323,7 @@ def _set(doc, dotted, value):
 
 
 @pytest.mark.parametrize("field, value, message", [
-    ("format_version", 2, r"format_version is 2, written by exudyn_atcm '0\.2\.0'; this exudyn_atcm \(.*\) reads "
+    ("format_version", 2, r"format_version is 2, written by exudyn_atcm '" + re.escape(exudyn_atcm.__version__) + r"'; this exudyn_atcm \(.*\) reads "
                           r"format versions up to 1: upgrade exudyn_atcm"),
     ("format_version", "1", r"format_version must be an integer >= 1, got '1'"),
     ("package_version", KeyError, r"package_version is missing \(required: format, format_version, package_version, "
