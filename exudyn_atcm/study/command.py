@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import shlex
+from collections import Counter
 import sys
 import time
 from collections.abc import Sequence
@@ -195,11 +196,16 @@ def sweep_command(args: argparse.Namespace) -> int:
     bar.close()
     files = list(result.files)
     if not args.no_plot:
-        scalars = [c.name for c in result.columns[1 + len(case.parameters):-4]]
+        names = [c.name for c in result.columns]
+        scalars = names[1 + len(case.parameters):names.index("status")]
         files += plot_study(result.table, result.varied, scalars, args.out, f"{case.name}_sweep_", grid=args.samples is None)
     total = len(result.records)
     print(f"{case.name}: {total} runs ({result.executed} executed, {result.reused} from the store, "
           f"{result.failed} failed) in {result.wall_time:.3g} s on {result.engine} ({result.workers} workers)")
+    if result.stale:
+        reasons = Counter(r["stale"] for r in {r["key"]: r for r in result.records if r["stale"]}.values())
+        print(f"  {result.stale} stale run{'s' if result.stale > 1 else ''} executed again (the store held results "
+              f"of the same values from other inputs): " + "; ".join(f"{n} x {why}" for why, n in reasons.items()))
     for record in result.records:
         if record["status"] != "ok":
             print(f"  run {record['index']} failed: {record['error']}")
