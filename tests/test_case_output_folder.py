@@ -36,7 +36,7 @@ from exudyn_atcm.solve.run_checks import SimulationInterrupted
 PARAMETERS = [
     Parameter("x", 1.0, "-", "input"),
     Parameter("n_plots", 2, "-", "plot files", minimum=0),
-    Parameter("stop", "none", "-", "how the plotting stops", choices=("none", "raise", "signal", "hang", "fail", "run")),
+    Parameter("stop", "none", "-", "how the plotting stops", choices=("none", "raise", "signal", "hang", "fail", "run", "signal_run")),
     Parameter("flag", "", "-", "file created once the first plot is written (for a test that kills the run)"),
     Parameter("note", "no", "-", "write a note through ctx.output_file during the run", choices=("no", "yes")),
     Parameter("interrupt_run", "no", "-", "stop the simulation half-way (a partial result)", choices=("no", "yes")),
@@ -46,6 +46,9 @@ PARAMETERS = [
 def run(p, ctx):
     if p.stop == "run":
         raise ValueError("bad input found by the run")
+    if p.stop == "signal_run":
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(30)
     if p.note == "yes" and ctx.out_dir is not None:
         ctx.output_file("output_case_note.txt").write_text(repr(p.x))
     result = Result({"time": [0.0, 1.0], "y": [0.0, 3.0 * p.x]}, {"time": "s", "y": "m"})
@@ -140,6 +143,34 @@ def test_sigint_while_plotting_on_the_command_line(case_file, tmp_path):
     assert _files(folder) == {"output_case.csv", "output_case_table.csv", "output_case.json", "output_case.partial.json",
                               "my_notes.txt"}
     assert _y(folder) == 15.0
+
+
+def test_an_interrupted_simulation_on_the_command_line_names_the_marker(case_file, tmp_path):
+    """The partial CSV is said, and that the folder holds an unfinished run, with the marker that lists it."""
+    case = load_case(case_file)
+    _complete_first_run(case, tmp_path / "o")
+    stopped = cli(["run", str(case_file), "--set", "x=2", "--set", "interrupt_run=yes", "--out", "o"], tmp_path)
+    assert stopped.returncode == 130, stopped.stderr
+    assert stopped.stderr.strip().splitlines()[-1] == (
+        "error: output_case: interrupted at t = 0.5 s; wrote the 1 recorded instants up to there (marked partial) to "
+        "o/output_case.csv; o holds this unfinished run, listed in o/output_case.partial.json")
+    marker = json.loads((tmp_path / "o" / "output_case.partial.json").read_text())
+    assert marker["state"] == "interrupted at t = 0.5 s" and set(marker["files"]) == {"output_case.csv", "output_case.json"}
+    assert _files(tmp_path / "o") == {"output_case.csv", "output_case.json", "output_case.partial.json", "my_notes.txt"}
+
+
+def test_ctrl_c_before_the_first_file_leaves_the_previous_run_and_says_so(case_file, tmp_path):
+    """Stopped inside the run, before anything is written: no marker, the previous run's files untouched."""
+    case = load_case(case_file)
+    folder = tmp_path / "o"
+    _complete_first_run(case, folder)
+    stopped = cli(["run", str(case_file), "--set", "x=9", "--set", "stop=signal_run", "--out", "o"], tmp_path)
+    assert stopped.returncode == 130, stopped.stderr
+    assert stopped.stderr.strip().splitlines()[-1] == (
+        "error: output_case: interrupted (Ctrl-C) before the simulation started or after it ended; o holds no unfinished "
+        "run (no output_case.partial.json)")
+    assert _files(folder) == FULL | {"output_case_plot2.png", "my_notes.txt"}
+    assert _y(folder) == 3.0 and json.loads((folder / "output_case.json").read_text())["complete"] is True
 
 
 def test_a_failing_plot_is_said_in_the_marker(case_file, tmp_path):

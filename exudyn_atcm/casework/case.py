@@ -409,20 +409,21 @@ def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool, stop
     Exit status 130 for Ctrl-C, ``128 + signal number`` for a stop signal (143 for SIGTERM).
     """
     how = "interrupted" if stop.signum is None else f"stopped by {stop.name}"
+    marker = Path(out) / marker_name(case.name)
+    unfinished = f"; {out} holds this unfinished run, listed in {marker}" if marker.is_file() else ""
     if isinstance(exc, SimulationInterrupted):
         files = getattr(exc, "files", [])
         rows = exc.result.n_rows if exc.result is not None else 0
         if files:
-            written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}"
+            written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}{unfinished}"
         else:
             written = "; nothing was written (no output directory, or nothing computed yet)"
         return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{written}", debug, stop.exit_status)
-    marker = Path(out) / marker_name(case.name)
-    if marker.is_file():
+    if unfinished:
         return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; the files "
                      f"written are one unfinished run, listed in {marker}", debug, stop.exit_status)
     return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; "
-                 f"no unfinished file was left in {out}", debug, stop.exit_status)
+                 f"{out} holds no unfinished run (no {marker.name})", debug, stop.exit_status)
 
 
 def _fail(exc: BaseException | str, debug: bool, status: int) -> int:

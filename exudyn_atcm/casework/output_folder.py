@@ -32,7 +32,7 @@ import shutil
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
-from ..io.atomic import WriteError, describe_os_error, write_json
+from ..io.atomic import WriteError, describe_os_error, move_into_place, write_json
 
 __all__ = ["OutputFolder", "marker_name", "own_files", "describe_stop"]
 
@@ -153,7 +153,7 @@ class OutputFolder:
                 shutil.copytree(source, target, dirs_exist_ok=True)
                 shutil.rmtree(source)
             else:
-                os.replace(source, target)
+                move_into_place(source, target)
         shutil.rmtree(self.stage, ignore_errors=True)
         return paths
 
