@@ -138,7 +138,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
             parameters={"record": str(path)},
         )
     if ctx.out_dir is not None:
-        written = report.write_json(Path(ctx.out_dir) / f"{ctx.case}_fit_report.json")
+        written = report.write_json(ctx.output_file(f"{ctx.case}_fit_report.json"))
         notes["fit_report_file"] = written.name
         if not getattr(model, "output_unit", ""):  # the record's output unit, kept in the saved model
             model.output_unit = unit

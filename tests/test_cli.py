@@ -234,7 +234,8 @@ def test_ctrl_c_in_a_run_writes_partial_results_and_exits_130(tmp_path):
     line = _one_line_error(proc)
     # the first step after 0.02 s raised: the last accepted step is 0.02 s, 201 instants
     assert line == ("error: interrupting: interrupted at t = 0.02 s; wrote the 201 recorded instants up to "
-                    "there (marked partial) to o/interrupting.csv")
+                    "there (marked partial) to o/interrupting.csv; o holds this unfinished run, listed in "
+                    "o/interrupting.partial.json")
     data = read_csv(tmp_path / "o" / "interrupting.csv")
     assert data.n_rows == 201 and data["time"][-1] == 0.02 and data.info["partial"] is True
     assert "solver" not in proc.stderr.lower() or "failed" not in proc.stderr

@@ -39,7 +39,9 @@ def test_the_bound_is_the_methods_iteration_limit():
     assert max_runs("differential_evolution", 1, 3, 4) == 4 * 5
     # Nelder-Mead: at most 20 maxiter n iterations of n + 2 runs, plus its simplex
     assert max_runs("nelder-mead", 2, 3, 5) == 20 * 3 * 2 * 4 + 3
-    assert max_runs("l-bfgs-b", 2, 3, 5) == 3 * 2 * 3 + 1
+    # L-BFGS-B: maxiter n iterations, each at most two line searches (one restart) of scipy's maxls = 20 steps,
+    # every step a value and a finite-difference gradient (n + 1 evaluations); plus the start
+    assert max_runs("l-bfgs-b", 2, 3, 5) == (3 * 2 * 2 * 20 + 1) * 3
 
 
 @pytest.mark.parametrize("method, kwargs", [("differential_evolution", {"maxiter": 4, "popsize": 4, "polish": False}),

@@ -14,7 +14,7 @@ import pytest
 from PIL import Image
 
 from exudyn_atcm.suggestions import close_names
-from exudyn_atcm.io.atomic import WriteError, atomic_path, write_text
+from exudyn_atcm.io.atomic import WriteError, atomic_path, move_into_place, write_text
 from exudyn_atcm.io.progress import format_duration
 from exudyn_atcm.plots import new_figure, save_gif
 
@@ -59,6 +59,17 @@ def test_atomic_path_names_the_target_not_the_temporary_file(tmp_path):
     with atomic_path(tmp_path / "made" / "a.txt", make_dirs=True) as tmp:
         tmp.write_text("x")
     assert (tmp_path / "made" / "a.txt").read_text() == "x"
+
+
+def test_move_into_place_replaces_the_target_and_names_both_paths_on_error(tmp_path):
+    source, target = tmp_path / "new.png", tmp_path / "plot.png"
+    source.write_text("new")
+    target.write_text("old")
+    assert move_into_place(source, target) == target
+    assert target.read_text() == "new" and not source.exists()
+    with pytest.raises(WriteError, match=rf"cannot move '{source}' to '{target}': "):
+        move_into_place(source, target)  # the source is gone
+    assert target.read_text() == "new"
 
 
 def test_write_text_goes_through_atomic_path(tmp_path):

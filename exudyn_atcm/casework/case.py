@@ -10,6 +10,7 @@ files::
     DIR/<case>_<table>.csv  further tables, if the case returns any
     DIR/<case>.json         parameters, versions, platform, wall time, steps, key scalars, files
     DIR/<case>_*.png        the plots (unless --no-plot)
+    DIR/<case>.partial.json only while a run is unfinished, or after one was interrupted: why
 
 The convention, in full (see ``cases/paper_stroke_table.py`` for a short example)::
 
@@ -49,9 +50,14 @@ inside someone else's unpacked archive does not execute its files.  A name found
 different files is taken from the first and a warning (:class:`~exudyn_atcm.errors.SetupWarning`) names both
 (:func:`~exudyn_atcm.casework.discovery.case_files`).
 
+A folder never mixes the files of two runs (:mod:`exudyn_atcm.casework.output_folder`): the
+previous run's own files (those its JSON lists) are removed before the first new file is
+written, the JSON comes before the plots, and a run that does not finish leaves the marker
+``DIR/<case>.partial.json`` saying why; files the case did not write are never touched.
+
 Ctrl-C during a run stops the simulation cleanly: what was computed so far is written (the
-CSV and JSON marked ``partial``), the message says ``interrupted at t = ... s``, and the exit
-status is 130.  ``SIGTERM`` (``timeout``, batch schedulers, ``docker stop``) and ``SIGHUP`` are
+CSV and JSON marked ``partial``, with the marker), the message says ``interrupted at t = ... s``,
+and the exit status is 130.  ``SIGTERM`` (``timeout``, batch schedulers, ``docker stop``) and ``SIGHUP`` are
 handled the same way (:mod:`exudyn_atcm.casework.termination`): ``stopped by SIGTERM at t = ... s``,
 exit status 143 (129 for ``SIGHUP``).
 """
@@ -72,6 +78,7 @@ from ..io.atomic import make_directory, write_json
 from ..io.progress import ProgressBar, ProgressCallback, no_progress, reporting
 from ..io.result import Result
 from ..solve.run_checks import SimulationInterrupted
+from .output_folder import OutputFolder, describe_stop, marker_name
 from .outputs import CaseOutput, RunContext, versions
 from .parameters import CaseError, Parameter, Parameters, closest
 from .run_warnings import warnings_once
@@ -226,39 +233,59 @@ class Case:
         """
         params = self.resolve(values)
         directory = Path(out_dir) if out_dir is not None else None
+        folder = None
         if directory is not None:
             make_directory(directory)
-        ctx = RunContext(self.name, directory, bool(plot and directory is not None), progress or no_progress)
+            folder = OutputFolder(directory, self.name)
+        ctx = RunContext(self.name, directory, bool(plot and directory is not None), progress or no_progress, folder)
         start = time.perf_counter()
         with reporting(ctx.progress), warnings_once():  # each distinct warning once per run
             try:
                 output = self._run(params, ctx)
             except SimulationInterrupted as exc:
-                self._write_partial(exc, params, directory, time.perf_counter() - start)
+                self._write_partial(exc, params, folder, time.perf_counter() - start)
+                raise
+            except BaseException as exc:  # files the run wrote itself (ctx.output_file) stay marked unfinished
+                if folder is not None:
+                    folder.abandon(describe_stop(exc, "running"))
                 raise
             wall = time.perf_counter() - start
             if not isinstance(output, CaseOutput):
-                raise CaseError(f"case {self.name}: run() must return a CaseOutput, got {type(output).__name__}")
+                error = CaseError(f"case {self.name}: run() must return a CaseOutput, got {type(output).__name__}")
+                if folder is not None:
+                    folder.abandon(describe_stop(error, "running"))
+                raise error
             output.case = self.name
             output.parameters = params
             output.wall_time = wall
-            if directory is not None:
-                self._write(output, params, directory, ctx.plot)
+            if folder is not None:
+                self._write(output, params, folder, ctx.plot)
         return output
 
-    def _write_partial(self, exc: SimulationInterrupted, params: Parameters, directory: Path | None, wall: float) -> None:
+    def _write_partial(self, exc: SimulationInterrupted, params: Parameters, folder: OutputFolder | None, wall: float) -> None:
         """Write what an interrupted run computed (CSV and JSON, marked partial); ``exc.files`` lists them."""
         exc.files = []
-        if directory is None or exc.result is None:
+        if folder is None:
+            return
+        if exc.result is None:
+            folder.abandon(f"interrupted at t = {exc.time:.6g} s before anything was recorded")
             return
         partial = CaseOutput(exc.result, notes={"partial": True, "interrupted_at [s]": exc.time})
         partial.case = self.name
         partial.parameters = params
         partial.wall_time = wall
-        self._write(partial, params, directory, plot=False)
+        self._write(partial, params, folder, plot=False, unfinished=f"interrupted at t = {exc.time:.6g} s")
         exc.files = list(partial.files)
 
-    def _write(self, output: CaseOutput, params: Parameters, directory: Path, plot: bool) -> None:
+    def _write(self, output: CaseOutput, params: Parameters, folder: OutputFolder, plot: bool,
+               unfinished: str | None = None) -> None:
+        """Write the run's files so that the folder never mixes two runs (see :mod:`.output_folder`).
+
+        The previous run's files go first, then the JSON (the run's description, ``complete``
+        false), the CSV and tables, the plots (drawn apart, moved in together) and the JSON again
+        (``complete`` true unless ``unfinished``, which keeps the marker with that reason).
+        """
+        directory = folder.directory
         vers = versions()
         metadata = {"case": self.name, **params.with_units()}
         info = {
@@ -267,23 +294,43 @@ class Case:
             "wall_time [s]": round(output.wall_time, 6),
             "steps": output.steps,
         }
-        main = Result(output.result, output.result.units, parameters={**metadata, **output.result.parameters}, info=info)
         path = directory / f"{self.name}.csv"
-        main.to_csv(path)
-        files = [path]
-        for name, table in output.tables.items():
-            tpath = directory / f"{self.name}_{name}.csv"
-            Result(table, table.units, parameters={**metadata, **table.parameters}, info={"exudyn_version": vers["exudyn"], **table.info}).to_csv(tpath)
-            files.append(tpath)
-        if plot and self._plot is not None:
-            start = time.perf_counter()
-            written = self._plot(output, params, directory) or []
-            output.plot_time = time.perf_counter() - start
-            files.extend(Path(p) for p in written)
-        output.files = files
+        tables = {directory / f"{self.name}_{name}.csv": table for name, table in output.tables.items()}
         json_path = directory / f"{self.name}.json"
-        output.files = files + [json_path]
-        write_json(json_path, {"description": self.description, "source": str(self.source or ""), **output.to_dict()})
+        written_by_run = [directory / name for name in folder.files]  # ctx.output_file(...) during the run
+        files = [path, *tables, *(p for p in written_by_run if p not in tables and p != path)]
+        step = "writing the CSV files"
+        try:
+            folder.add(json_path.name, *(p.name for p in files))
+            self._write_json(output, folder, files + [json_path], complete=False)
+            Result(output.result, output.result.units, parameters={**metadata, **output.result.parameters}, info=info).to_csv(path)
+            for tpath, table in tables.items():
+                Result(table, table.units, parameters={**metadata, **table.parameters},
+                       info={"exudyn_version": vers["exudyn"], **table.info}).to_csv(tpath)
+            if plot and self._plot is not None:
+                step = "drawing the plots"
+                start = time.perf_counter()
+                written = self._plot(output, params, folder.plot_stage()) or []
+                output.plot_time = time.perf_counter() - start
+                files.extend(folder.take_plots(written))
+            step = "writing the JSON file"
+            output.files = files + [json_path]
+            self._write_json(output, folder, output.files, complete=unfinished is None)
+        except BaseException as exc:
+            output.files = [p for p in files + [json_path] if p.exists()]
+            folder.abandon(describe_stop(exc, step) + ("" if unfinished is None else f" ({unfinished})"))
+            raise
+        if unfinished is None:
+            folder.finish()
+        else:
+            folder.abandon(unfinished)
+
+    def _write_json(self, output: CaseOutput, folder: OutputFolder, files: Sequence[Path], complete: bool) -> None:
+        """``<case>.json``: the run's description; ``files`` as names in the folder (paths elsewhere in full)."""
+        names = [p.name if p.parent == folder.directory else str(p) for p in files]
+        folder.add(*(n for n in names if "/" not in n))
+        write_json(folder.directory / f"{self.name}.json", {"description": self.description, "source": str(self.source or ""),
+                                                             **output.to_dict(), "files": names, "complete": complete})
 
     # -- standalone entry point -------------------------------------------------------------
     def argument_parser(self, prog: str | None = None) -> argparse.ArgumentParser:
@@ -362,16 +409,21 @@ def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool, stop
     Exit status 130 for Ctrl-C, ``128 + signal number`` for a stop signal (143 for SIGTERM).
     """
     how = "interrupted" if stop.signum is None else f"stopped by {stop.name}"
+    marker = Path(out) / marker_name(case.name)
+    unfinished = f"; {out} holds this unfinished run, listed in {marker}" if marker.is_file() else ""
     if isinstance(exc, SimulationInterrupted):
         files = getattr(exc, "files", [])
         rows = exc.result.n_rows if exc.result is not None else 0
         if files:
-            written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}"
+            written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}{unfinished}"
         else:
             written = "; nothing was written (no output directory, or nothing computed yet)"
         return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{written}", debug, stop.exit_status)
+    if unfinished:
+        return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; the files "
+                     f"written are one unfinished run, listed in {marker}", debug, stop.exit_status)
     return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; "
-                 "files may be missing", debug, stop.exit_status)
+                 f"{out} holds no unfinished run (no {marker.name})", debug, stop.exit_status)
 
 
 def _fail(exc: BaseException | str, debug: bool, status: int) -> int:

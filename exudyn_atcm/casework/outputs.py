@@ -16,6 +16,7 @@ from ..io.progress import ProgressCallback, no_progress
 from ..io.result import Result
 from ..mbs.solver_runs import exudyn_version
 from ..solve.run_plan import PlannedRun, RunPlan
+from .output_folder import OutputFolder
 from .parameters import Parameters, json_value
 
 __all__ = ["RunContext", "CaseOutput", "versions"]
@@ -36,12 +37,37 @@ class RunContext:
         Whether plots will be written (a case may skip plot-only work otherwise).
     progress : callable
         ``progress(t, t_end)``: report simulated time [s]; draws a bar on terminals.
+    folder : OutputFolder or None
+        The run's files in ``out_dir`` (set by the runner; see :meth:`output_file`).
     """
 
     case: str
     out_dir: Path | None = None
     plot: bool = True
     progress: ProgressCallback = no_progress
+    folder: OutputFolder | None = None
+
+    def output_file(self, name: str) -> Path:
+        """The path of a file named ``name`` that ``run`` writes into the output folder itself.
+
+        The file becomes one of the run's outputs: listed in ``<case>.json``, removed with the
+        run's other files by the next run into the folder, and the previous run's files are
+        removed before it is written, so that the folder never mixes two runs (see
+        :mod:`exudyn_atcm.casework.output_folder`).  Write files of the run this way, not by
+        joining :attr:`out_dir` and a name.
+
+        Raises
+        ------
+        ValueError
+            If the run writes no files (``out_dir`` is ``None``) or ``name`` is not a plain file name.
+        """
+        if self.out_dir is None or self.folder is None:
+            raise ValueError(f"output_file({name!r}): this run of {self.case} writes no files (no output directory); "
+                             "check ctx.out_dir first")
+        if not isinstance(name, str) or not name or Path(name).name != name or name in (".", ".."):
+            raise ValueError(f"output_file: name must be a plain file name without directories, got {name!r}")
+        self.folder.add(name)
+        return Path(self.out_dir) / name
 
     def plan(self, runs: Sequence[PlannedRun]) -> RunPlan:
         """Declare the simulations of a run made of several, before the first starts.

@@ -14,8 +14,8 @@ from typing import IO, Any
 
 from ..errors import WriteError
 
-__all__ = ["atomic_path", "write_atomic", "write_text", "write_json", "make_directory", "describe_os_error",
-           "write_error", "WriteError", "FILE_MODE"]
+__all__ = ["atomic_path", "write_atomic", "write_text", "write_json", "move_into_place", "make_directory",
+           "describe_os_error", "write_error", "WriteError", "FILE_MODE"]
 
 
 def _file_mode() -> int:
@@ -176,6 +176,23 @@ def write_atomic(path: str | os.PathLike, writer: Callable[[IO[str]], None], *, 
 def write_text(path: str | os.PathLike, text: str) -> Path:
     """Write ``text`` to ``path`` atomically (UTF-8)."""
     return write_atomic(path, lambda handle: handle.write(text))
+
+
+def move_into_place(source: str | os.PathLike, target: str | os.PathLike) -> Path:
+    """Move the finished file ``source`` to ``target`` in one step (``os.replace``; same file system).
+
+    Readers see the previous ``target`` or the new one, never a mixture.
+
+    Raises
+    ------
+    WriteError
+        If it cannot be moved; the message names both paths and the reason.
+    """
+    try:
+        os.replace(source, target)
+    except OSError as exc:
+        raise WriteError(f"cannot move {os.fspath(source)!r} to {os.fspath(target)!r}: {describe_os_error(exc)}") from None
+    return Path(target)
 
 
 def write_json(path: str | os.PathLike, data: Any) -> Path:

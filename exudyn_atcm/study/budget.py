@@ -18,29 +18,77 @@ from ..errors import RunCostWarning
 from ..io.progress import format_duration, report_task
 from ..solve.run_checks import LONG_RUN_SECONDS
 
-__all__ = ["RunBudget", "max_runs", "MIN_MEASURED_RUNS"]
+__all__ = ["RunBudget", "max_runs", "evaluation_bounds", "describe_evaluations", "MIN_MEASURED_RUNS", "LINE_SEARCH_STEPS"]
 
 #: Runs timed before the pace is trusted.  They are counted after the first batch, which also
 #: pays for loading the case and starting the workers (a first batch of one run, as scipy's
 #: constraint handling makes, gave a pace 10 times too slow).
 MIN_MEASURED_RUNS = 5
 
+#: Steps of one L-BFGS-B line search at most (scipy's ``maxls``, left at its default 20).  A line
+#: search that fails is restarted once in the same iteration, with the memory cleared
+#: (L-BFGS-B's ``RESTART_FROM_LNSRCH``), so an iteration takes at most twice this.
+LINE_SEARCH_STEPS = 20
+
 
 def max_runs(method: str, n_variables: int, maxiter: int, popsize: int) -> int:
-    """The runs an optimisation makes at most before its polish (the methods' iteration limits).
+    """The evaluations an optimisation makes at most before its polish (the methods' iteration limits).
 
     Differential evolution: ``(maxiter + 1) * max(popsize * n, 5)`` (initial population and
     ``maxiter`` generations; scipy keeps at least 5 members); its Nelder-Mead polish is not
-    counted (it usually takes tens of runs, its cap is far looser).  Nelder-Mead: at most
-    ``20 * maxiter * n`` iterations of ``n + 2`` runs, plus the simplex; L-BFGS-B ``maxiter * n``
-    iterations of ``n + 1`` runs (finite-difference gradients).
+    counted (it usually takes tens of runs, its cap is far looser: :func:`evaluation_bounds`).
+    Nelder-Mead: at most ``20 * maxiter * n`` iterations of ``n + 2`` evaluations, plus the
+    simplex; L-BFGS-B ``maxiter * n`` iterations, each at most two line searches of
+    :data:`LINE_SEARCH_STEPS` steps of ``n + 1`` evaluations (finite-difference gradients), plus
+    the start.  Each evaluation is at most one run of the case.
     """
     n = max(int(n_variables), 1)
     if method == "differential_evolution":
         return (maxiter + 1) * max(popsize * n, 5)
     if method == "nelder-mead":
         return 20 * maxiter * n * (n + 2) + n + 1
-    return maxiter * n * (n + 1) + 1
+    return (maxiter * n * 2 * LINE_SEARCH_STEPS + 1) * (n + 1)
+
+
+def evaluation_bounds(method: str, n_variables: int, n_float: int, maxiter: int, popsize: int,
+                      polish: bool) -> tuple[int, int]:
+    """``(search, polish)``: the most evaluations of the search and of differential evolution's polish.
+
+    The polish is Nelder-Mead over the ``n_float`` float variables with the same ``maxiter``
+    (0 for a local method, without ``polish`` or without float variables).  Their sum is the
+    bound :func:`~exudyn_atcm.study.optimize` announces and enforces when no smaller
+    ``max_evaluations`` is given.
+    """
+    search = max_runs(method, n_variables, maxiter, popsize)
+    if method != "differential_evolution" or not polish or n_float < 1:
+        return search, 0
+    return search, max_runs("nelder-mead", n_float, maxiter, popsize)
+
+
+def describe_evaluations(method: str, n_variables: int, n_float: int, maxiter: int, popsize: int, polish: bool,
+                         max_evaluations: int | None = None, option: str = "max_evaluations") -> str:
+    """What an optimisation will evaluate at most, in words (announced before it starts).
+
+    Parameters are those of :func:`evaluation_bounds`; ``max_evaluations`` is the user's budget,
+    ``option`` its name in the message (``"--max-evaluations"`` on the command line).
+    """
+    search, polish_bound = evaluation_bounds(method, n_variables, n_float, maxiter, popsize, polish)
+    total = search + polish_bound
+    if method == "differential_evolution":
+        members = max(popsize * max(int(n_variables), 1), 5)
+        how = (f"{search} for differential evolution (an initial population of {members}, then {maxiter} "
+               f"generation{'s' if maxiter > 1 else ''} of {members})")
+    elif method == "nelder-mead":
+        how = f"{search} for Nelder-Mead (its simplex, then {20 * maxiter * n_variables} iterations)"
+    else:
+        how = f"{search} for L-BFGS-B ({maxiter * n_variables} iterations with finite-difference gradients)"
+    if polish_bound:
+        how += f" and {polish_bound} for its Nelder-Mead polish"
+    if max_evaluations is not None and max_evaluations < total:
+        return (f"at most {max_evaluations} evaluations ({option}; the method's own limits: {how}); "
+                "each evaluation is at most one run of the case")
+    return (f"at most {total} evaluations: {how}; it stops earlier when it converges. Each evaluation is at most "
+            f"one run of the case; {option} caps them")
 
 
 class RunBudget:

@@ -7,6 +7,7 @@
                       [--out DIR] [--store DIR] [--retry-failed] [--no-plot]
     exudyn-atcm optimize CASE --objective NAME [--maximize] --bound NAME=LOW:HIGH
                       [--constraint "NAME>=VALUE"] [--method differential_evolution]
+                      [--maxiter N] [--popsize N] [--max-evaluations N]
                       [--set NAME=VALUE] [--workers N | --scheduler ADDRESS] [--out DIR]
 
 Ctrl-C or ``SIGTERM`` stops a sweep at once (its workers too) and says how many runs are
@@ -15,13 +16,17 @@ Exit status of ``sweep``: 0 if every run succeeded, 1 if any run failed (the stu
 completes and the table holds each error), if the output directory cannot be written, or
 if another sweep is writing the same table now; 2 for a usage error (unknown case or
 parameter, bad grid).  Of ``optimize``: 0 if the best design satisfies the constraints,
-1 if no evaluated design does, 2 for a usage error.
+1 if no evaluated design does, if the objective was not finite at any design of the first
+population (or simplex), if the output directory cannot be written or another optimisation
+of the case is writing it now; 2 for a usage error.  ``optimize`` says before it starts how
+many evaluations it makes at most (``--max-evaluations`` caps them exactly).
 """
 
 from __future__ import annotations
 
 import argparse
 import shlex
+from collections import Counter
 import sys
 import time
 from collections.abc import Sequence
@@ -30,7 +35,9 @@ from typing import IO
 from ..casework.error_report import report_error as _error
 from ..casework import CaseError, load_case
 from ..casework.termination import StopSignal, stop_signals_as_interrupt
+from .budget import describe_evaluations
 from .lock import StudyLockedError
+from .stops import ObjectiveNotFiniteError
 
 __all__ = ["add_sweep_parser", "sweep_command", "resume_note", "add_optimize_parser", "optimize_command", "RunProgressBar"]
 
@@ -195,11 +202,16 @@ def sweep_command(args: argparse.Namespace) -> int:
     bar.close()
     files = list(result.files)
     if not args.no_plot:
-        scalars = [c.name for c in result.columns[1 + len(case.parameters):-4]]
+        names = [c.name for c in result.columns]
+        scalars = names[1 + len(case.parameters):names.index("status")]
         files += plot_study(result.table, result.varied, scalars, args.out, f"{case.name}_sweep_", grid=args.samples is None)
     total = len(result.records)
     print(f"{case.name}: {total} runs ({result.executed} executed, {result.reused} from the store, "
           f"{result.failed} failed) in {result.wall_time:.3g} s on {result.engine} ({result.workers} workers)")
+    if result.stale:
+        reasons = Counter(r["stale"] for r in {r["key"]: r for r in result.records if r["stale"]}.values())
+        print(f"  {result.stale} stale run{'s' if result.stale > 1 else ''} executed again (the store held results "
+              f"of the same values from other inputs): " + "; ".join(f"{n} x {why}" for why, n in reasons.items()))
     for record in result.records:
         if record["status"] != "ok":
             print(f"  run {record['index']} failed: {record['error']}")
@@ -231,6 +243,9 @@ def add_optimize_parser(sub: argparse._SubParsersAction, parents: list[argparse.
     opt.add_argument("--maxiter", type=int, default=100, metavar="N", help="generations (differential evolution; default 100)")
     opt.add_argument("--popsize", type=int, default=15, metavar="N", help="population size per variable (default 15)")
     opt.add_argument("--seed", type=int, default=0, help="seed of differential evolution (default 0)")
+    opt.add_argument("--max-evaluations", type=int, default=None, metavar="N",
+                     help="stop after N evaluations of the objective, polish included (default: the method's own bound, "
+                          "announced before the start)")
     _add_run_options(opt, "out/optimize")
     opt.add_argument("--no-plot", action="store_true", help="do not write the best run's plots")
     return opt
@@ -259,9 +274,9 @@ def optimize_command(args: argparse.Namespace) -> int:
     status = _check_engine_options(args, debug)
     if status is not None:
         return status
-    for name in ("maxiter", "popsize"):
-        if getattr(args, name) < 1:
-            return _error(f"--{name} must be an integer >= 1, got {getattr(args, name)}", debug, 2)
+    for name in ("maxiter", "popsize", "max_evaluations"):
+        if getattr(args, name) is not None and getattr(args, name) < 1:
+            return _error(f"--{name.replace('_', '-')} must be an integer >= 1, got {getattr(args, name)}", debug, 2)
     try:
         case = load_case(args.case, getattr(args, "cases_dir", None))
         if not args.bound:
@@ -288,20 +303,27 @@ def optimize_command(args: argparse.Namespace) -> int:
         fixed = case.parse_assignments(args.set)
     except (CaseError, ValueError) as exc:
         return _error(exc, debug, 2)
+    kinds = [case_parameter(case, name, "--bound").kind for name in bounds]
+    n = len(bounds)
+    print(f"{case.name}: {args.method} over {n} variable{'s' if n > 1 else ''}: "
+          + describe_evaluations(args.method, n, kinds.count("float"), args.maxiter, args.popsize, True, args.max_evaluations,
+                                 "--max-evaluations") + f"; then the best design runs once more for its files in {args.out}/best",
+          flush=True)
     try:
         best = optimize(
             case, args.objective, bounds, method=args.method, maximize=args.maximize, constraints=constraints,
             fixed=fixed, seed=args.seed, maxiter=args.maxiter, popsize=args.popsize, workers=args.workers,
             scheduler=args.scheduler, out=args.out, store=args.store, plot=not args.no_plot,
+            max_evaluations=args.max_evaluations,
         )
     except (CaseError, ValueError, ImportError) as exc:
         return _error(exc, debug, 2)
-    except OSError as exc:  # an output directory or store that cannot be written
+    except (OSError, StudyLockedError, ObjectiveNotFiniteError) as exc:  # unwritable output, a second run, nothing finite
         return _error(exc, debug, 1)
     units = {p.name: p.unit for p in case.parameters}
     sense = "maximum" if args.maximize else "minimum"
     print(f"{case.name}: {sense} of {args.objective} = {best.objective:.7g} after {best.evaluations} evaluations "
-          f"({best.executed} runs executed){'' if best.feasible else ' - NO DESIGN MEETS THE CONSTRAINTS'}")
+          f"({best.executed} runs executed){' - NO DESIGN MEETS THE CONSTRAINTS' if constraints and not best.feasible else ''}")
     for name, value in best.design.items():
         print(f"  {name} = {value:.7g} [{units[name]}]")
     for name, (low, high) in constraints.items():

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping
+from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -26,10 +27,14 @@ import numpy as np
 
 from ..io.atomic import make_directory, write_json
 from ..casework import Case, CaseOutput, load_case
-from .budget import RunBudget, max_runs
+from ..casework.output_folder import OutputFolder
+from . import search
+from .budget import RunBudget, evaluation_bounds, max_runs
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
+from .lock import TableLock
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
+from .stops import ObjectiveNotFiniteError, SearchStopped
 from .store import RunStore
 from .table import to_table, write_table_csv
 
@@ -65,9 +70,15 @@ class OptimizationResult:
     executed : int
         Runs actually executed (the rest came from the store or were repeats).
     message : str
-        The optimiser's message.
-    scipy_result : scipy.optimize.OptimizeResult
-        The raw result (in normalised coordinates), of the last stage.
+        The optimiser's message, or why the search stopped (the evaluation budget).
+    scipy_result : scipy.optimize.OptimizeResult or None
+        The raw result (in normalised coordinates) of the last stage that finished (``None``
+        if the budget stopped the first).
+    files : list of pathlib.Path
+        The files written (with ``out``).
+    max_evaluations : int
+        The cap on evaluations that was in force: ``max_evaluations`` if given, else the
+        methods' own bound (:func:`~exudyn_atcm.study.budget.evaluation_bounds`).
     """
 
     design: dict[str, Any]
@@ -82,6 +93,7 @@ class OptimizationResult:
     message: str
     scipy_result: Any = None
     files: list[Path] = field(default_factory=list)
+    max_evaluations: int = 0
 
 
 def optimize(
@@ -103,6 +115,7 @@ def optimize(
     xatol: float = 1e-4,
     fatol: float = 1e-4,
     polish: bool = True,
+    max_evaluations: int | None = None,
     workers: int | None = None,
     client: Any = None,
     scheduler: str | None = None,
@@ -160,11 +173,20 @@ def optimize(
     polish : bool
         After differential evolution, refine the best design with Nelder-Mead on the float
         variables (integers fixed).
+    max_evaluations : int, optional
+        The most evaluations of the objective, polish included (each is at most one run of
+        the case; a design met again is not run again, a stored run is replayed): the search
+        stops exactly there and returns the best design found (``message`` says so).  No run
+        is started beyond it.  Default: the methods' own bound
+        (:func:`~exudyn_atcm.study.budget.evaluation_bounds`), also enforced.
     workers, client, scheduler :
         The engine, as for :func:`~exudyn_atcm.study.sweep`.
     out : str or os.PathLike, optional
         Directory for ``<case>_optimize_history.csv``, ``<case>_optimize.json``, the run store
-        ``runs/`` (unless ``store``) and the best design's full run in ``best/``.
+        ``runs/`` (unless ``store``) and the best design's full run in ``best/``.  Locked for
+        the case while the optimisation runs (``.<case>_optimize_history.lock``, as
+        :func:`~exudyn_atcm.study.sweep` locks its table): a second optimisation of the case
+        into the same directory is refused.
     store : str or os.PathLike or RunStore, optional
         Run store (see :func:`~exudyn_atcm.study.sweep`).
     rerun_best : bool
@@ -181,10 +203,16 @@ def optimize(
     GridError
         For an unknown parameter, a non-numeric design variable or empty bounds.
     ValueError
-        For an unknown method, integers with a local method, bad constraints or objective.
+        For an unknown method, integers with a local method, bad constraints or objective,
+        ``max_evaluations`` not an integer >= 1.
+    ObjectiveNotFiniteError
+        If the objective (or a constraint's scalar) is not finite (NaN, inf, failed runs) at any
+        design of the first batch (differential evolution's initial population, the
+        Nelder-Mead simplex, L-BFGS-B's start and gradient): the message names the objective
+        and designs with what they gave.  The history is written first (with ``out``).
+    exudyn_atcm.study.lock.StudyLockedError
+        If another optimisation of the case is writing ``out`` now.
     """
-    from scipy import optimize as so
-
     case = case if isinstance(case, Case) else load_case(case)
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
@@ -224,66 +252,110 @@ def optimize(
     overlap = sorted(set(fixed_values) & set(names))
     if overlap:
         raise GridError(f"parameters {overlap} are both fixed and design variables")
-    out_dir = make_directory(out) if out is not None else None
-    run_store = store if isinstance(store, RunStore) else RunStore(store) if store is not None else (
-        RunStore(out_dir / "runs") if out_dir is not None else None)
-
-    engine = make_engine(workers, client, scheduler)
-    problem = Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
-                       float(penalty) if constraint_handling == "penalty" else 0.0, engine, run_store)
+    whole = isinstance(max_evaluations, (int, np.integer)) and not isinstance(max_evaluations, bool)
+    if max_evaluations is not None and not (whole and max_evaluations >= 1):
+        raise ValueError(f"max_evaluations must be an integer >= 1 (the most objective evaluations), got {max_evaluations!r}")
     n = len(names)
-    problem.monitor = RunBudget(max_runs(method, n, maxiter, popsize),
-                                f"{method} over {n} variable{'s' if n > 1 else ''} of case {case.name}",
-                                announce=method == "differential_evolution")
+    cap = sum(evaluation_bounds(method, n, kinds.count("float"), maxiter, popsize, polish))
+    cap = min(cap, int(max_evaluations)) if max_evaluations is not None else cap
+    out_dir = make_directory(out) if out is not None else None
+    with ExitStack() as stack:
+        if out_dir is not None:  # two optimisations of one case never write one folder at once
+            stack.enter_context(TableLock(out_dir / f"{case.name}_optimize_history.csv", f"optimize of {case.name}"))
+        run_store = store if isinstance(store, RunStore) else RunStore(store) if store is not None else (
+            RunStore(out_dir / "runs") if out_dir is not None else None)
+        members = max(popsize * n, 5)  # scipy's population (at least 5)
+        first = {"differential_evolution": (members, "the initial population of differential evolution"),
+                 "nelder-mead": (n + 1, "the initial simplex of Nelder-Mead"),
+                 "l-bfgs-b": (n + 1, "the start and finite-difference gradient of L-BFGS-B")}[method]
+        engine = make_engine(workers, client, scheduler)
+        problem = Problem(case, names, lows, highs, kinds, fixed_values, objective, maximize, checked_constraints,
+                          float(penalty) if constraint_handling == "penalty" else 0.0, engine, run_store,
+                          max_evaluations=cap, first_batch=first[0], first_label=first[1])
+        if max_evaluations is None or cap < max_evaluations:
+            problem.budget_what = f"the bound of the methods' iteration limits ({cap})"
+        problem.monitor = RunBudget(min(max_runs(method, n, maxiter, popsize), cap),
+                                    f"{method} over {n} variable{'s' if n > 1 else ''} of case {case.name}",
+                                    announce=method == "differential_evolution")
+        start = np.array([(float(x0[nm]) - lo) / (hi - lo) if x0 and nm in x0 else 0.5
+                          for nm, lo, hi in zip(names, lows, highs)])
+        result, stopped = _search(problem, method, start, kinds, seed, maxiter, popsize, tol, xatol, fatol, polish,
+                                  penalty, constraint_handling == "scipy")
+        problem.add_unvisited()
+        history = history_columns(case, problem, names)
+        summary = {"case": case.name, "method": method, "maximize": maximize,
+                   "objective": objective if isinstance(objective, str) else getattr(objective, "__name__", repr(objective)),
+                   "bounds": {n: [lo, hi] for n, lo, hi in zip(names, lows, highs)},
+                   "constraints": {k: list(v) for k, v in checked_constraints.items()},
+                   "fixed": {k: list(v) if isinstance(v, tuple) else v for k, v in fixed_values.items()},
+                   "max_evaluations": cap}
+        error = stopped if isinstance(stopped, ObjectiveNotFiniteError) else None
+        if error is None and not problem.finite_seen:  # the search ended before its first batch was complete
+            error = problem.not_finite_error("any design evaluated before the search stopped")
+        if error is not None:
+            if out_dir is not None:
+                _clear_best(out_dir, case.name)
+                written = _write_summary(out_dir, case.name, history, {
+                    **summary, "design": None, "objective value": None, "feasible": False, "evaluations": len(problem.history),
+                    "executed": problem.executed, "message": str(error)})
+                error.args = (f"{error} (every evaluation is in {written[0]})",)
+            raise error
+        opt = _best(case, problem, history, result, stopped, cap, rerun_best, out_dir, plot)
+        if out_dir is not None:
+            opt.files += _write_summary(out_dir, case.name, history, {
+                **summary, "design": opt.design, "objective value": opt.objective, "feasible": opt.feasible,
+                "scalars": opt.scalars, "evaluations": opt.evaluations, "executed": opt.executed, "message": opt.message})
+        return opt
+
+
+def _search(problem: Problem, method: str, start: np.ndarray, kinds: list[str], seed, maxiter: int, popsize: int, tol: float,
+            xatol: float, fatol: float, polish: bool, penalty: float, scipy_constraints: bool):
+    """Run the scipy stages; ``(result of the last finished stage or None, the stop or None)``.
+
+    A spent evaluation budget (:class:`SearchStopped`) and an objective never finite on the
+    first batch (:class:`ObjectiveNotFiniteError`) end the search and are returned; any other
+    error stops the engine's workers and propagates (as itself, not scipy's wrapper).
+    """
+    result = None
     try:
         if method == "differential_evolution":
-            result = _differential_evolution(so, problem, kinds, seed, maxiter, popsize, tol, constraint_handling == "scipy")
-            best_u = np.asarray(result.x, float)
-            if polish and any(k == "float" for k in kinds):
+            result = search.differential_evolution(problem, kinds, seed, maxiter, popsize, tol, scipy_constraints)
+            if polish and "float" in kinds:
                 problem.penalty = float(penalty)  # Nelder-Mead knows constraints only as penalties
-                result = _polish(so, problem, best_u, kinds, xatol, fatol, maxiter)
-                best_u = np.asarray(result.x, float)
+                result = search.polish(problem, np.asarray(result.x, float), kinds, xatol, fatol, maxiter)
         else:
-            start = np.array([
-                (float(x0[nm]) - lo) / (hi - lo) if x0 and nm in x0 else 0.5
-                for nm, lo, hi in zip(names, lows, highs)
-            ])
-            if method == "nelder-mead":
-                simplex = _simplex(start)
-                result = so.minimize(problem, start, method="Nelder-Mead", bounds=[(0.0, 1.0)] * n,
-                                     options={"xatol": xatol, "fatol": _absolute_fatol(problem, simplex, fatol),
-                                              "maxiter": maxiter * n * 20, "initial_simplex": simplex})
-            else:
-                result = so.minimize(problem, start, method="L-BFGS-B", bounds=[(0.0, 1.0)] * n,
-                                     options={"maxiter": maxiter * n, "eps": 1e-6})
-            best_u = np.asarray(result.x, float)
-    except RuntimeError:
-        engine.abort()
-        if problem.error is not None:
+            result = search.local_search(problem, method, start, xatol, fatol, maxiter)
+    except (SearchStopped, ObjectiveNotFiniteError) as exc:
+        return result, exc
+    except BaseException as exc:
+        problem.engine.abort()
+        if isinstance(exc, RuntimeError) and problem.error is not None:  # scipy's wrapper of an error in its map
+            if isinstance(problem.error, (SearchStopped, ObjectiveNotFiniteError)):
+                return result, problem.error
             raise problem.error from None
         raise
-    except BaseException:
-        engine.abort()
-        raise
     finally:
-        engine.close()
+        problem.engine.close()
+    return result, None
 
-    # the best evaluated design: feasible ones first, then the least infeasible
+
+def _best(case: Case, problem: Problem, history, result, stopped, cap: int, rerun_best: bool, out_dir: Path | None,
+          plot: bool) -> OptimizationResult:
+    """The best evaluated design (feasible ones first, then the least infeasible), run again if asked."""
     candidates = [(h["violation"] > 0.0, h["violation"] if h["violation"] > 0.0 else 0.0, h["penalised"], i)
                   for i, (_, h) in enumerate(problem.history) if math.isfinite(h["penalised"]) and math.isfinite(h["violation"])]
-    if candidates:
-        best_index = min(candidates)[3]
-        best_point, info = problem.history[best_index]
-    else:
-        best_point, info = problem.point(best_u), {"record": problem.record(best_u), "objective": math.nan, "violation": math.inf}
+    best_point, info = problem.history[min(candidates)[3]]
     record = info["record"]
-    history = history_columns(case, problem, names)
-    files: list[Path] = []
     output = None
     if rerun_best and record["status"] == "ok":
         output = case.run(record["values"], out_dir=(out_dir / "best") if out_dir is not None else None, plot=plot)
-        files.extend(output.files)
-    opt = OptimizationResult(
+    elif out_dir is not None:
+        _clear_best(out_dir, case.name)
+    if stopped is not None:
+        message = str(stopped)
+    else:
+        message = str(getattr(result, "message", ""))
+    return OptimizationResult(
         design=dict(best_point),
         values=dict(record["values"]),
         objective=float(info["objective"]),
@@ -293,143 +365,23 @@ def optimize(
         history=to_table(history),
         evaluations=len(problem.history),
         executed=problem.executed,
-        message=str(getattr(result, "message", "")),
+        message=message,
         scipy_result=result,
+        files=list(output.files) if output is not None else [],
+        max_evaluations=cap,
     )
-    if out_dir is not None:
-        files.append(write_table_csv(out_dir / f"{case.name}_optimize_history.csv", history,
-                                     {"case": case.name, "method": method, "maximize": maximize}))
-        files.append(write_json(out_dir / f"{case.name}_optimize.json", {
-            "case": case.name, "method": method, "maximize": maximize,
-            "objective": objective if isinstance(objective, str) else getattr(objective, "__name__", repr(objective)),
-            "bounds": {n: [lo, hi] for n, lo, hi in zip(names, lows, highs)},
-            "constraints": {k: list(v) for k, v in checked_constraints.items()},
-            "fixed": {k: list(v) if isinstance(v, tuple) else v for k, v in fixed_values.items()},
-            "design": opt.design, "objective value": opt.objective, "feasible": opt.feasible,
-            "scalars": opt.scalars, "evaluations": opt.evaluations, "executed": opt.executed, "message": opt.message,
-        }))
-    opt.files = files
-    return opt
 
 
-def _simplex(start: np.ndarray, fraction: float = 0.1) -> np.ndarray:
-    """Nelder-Mead simplex: ``fraction`` of each (unit) range from the start, pointing inwards.
-
-    The default 10 % starts a search; :func:`_small_simplex` (2 %) polishes a found point.
-    """
-    n = start.size
-    simplex = np.tile(start, (n + 1, 1))
-    for i in range(n):
-        simplex[i + 1, i] += fraction if start[i] <= 1.0 - fraction else -fraction
-    return simplex
+def _clear_best(out_dir: Path, case_name: str) -> None:
+    """Remove a previous optimisation's best run of the case from ``out/best`` (this one writes none there)."""
+    if (out_dir / "best").is_dir():
+        folder = OutputFolder(out_dir / "best", case_name)
+        folder.begin()
+        folder.finish()
 
 
-def _differential_evolution(so, problem: Problem, kinds, seed, maxiter, popsize, tol, scipy_constraints: bool):
-    """scipy's differential evolution over the design, each population run at once by the engine.
-
-    Float variables run on ``[0, 1]``, integers on their own range (``integrality``).
-    Penalty constraints: scipy's ``workers=`` map with deferred updating.  scipy
-    constraints: ``vectorized=True``, so that the objective and every
-    :class:`~scipy.optimize.NonlinearConstraint` receive the whole population at once.
-    """
-    lows, highs = problem.lows.copy(), problem.highs.copy()
-    de_bounds = [(0.0, 1.0) if k == "float" else (lo, hi) for k, lo, hi in zip(kinds, lows, highs)]
-    integrality = [k == "int" for k in kinds] if "int" in kinds else None
-
-    def to_u(x: np.ndarray) -> np.ndarray:
-        x = np.asarray(x, float)
-        return np.array([xi if k == "float" else (xi - lo) / (hi - lo) for xi, k, lo, hi in zip(x, kinds, lows, highs)])
-
-    def guarded(evaluate):
-        try:
-            return evaluate()
-        except Exception as exc:
-            problem.error = exc  # scipy replaces errors inside its map by a RuntimeError of its own
-            raise
-
-    def func(x):
-        return problem(to_u(x))
-
-    def mapper(f, iterable):
-        xs = list(iterable)
-
-        def evaluate():
-            problem.prefetch([to_u(x) for x in xs])
-            return [f(x) for x in xs]
-        return guarded(evaluate)
-
-    options = dict(seed=seed, maxiter=maxiter, popsize=popsize, tol=tol, polish=False, updating="deferred",
-                   integrality=integrality, init="latinhypercube")
-    if not scipy_constraints:
-        result = so.differential_evolution(func, de_bounds, workers=mapper, **options)
-    else:
-        def members(X):
-            us = [to_u(x) for x in np.atleast_2d(np.asarray(X, float).T)]
-            guarded(lambda: problem.prefetch(us))
-            return us
-
-        def vector_func(X):
-            return np.array([problem(u) for u in members(X)])
-
-        def constraint(name, low):
-            def values(X):
-                out = []
-                for u in members(X):
-                    record = problem.record(u)
-                    value = record["scalars"].get(name, math.nan) if record["status"] == "ok" else math.nan
-                    out.append(value if math.isfinite(value) else (-math.inf if low is not None else math.inf))
-                return np.array(out)[None, :]  # (M = 1, S)
-            return values
-
-        nonlinear = [so.NonlinearConstraint(constraint(name, low), -np.inf if low is None else low,
-                                            np.inf if high is None else high)
-                     for name, (low, high) in problem.constraints.items()]
-        result = so.differential_evolution(vector_func, de_bounds, vectorized=True, constraints=nonlinear, **options)
-    result.x = to_u(result.x)
-    return result
-
-
-def _absolute_fatol(problem: Problem, simplex: np.ndarray, fatol: float, free=None, base=None) -> float:
-    """``fatol`` times the objective's scale on the initial simplex (run in parallel first).
-
-    scipy's Nelder-Mead takes an absolute function tolerance; the objective's units are the
-    case's, so the scale is the largest finite ``|objective|`` on the initial simplex (1 when
-    none is finite or all are 0).
-    """
-    us = []
-    for v in simplex:
-        if free is None:
-            us.append(np.asarray(v, float))
-        else:
-            u = base.copy()
-            u[free] = v
-            us.append(u)
-    problem.prefetch(us)
-    values = [abs(problem.raw_objective(problem.record(u))) for u in us]
-    finite = [v for v in values if math.isfinite(v) and v > 0.0]
-    return float(fatol) * (max(finite) if finite else 1.0)
-
-
-def _polish(so, problem: Problem, best_u: np.ndarray, kinds, xatol, fatol, maxiter):
-    """Nelder-Mead on the float variables from ``best_u`` (integers fixed)."""
-    free = np.array([k == "float" for k in kinds])
-
-    def func(v):
-        u = best_u.copy()
-        u[free] = v
-        return problem(u)
-
-    start = best_u[free]
-    simplex = _small_simplex(start)
-    result = so.minimize(func, start, method="Nelder-Mead", bounds=[(0.0, 1.0)] * int(free.sum()),
-                         options={"xatol": xatol, "fatol": _absolute_fatol(problem, simplex, fatol, free, best_u),
-                                  "maxiter": maxiter * int(free.sum()) * 20, "initial_simplex": simplex})
-    u = best_u.copy()
-    u[free] = result.x
-    result.x = u
-    return result
-
-
-def _small_simplex(start: np.ndarray) -> np.ndarray:
-    """A simplex of 2 % of each range around the start (a polish, not a new search)."""
-    return _simplex(start, 0.02)
+def _write_summary(out_dir: Path, case_name: str, history, summary: dict[str, Any]) -> list[Path]:
+    """``<case>_optimize_history.csv`` and ``<case>_optimize.json``."""
+    return [write_table_csv(out_dir / f"{case_name}_optimize_history.csv", history,
+                            {"case": case_name, "method": summary["method"], "maximize": summary["maximize"]}),
+            write_json(out_dir / f"{case_name}_optimize.json", summary)]

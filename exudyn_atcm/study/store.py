@@ -2,11 +2,19 @@
 
 A run is determined by the case (its name and the full text of its source file), the
 values of *all* its parameters (defaults included, so changing a default in the case file
-is a new run), and the package version.  :func:`run_key` hashes these with SHA-256; the
-record of a finished run is written atomically to ``STORE/<key[:2]>/<key>.json`` the moment
-it finishes.  A study that is interrupted (Ctrl-C, a killed job, a crashed machine) and
-started again finds the finished runs there and does not repeat them; a half-written record
-cannot exist.
+is a new run), the contents of every file a parameter names (a record, a saved model: see
+:mod:`exudyn_atcm.study.inputs`) and the versions of the package and of Exudyn.
+:func:`run_key` hashes these with SHA-256; the record of a finished run is written atomically
+to ``STORE/<key[:2]>/<key>.json`` the moment it finishes.  A study that is interrupted
+(Ctrl-C, a killed job, a crashed machine) and started again finds the finished runs there and
+does not repeat them; a half-written record cannot exist.  A changed input (the record file
+edited, a new Exudyn) is a new key: the run is executed again.
+
+To *say* that a run was executed again because an input changed, the store also keeps, for
+each run identity (:func:`~exudyn_atcm.study.inputs.run_identity`: case, parameter values and
+the files' paths, without their contents), the key and inputs of the last run stored
+(``STORE/latest/<id[:2]>/<id>.json``); :meth:`RunStore.why_stale` compares them with a run's
+inputs now.
 """
 
 from __future__ import annotations
@@ -22,8 +30,9 @@ from typing import Any
 from ..io.atomic import describe_os_error, make_directory, write_json
 from .._version import __version__
 from ..errors import SetupWarning
+from .inputs import changes, environment, plain_values
 
-__all__ = ["RunStore", "run_key", "case_fingerprint", "record_problem"]
+__all__ = ["RunStore", "run_key", "run_key_before_inputs", "case_fingerprint", "record_problem"]
 
 #: Fields of a run record and the types they must have (``None`` allowed where listed).
 _FIELDS: dict[str, tuple[type, ...]] = {
@@ -74,16 +83,9 @@ def case_fingerprint(name: str, source_text: str) -> str:
     return digest.hexdigest()
 
 
-def _plain(value: Any) -> Any:
-    if isinstance(value, tuple):
-        return [_plain(v) for v in value]
-    if isinstance(value, float):
-        return repr(value)  # exact: 0.1 and 0.1000000000000001 are different runs
-    return value
-
-
-def run_key(fingerprint: str, values: Mapping[str, Any], version: str = __version__) -> str:
-    """The key of one run: SHA-256 over the case fingerprint, the parameter values and the version.
+def run_key(fingerprint: str, values: Mapping[str, Any], version: str = __version__, *,
+            inputs: Mapping[str, Any] | None = None) -> str:
+    """The key of one run: SHA-256 over the case, the parameter values, the input files and the versions.
 
     Parameters
     ----------
@@ -93,9 +95,29 @@ def run_key(fingerprint: str, values: Mapping[str, Any], version: str = __versio
         The values of all the case's parameters (sorted by name before hashing).
     version : str
         Package version (a new version recomputes everything).
+    inputs : mapping, optional
+        :func:`~exudyn_atcm.study.inputs.run_inputs` of the run: the SHA-256 of every file a
+        parameter names and Exudyn's version are hashed too.  Default: no files, Exudyn's
+        version now.
+    """
+    inputs = inputs if inputs is not None else {"versions": environment(), "files": {}}
+    payload = json.dumps(
+        {"case": fingerprint, "values": plain_values(values), "version": version,
+         "versions": {str(k): str(v) for k, v in inputs.get("versions", {}).items()},
+         "files": {name: entry["sha256"] for name, entry in inputs.get("files", {}).items()}},
+        sort_keys=True,
+        separators=(",", ":"),
+    )
+    return hashlib.sha256(payload.encode("utf-8")).hexdigest()
+
+
+def run_key_before_inputs(fingerprint: str, values: Mapping[str, Any], version: str = __version__) -> str:
+    """The key the store gave a run before it covered input files and Exudyn's version (issue 29).
+
+    Only to say that a run stored under it is stale (:meth:`RunStore.why_stale`); never reused.
     """
     payload = json.dumps(
-        {"case": fingerprint, "values": {k: _plain(values[k]) for k in sorted(values)}, "version": version},
+        {"case": fingerprint, "values": plain_values(values), "version": version},
         sort_keys=True,
         separators=(",", ":"),
     )
@@ -153,6 +175,39 @@ class RunStore:
         path = self.path(key)
         path.parent.mkdir(parents=True, exist_ok=True)
         return write_json(path, dict(record))
+
+    def latest_path(self, identity: str) -> Path:
+        """File of the last stored run of ``identity`` (its key and inputs)."""
+        return self.directory / "latest" / identity[:2] / f"{identity}.json"
+
+    def remember(self, identity: str, key: str, inputs: Mapping[str, Any]) -> None:
+        """Note ``key`` and its ``inputs`` as the last stored run of ``identity`` (atomic)."""
+        path = self.latest_path(identity)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_json(path, {"identity": identity, "key": key, "inputs": dict(inputs)})
+
+    def why_stale(self, identity: str, key: str, inputs: Mapping[str, Any], key_before_inputs: str | None = None) -> str:
+        """Why the store holds an older result of the run ``key`` (not found under it), or ``""``.
+
+        The last run stored with the same ``identity`` (case, values, file paths) had other
+        inputs: the message lists what changed (``"record file '/d/rec.csv' changed"``,
+        ``"exudyn 1.13.5 -> 1.13.6"``).  A run stored under ``key_before_inputs``
+        (:func:`run_key_before_inputs`) was stored before the key covered input files.
+        """
+        if key in self:
+            return ""
+        try:
+            with open(self.latest_path(identity), encoding="utf-8") as handle:
+                latest = json.load(handle)
+        except (OSError, ValueError):
+            latest = None
+        if isinstance(latest, dict) and latest.get("key") != key and isinstance(latest.get("inputs"), dict):
+            said = changes(latest["inputs"], inputs)
+            if said:
+                return "; ".join(said)
+        if key_before_inputs is not None and key_before_inputs in self:
+            return "stored before the run key covered input files and Exudyn's version"
+        return ""
 
     def __contains__(self, key: object) -> bool:
         return isinstance(key, str) and self.path(key).is_file()

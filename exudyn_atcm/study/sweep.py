@@ -25,7 +25,8 @@ from ..casework import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
 from .lock import TableLock
-from .store import RunStore, run_key
+from .inputs import environment, run_identity, run_inputs
+from .store import RunStore, run_key, run_key_before_inputs
 from .table import Column, StudyTable, table_columns, to_table, write_table_csv
 
 __all__ = ["sweep", "run_study", "StudyResult", "study_points", "StudyProgress"]
@@ -52,6 +53,10 @@ class StudyResult:
         Runs executed by this call (the others came from the store or were duplicates).
     reused : int
         Points answered from the store.
+    stale : int
+        Runs executed again because the store held a result of the same case and parameter
+        values computed from other inputs (a changed file a parameter names, case source or
+        version); each record's ``stale`` says what changed (``""`` if nothing).
     failed : int
         Rows whose run failed.
     csv_path : pathlib.Path or None
@@ -68,6 +73,7 @@ class StudyResult:
     varied: list[str]
     executed: int = 0
     reused: int = 0
+    stale: int = 0
     failed: int = 0
     csv_path: Path | None = None
     wall_time: float = 0.0
@@ -161,17 +167,19 @@ def run_study(
     if clash:
         raise GridError(f"parameters {clash} are both fixed and varied")
     full = [dict(case.resolve({**fixed_values, **p})) for p in pts]
-    keys = [run_key(spec.fingerprint, values) for values in full]
+    versions_now = environment()
+    inputs = [run_inputs(case, spec.fingerprint, values, versions_now) for values in full]
+    keys = [run_key(spec.fingerprint, values, inputs=given) for values, given in zip(full, inputs)]
 
     out_dir = make_directory(out) if out is not None else None
     lock = TableLock(out_dir / f"{case.name}_sweep.csv", f"sweep of {case.name}") if out_dir is not None else nullcontext()
     with lock:
-        return _run_locked(case, spec, fixed_values, pts, full, keys, out_dir, store, retry_failed, progress,
+        return _run_locked(case, spec, fixed_values, pts, full, keys, inputs, out_dir, store, retry_failed, progress,
                            use_pandas, engine, workers, client, scheduler, start)
 
 
 def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[dict[str, Any]], full: list[dict[str, Any]],
-                keys: list[str], out_dir: Path | None, store: Any, retry_failed: bool, progress: StudyProgress | None,
+                keys: list[str], inputs: list[dict[str, Any]], out_dir: Path | None, store: Any, retry_failed: bool, progress: StudyProgress | None,
                 use_pandas: bool | None, engine: Any, workers: int | None, client: Any, scheduler: str | None,
                 start: float) -> StudyResult:
     """The body of :func:`run_study` once the table is locked (two studies never write one table)."""
@@ -198,6 +206,10 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
             queued.add(key)
             todo.append((index, key, values))
     rows_of = Counter(keys)
+    inputs_of = dict(zip(keys, inputs))
+    identity_of = {key: run_identity(case, values, given) for key, values, given in zip(keys, full, inputs)}
+    stale = {key: run_store.why_stale(identity_of[key], key, inputs_of[key], run_key_before_inputs(spec.fingerprint, values))
+             for _, key, values in todo} if run_store is not None else {}
 
     total = len(pts)
     done = sum(1 for k in keys if k in by_key)
@@ -211,8 +223,10 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
         if todo:
             for record in runner.run(spec, todo):
                 executed += 1
+                record["inputs"] = inputs_of[record["key"]]
                 if run_store is not None and not record.get("transient"):
                     run_store.save(record)
+                    run_store.remember(identity_of[record["key"]], record["key"], record["inputs"])
                 by_key[record["key"]] = record
                 n_rows = rows_of[record["key"]]
                 done += n_rows
@@ -237,6 +251,7 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
         record = dict(by_key[key])
         record["index"] = index
         record["values"] = values
+        record["stale"] = stale.get(key, "")
         records.append(record)
     columns = table_columns(case, records)
     result = StudyResult(
@@ -246,6 +261,7 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
         varied=_varied(pts),
         executed=executed,
         reused=reused,
+        stale=sum(1 for key in set(keys) if stale.get(key)),
         failed=sum(1 for r in records if r["status"] != "ok"),
         engine=runner.name,
         workers=int(getattr(runner, "workers", 1)),
@@ -262,6 +278,7 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
             "runs": total,
             "executed": executed,
             "reused_from_store": reused,
+            "stale": {reason: n for reason, n in Counter(stale[k] for k in set(keys) if stale.get(k)).items()},
             "failed": result.failed,
             "engine": result.engine,
             "workers": result.workers,
@@ -340,7 +357,7 @@ def sweep(
     StudyTable
         The same type whatever is installed (``.to_pandas()``, ``.to_numpy()`` convert it).
         One row per point in the study's order: ``run [-]``, the case's parameters, its key
-        scalars, ``status [-]``, ``error [-]``, ``wall_time [s]``, ``key [-]`` (all ``name [unit]``).
+        scalars, ``status [-]``, ``error [-]``, ``stale [-]``, ``wall_time [s]``, ``key [-]`` (all ``name [unit]``).
         Identical (bar wall times) whatever the engine or number of workers.
 
     Raises

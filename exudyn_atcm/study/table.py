@@ -8,7 +8,8 @@ a numpy structured array.
 Columns, in this order: ``run [-]`` (the run's position in the study), every declared
 parameter of the case (declaration order), every key scalar that any run returned (in the
 order of first appearance along the runs), then ``status [-]`` (``ok`` or ``failed``),
-``error [-]`` (one line, empty if ok), ``wall_time [s]`` and ``key [-]`` (the run's store
+``error [-]`` (one line, empty if ok), ``stale [-]`` (empty, or why the store's result of the
+same case and values was not reused: the input that changed), ``wall_time [s]`` and ``key [-]`` (the run's store
 key).  A failed run has NaN for its scalars.  Rows are in the study's order, whatever
 order the runs finished in.
 """
@@ -71,6 +72,7 @@ def table_columns(case: Case, records: Sequence[Mapping[str, Any]]) -> list[Colu
         columns.append(Column(label, unit, "float", [float(r.get("scalars", {}).get(name, math.nan)) for r in rows]))
     columns.append(Column("status", "-", "str", [str(r["status"]) for r in rows]))
     columns.append(Column("error", "-", "str", [str(r.get("error", "")) for r in rows]))
+    columns.append(Column("stale", "-", "str", [str(r.get("stale", "")) for r in rows]))
     columns.append(Column("wall_time", "s", "float", [float(r.get("wall_time", math.nan)) for r in rows]))
     columns.append(Column("key", "-", "str", [str(r["key"]) for r in rows]))
     return columns
