@@ -111,8 +111,13 @@ def run_key(fingerprint: str, values: Mapping[str, Any], version: str = __versio
     return hashlib.sha256(payload.encode("utf-8")).hexdigest()
 
 
-def run_key_before_inputs(fingerprint: str, values: Mapping[str, Any], version: str = __version__) -> str:
-    """The key the store gave a run before it covered input files and Exudyn's version (issue 29).
+#: The last release whose run store keyed runs by case, values and package version only.
+VERSION_BEFORE_INPUTS = "0.2.0"
+
+
+def run_key_before_inputs(fingerprint: str, values: Mapping[str, Any], version: str = VERSION_BEFORE_INPUTS) -> str:
+    """The key exudyn_atcm ``version`` (default 0.2.0, the last such) gave a run before the key covered
+    input files and Exudyn's version (issue 29).
 
     Only to say that a run stored under it is stale (:meth:`RunStore.why_stale`); never reused.
     """
