@@ -46,7 +46,7 @@ def four_bar(period: float = 0.5, n_cells: int = 4):
 
 @pytest.fixture(scope="module")
 def report():
-    return step_error(four_bar(), T_END, STEP)
+    return step_error(four_bar(), T_END, step=STEP)
 
 
 @pytest.fixture(scope="module")
@@ -120,18 +120,18 @@ def test_a_reversal_between_the_steps_of_every_run_is_flagged():
     # the triangle's peak at 0.10015 s lies between the steps of all three runs, missed by 0.3, 0.4 and
     # 0.2 of their steps: the Preisach memory keeps a reversal that is off by O(h), not O(h^2)
     with pytest.warns(AccuracyWarning, match=r"fall more slowly than h\^1.5"):
-        flagged = step_error(four_bar(period=0.2003), 0.2, STEP)
+        flagged = step_error(four_bar(period=0.2003), 0.2, step=STEP)
     assert flagged.worst().order < 1.5
     # the same program with its peak on the grid: second order, no warning
     with warnings.catch_warnings():
         warnings.simplefilter("error", AccuracyWarning)
-        clean = step_error(four_bar(period=0.2), 0.2, STEP)
+        clean = step_error(four_bar(period=0.2), 0.2, step=STEP)
     assert clean.columns["coupler.P_x"].order == pytest.approx(2.0, abs=0.15)
 
 
 def test_lone_actuator_with_a_tip_force_and_without_the_order_check():
     actuator = BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(Triangle(500.0, 1000.0, 0.1)), cell="beam")
-    report = step_error(actuator, 0.05, 1e-3, check_order=False, tip_force=(0.0, -0.01), columns=["tip_y"])
+    report = step_error(actuator, 0.05, step=1e-3, check_order=False, tip_force=(0.0, -0.01), columns=["tip_y"])
     assert report.summary == ["tip_y"]
     assert math.isnan(report.columns["tip_y"].order)  # no third run
     assert report.extrapolated is None  # two runs: nothing to check the order of an extrapolation against
@@ -151,7 +151,7 @@ def test_bad_arguments_are_refused_naming_them(kwargs, match):
     actuator = BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(Triangle(500.0, 1000.0, 0.1)), cell="beam")
     args = {"t_end": 0.02, "step": 1e-3, **kwargs}
     with pytest.raises(ValueError, match=match):
-        step_error(actuator, args.pop("t_end"), args.pop("step"), **args)
+        step_error(actuator, args.pop("t_end"), **args)
 
 
 def test_bad_target_is_refused(report):
@@ -159,3 +159,24 @@ def test_bad_target_is_refused(report):
         report.suggested_step(0.0)
     with pytest.raises(ValueError, match="no such result column"):
         report.worst(["nope"])
+
+
+def test_step_is_keyword_only_and_the_positional_form_warns_for_one_release():
+    # issue 30, part 6: step_error(system, t_end, *, step=...) like simulate; the old positional call
+    # runs the same steps (so the same estimate, to the bit) with an AtcmDeprecationWarning
+    import inspect
+
+    from exudyn_atcm import AtcmDeprecationWarning
+
+    params = inspect.signature(step_error).parameters
+    assert params["step"].kind is inspect.Parameter.KEYWORD_ONLY
+    actuator = BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(Triangle(500.0, 1000.0, 0.1)), cell="beam")
+    new = step_error(actuator, 0.02, step=2e-3, check_order=False)
+    with pytest.warns(AtcmDeprecationWarning, match=r"step_error\(\): pass step= by keyword"):
+        old = step_error(actuator, 0.02, 2e-3, check_order=False)
+    assert old.step == new.step == 2e-3
+    np.testing.assert_array_equal(old.finest["tip_angle"], new.finest["tip_angle"])
+    with pytest.raises(TypeError, match="multiple values for argument 'step'"):
+        step_error(actuator, 0.02, 2e-3, step=1e-3)
+    with pytest.raises(TypeError, match="extra positional arguments"):
+        step_error(actuator, 0.02, 2e-3, True)

@@ -36,6 +36,7 @@ from .._checks import positive_float
 from ..cells import CellKind
 from ..errors import AccuracyWarning
 from ..io.result import Result
+from .keywords import keyword_signature, legacy_positional
 from .run_checks import time_grid
 from .run_setup import DEFAULT_STEP
 from .simulation import simulate
@@ -231,7 +232,8 @@ def _common_rows(results: list[Result], steps: list[float]) -> list[np.ndarray]:
     return [rows[np.searchsorted(k, common)] for k, rows in keyed]
 
 
-def step_error(system: Any, t_end: float, step: float = DEFAULT_STEP, *, check_order: bool = True,
+@keyword_signature
+def step_error(system: Any, t_end: float, *legacy: Any, step: float = DEFAULT_STEP, check_order: bool = True,
                columns: Sequence[str] | None = None, tip_force: tuple[float, float] = (0.0, 0.0),
                settings: Callable[[Any], None] | dict | None = None) -> StepError:
     """Estimate the time-step error of :func:`~exudyn_atcm.simulate` at ``step`` by running at smaller steps.
@@ -289,7 +291,13 @@ def step_error(system: Any, t_end: float, step: float = DEFAULT_STEP, *, check_o
     >>> report = step_error(mechanism, 0.5, step=5e-4)            # doctest: +SKIP
     >>> print(report)                                             # doctest: +SKIP
     >>> report.suggested_step(1e-3)                               # doctest: +SKIP
+
+    ``step`` is keyword-only, as for :func:`~exudyn_atcm.simulate`; the positional form of earlier
+    releases (``step_error(system, t_end, 1e-4)``) still works for one release with an
+    :class:`~exudyn_atcm.AtcmDeprecationWarning`.
     """
+    if legacy:  # the positional step of earlier releases, for one more release
+        (step,) = legacy_positional("step_error", legacy, {"step": step}, {"step": DEFAULT_STEP}).values()
     t_end = positive_float("t_end", t_end)
     step = positive_float("step", step)
     if step > t_end:
