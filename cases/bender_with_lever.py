@@ -124,8 +124,9 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     files.append(save_figure(fig, out_dir / f"{output.case}_loop.png"))
     mech = build_mechanism(p)
     peak = int(np.argmax(r["lever.end_y"]))
-    files.append(plot_mechanism(mech, r, out_dir / f"{output.case}_mechanism.png", row=peak,
-                                trace=["lever.end"], title="bender with lever at its largest deflection"))
+    files.append(out_dir / f"{output.case}_mechanism.png")
+    plot_mechanism(mech, r, path=files[-1], row=peak,
+                   trace=["lever.end"], title="bender with lever at its largest deflection")
     if p.animation:
         files.append(animate_mechanism(mech, r, out_dir / f"{output.case}_animation.gif", frames=40,
                                        trace=["lever.end", "bender.tip"]))

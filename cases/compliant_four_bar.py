@@ -238,8 +238,9 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     mech = build_mechanism(p, strain_laws(p.exponents)["hysteresis"])
     sweep = output.tables["sweep_hysteresis"]
     peak = int(np.argmax(sweep["crank.strain"]))
-    files.append(plot_mechanism(mech, sweep, out_dir / f"{output.case}_mechanism.png", row=peak,
-                                trace=["coupler.P"], title="compliant four-bar at 1500 V"))
+    files.append(out_dir / f"{output.case}_mechanism.png")
+    plot_mechanism(mech, sweep, path=files[-1], row=peak,
+                   trace=["coupler.P"], title="compliant four-bar at 1500 V")
     if p.animation:
         moving = output.tables.get("dynamic", sweep)
         files.append(animate_mechanism(mech, moving, out_dir / f"{output.case}_animation.gif",

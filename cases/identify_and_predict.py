@@ -48,7 +48,7 @@ from exudyn_atcm.hysteresis import (
     save_model,
 )
 from exudyn_atcm.model import REFERENCE
-from exudyn_atcm.plots import plot_fit, plot_model_choice
+from exudyn_atcm.plots import plot_fit, plot_fit_series, plot_model_choice
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 
@@ -152,16 +152,10 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     report = SimpleNamespace(**{k: v for k, v in output.notes["preisach_fit"].items()})
     report.predicted = r["predicted"]
     report.n_fit = n_fit
-    files = plot_fit(
-        out_dir / f"{output.case}_loop.png",
-        out_dir / f"{output.case}_time.png",
-        report,
-        r["voltage"],
-        r["measured"],
-        r["time"],
-        output_unit=r.unit("measured"),
-        title=f"Preisach fit, {p.n_levels} levels",
-    )
+    files = [out_dir / f"{output.case}_loop.png", out_dir / f"{output.case}_time.png"]
+    labels = {"output_unit": r.unit("measured"), "title": f"Preisach fit, {p.n_levels} levels"}
+    plot_fit(report, r["voltage"], r["measured"], path=files[0], **labels)
+    plot_fit_series(report, r["voltage"], r["measured"], time=r["time"], path=files[1], **labels)
     if "model_choice" in output.notes:  # the ranked table of hysteresis.identify as a figure
         data = output.notes["model_choice"]
         table = output.tables["model_choice"]
@@ -172,8 +166,8 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
         chosen = next(c for c in candidates if c.family == data["chosen"])
         choice = SimpleNamespace(candidates=candidates, chosen=chosen, input=table["voltage"], output=table["measured"],
                                  n_fit=data["n_fit"], output_unit=data["output_unit"])
-        files.append(plot_model_choice(out_dir / f"{output.case}_model_choice.png", choice,
-                                       title="hysteresis.identify: families on the same held-out part"))
+        files.append(out_dir / f"{output.case}_model_choice.png")
+        plot_model_choice(choice, path=files[-1], title="hysteresis.identify: families on the same held-out part")
     return files
 
 

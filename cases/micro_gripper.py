@@ -213,8 +213,9 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     mech = build_mechanism(p, p.object_stiffness)
     sweep = output.tables["sweep_object"]
     peak = int(np.argmax(sweep["lower.voltage"]))
-    files.append(plot_mechanism(mech, sweep, out_dir / f"{output.case}_mechanism.png", row=peak,
-                                title="micro-gripper on an elastic object at 1500 V"))
+    files.append(out_dir / f"{output.case}_mechanism.png")
+    plot_mechanism(mech, sweep, path=files[-1], row=peak,
+                   title="micro-gripper on an elastic object at 1500 V")
     if p.animation:
         files.append(animate_mechanism(mech, sweep, out_dir / f"{output.case}_animation.gif",
                                        frames=min(sweep.n_rows, 41), trace=["lower_jaw.jaw", "upper_jaw.jaw"]))

@@ -201,16 +201,17 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     """
     out_dir = Path(out_dir)
     prefix = f"{out_dir / output.case}_"
-    files = [Path(plot_actuator_time_series(output.result, prefix + "time_series.png")),
-             Path(plot_tip_vs_voltage(output.result, prefix + "tip_vs_voltage.png"))]
+    files = [Path(prefix + "time_series.png"), Path(prefix + "tip_vs_voltage.png"), Path(prefix + "shapes.png")]
+    plot_actuator_time_series(output.result, path=files[0])
+    plot_tip_vs_voltage(output.result, path=files[1])
     mechanism, drawn = actuator_as_mechanism(build(p), output.result, name="actuator")
     if p.cell == "ritz":  # one continuous beam: its segments' mean rotations are drawn, not cells
         title = f"Fig. 12 actuator, {p.n_cells} assumed modes (ritz; drawn as {p.n_cells} segments)"
     else:
         title = f"Fig. 12 actuator, {p.n_cells} {p.cell} cells"
     row = int(np.argmax(np.abs(output.result["tip_y"])))
-    files.append(plot_mechanism(mechanism, drawn, prefix + "shapes.png", row=row, trace=("actuator.tip",),
-                                title=f"{title}, largest tip deflection"))
+    plot_mechanism(mechanism, drawn, path=files[2], row=row, trace=("actuator.tip",),
+                   title=f"{title}, largest tip deflection")
     files.append(plot_stroke_vs_voltage(output.result, p, Path(out_dir) / f"{output.case}_stroke_vs_paper.png"))
     if p.animation:
         files.append(animate_mechanism(mechanism, drawn, prefix + "animation.gif", trace=("actuator.tip",), title=title))

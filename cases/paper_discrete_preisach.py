@@ -97,25 +97,26 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     r = output.result
     relays = output.tables["relays"]
-    xy = plot_loops(
-        out_dir / f"{output.case}_xy.png",
+    xy, series, plane = (out_dir / f"{output.case}_{name}.png" for name in ("xy", "time", "relays"))
+    plot_loops(
         [
             Curve(r["voltage"], r["stroke_continuous"], "continuous Preisach"),
             Curve(r["voltage"], r["stroke_discrete"], f"discrete Preisach, {p.n_relays} relays (Eq. 12)", {"drawstyle": "steps-post"}),
         ],
+        path=xy,
         title="Input/output with reversals inside the range (Fig. 15)",
     )
-    series = plot_time_series(
-        out_dir / f"{output.case}_time.png",
+    plot_time_series(
         r,
         [["voltage"], ["stroke_continuous", "stroke_discrete"], ["difference"]],
+        path=series,
         labels={"stroke_continuous": "continuous", "stroke_discrete": "discrete"},
         title="Discrete against continuous Preisach model",
     )
-    plane = plot_relays(
-        out_dir / f"{output.case}_relays.png",
+    plot_relays(
         relays["switch_on"],
         relays["switch_off"],
+        path=plane,
         u_min=-500.0,
         u_max=1500.0,
         title=f"{p.n_relays} relays on the Preisach plane (Fig. 13)",

@@ -90,19 +90,20 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     r = output.result
     last = slice(r.n_rows - 1 - p.samples_per_period, r.n_rows)
     s = output.scalars
-    loop = plot_loops(
-        out_dir / f"{output.case}_loop.png",
+    loop, series = out_dir / f"{output.case}_loop.png", out_dir / f"{output.case}_time.png"
+    plot_loops(
         [
             Curve(r["voltage"][last], r["stroke"][last], f"exact r1 = {s['r1']:.4f}, r2 = {s['r2']:.4f}"),
             Curve(r["voltage"][last], r["stroke_rounded"][last], f"rounded r1 = {s['r1_rounded']:g}, r2 = {s['r2_rounded']:g}", {"linestyle": "--"}),
         ],
         points=[(p.u_min, p.x_min, "min"), (p.u_max, p.x_max, "max"), (p.u_m, p.x_m1, "x_m1"), (p.u_m, p.x_m2, "x_m2")],
+        path=loop,
         title="Continuous Preisach loop (Fig. 6)",
     )
-    series = plot_time_series(
-        out_dir / f"{output.case}_time.png",
+    plot_time_series(
         r,
         [["voltage"], ["stroke", "stroke_rounded"]],
+        path=series,
         labels={"stroke": "exact exponents", "stroke_rounded": "rounded exponents"},
         title="Triangle input (Fig. 7) and stroke (Fig. 8)",
     )

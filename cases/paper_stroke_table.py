@@ -74,7 +74,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
 def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     r = output.result
-    series = plot_time_series(out_dir / f"{output.case}_time.png", r, [["voltage"], ["stroke"]], title="Motor table (Fig. 9)")
+    series = out_dir / f"{output.case}_time.png"
+    plot_time_series(r, [["voltage"], ["stroke"]], path=series, title="Motor table (Fig. 9)")
     fig, (ax,) = new_figure(1, height=3.6)
     factor, unit = display_scale(r["stroke"], "m")
     ax.plot(r["time"], factor * r["stroke"], "o-", markersize=4, label="table points, linear interpolation")

@@ -141,8 +141,9 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     mech = build_mechanism(p)
     sweep = output.tables["sweep"]
     peak = int(np.argmax(sweep["coupler.P_y"]))
-    files.append(plot_mechanism(mech, sweep, out_dir / f"{output.case}_mechanism.png", row=peak,
-                                scale=p.animation_scale, title="parallel guide at +U"))
+    files.append(out_dir / f"{output.case}_mechanism.png")
+    plot_mechanism(mech, sweep, path=files[-1], row=peak,
+                   scale=p.animation_scale, title="parallel guide at +U")
     if p.animation:
         files.append(animate_mechanism(mech, sweep, out_dir / f"{output.case}_animation.gif",
                                        frames=min(sweep.n_rows, 41), scale=p.animation_scale, trace=["coupler.P"]))

@@ -147,9 +147,10 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     for model, style in (("composite", {}), ("paper", {"linestyle": "--"})):
         curves.append(Curve(r["voltage"], r[f"tip_y_{model}"], f"{model} stiffness, {p.cell} cells", {"marker": "o", **style}))
         curves.append(Curve(r["voltage"], r[f"arc_tip_y_{model}"], f"{model}: circular arc (beam theory)", {"color": "0.4", **style}))
-    path = plot_loops(
-        out_dir / f"{output.case}_tip.png",
+    path = out_dir / f"{output.case}_tip.png"
+    plot_loops(
         curves,
+        path=path,
         y_name="tip deflection y",
         title="Static tip deflection: paper vs composite stiffness",
     )

@@ -155,12 +155,17 @@ def test_fig12_case_draws_layers_joints_and_motors_with_the_scale(tmp_path, monk
 
     Short run (one 0.2 s period, beam cells: the drawing does not depend on the cell model).
     """
-    from exudyn_atcm.plots import mechanism as mechanism_plots
+    from exudyn_atcm.plots import target
 
     case = load_case(CASES / "paper_bending_actuator.py")
     figures = []
-    save = mechanism_plots.save_figure
-    monkeypatch.setattr(mechanism_plots, "save_figure", lambda fig, path: figures.append(fig) or save(fig, path))
+    save = target.save_figure
+
+    def keep_shapes(fig, path):  # every plot function writes through plots.target; keep the shape plot's figure
+        if str(path).endswith("_shapes.png"):
+            figures.append(fig)
+        return save(fig, path)
+    monkeypatch.setattr(target, "save_figure", keep_shapes)
     out = case.run({"cell": "beam", "period": 0.2, "cycles": 1, "step": 1e-4}, out_dir=tmp_path, plot=True)
     names = {f.name for f in out.files}
     assert {"paper_bending_actuator_shapes.png", "paper_bending_actuator_animation.gif"} <= names

@@ -149,7 +149,8 @@ def test_a_subclass_kind_is_drawn_with_its_own_joint_label(tmp_path, monkeypatch
         return original(self, *args, **kwargs)
 
     monkeypatch.setattr(matplotlib.axes.Axes, "legend", spy)
-    path = plot_mechanism(mech, r, tmp_path / "mine.png")
+    path = tmp_path / "mine.png"
+    plot_mechanism(mech, r, path=path)
     assert pathlib.Path(path).stat().st_size > 1000
     assert any("my joints" in label for label in labels), labels
 

@@ -434,7 +434,8 @@ def test_shape_of_a_beam_bender_runs_through_its_nodes(tmp_path):
     # chords differ from L_c by the shear strain F/(a1 + a2) ~ 9e-8: 8e-9 m at the tip
     gap = 0.02 * 0.087 / b.laminate.axial_rigidity
     np.testing.assert_allclose(bs.passive[-1], [r["b.tip_x"][0], r["b.tip_y"][0]], rtol=0, atol=1.5 * gap)
-    path = plot_mechanism(m, r, tmp_path / "beam.png")
+    path = tmp_path / "beam.png"
+    plot_mechanism(m, r, path=path)
     assert path.stat().st_size > 1000
 
 

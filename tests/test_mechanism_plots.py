@@ -114,14 +114,16 @@ def test_png_and_gif_are_written_atomically(tmp_path):
     from PIL import Image
 
     mech, result = _mechanism(), _synthetic_result(KAPPAS)
-    png = plot_mechanism(mech, result, tmp_path / "m.png", scale=2.0, trace=["coupler.P"])
+    png = tmp_path / "m.png"
+    plot_mechanism(mech, result, path=png, scale=2.0, trace=["coupler.P"])
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     gif = animate_mechanism(mech, result, tmp_path / "m.gif", frames=5, fps=5, trace=["coupler.P"])
     assert gif.read_bytes()[:6] == b"GIF89a"
     with Image.open(gif) as image:
         assert image.n_frames == 5
-    paths = plot_point_paths(result, ["coupler.P"], tmp_path / "p.png",
-                             others=[(np.array([0.0, 0.01]), np.array([0.05, 0.05]), "reference")])
+    paths = tmp_path / "p.png"
+    plot_point_paths(result, ["coupler.P"], path=paths,
+                     others=[(np.array([0.0, 0.01]), np.array([0.05, 0.05]), "reference")])
     assert paths.is_file()
     assert not list(tmp_path.glob(".tmp_*"))
 
@@ -134,13 +136,13 @@ def test_bad_input_is_refused(tmp_path):
     with pytest.raises(ValueError, match="no column 'crank.cell_angle_1'"):
         mechanism_shape(mech, short, 0)
     with pytest.raises(ValueError, match="scale must be"):
-        plot_mechanism(mech, result, tmp_path / "x.png", scale=0.0)
+        plot_mechanism(mech, result, path=tmp_path / "x.png", scale=0.0)
     with pytest.raises(ValueError, match="frames must be an integer >= 2"):
         animate_mechanism(mech, result, tmp_path / "x.gif", frames=1)
     with pytest.raises(ValueError, match="existing directory"):
         animate_mechanism(mech, result, tmp_path / "missing" / "x.gif", frames=2)
     with pytest.raises(ValueError, match="trace point 'coupler.Q'"):
-        plot_mechanism(mech, result, tmp_path / "x.png", trace=["coupler.Q"])
+        plot_mechanism(mech, result, path=tmp_path / "x.png", trace=["coupler.Q"])
     assert not list(tmp_path.glob("*"))
 
 
@@ -178,4 +180,5 @@ def test_real_run_with_every_component_kind_is_drawn(tmp_path):
     axis = shape.benders[0].passive[1] - shape.benders[0].passive[0]
     offset = shape.benders[0].active[0, 0] - shape.benders[0].passive[0]
     assert float(axis[0] * offset[1] - axis[1] * offset[0]) > 0.0
-    assert plot_mechanism(mech, result, tmp_path / "kinds.png", scale=5.0).is_file()
+    plot_mechanism(mech, result, path=tmp_path / "kinds.png", scale=5.0)
+    assert (tmp_path / "kinds.png").is_file()

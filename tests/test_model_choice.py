@@ -116,7 +116,8 @@ def test_record_input_split_by_time_and_plot(tmp_path):
     choice = identify(record, split=0.5, families=("everett", "prandtl_ishlinskii"), n_levels=10, n_plays=8)
     assert choice.n_fit == int(np.searchsorted(t, 0.5 * t[-1]))
     assert choice.output_unit == "m" and [c.family for c in choice.candidates][0] == "everett"
-    path = plot_model_choice(tmp_path / "choice.png", choice)
+    path = tmp_path / "choice.png"
+    plot_model_choice(choice, path=path)
     assert path.exists() and path.stat().st_size > 10_000
 
 

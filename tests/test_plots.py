@@ -33,12 +33,15 @@ def test_save_figure_is_atomic_png(tmp_path):
 
 def test_loop_time_and_relay_plots(tmp_path):
     u = np.linspace(-500, 1500, 50)
-    loop = plot_loops(tmp_path / "loop.png", [Curve(u, 2e-8 * (u + 500)), Curve(u, 2.2e-8 * (u + 500), "b", {"linestyle": "--"})], points=[(500.0, 12e-6, "x_m1")])
+    loop = tmp_path / "loop.png"
+    plot_loops([Curve(u, 2e-8 * (u + 500)), Curve(u, 2.2e-8 * (u + 500), "b", {"linestyle": "--"})], path=loop,
+               points=[(500.0, 12e-6, "x_m1")])
     t = np.linspace(0, 1, 50)
     r = Result({"time": t, "voltage": u, "stroke": 1e-6 * t, "stroke_rounded": 1.1e-6 * t}, {"time": "s", "voltage": "V", "stroke": "m", "stroke_rounded": "m"})
-    series = plot_time_series(tmp_path / "t.png", r, [["voltage"], ["stroke", "stroke_rounded"]])
-    relays = plot_relays(tmp_path / "r.png", [0.0, 500.0], [-300.0, 100.0], u_min=-500.0, u_max=1500.0)
+    series, relays = tmp_path / "t.png", tmp_path / "r.png"
+    plot_time_series(r, [["voltage"], ["stroke", "stroke_rounded"]], path=series)
+    plot_relays([0.0, 500.0], [-300.0, 100.0], path=relays, u_min=-500.0, u_max=1500.0)
     for path in (loop, series, relays):
         assert path.read_bytes()[:8] == PNG
     with pytest.raises(ValueError, match="share a unit"):
-        plot_time_series(tmp_path / "bad.png", r, [["voltage", "stroke"]])
+        plot_time_series(r, [["voltage", "stroke"]], path=tmp_path / "bad.png")

@@ -12,7 +12,7 @@ May import every description and result layer; never solves anything itself.
 from .cells import cell_figure, draw_rigid_chain, draw_six_bar_cell, height_exaggeration, paper_actuator, save_cell_drawing
 from .hysteresis import Curve, plot_loops, plot_relays, plot_time_series
 from .gif import save_gif
-from .identification import plot_fit, plot_model_choice
+from .identification import plot_fit, plot_fit_series, plot_model_choice
 from .mechanism import (
     BenderShape,
     MechanismShape,
@@ -31,7 +31,7 @@ __all__ = [
     # style
     "STYLE", "COLORS", "new_figure", "axis_label", "display_scale", "save_figure",
     # curves and hysteresis loops
-    "Curve", "plot_loops", "plot_time_series", "plot_relays", "plot_fit", "plot_model_choice",
+    "Curve", "plot_loops", "plot_time_series", "plot_relays", "plot_fit", "plot_fit_series", "plot_model_choice",
     # results of the lone actuator
     "plot_result", "plot_actuator_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator",
     "save_gif",

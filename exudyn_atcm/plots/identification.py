@@ -7,38 +7,118 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.figure import Figure
 
-from .style import axis_label, display_scale, new_figure, save_figure
+from .style import axis_label, display_scale
+from .target import figure_axes, finish, is_path, warn_path_form
 
-__all__ = ["plot_fit", "plot_model_choice"]
+__all__ = ["plot_fit", "plot_fit_series", "plot_model_choice"]
 
 
 def plot_fit(
-    loop_path: str | os.PathLike,
-    series_path: str | os.PathLike,
     report: Any,
     u: Any,
     y: Any,
-    time: Any = None,
-    *,
+    *legacy: Any,
+    ax: Any = None,
+    path: str | os.PathLike | None = None,
     input_name: str = "voltage",
     input_unit: str = "V",
     output_name: str = "displacement",
     output_unit: str = "m",
     title: str = "",
-) -> list[Path]:
-    """Measured against predicted output: input-output loop and time series with the error.
+) -> Figure:
+    """Measured against predicted output as input-output loops: the fitted and the held-out part.
 
     Parameters
     ----------
-    loop_path, series_path : str or os.PathLike
-        PNG files to write.
+    report : FitReport
+        The fit's report (its ``predicted`` series, ``n_fit`` and the linear model are used).
+    u, y : array_like
+        The record's input and measured output.
+    ax : sequence of 2 matplotlib Axes, optional
+        Draw into these panels instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
+    input_name, input_unit, output_name, output_unit : str
+        Axis quantities and SI units.
+    title : str
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.  The time series with the error is :func:`plot_fit_series`.  The earlier
+        ``plot_fit(loop_path, series_path, report, u, y, time=None, ...)``, which wrote both, still
+        works for one release (with an :class:`~exudyn_atcm.AtcmDeprecationWarning`) and returns the
+        two paths.
+    """
+    labels = dict(input_name=input_name, input_unit=input_unit, output_name=output_name, output_unit=output_unit,
+                  title=title)
+    if is_path(report):  # the earlier plot_fit(loop_path, series_path, report, u, y, time=None, ...)
+        if path is not None or ax is not None or not 2 <= len(legacy) <= 3:
+            raise TypeError("plot_fit(loop_path, series_path, report, u, y[, time]) is the earlier form; "
+                            "now plot_fit(report, u, y, *, ax=None, path=None)")
+        warn_path_form("plot_fit")
+        loop_path, series_path, report, u, y, time = report, u, y, legacy[0], legacy[1], (*legacy[2:], None)[0]
+        plot_fit(report, u, y, path=loop_path, **labels)
+        plot_fit_series(report, u, y, time=time, path=series_path, **labels)
+        return [Path(loop_path), Path(series_path)]
+    if legacy:
+        raise TypeError(f"plot_fit() got {len(legacy)} extra positional arguments (ax=, path=, ... are keywords)")
+    u = np.asarray(u, dtype=float)
+    y = np.asarray(y, dtype=float)
+    p = np.asarray(report.predicted, dtype=float)
+    linear = report.linear_model["a"] * u + report.linear_model["b"]
+    k = report.n_fit
+    factor, unit = display_scale(y, output_unit)
+
+    fig, axes = figure_axes(ax, 1, 2, width=9.0, height=4.0)
+    for axis, part, sl in ((axes[0], "fitted part", slice(0, k)), (axes[1], "held-out part", slice(k, None))):
+        if u[sl].size == 0:
+            axis.set_visible(False)
+            continue
+        axis.plot(u[sl], factor * y[sl], ".", markersize=2, color="0.6", label="measured")
+        axis.plot(u[sl], factor * p[sl], label="model", linewidth=1.0)
+        axis.plot(u[sl], factor * linear[sl], "--", label="best linear model", linewidth=1.0)
+        rms = report.model_errors["fit" if sl.start == 0 else "held_out"]["rms"]
+        axis.set_title(f"{part}: model RMS {factor * rms:.3g} {unit}")
+        axis.set_xlabel(axis_label(input_name, input_unit))
+        axis.set_ylabel(axis_label(output_name, unit))
+        axis.legend(loc="upper left")
+    if title:
+        fig.suptitle(title)
+    return finish(fig, path)
+
+
+def plot_fit_series(
+    report: Any,
+    u: Any,
+    y: Any,
+    *,
+    time: Any = None,
+    ax: Any = None,
+    path: str | os.PathLike | None = None,
+    input_name: str = "voltage",
+    input_unit: str = "V",
+    output_name: str = "displacement",
+    output_unit: str = "m",
+    title: str = "",
+) -> Figure:
+    """Measured against predicted output over time, with the model's and the linear model's error.
+
+    Parameters
+    ----------
     report : FitReport
         The fit's report (its ``predicted`` series, ``n_fit`` and the linear model are used).
     u, y : array_like
         The record's input and measured output.
     time : array_like, optional
         Sample times [s]; default the sample index.
+    ax : sequence of 3 matplotlib Axes, optional
+        Draw into these panels instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
     input_name, input_unit, output_name, output_unit : str
         Axis quantities and SI units.
     title : str
@@ -46,8 +126,8 @@ def plot_fit(
 
     Returns
     -------
-    list of Path
-        The two files written.
+    matplotlib.figure.Figure
+        The figure drawn on.
     """
     u = np.asarray(u, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -56,26 +136,9 @@ def plot_fit(
     k = report.n_fit
     factor, unit = display_scale(y, output_unit)
 
-    fig, axes = new_figure(1, 2, width=9.0, height=4.0)
-    for ax, part, sl in ((axes[0], "fitted part", slice(0, k)), (axes[1], "held-out part", slice(k, None))):
-        if u[sl].size == 0:
-            ax.set_visible(False)
-            continue
-        ax.plot(u[sl], factor * y[sl], ".", markersize=2, color="0.6", label="measured")
-        ax.plot(u[sl], factor * p[sl], label="model", linewidth=1.0)
-        ax.plot(u[sl], factor * linear[sl], "--", label="best linear model", linewidth=1.0)
-        rms = report.model_errors["fit" if sl.start == 0 else "held_out"]["rms"]
-        ax.set_title(f"{part}: model RMS {factor * rms:.3g} {unit}")
-        ax.set_xlabel(axis_label(input_name, input_unit))
-        ax.set_ylabel(axis_label(output_name, unit))
-        ax.legend(loc="upper left")
-    if title:
-        fig.suptitle(title)
-    loop = save_figure(fig, loop_path)
-
     x = np.arange(u.size) if time is None else np.asarray(time, dtype=float)
     x_label = axis_label("sample", "-") if time is None else axis_label("time", "s")
-    fig, axes = new_figure(3, 1, width=8.0, height=7.0, sharex=True)
+    fig, axes = figure_axes(ax, 3, 1, width=8.0, height=7.0, sharex=True)
     axes[0].plot(x, u)
     axes[0].set_ylabel(axis_label(input_name, input_unit))
     axes[1].plot(x, factor * y, ".", markersize=2, color="0.6", label="measured")
@@ -88,23 +151,23 @@ def plot_fit(
     axes[2].set_xlabel(x_label)
     axes[2].legend(loc="upper left")
     if k < u.size:
-        for ax in axes:
-            ax.axvline(x[k], color="black", linewidth=0.8, linestyle=":")
+        for a in axes:
+            a.axvline(x[k], color="black", linewidth=0.8, linestyle=":")
     if title:
         axes[0].set_title(f"{title}: fitted | held out")
-    series = save_figure(fig, series_path)
-    return [loop, series]
+    return finish(fig, path)
 
 
 def plot_model_choice(
-    path: str | os.PathLike,
     choice: Any,
-    *,
+    *legacy: Any,
+    ax: Any = None,
+    path: str | os.PathLike | None = None,
     input_name: str = "voltage",
     input_unit: str = "V",
     output_name: str = "displacement",
     title: str = "",
-) -> Path:
+) -> Figure:
     """The ranked table of :func:`exudyn_atcm.hysteresis.identify` as a figure.
 
     Left: held-out RMS error of each fitted family [% of the output range] (the chosen one
@@ -113,10 +176,12 @@ def plot_model_choice(
 
     Parameters
     ----------
-    path : str or os.PathLike
-        PNG file to write.
     choice : ModelChoice
         The result of :func:`~exudyn_atcm.hysteresis.identify`.
+    ax : sequence of 2 matplotlib Axes, optional
+        Draw into these panels instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
     input_name, input_unit, output_name : str
         Axis quantities (the output unit is the choice's).
     title : str
@@ -124,15 +189,26 @@ def plot_model_choice(
 
     Returns
     -------
-    Path
-        The file written.
+    matplotlib.figure.Figure
+        The figure drawn on.  The earlier ``plot_model_choice(path, choice, ...)`` still works for one
+        release (with an :class:`~exudyn_atcm.AtcmDeprecationWarning`) and returns the path.
     """
+    if is_path(choice):  # the earlier plot_model_choice(path, choice, ...)
+        if path is not None or len(legacy) != 1:
+            raise TypeError("plot_model_choice(path, choice) is the earlier form; now plot_model_choice(choice, *, "
+                            "ax=None, path=None)")
+        warn_path_form("plot_model_choice")
+        plot_model_choice(legacy[0], ax=ax, path=choice, input_name=input_name, input_unit=input_unit,
+                          output_name=output_name, title=title)
+        return Path(choice)
+    if legacy:
+        raise TypeError(f"plot_model_choice() got {len(legacy)} extra positional arguments")
     fitted = [c for c in choice.candidates if not c.failure]
     u = np.asarray(choice.input, dtype=float)
     y = np.asarray(choice.output, dtype=float)
     k = choice.n_fit
     factor, unit = display_scale(y, choice.output_unit or "m")
-    fig, axes = new_figure(1, 2, width=11.0, height=4.2)
+    fig, axes = figure_axes(ax, 1, 2, width=11.0, height=4.2)
     ax = axes[0]
     names = [c.label for c in fitted][::-1]
     values = [c.held_out_rms_percent for c in fitted][::-1]
@@ -156,4 +232,4 @@ def plot_model_choice(
     ax.legend(loc="upper left", fontsize=8)
     if title:
         fig.suptitle(title)
-    return save_figure(fig, path)
+    return finish(fig, path)

@@ -36,6 +36,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..mechanism import Bender, Flexure, Link, Mechanism
 from ..mechanism.connections import Pin, Slider, Weld
@@ -48,7 +49,8 @@ from .mechanism_shapes import (
     mechanism_shape,
 )
 from .gif import save_gif
-from .style import COLORS, axis_label, new_figure, save_figure
+from .style import COLORS, axis_label, new_figure
+from .target import figure_axes, finish, legacy_path
 
 __all__ = [
     "BenderShape",
@@ -257,21 +259,24 @@ def _time_text(result, row: int) -> str:
 def plot_mechanism(
     mechanism: Mechanism,
     result,
-    path: str | os.PathLike,
-    *,
+    *legacy: object,
+    ax: object = None,
+    path: str | os.PathLike | None = None,
     row: int = -1,
     scale: float = 1.0,
     title: str | None = None,
     trace: Sequence[str] = (),
-) -> Path:
-    """PNG of the mechanism at one recorded instant, with optional point traces.
+) -> Figure:
+    """The mechanism at one recorded instant, with optional point traces.
 
     Parameters
     ----------
     mechanism, result
         The description and a run of it.
-    path : str or os.PathLike
-        Target ``.png`` (written atomically).
+    ax : matplotlib Axes, optional
+        Draw into this axes instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
     row : int, optional
         Recorded instant (default: the last).
     scale : float, optional
@@ -280,15 +285,26 @@ def plot_mechanism(
         Title (the deformation scale and time/voltages are appended).
     trace : sequence of str, optional
         Points ``"component.point"`` whose whole recorded path is drawn.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on (the earlier ``plot_mechanism(mechanism, result, path)`` returns the path,
+        with an :class:`~exudyn_atcm.AtcmDeprecationWarning`, for one release).
     """
+    if legacy:
+        old, _ = legacy_path("plot_mechanism", legacy, path)
+        plot_mechanism(mechanism, result, ax=ax, path=old, row=row, scale=scale, title=title, trace=trace)
+        return Path(old)
     _check_scale(scale)
-    fig, (ax,) = new_figure(1, 1, width=7.0, height=5.5)
+    fig, (ax,) = figure_axes(ax, 1, 1, width=7.0, height=5.5)
     _draw_traces(ax, mechanism, result, trace, scale, None)
     n = result.n_rows
     draw_mechanism(ax, mechanism, result, row, scale=scale)
     head = title or mechanism.name
     ax.set_title(f"{head} ({_scale_text(scale)})\n{_time_text(result, int(row) % n)}", fontsize=9)
-    return save_figure(fig, path)
+    return finish(fig, path)
+
 
 
 def _check_scale(scale: float) -> None:
@@ -379,13 +395,14 @@ def animate_mechanism(
 def plot_point_paths(
     result,
     points: Sequence[str],
-    path: str | os.PathLike,
-    *,
+    *legacy: object,
+    ax: object = None,
+    path: str | os.PathLike | None = None,
     labels: Sequence[str] | None = None,
     others: Sequence[tuple[np.ndarray, np.ndarray, str]] = (),
     title: str | None = None,
-) -> Path:
-    """PNG of the recorded paths of points (``y`` over ``x`` in mm).
+) -> Figure:
+    """The recorded paths of points (``y`` over ``x`` in mm).
 
     Parameters
     ----------
@@ -393,19 +410,31 @@ def plot_point_paths(
         A mechanism run.
     points : sequence of str
         Points ``"component.point"`` (their ``_x``/``_y`` columns are drawn).
-    path : str or os.PathLike
-        Target ``.png``.
+    ax : matplotlib Axes, optional
+        Draw into this axes instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
     labels : sequence of str, optional
         Legend labels (default: the point names).
     others : sequence of (x [m], y [m], label), optional
         Further paths (e.g. a reference or another run) drawn dashed.
     title : str, optional
         Axes title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on (the earlier ``plot_point_paths(result, points, path)`` returns the path,
+        with an :class:`~exudyn_atcm.AtcmDeprecationWarning`, for one release).
     """
+    if legacy:
+        old, _ = legacy_path("plot_point_paths", legacy, path)
+        plot_point_paths(result, points, ax=ax, path=old, labels=labels, others=others, title=title)
+        return Path(old)
     labels = list(labels) if labels is not None else list(points)
     if len(labels) != len(points):
         raise ValueError(f"labels must have one entry per point ({len(points)}), got {len(labels)}")
-    fig, (ax,) = new_figure(1, 1, width=6.4, height=4.8)
+    fig, (ax,) = figure_axes(ax, 1, 1, width=6.4, height=4.8)
     for ref, label in zip(points, labels):
         ax.plot(result_column(result, f"{ref}_x") * _MM, result_column(result, f"{ref}_y") * _MM, lw=1.5, label=label)
     for x, y, label in others:
@@ -416,4 +445,4 @@ def plot_point_paths(
     ax.legend(loc="best", fontsize=8)
     if title:
         ax.set_title(title)
-    return save_figure(fig, path)
+    return finish(fig, path)

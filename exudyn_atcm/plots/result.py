@@ -7,22 +7,18 @@ calling this module never selects or opens a GUI backend.
 from __future__ import annotations
 
 import os
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 from matplotlib.figure import Figure
 
 from ..io.atomic import make_directory
 from .gif import save_gif
-from .style import new_figure, save_figure
+from .style import new_figure
+from .target import figure_axes, finish, legacy_path
 from ..io.progress import report_task
 
 __all__ = ["plot_result", "plot_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator"]
-
-
-def _save(fig: Figure, path: str) -> str:
-    save_figure(fig, path)
-    return path
 
 
 def chain_shape(result, row: int) -> tuple[np.ndarray, np.ndarray]:
@@ -44,10 +40,30 @@ def chain_shape(result, row: int) -> tuple[np.ndarray, np.ndarray]:
     return x, y
 
 
-def plot_time_series(result, path: str) -> str:
-    """Voltage, stroke and tip displacement over time."""
+def plot_time_series(result, *legacy: Any, ax: Any = None, path: str | os.PathLike | None = None) -> Figure:
+    """Voltage, stroke and tip displacement over time (three panels).
+
+    Parameters
+    ----------
+    result : Result
+        A lone actuator's run (``voltage`` [V], ``stroke`` [m], ``tip_x``/``tip_y`` [m]).
+    ax : sequence of 3 matplotlib Axes, optional
+        Draw into these panels instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.  (The earlier ``plot_time_series(result, path)`` still works for one
+        release, with an :class:`~exudyn_atcm.AtcmDeprecationWarning`, and returns the path.)
+    """
+    if legacy:
+        old, _ = legacy_path("plot_time_series", legacy, path)
+        plot_time_series(result, ax=ax, path=old)
+        return old
     t = result["time"]
-    fig, axes = new_figure(3, 1, width=7, height=7, sharex=True)
+    fig, axes = figure_axes(ax, 3, 1, width=7, height=7, sharex=True)
     axes[0].plot(t, result["voltage"], color="tab:blue")
     axes[0].set_ylabel("voltage U [V]")
     axes[1].plot(t, result["stroke"] * 1e6, color="tab:orange")
@@ -58,37 +74,80 @@ def plot_time_series(result, path: str) -> str:
     axes[2].set_ylabel("tip displacement [mm]")
     axes[2].set_xlabel("time t [s]")
     axes[2].legend(loc="best")
-    for ax in axes:
-        ax.grid(True, alpha=0.3)
-    return _save(fig, path)
+    for a in axes:
+        a.grid(True, alpha=0.3)
+    return finish(fig, path)
 
 
-def plot_tip_vs_voltage(result, path: str) -> str:
-    """Tip deflection over voltage (the actuator's hysteresis loop)."""
-    fig, (ax,) = new_figure(1, 1, width=6, height=4.5)
-    ax.plot(result["voltage"], result["tip_y"] * 1e3, color="tab:green")
-    ax.set_xlabel("voltage U [V]")
-    ax.set_ylabel("tip deflection y [mm]")
-    ax.grid(True, alpha=0.3)
-    return _save(fig, path)
+def plot_tip_vs_voltage(result, *legacy: Any, ax: Any = None, path: str | os.PathLike | None = None) -> Figure:
+    """Tip deflection over voltage (the actuator's hysteresis loop).
+
+    Parameters
+    ----------
+    result : Result
+        A lone actuator's run (``voltage`` [V], ``tip_y`` [m]).
+    ax : matplotlib Axes, optional
+        Draw into this axes instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on (the earlier ``plot_tip_vs_voltage(result, path)`` returns the path,
+        with an :class:`~exudyn_atcm.AtcmDeprecationWarning`, for one release).
+    """
+    if legacy:
+        old, _ = legacy_path("plot_tip_vs_voltage", legacy, path)
+        plot_tip_vs_voltage(result, ax=ax, path=old)
+        return old
+    fig, (axis,) = figure_axes(ax, 1, 1, width=6, height=4.5)
+    axis.plot(result["voltage"], result["tip_y"] * 1e3, color="tab:green")
+    axis.set_xlabel("voltage U [V]")
+    axis.set_ylabel("tip deflection y [mm]")
+    axis.grid(True, alpha=0.3)
+    return finish(fig, path)
 
 
-def plot_shapes(result, path: str, rows: Sequence[int] | None = None) -> str:
-    """Deformed shape of the passive layer at a few instants (default: 6 evenly spaced)."""
+def plot_shapes(result, *legacy: Any, ax: Any = None, path: str | os.PathLike | None = None,
+                rows: Sequence[int] | None = None) -> Figure:
+    """Deformed shape of the passive layer at a few instants.
+
+    Parameters
+    ----------
+    result : Result
+        A run with ``cell_angle_*`` series and ``cell_length [m]`` in its parameters.
+    ax : matplotlib Axes, optional
+        Draw into this axes instead of a new figure.
+    path : str or os.PathLike, optional
+        Also write the figure as a PNG file (atomically).
+    rows : sequence of int, optional
+        Recorded rows drawn (default: 6 evenly spaced).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on (the earlier ``plot_shapes(result, path, rows)`` returns the path,
+        with an :class:`~exudyn_atcm.AtcmDeprecationWarning`, for one release).
+    """
+    if legacy:
+        old, rest = legacy_path("plot_shapes", legacy, path, extra=1)
+        plot_shapes(result, ax=ax, path=old, rows=rest[0] if rest else rows)
+        return old
     n = result.n_rows
     if rows is None:
         rows = sorted(set(np.linspace(0, n - 1, min(6, n)).round().astype(int).tolist()))
-    fig, (ax,) = new_figure(1, 1, width=7, height=4)
+    fig, (axis,) = figure_axes(ax, 1, 1, width=7, height=4)
     for row in rows:
         x, y = chain_shape(result, row)
-        ax.plot(x * 1e3, y * 1e3, marker="o", markersize=3,
-                label=f"t = {result['time'][row]:.3g} s, U = {result['voltage'][row]:.0f} V")
-    ax.set_xlabel("x along the undeformed actuator [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small", loc="best")
-    return _save(fig, path)
+        axis.plot(x * 1e3, y * 1e3, marker="o", markersize=3,
+                  label=f"t = {result['time'][row]:.3g} s, U = {result['voltage'][row]:.0f} V")
+    axis.set_xlabel("x along the undeformed actuator [mm]")
+    axis.set_ylabel("y [mm]")
+    axis.set_aspect("equal", adjustable="datalim")
+    axis.grid(True, alpha=0.3)
+    axis.legend(fontsize="small", loc="best")
+    return finish(fig, path)
 
 
 def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int = 15) -> str:
@@ -157,6 +216,8 @@ def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[st
     written = []
     report_task("plots", 0, len(jobs))
     for k, (draw, name) in enumerate(jobs, start=1):
-        written.append(draw(result, os.path.join(out_dir, f"{prefix}{name}")))
+        target = os.path.join(out_dir, f"{prefix}{name}")
+        draw(result, path=target)
+        written.append(target)
         report_task("plots", k, len(jobs))
     return written
