@@ -149,7 +149,7 @@ def _fixed(p: Parameters, **changes) -> dict:
 
 
 def optimise(p: Parameters, ctx: RunContext) -> CaseOutput:
-    from exudyn_atcm.study import optimize
+    from exudyn_atcm.study import OptimizeOptions, RunOptions, optimize
 
     store = ctx.out_dir / "runs" if ctx.out_dir is not None else None
     bounds = {
@@ -159,7 +159,8 @@ def optimise(p: Parameters, ctx: RunContext) -> CaseOutput:
     }
     constraints = {"first_frequency": (p.f1_min, None)}
     best = optimize(CASE, "work", bounds, maximize=True, constraints=constraints, fixed=_fixed(p),
-                    maxiter=p.maxiter, popsize=p.popsize, workers=p.workers, store=store, rerun_best=False)
+                    options=OptimizeOptions(maxiter=p.maxiter, popsize=p.popsize, rerun_best=False),
+                    run=RunOptions(workers=p.workers, store=store))
     design = best.design
     n_ratio = design["passive_modulus"] / p.active_modulus
     t_opt = design["passive_thickness"] / p.active_thickness
@@ -182,8 +183,9 @@ def optimise(p: Parameters, ctx: RunContext) -> CaseOutput:
     if p.check_nonlinear and p.kinematics == "linear":
         fixed = _fixed(p, kinematics="nonlinear", passive_modulus=design["passive_modulus"], n_cells=design["n_cells"])
         nonlinear = optimize(CASE, "work", {"passive_thickness": bounds["passive_thickness"]}, method="nelder-mead",
-                             maximize=True, constraints=constraints, fixed=fixed, x0={"passive_thickness": design["passive_thickness"]},
-                             workers=1, store=store, rerun_best=False)
+                             maximize=True, constraints=constraints, fixed=fixed,
+                             x0={"passive_thickness": design["passive_thickness"]},
+                             options=OptimizeOptions(rerun_best=False), run=RunOptions(workers=1, store=store))
         t_nl = nonlinear.design["passive_thickness"] / p.active_thickness
         scalars["thickness_ratio_optimum_nonlinear"] = (t_nl, "-")
         scalars["work_optimum_nonlinear"] = (nonlinear.scalars["work"], "J")

@@ -214,22 +214,22 @@ def _fixed(p: Parameters, targets: np.ndarray, **changes) -> dict:
 
 
 def synthesise(p: Parameters, ctx: RunContext) -> CaseOutput:
-    from exudyn_atcm.study import column, optimize
+    from exudyn_atcm.study import OptimizeOptions, RunOptions, column, optimize
 
     voltages, up, down = cycle(p.n_steps, p.precision_voltages)
     targets = precision_points(p)
     # the run store's keys hash this file only: keep the runs of each version of the imported builder apart
     builder = hashlib.sha256(Path(FOUR_BAR.__file__).read_bytes()).hexdigest()[:12]
     store = ctx.out_dir / "runs" / f"compliant_four_bar_{builder}" if ctx.out_dir is not None else None
-    options = dict(method=p.method, maxiter=p.maxiter, popsize=p.popsize, xatol=p.xatol, fatol=p.fatol, workers=p.workers,
-                   store=store, rerun_best=False)
+    search = OptimizeOptions(maxiter=p.maxiter, popsize=p.popsize, xatol=p.xatol, fatol=p.fatol, rerun_best=False)
+    options = dict(method=p.method, options=search, run=RunOptions(workers=p.workers, store=store))
     best = {"hysteresis": optimize(CASE, "rms_rising", BOUNDS, fixed=_fixed(p, targets), **options)}
     ctx.progress(1, 3 if p.compare else 1)
     if p.compare:
         best["linear"] = optimize(CASE, "rms_rising", BOUNDS, fixed=_fixed(p, targets, drive="linear"), **options)
         ctx.progress(2, 3)
         best["both"] = optimize(CASE, "rms_both", BOUNDS, fixed=_fixed(p, targets), **{
-            **options, "method": "nelder-mead", "workers": 1}, x0=best["hysteresis"].design)
+            **options, "method": "nelder-mead", "run": RunOptions(workers=1, store=store)}, x0=best["hysteresis"].design)
         ctx.progress(3, 3)
 
     # every design evaluated with the hysteretic drive (in this process)

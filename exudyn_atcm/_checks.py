@@ -3,13 +3,15 @@ parameter, the value received and what is allowed."""
 
 from __future__ import annotations
 
+import dataclasses
+import inspect
 import math
 import warnings
 from typing import Any
 
 import numpy as np
 
-from .errors import InputRangeWarning
+from .errors import AtcmDeprecationWarning, InputRangeWarning
 
 
 def _short(value: Any) -> str:
@@ -104,3 +106,61 @@ def warn_implausible(name: str, value: float, kind: str, owner: str, *, stacklev
             InputRangeWarning,
             stacklevel=stacklevel,
         )
+
+
+def options_from_keywords(function: str, legacy: dict[str, Any], **groups: tuple[type, Any]) -> tuple[Any, ...]:
+    """The option objects of ``function`` with the keywords of its earlier, flat signature merged in.
+
+    Parameters
+    ----------
+    function : str
+        Name of the public function (for the messages).
+    legacy : dict
+        The keyword arguments that are fields of the option classes (the earlier signature's).
+    **groups : (type, object or None)
+        Per option parameter (``options=``, ``run=``): its dataclass and the value received.
+
+    Returns
+    -------
+    tuple
+        One instance per group, in the order given: the value received, or the class's defaults
+        with the earlier keywords filled in (warns
+        :class:`~exudyn_atcm.errors.AtcmDeprecationWarning` naming where they go now).
+
+    Raises
+    ------
+    TypeError
+        For an unknown keyword, an option parameter of the wrong type, or a field given both as
+        a keyword and in its option object.
+    """
+    owner = {f.name: group for group, (cls, _) in groups.items() for f in dataclasses.fields(cls)}
+    unknown = [name for name in legacy if name not in owner]
+    if unknown:
+        raise TypeError(f"{function}() got an unexpected keyword argument {unknown[0]!r}")
+    out = []
+    for group, (cls, given) in groups.items():
+        if given is not None and not isinstance(given, cls):
+            raise TypeError(f"{function}(): {group} must be a {cls.__name__}, got {_short(given)}")
+        mine = {name: value for name, value in legacy.items() if owner[name] == group}
+        if mine and given is not None:
+            raise TypeError(f"{function}(): {', '.join(mine)} given both as keywords and in {group}=")
+        out.append(cls(**mine) if mine else given if given is not None else cls())
+    if legacy:
+        where = "; ".join(f"{', '.join(n for n in legacy if owner[n] == g)} into {g}={groups[g][0].__name__}(...)"
+                          for g in groups if any(owner[n] == g for n in legacy))
+        warnings.warn(f"{function}(): pass {where} (the flat keywords go away in the next release)",
+                      AtcmDeprecationWarning, stacklevel=3)
+    return tuple(out)
+
+
+def option_values(options: Any) -> tuple[Any, ...]:
+    """The fields of a dataclass instance in their order, not copied (unlike ``dataclasses.astuple``)."""
+    return tuple(getattr(options, f.name) for f in dataclasses.fields(options))
+
+
+def hide_keywords(function: Any) -> Any:
+    """Give ``function`` the signature without its ``**legacy`` catch-all (returns the same object)."""
+    sig = inspect.signature(function)
+    function.__signature__ = sig.replace(
+        parameters=[p for p in sig.parameters.values() if p.kind is not inspect.Parameter.VAR_KEYWORD])
+    return function

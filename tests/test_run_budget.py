@@ -14,6 +14,7 @@ import pytest
 from exudyn_atcm.errors import RunCostWarning
 from exudyn_atcm.io.progress import reporting
 from exudyn_atcm.study import optimize
+from exudyn_atcm.study.options import OptimizeOptions, RunOptions
 from exudyn_atcm.study import budget as budget_module
 from exudyn_atcm.study.budget import max_runs
 
@@ -49,8 +50,8 @@ def test_the_bound_is_the_methods_iteration_limit():
 def test_an_optimisation_never_exceeds_its_bound_and_reports_every_batch(method, kwargs):
     display = Tasks()
     with reporting(display):
-        best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method=method, fixed={"n": 2}, workers=1,
-                        rerun_best=False, **kwargs)
+        best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method=method, fixed={"n": 2},
+                        options=OptimizeOptions(rerun_best=False, **kwargs), run=RunOptions(workers=1))
     bound = max_runs(method, 1, kwargs["maxiter"], kwargs.get("popsize", 15))
     runs = [c for c in display.calls if c[0] == "optimisation runs"]
     assert best.executed <= bound  # the search stays within its bound (the DE polish, off here, would add runs)
@@ -67,8 +68,7 @@ def test_a_long_optimisation_is_announced_once_with_its_bound(monkeypatch):
     display = Tasks()
     with warnings.catch_warnings(record=True) as caught, reporting(display):
         warnings.simplefilter("always")
-        optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2, "delay": 0.005}, workers=1, maxiter=4, popsize=4,
-                 polish=False, rerun_best=False)
+        optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2, "delay": 0.005}, options=OptimizeOptions(maxiter=4, popsize=4, polish=False, rerun_best=False), run=RunOptions(workers=1))
     announced = [w for w in caught if issubclass(w.category, RunCostWarning)]
     assert len(announced) == 1
     text = str(announced[0].message)
@@ -84,8 +84,7 @@ def test_a_local_method_is_not_announced_from_its_loose_cap(monkeypatch):
     monkeypatch.setattr(budget_module, "LONG_RUN_SECONDS", 0.05)
     with warnings.catch_warnings():
         warnings.simplefilter("error", RunCostWarning)
-        best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2, "delay": 0.005},
-                        workers=1, rerun_best=False)
+        best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2, "delay": 0.005}, options=OptimizeOptions(rerun_best=False), run=RunOptions(workers=1))
     assert best.executed < 100 < max_runs("nelder-mead", 1, 100, 15)
 
 
@@ -106,5 +105,4 @@ def test_the_pace_is_not_taken_from_one_slow_first_run(monkeypatch):
 def test_a_quick_optimisation_says_nothing():
     with warnings.catch_warnings():
         warnings.simplefilter("error", RunCostWarning)
-        optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2}, workers=1, maxiter=2, popsize=3,
-                 rerun_best=False)
+        optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2}, options=OptimizeOptions(maxiter=2, popsize=3, rerun_best=False), run=RunOptions(workers=1))

@@ -15,6 +15,7 @@ import pytest
 
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import run_study
+from exudyn_atcm.study.options import RunOptions
 from exudyn_atcm.study.lock import StudyLockedError, TableLock
 from exudyn_atcm.study.store import RunStore, record_problem
 from exudyn_atcm.study.table import column
@@ -58,7 +59,7 @@ def test_output_directory_that_is_a_file_is_worded_like_run(tmp_path, command):
 )
 def test_a_store_record_of_wrong_types_names_the_file_and_is_run_again(synthetic, tmp_path, edit, words):
     out = tmp_path / "out"
-    first = run_study(synthetic, {"x": [1.0, 2.0]}, workers=1, out=out)
+    first = run_study(synthetic, {"x": [1.0, 2.0]}, run=RunOptions(workers=1, out=out))
     records = sorted((out / "runs").glob("*/*.json"))
     assert len(records) == 2
     damaged = next(p for p in records if json.loads(p.read_text())["values"]["x"] == 2.0)
@@ -67,7 +68,7 @@ def test_a_store_record_of_wrong_types_names_the_file_and_is_run_again(synthetic
     damaged.write_text(json.dumps(record))
     assert record_problem(record, damaged.stem) is not None
     with pytest.warns(RuntimeWarning, match=rf"run store record '{damaged}' cannot be used: {words}.*executed again"):
-        again = run_study(synthetic, {"x": [1.0, 2.0]}, workers=1, out=out)
+        again = run_study(synthetic, {"x": [1.0, 2.0]}, run=RunOptions(workers=1, out=out))
     assert again.executed == 1 and again.reused == 1
     np.testing.assert_array_equal(column(again.table, "y"), [3.0, 6.0])  # y = x^2 + 2
     np.testing.assert_array_equal(column(again.table, "y"), column(first.table, "y"))
@@ -76,16 +77,16 @@ def test_a_store_record_of_wrong_types_names_the_file_and_is_run_again(synthetic
 
 def test_a_store_record_that_is_not_json_is_run_again(synthetic, tmp_path):
     store = RunStore(tmp_path / "runs")
-    run_study(synthetic, {"x": [1.0]}, workers=1, store=store)
+    run_study(synthetic, {"x": [1.0]}, run=RunOptions(workers=1, store=store))
     [path] = list((tmp_path / "runs").glob("*/*.json"))
     path.write_text('{"key": ')
     with pytest.warns(RuntimeWarning, match=rf"'{path}' cannot be used: not valid JSON"):
-        again = run_study(synthetic, {"x": [1.0]}, workers=1, store=store)
+        again = run_study(synthetic, {"x": [1.0]}, run=RunOptions(workers=1, store=store))
     assert again.executed == 1
 
 
 def test_a_good_record_passes_the_check(synthetic, tmp_path):
-    run_study(synthetic, {"x": [1.0]}, workers=1, store=tmp_path / "runs")
+    run_study(synthetic, {"x": [1.0]}, run=RunOptions(workers=1, store=tmp_path / "runs"))
     [path] = list((tmp_path / "runs").glob("*/*.json"))
     assert record_problem(json.loads(path.read_text()), path.stem) is None
 
@@ -108,7 +109,7 @@ def test_a_second_sweep_on_the_same_table_is_refused_until_the_first_ends(synthe
         assert holder.stdout.readline().strip() == "locked"
         with pytest.raises(StudyLockedError, match=rf"another study is writing '{out / 'synthetic_study_sweep.csv'}' now "
                                                    rf"\(pid {holder.pid} on .*: holder\); wait until it ends, or .*\(--out\)"):
-            run_study(synthetic, {"x": [1.0]}, workers=1, out=out)
+            run_study(synthetic, {"x": [1.0]}, run=RunOptions(workers=1, out=out))
         assert not (out / "synthetic_study_sweep.csv").exists()
         # the command line: one line, exit status 1
         refused = cli(["sweep", str(SYNTHETIC), "--grid", "x=1,2", "--workers", "1", "--out", str(out), "--no-plot"], tmp_path)
@@ -116,12 +117,12 @@ def test_a_second_sweep_on_the_same_table_is_refused_until_the_first_ends(synthe
         # another case's table in the same directory is not blocked
         other = tmp_path / "other.py"
         other.write_text(SYNTHETIC.read_text().replace('Case("synthetic_study"', 'Case("other"'))
-        assert run_study(load_case(other), {"x": [1.0]}, workers=1, out=out).failed == 0
+        assert run_study(load_case(other), {"x": [1.0]}, run=RunOptions(workers=1, out=out)).failed == 0
     finally:
         os.killpg(holder.pid, signal.SIGKILL)  # the lock ends with its process, even killed
         holder.wait(timeout=30)
         holder.stdout.close()
-    result = run_study(synthetic, {"x": [1.0, 2.0]}, workers=1, out=out)
+    result = run_study(synthetic, {"x": [1.0, 2.0]}, run=RunOptions(workers=1, out=out))
     assert result.csv_path.is_file() and result.failed == 0
 
 

@@ -11,6 +11,7 @@ import pytest
 from exudyn_atcm import theory as bt
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import GridError, optimize
+from exudyn_atcm.study.options import OptimizeOptions, RunOptions
 
 from _cli_helpers import CASES
 
@@ -41,8 +42,7 @@ def test_local_optimiser_finds_the_closed_form_thickness_ratio(bender):
     optimiser's stopping tolerance (xatol 1e-4 of the 1.45 mm range = 5e-4 of h1*).
     """
     fixed = {"mode": "evaluate", "n_cells": 3, "passive_modulus": 70e9}
-    best = optimize(bender, "work", {"passive_thickness": (0.05e-3, 1.5e-3)}, method="nelder-mead",
-                    maximize=True, fixed=fixed, workers=1, rerun_best=True)
+    best = optimize(bender, "work", {"passive_thickness": (0.05e-3, 1.5e-3)}, method="nelder-mead", maximize=True, fixed=fixed, options=OptimizeOptions(rerun_best=True), run=RunOptions(workers=1))
     expected = bt.optimal_thickness_ratio(70e9 / 30.336e9)
     assert best.design["passive_thickness"] / 0.3e-3 == pytest.approx(expected, rel=1e-3)
     assert best.output is not None and best.output.scalars["work"] == best.scalars["work"]
@@ -68,20 +68,19 @@ def test_optimise_bender_case_finds_the_design(bender, tmp_path):
 
 def test_differential_evolution_with_integer_and_constraint_parallel_and_resumable(tmp_path):
     """max z = n sin(x) subject to y = x^2 + n <= 3: n = 2, x = 1 (n = 1 gives sin(sqrt 2) < 1, n = 3 gives 0)."""
-    kwargs = dict(maximize=True, constraints={"y": (None, 3.0)}, maxiter=40, out=tmp_path)
+    kwargs = dict(maximize=True, constraints={"y": (None, 3.0)}, options=OptimizeOptions(maxiter=40))
     bounds = {"x": (0.0, 3.0), "n": (1, 3)}
-    first = optimize(SYNTHETIC, "z", bounds, workers=2, **kwargs)
+    first = optimize(SYNTHETIC, "z", bounds, run=RunOptions(workers=2, out=tmp_path), **kwargs)
     assert first.design["n"] == 2 and first.design["x"] == pytest.approx(1.0, abs=1e-3)
     assert first.feasible and first.objective == pytest.approx(2.0 * math.sin(1.0), rel=1e-3)
     assert first.executed > 0 and (tmp_path / "synthetic_study_optimize_history.csv").is_file()
     # the same optimisation again: every evaluation comes from the store, same answer, in one process
-    again = optimize(SYNTHETIC, "z", bounds, workers=1, **kwargs)
+    again = optimize(SYNTHETIC, "z", bounds, run=RunOptions(workers=1, out=tmp_path), **kwargs)
     assert again.executed == 0 and again.design == first.design and again.evaluations == first.evaluations
 
 
 def test_lbfgsb_with_finite_differences_and_a_callable_objective():
-    best = optimize(SYNTHETIC, lambda scalars, values: (values["x"] - 0.7) ** 2 + scalars["y"] * 0.0,
-                    {"x": (-1.0, 2.0)}, method="l-bfgs-b", workers=1)
+    best = optimize(SYNTHETIC, lambda scalars, values: (values["x"] - 0.7) ** 2 + scalars["y"] * 0.0, {"x": (-1.0, 2.0)}, method="l-bfgs-b", run=RunOptions(workers=1))
     assert best.design["x"] == pytest.approx(0.7, abs=1e-5)
 
 
@@ -95,8 +94,8 @@ def test_lbfgsb_with_finite_differences_and_a_callable_objective():
          "bounds: delay must be >= 0 [s], got -1.0 (the case's declared range)"),
         ({"bounds": {"n": (1, 3)}, "method": "nelder-mead"}, ValueError, "need method='differential_evolution'"),
         ({"bounds": {"x": (0, 1)}, "method": "newton"}, ValueError, "method must be one of"),
-        ({"bounds": {"x": (0, 1)}, "fatol": -1.0}, ValueError, "fatol must be a number in [0, inf)"),
-        ({"bounds": {"x": (0, 1)}, "xatol": 2.0}, ValueError, "xatol must be a number in [0, 1)"),
+        ({"bounds": {"x": (0, 1)}, "options": OptimizeOptions(fatol=-1.0)}, ValueError, "fatol must be a number in [0, inf)"),
+        ({"bounds": {"x": (0, 1)}, "options": OptimizeOptions(xatol=2.0)}, ValueError, "xatol must be a number in [0, 1)"),
         ({"bounds": {"x": (0, 1)}, "constraints": {"y": (None, None)}}, ValueError, "give a lower or an upper limit"),
         ({"bounds": {"x": (0, 1)}, "constraints": {"f1": (1.0, None)}}, ValueError,
          "constraints: 'f1' is not a key scalar of case synthetic_study; its key scalars: y, z"),
@@ -104,7 +103,7 @@ def test_lbfgsb_with_finite_differences_and_a_callable_objective():
 )
 def test_bad_optimisation_input(kwargs, error, message):
     with pytest.raises(error, match=None) as info:
-        optimize(SYNTHETIC, "y", workers=1, **kwargs)
+        optimize(SYNTHETIC, "y", run=RunOptions(workers=1), **kwargs)
     assert message in str(info.value)
 
 
@@ -118,8 +117,7 @@ def test_nelder_mead_stops_at_its_tolerances_on_a_smooth_problem():
     equal at machine precision) shows the function tolerance: with fatol = 0 it runs until the
     simplex collapses to rounding, with the default 1e-4 (relative) it stops far sooner.
     """
-    best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2}, workers=1,
-                    rerun_best=False)
+    best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2}, options=OptimizeOptions(rerun_best=False), run=RunOptions(workers=1))
     assert best.scipy_result.status == 0  # "Optimization terminated successfully", not the cap (status 1/2)
     assert best.evaluations < 100
     assert abs(best.design["x"]) < 4 * 1e-4 * 4.0
@@ -127,13 +125,11 @@ def test_nelder_mead_stops_at_its_tolerances_on_a_smooth_problem():
     def kink(scalars, values):
         return abs(values["x"] - 0.7123) + 0.5
 
-    runs = {fatol: optimize(SYNTHETIC, kink, {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2}, workers=1,
-                            rerun_best=False, fatol=fatol) for fatol in (0.0, 1e-4)}
+    runs = {fatol: optimize(SYNTHETIC, kink, {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"n": 2}, options=OptimizeOptions(rerun_best=False, fatol=fatol), run=RunOptions(workers=1)) for fatol in (0.0, 1e-4)}
     assert runs[1e-4].evaluations < 0.5 * runs[0.0].evaluations  # measured 24 against 104
     assert abs(runs[1e-4].design["x"] - 0.7123) < 4 * 1e-4 * 4.0  # still within the x tolerance
     # the polish after differential evolution stops too: DE (4 generations) + polish well under the polish's cap
-    de = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2}, workers=1, maxiter=4, popsize=4,
-                  rerun_best=False)
+    de = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, fixed={"n": 2}, options=OptimizeOptions(maxiter=4, popsize=4, rerun_best=False), run=RunOptions(workers=1))
     assert de.scipy_result.status == 0
     assert de.evaluations < 4 * 5 * 4 + 100  # DE: at most (maxiter + 1) * popsize * n runs; polish < 100
     assert abs(de.design["x"]) < 4 * 1e-4 * 4.0
@@ -141,13 +137,12 @@ def test_nelder_mead_stops_at_its_tolerances_on_a_smooth_problem():
 
 def test_unknown_objective_scalar():
     with pytest.raises(ValueError, match="objective 'w' is not a key scalar of case synthetic_study; its key scalars: y, z"):
-        optimize(SYNTHETIC, "w", {"x": (0.0, 1.0)}, method="nelder-mead", workers=1)
+        optimize(SYNTHETIC, "w", {"x": (0.0, 1.0)}, method="nelder-mead", run=RunOptions(workers=1))
 
 
 def test_scipy_constraints_in_differential_evolution():
     """The same problem with scipy's NonlinearConstraint (feasibility rules), population vectorised."""
-    best = optimize(SYNTHETIC, "z", {"x": (0.0, 3.0), "n": (1, 3)}, maximize=True, constraints={"y": (None, 3.0)},
-                    constraint_handling="scipy", maxiter=40, workers=2)
+    best = optimize(SYNTHETIC, "z", {"x": (0.0, 3.0), "n": (1, 3)}, maximize=True, constraints={"y": (None, 3.0)}, options=OptimizeOptions(constraint_handling="scipy", maxiter=40), run=RunOptions(workers=2))
     assert best.design["n"] == 2 and best.design["x"] == pytest.approx(1.0, abs=1e-3)
     assert best.feasible and best.scalars["y"] <= 3.0
 
@@ -188,4 +183,4 @@ def test_cli_bound_errors_name_the_bound_option(bound, message, capsys):
 def test_malformed_scheduler_address_names_the_parameter():
     pytest.importorskip("dask.distributed")
     with pytest.raises(ValueError, match=r"scheduler must be a Dask scheduler address such as 'tcp://HOST:8786', got 'foo'"):
-        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, scheduler="foo")
+        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, run=RunOptions(scheduler="foo"))

@@ -33,6 +33,7 @@ import pytest
 from scipy.optimize import differential_evolution
 
 from exudyn_atcm.study import column, optimize
+from exudyn_atcm.study.options import OptimizeOptions, RunOptions
 from exudyn_atcm.study.lock import StudyLockedError
 from exudyn_atcm.study import ObjectiveNotFiniteError
 
@@ -102,7 +103,7 @@ def test_a_second_optimisation_into_the_same_folder_is_refused_until_the_first_e
         with pytest.raises(StudyLockedError, match=rf"another study is writing '{re.escape(str(table))}' now "
                                                    rf"\(pid {first.pid} on .*: optimize of synthetic_study\); wait until it "
                                                    r"ends, or give this one another output directory \(--out\)"):
-            optimize(SYNTHETIC, "y", {"x": (0.0, 3.0)}, workers=1, maxiter=1, popsize=1, out=out)
+            optimize(SYNTHETIC, "y", {"x": (0.0, 3.0)}, options=OptimizeOptions(maxiter=1, popsize=1), run=RunOptions(workers=1, out=out))
         refused = cli(["optimize", str(SYNTHETIC), "--objective", "y", "--bound", "x=0:3", "--maxiter", "1", "--popsize", "1",
                        "--workers", "1", "--out", str(out), "--no-plot"], tmp_path)
         assert refused.returncode == 1
@@ -112,7 +113,7 @@ def test_a_second_optimisation_into_the_same_folder_is_refused_until_the_first_e
         os.killpg(first.pid, signal.SIGKILL)  # a killed holder: its lock ends with it
         first.wait(timeout=30)
     assert (out / ".synthetic_study_optimize_history.lock").read_text().startswith(f"pid {first.pid} ")  # left behind
-    best = optimize(SYNTHETIC, "y", {"x": (0.0, 3.0)}, workers=1, maxiter=2, popsize=3, out=out, rerun_best=False)
+    best = optimize(SYNTHETIC, "y", {"x": (0.0, 3.0)}, options=OptimizeOptions(maxiter=2, popsize=3, rerun_best=False), run=RunOptions(workers=1, out=out))
     assert best.design["x"] == pytest.approx(0.0, abs=1e-3)  # y = x^2 + 2 is least at x = 0
     assert len(_history(out / "synthetic_study_optimize_history.csv")) == best.evaluations
 
@@ -129,10 +130,10 @@ def test_optimisations_of_other_cases_share_a_folder(tmp_path):
     try:
         out.mkdir()
         assert holder.stdout.readline().strip() == "locked"
-        best = optimize(other, "w", {"x": (0.0, 1.0)}, workers=1, maxiter=2, popsize=3, out=out, rerun_best=False)
+        best = optimize(other, "w", {"x": (0.0, 1.0)}, options=OptimizeOptions(maxiter=2, popsize=3, rerun_best=False), run=RunOptions(workers=1, out=out))
         assert best.design["x"] == pytest.approx(0.0, abs=1e-3)  # w = x
         with pytest.raises(StudyLockedError, match="holder"):
-            optimize(SYNTHETIC, "y", {"x": (0.0, 3.0)}, workers=1, maxiter=1, popsize=1, out=out)
+            optimize(SYNTHETIC, "y", {"x": (0.0, 3.0)}, options=OptimizeOptions(maxiter=1, popsize=1), run=RunOptions(workers=1, out=out))
     finally:
         os.killpg(holder.pid, signal.SIGKILL)
         holder.wait(timeout=30)
@@ -179,7 +180,7 @@ def test_a_local_method_stops_after_its_simplex_and_names_a_callable_objective()
                                                       r"synthetic_study was not finite .* at any design of the initial simplex "
                                                       r"of Nelder-Mead \(2 designs\).*x = 1 m gave the objective = nan; "
                                                       r"x = 1.4 m gave the objective = nan;") as info:
-        optimize(SYNTHETIC, nan_objective, {"x": (-1.0, 3.0)}, method="nelder-mead", workers=1)
+        optimize(SYNTHETIC, nan_objective, {"x": (-1.0, 3.0)}, method="nelder-mead", run=RunOptions(workers=1))
     # the simplex: the middle of the range (u = 0.5) and 10 % of the range further (u = 0.6)
     assert [d["x"] for d, _ in info.value.designs] == pytest.approx([1.0, 1.4], rel=1e-12)
 
@@ -187,7 +188,7 @@ def test_a_local_method_stops_after_its_simplex_and_names_a_callable_objective()
 def test_runs_that_all_fail_stop_with_their_errors():
     with pytest.raises(ObjectiveNotFiniteError, match=r"x = 1 m gave the run failed \(ValueError: x = 1.0 is below "
                                                       r"fail_below = 10.0\);.*every run failed: see the errors"):
-        optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"fail_below": 10.0}, workers=1)
+        optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, method="nelder-mead", fixed={"fail_below": 10.0}, run=RunOptions(workers=1))
 
 
 def test_a_constraint_never_finite_is_named(tmp_path):
@@ -195,7 +196,7 @@ def test_a_constraint_never_finite_is_named(tmp_path):
     case.write_text(NAN_CASE)
     with pytest.raises(ObjectiveNotFiniteError, match=r"the objective 'w' and the constraints \('q'\) of case nan_case were "
                                                       r"never all finite .*x = 0.5 m gave w = 0.5 but q = nan"):
-        optimize(case, "w", {"x": (0.0, 1.0)}, constraints={"q": (1.0, None)}, method="nelder-mead", workers=1)
+        optimize(case, "w", {"x": (0.0, 1.0)}, constraints={"q": (1.0, None)}, method="nelder-mead", run=RunOptions(workers=1))
 
 
 def test_one_finite_design_in_the_first_population_is_enough():
@@ -205,7 +206,7 @@ def test_one_finite_design_in_the_first_population_is_enough():
         x = values["x"]
         return (x - 0.7) ** 2 if 0.6 <= x <= 0.8 else math.nan
 
-    best = optimize(SYNTHETIC, band, {"x": (0.0, 3.0)}, workers=1, maxiter=20, rerun_best=False)
+    best = optimize(SYNTHETIC, band, {"x": (0.0, 3.0)}, options=OptimizeOptions(maxiter=20, rerun_best=False), run=RunOptions(workers=1))
     assert best.design["x"] == pytest.approx(0.7, abs=1e-3) and best.feasible
 
 
@@ -224,11 +225,12 @@ def test_the_evaluation_budget_is_honoured_exactly(tmp_path, budget):
     """22 stops inside the second generation (15 + 7), 70 inside the polish (the search takes (3 + 1) x 15 = 60)."""
     log = tmp_path / "log"
     log.mkdir()
-    kwargs = dict(fixed={"n": 2}, workers=1, maxiter=3, rerun_best=False)
+    kwargs = dict(fixed={"n": 2}, run=RunOptions(workers=1), options=OptimizeOptions(maxiter=3, rerun_best=False))
     free = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, **kwargs)
     assert free.evaluations > 70  # unbounded it goes further (measured 78)
-    best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, max_evaluations=budget,
-                    **{**kwargs, "fixed": {"n": 2, "log_dir": str(log)}})
+    best = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, **{
+        **kwargs, "fixed": {"n": 2, "log_dir": str(log)},
+        "options": OptimizeOptions(maxiter=3, rerun_best=False, max_evaluations=budget)})
     assert best.evaluations == budget and len(best.history) == budget
     assert best.executed == _runs(log) <= budget  # no run started beyond the budget
     assert best.max_evaluations == budget
@@ -269,7 +271,7 @@ def test_the_command_line_announces_the_evaluations_and_keeps_to_the_budget(tmp_
 def test_a_bad_budget_is_refused_naming_it(value, capsys):
     with pytest.raises(ValueError, match=rf"max_evaluations must be an integer >= 1 \(the most objective evaluations\), "
                                          rf"got {re.escape(repr(value))}"):
-        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, workers=1, max_evaluations=value)
+        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, options=OptimizeOptions(max_evaluations=value), run=RunOptions(workers=1))
     if value == 0:
         from exudyn_atcm.cli import main
 
@@ -279,7 +281,7 @@ def test_a_bad_budget_is_refused_naming_it(value, capsys):
 
 def test_a_budget_below_the_first_population_still_reports_the_best():
     """5 evaluations of a 15-member population: the best of those five, not an error."""
-    best = optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, fixed={"n": 2}, workers=1, max_evaluations=5, rerun_best=False)
+    best = optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, fixed={"n": 2}, options=OptimizeOptions(max_evaluations=5, rerun_best=False), run=RunOptions(workers=1))
     population = _initial_population(15)[:5]
     assert best.evaluations == 5
     assert best.design["x"] == pytest.approx(min(population), rel=1e-12)  # y = x^2 + 2 grows with x >= 0

@@ -18,6 +18,7 @@ import pytest
 
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.study import run_study
+from exudyn_atcm.study.options import RunOptions
 from exudyn_atcm.study.store import RunStore
 from exudyn_atcm.study.table import column
 
@@ -41,7 +42,7 @@ def test_a_changed_file_named_by_a_parameter_reruns_and_the_table_says_it_was_st
     log.mkdir()
     data = tmp_path / "factor.txt"
     data.write_text("2\n")
-    study = dict(fixed={"log_dir": str(log)}, workers=1, out=tmp_path / "out")
+    study = dict(fixed={"log_dir": str(log)}, run=RunOptions(workers=1, out=tmp_path / "out"))
     first = run_study(file_study, {"x": [1.0, 3.0]}, **study)
     assert first.executed == 2 and first.stale == 0
     np.testing.assert_array_equal(column(first.table, "value"), [2.0, 6.0])  # 2 x
@@ -69,7 +70,7 @@ def test_a_changed_file_named_by_a_parameter_reruns_and_the_table_says_it_was_st
 
 def test_a_file_that_appears_later_is_a_changed_input(file_study, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    study = dict(fixed={"data": "later.txt"}, workers=1, out=tmp_path / "out")
+    study = dict(fixed={"data": "later.txt"}, run=RunOptions(workers=1, out=tmp_path / "out"))
     failed = run_study(file_study, {"x": [1.0, 2.0]}, **study)
     assert failed.failed == 2 and "FileNotFoundError" in column(failed.table, "error")[0]
     assert run_study(file_study, {"x": [1.0, 2.0]}, **study).executed == 0  # a failure is a result ...
@@ -92,7 +93,7 @@ def test_relative_paths_are_read_from_the_current_directory(file_study, tmp_path
     results = {}
     for name in "abc":
         monkeypatch.chdir(tmp_path / name)
-        results[name] = run_study(file_study, {"x": [1.0, 4.0]}, workers=1, store=store)
+        results[name] = run_study(file_study, {"x": [1.0, 4.0]}, run=RunOptions(workers=1, store=store))
     np.testing.assert_array_equal(column(results["a"].table, "value"), [2.0, 8.0])
     np.testing.assert_array_equal(column(results["b"].table, "value"), [3.0, 12.0])
     assert results["b"].executed == 2 and results["b"].stale == 0  # another file: new runs, not stale ones
@@ -103,9 +104,9 @@ def test_relative_paths_are_read_from_the_current_directory(file_study, tmp_path
 def test_a_new_exudyn_version_reruns_and_says_so(file_study, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "factor.txt").write_text("2")
-    first = run_study(file_study, {"x": [1.0]}, workers=1, store=tmp_path / "store")
+    first = run_study(file_study, {"x": [1.0]}, run=RunOptions(workers=1, store=tmp_path / "store"))
     monkeypatch.setattr("exudyn_atcm.study.inputs.exudyn_version", lambda: "0.0.0-test")
-    second = run_study(file_study, {"x": [1.0]}, workers=1, store=tmp_path / "store")
+    second = run_study(file_study, {"x": [1.0]}, run=RunOptions(workers=1, store=tmp_path / "store"))
     assert second.executed == 1 and column(second.table, "key")[0] != column(first.table, "key")[0]
     assert column(second.table, "stale").tolist() == [f"exudyn {exudyn.__version__} -> 0.0.0-test"]
 
@@ -126,7 +127,7 @@ def test_a_record_stored_under_the_old_key_is_reported_stale(file_study, tmp_pat
     store = RunStore(tmp_path / "store")
     store.save({"key": old, "status": "ok", "error": "", "scalars": {"value": 99.0}, "scalar_units": {"value": "-"},
                 "steps": 1, "wall_time": 0.0, "values": values})
-    result = run_study(file_study, {"x": [1.0]}, workers=1, store=store)
+    result = run_study(file_study, {"x": [1.0]}, run=RunOptions(workers=1, store=store))
     assert result.executed == 1 and column(result.table, "value").tolist() == [2.0]
     assert column(result.table, "stale").tolist() == ["stored before the run key covered input files and Exudyn's version"]
 
@@ -182,7 +183,7 @@ def test_issue_reproducer_in_python(tmp_path, monkeypatch):
     case = load_case("identify_and_predict")
     shipped = CASES / "data" / "preisach_record.csv"
     (tmp_path / "rec.csv").write_text(shipped.read_text())
-    study = dict(fixed={"record": "rec.csv", "n_plays": 4, "n_relays_eq12": 4}, workers=1, out=tmp_path / "o")
+    study = dict(fixed={"record": "rec.csv", "n_plays": 4, "n_relays_eq12": 4}, run=RunOptions(workers=1, out=tmp_path / "o"))
     first = run_study(case, {"n_levels": [6, 8]}, **study)
     _doubled_record(shipped, tmp_path / "rec.csv")
     second = run_study(case, {"n_levels": [6, 8]}, **study)

@@ -17,6 +17,7 @@ import pytest
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.cli import main
 from exudyn_atcm.study import GridError, StudyTable, run_study, sample_points, sweep
+from exudyn_atcm.study.options import RunOptions
 from exudyn_atcm.study.table import column
 
 from _cli_helpers import env
@@ -39,7 +40,7 @@ def _without_wall_time(table):
 
 def test_full_grid_table_has_closed_form_scalars_units_and_order(synthetic, tmp_path):
     grid = {"x": np.linspace(0.0, 1.0, 3), "n": [1, 5]}
-    result = run_study(synthetic, grid, fixed={"a": 2.0}, workers=1, out=tmp_path)
+    result = run_study(synthetic, grid, fixed={"a": 2.0}, run=RunOptions(workers=1, out=tmp_path))
     table = result.table
     # the last name varies fastest, like nested loops in the order given
     assert column(table, "x").tolist() == [0.0, 0.0, 0.5, 0.5, 1.0, 1.0]
@@ -58,7 +59,7 @@ def test_full_grid_table_has_closed_form_scalars_units_and_order(synthetic, tmp_
 
 
 def test_one_table_type_with_its_conversions(synthetic):
-    table = sweep(synthetic, {"x": [1.0, 2.0]}, workers=1)
+    table = sweep(synthetic, {"x": [1.0, 2.0]}, run=RunOptions(workers=1))
     assert type(table) is StudyTable
     assert len(table) == 2 and table.columns[:2] == ["run [-]", "x [m]"] and table.units["y [m]"] == "m"
     np.testing.assert_array_equal(table["y [m]"], np.array([1.0, 4.0]) + 2)  # y = a x^2 + n with the defaults a = 1, n = 2
@@ -71,13 +72,13 @@ def test_one_table_type_with_its_conversions(synthetic):
     with pytest.raises(ValueError, match=r"no column 'w' in the table; columns: run \[-\], x \[m\]"):
         table["w"]
     with pytest.warns(DeprecationWarning, match="use_pandas is deprecated"):
-        legacy = sweep(synthetic, {"x": [1.0, 2.0]}, workers=1, use_pandas=False)
+        legacy = sweep(synthetic, {"x": [1.0, 2.0]}, run=RunOptions(workers=1, use_pandas=False))
     assert isinstance(legacy, np.ndarray) and legacy.dtype.names[1] == "x [m]"
 
 
 def test_to_pandas_keeps_values_and_units(synthetic):
     pd = pytest.importorskip("pandas")
-    table = sweep(synthetic, {"x": [1.0, 2.0], "mode": ["plain", "other"]}, workers=1)
+    table = sweep(synthetic, {"x": [1.0, 2.0], "mode": ["plain", "other"]}, run=RunOptions(workers=1))
     frame = table.to_pandas()
     assert isinstance(frame, pd.DataFrame) and list(frame.columns) == table.columns
     assert frame.attrs["units"] == table.units
@@ -120,13 +121,13 @@ def test_same_table_with_one_two_workers_and_dask(synthetic, tmp_path):
     """Row order and every value (wall times aside) do not depend on the engine."""
     grid = {"x": [0.5, -1.0, 2.0, 1.5, 3.0], "mode": ["plain", "other"]}
     fixed = {"fail_below": 0.0, "delay": 0.01}  # x = -1 fails; short runs finish out of order
-    one = sweep(synthetic, grid, fixed=fixed, workers=1)
-    two = sweep(synthetic, grid, fixed=fixed, workers=2)
+    one = sweep(synthetic, grid, fixed=fixed, run=RunOptions(workers=1))
+    two = sweep(synthetic, grid, fixed=fixed, run=RunOptions(workers=2))
     distributed = pytest.importorskip("dask.distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
-            dask = sweep(synthetic, grid, fixed=fixed, client=client)
-        by_address = sweep(synthetic, grid, fixed=fixed, scheduler=cluster.scheduler_address)  # as --scheduler
+            dask = sweep(synthetic, grid, fixed=fixed, run=RunOptions(client=client))
+        by_address = sweep(synthetic, grid, fixed=fixed, run=RunOptions(scheduler=cluster.scheduler_address))  # as --scheduler
     assert _without_wall_time(one).equals(_without_wall_time(two))
     assert _without_wall_time(one).equals(_without_wall_time(dask))
     assert _without_wall_time(one).equals(_without_wall_time(by_address))
@@ -137,8 +138,8 @@ def test_real_case_same_with_one_and_two_workers():
     """paper_stroke_table: the linear law's stroke d33 U_max L / t_IDE = 40.02 µm (Eqs. 2-3) in every row."""
     case = load_case("paper_stroke_table")
     grid = {"period": [1.0, 2.0], "points_per_period": [10, 20]}
-    one = sweep(case, grid, workers=1)
-    two = sweep(case, grid, workers=2)
+    one = sweep(case, grid, run=RunOptions(workers=1))
+    two = sweep(case, grid, run=RunOptions(workers=2))
     assert _without_wall_time(one).equals(_without_wall_time(two))
     np.testing.assert_allclose(column(one, "stroke_linear_law"), 460e-12 * 1500.0 / 0.5e-3 * 29e-3, rtol=1e-12)
     # the table's points: the interpolation error does not depend on the period (rate-independent operator)
@@ -149,8 +150,7 @@ def test_real_case_same_with_one_and_two_workers():
 def test_failing_run_is_recorded_and_the_study_goes_on(synthetic, tmp_path):
     log = tmp_path / "log"
     log.mkdir()
-    result = run_study(synthetic, {"x": [1.0, -2.0, 3.0]}, fixed={"fail_below": 0.0, "log_dir": str(log)},
-                       workers=1, out=tmp_path / "out")
+    result = run_study(synthetic, {"x": [1.0, -2.0, 3.0]}, fixed={"fail_below": 0.0, "log_dir": str(log)}, run=RunOptions(workers=1, out=tmp_path / "out"))
     status = column(result.table, "status").tolist()
     assert status == ["ok", "failed", "ok"]
     error = column(result.table, "error")[1]
@@ -158,12 +158,10 @@ def test_failing_run_is_recorded_and_the_study_goes_on(synthetic, tmp_path):
     assert math.isnan(column(result.table, "y")[1]) and column(result.table, "y")[2] == 11.0
     assert result.failed == 1 and _runs_logged(log) == 2
     # a failure is a result: stored, not repeated ...
-    again = run_study(synthetic, {"x": [1.0, -2.0, 3.0]}, fixed={"fail_below": 0.0, "log_dir": str(log)},
-                      workers=1, out=tmp_path / "out")
+    again = run_study(synthetic, {"x": [1.0, -2.0, 3.0]}, fixed={"fail_below": 0.0, "log_dir": str(log)}, run=RunOptions(workers=1, out=tmp_path / "out"))
     assert again.executed == 0 and again.reused == 3
     # ... unless asked for
-    retried = run_study(synthetic, {"x": [1.0, -2.0, 3.0]}, fixed={"fail_below": 0.0, "log_dir": str(log)},
-                        workers=1, out=tmp_path / "out", retry_failed=True)
+    retried = run_study(synthetic, {"x": [1.0, -2.0, 3.0]}, fixed={"fail_below": 0.0, "log_dir": str(log)}, run=RunOptions(workers=1, out=tmp_path / "out", retry_failed=True))
     assert retried.executed == 1
 
 
@@ -192,8 +190,7 @@ def test_killed_study_resumes_without_recomputing(tmp_path):
     assert not list(out.glob("*.csv"))  # the table is written only at the end
     before = _runs_logged(log)
     assert before >= stored  # a run may have finished but not yet been stored when killed
-    resumed = run_study(SYNTHETIC, {"x": [float(i) for i in range(n_points)]},
-                        fixed={"delay": 0.15, "log_dir": str(log)}, workers=2, out=out)
+    resumed = run_study(SYNTHETIC, {"x": [float(i) for i in range(n_points)]}, fixed={"delay": 0.15, "log_dir": str(log)}, run=RunOptions(workers=2, out=out))
     assert resumed.reused == stored and resumed.executed == n_points - stored
     assert _runs_logged(log) - before == n_points - stored  # counted by the case itself
     assert (column(resumed.table, "status") == "ok").all()
@@ -203,7 +200,7 @@ def test_killed_study_resumes_without_recomputing(tmp_path):
 def test_duplicate_points_run_once(synthetic, tmp_path):
     log = tmp_path / "log"
     log.mkdir()
-    result = run_study(synthetic, points=[{"x": 1.0}, {"x": 2.0}, {"x": 1.0}], fixed={"log_dir": str(log)}, workers=1)
+    result = run_study(synthetic, points=[{"x": 1.0}, {"x": 2.0}, {"x": 1.0}], fixed={"log_dir": str(log)}, run=RunOptions(workers=1))
     assert result.executed == 2 and _runs_logged(log) == 2
     assert column(result.table, "y").tolist() == [3.0, 6.0, 3.0]
 
@@ -223,7 +220,7 @@ def test_latin_hypercube_samples_fill_every_stratum(synthetic):
 
 
 def test_samples_crossed_with_a_grid(synthetic):
-    result = run_study(synthetic, {"mode": ["plain", "other"]}, samples=3, bounds={"x": (0.0, 1.0)}, workers=1)
+    result = run_study(synthetic, {"mode": ["plain", "other"]}, samples=3, bounds={"x": (0.0, 1.0)}, run=RunOptions(workers=1))
     assert column(result.table, "mode").tolist() == ["plain"] * 3 + ["other"] * 3
     assert column(result.table, "x")[:3].tolist() == column(result.table, "x")[3:].tolist()
 
@@ -245,7 +242,7 @@ def test_samples_crossed_with_a_grid(synthetic):
 )
 def test_bad_study_specifications_are_one_line_errors(synthetic, kwargs, message):
     with pytest.raises(GridError) as info:
-        sweep(synthetic, workers=1, **kwargs)
+        sweep(synthetic, run=RunOptions(workers=1), **kwargs)
     text = str(info.value)
     assert message in text and "\n" not in text
 
@@ -368,13 +365,13 @@ def test_a_crashing_worker_does_not_stop_the_study(synthetic, tmp_path):
     log = tmp_path / "log"
     log.mkdir()
     fixed = {"crash_at": 2.0, "log_dir": str(log)}
-    result = run_study(synthetic, grid, fixed=fixed, workers=2, out=tmp_path / "out")
+    result = run_study(synthetic, grid, fixed=fixed, run=RunOptions(workers=2, out=tmp_path / "out"))
     assert column(result.table, "status").tolist() == ["ok", "ok", "failed", "ok", "ok", "ok"]
     assert column(result.table, "error")[2].startswith("the worker process died during this run (run alone")
     x = np.array(grid["x"])
     np.testing.assert_array_equal(column(result.table, "y")[x != 2.0], x[x != 2.0] ** 2 + 2)
     assert _runs_logged(log) >= 5  # runs lost with the crashed pool ran again
-    again = run_study(synthetic, grid, fixed=fixed, workers=2, out=tmp_path / "out")
+    again = run_study(synthetic, grid, fixed=fixed, run=RunOptions(workers=2, out=tmp_path / "out"))
     assert again.executed == 0 and again.reused == 6
 
 
@@ -384,7 +381,7 @@ def test_grid_spec_of_a_list_parameter_and_the_csv_read_by_pandas(synthetic, tmp
     case = load_case("tip_tracking")
     assert parse_grid_spec(case, "frequencies=0.25,0.75;0.5,1") == ("frequencies", [(0.25, 0.75), (0.5, 1.0)])
     pd = pytest.importorskip("pandas")
-    result = run_study(synthetic, {"x": [0.5, 1.5], "mode": ["plain", "other"]}, workers=1, out=tmp_path)
+    result = run_study(synthetic, {"x": [0.5, 1.5], "mode": ["plain", "other"]}, run=RunOptions(workers=1, out=tmp_path))
     back = pd.read_csv(result.csv_path, comment="#")
     assert list(back.columns) == list(result.table.columns)
     np.testing.assert_array_equal(back["y [m]"].to_numpy(), column(result.table, "y"))

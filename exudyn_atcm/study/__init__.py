@@ -13,6 +13,7 @@ from .design import GridError, explicit_points, full_grid, parse_grid_spec, samp
 from .engines import DaskEngine, ProcessEngine, SerialEngine, make_engine
 from .store import RunStore, run_key
 from .optimize import METHODS, OptimizationResult, optimize
+from .options import OptimizeOptions, RunOptions
 from .stops import ObjectiveNotFiniteError
 from .sweep import StudyResult, run_study, study_points, sweep
 from .table import StudyTable, column, unit_of
@@ -20,6 +21,8 @@ from .table import StudyTable, column, unit_of
 __all__ = [
     "sweep",
     "optimize",
+    "RunOptions",
+    "OptimizeOptions",
     "OptimizationResult",
     "ObjectiveNotFiniteError",
     "METHODS",

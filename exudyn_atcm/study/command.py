@@ -37,6 +37,7 @@ from ..casework import CaseError, load_case
 from ..casework.termination import StopSignal, stop_signals_as_interrupt
 from .budget import describe_evaluations
 from .lock import StudyLockedError
+from .options import OptimizeOptions, RunOptions
 from .stops import ObjectiveNotFiniteError
 
 __all__ = ["add_sweep_parser", "sweep_command", "resume_note", "add_optimize_parser", "optimize_command", "RunProgressBar"]
@@ -183,8 +184,8 @@ def sweep_command(args: argparse.Namespace) -> int:
         with stop_signals_as_interrupt() as stop:
             result = run_study(
                 case, grid or None, samples=args.samples, bounds=bounds or None, method=args.sampling, seed=args.seed,
-                fixed=fixed, workers=args.workers, scheduler=args.scheduler, out=args.out, store=args.store,
-                retry_failed=args.retry_failed, progress=bar,
+                fixed=fixed, run=RunOptions(workers=args.workers, scheduler=args.scheduler, out=args.out,
+                                            store=args.store, retry_failed=args.retry_failed, progress=bar),
             )
     except KeyboardInterrupt as exc:
         bar.close()
@@ -312,9 +313,9 @@ def optimize_command(args: argparse.Namespace) -> int:
     try:
         best = optimize(
             case, args.objective, bounds, method=args.method, maximize=args.maximize, constraints=constraints,
-            fixed=fixed, seed=args.seed, maxiter=args.maxiter, popsize=args.popsize, workers=args.workers,
-            scheduler=args.scheduler, out=args.out, store=args.store, plot=not args.no_plot,
-            max_evaluations=args.max_evaluations,
+            fixed=fixed, options=OptimizeOptions(seed=args.seed, maxiter=args.maxiter, popsize=args.popsize,
+                                                 plot=not args.no_plot, max_evaluations=args.max_evaluations),
+            run=RunOptions(workers=args.workers, scheduler=args.scheduler, out=args.out, store=args.store),
         )
     except (CaseError, ValueError, ImportError) as exc:
         return _error(exc, debug, 2)

@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import hide_keywords, option_values, options_from_keywords
 from ..io.atomic import make_directory, write_json
 from ..casework import Case, CaseOutput, load_case
 from ..casework.output_folder import OutputFolder
@@ -33,6 +34,7 @@ from .budget import RunBudget, evaluation_bounds, max_runs
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
 from .lock import TableLock
+from .options import OptimizeOptions, RunOptions
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
 from .stops import ObjectiveNotFiniteError, SearchStopped
 from .store import RunStore
@@ -96,6 +98,7 @@ class OptimizationResult:
     max_evaluations: int = 0
 
 
+@hide_keywords
 def optimize(
     case: Case | str | os.PathLike,
     objective: Objective,
@@ -104,25 +107,11 @@ def optimize(
     method: str = "differential_evolution",
     maximize: bool = False,
     constraints: Mapping[str, tuple[float | None, float | None]] | None = None,
-    penalty: float = 10.0,
-    constraint_handling: str = "penalty",
     fixed: Mapping[str, Any] | None = None,
     x0: Mapping[str, float] | None = None,
-    seed: int | None = 0,
-    maxiter: int = 100,
-    popsize: int = 15,
-    tol: float = 1e-3,
-    xatol: float = 1e-4,
-    fatol: float = 1e-4,
-    polish: bool = True,
-    max_evaluations: int | None = None,
-    workers: int | None = None,
-    client: Any = None,
-    scheduler: str | None = None,
-    out: str | os.PathLike | None = None,
-    store: str | os.PathLike | RunStore | None = None,
-    rerun_best: bool = True,
-    plot: bool = False,
+    options: OptimizeOptions | None = None,
+    run: RunOptions | None = None,
+    **legacy: Any,
 ) -> OptimizationResult:
     """Find the parameters of a case that minimise (or maximise) one of its key scalars.
 
@@ -146,6 +135,21 @@ def optimize(
         Limits on key scalars, ``None`` for an open side, e.g. ``{"f1": (50.0, None)}``.
         Applied as a penalty: ``f + penalty * v * |f|`` with ``v`` the sum of relative
         violations (``(low - value)/|low|``); a failed run counts as ``inf``.
+    fixed : mapping, optional
+        Values of other parameters for every run.
+    x0 : mapping, optional
+        Start of a local method (default: the middle of the bounds).
+    options : OptimizeOptions, optional
+        The settings of the search (:class:`~exudyn_atcm.study.options.OptimizeOptions`), each
+        described below.
+    run : RunOptions, optional
+        Where the runs execute and are stored (:class:`~exudyn_atcm.study.options.RunOptions`:
+        ``workers``, ``client``, ``scheduler``, ``out``, ``store``; described below).  The flat
+        keywords of the earlier signature (``optimize(..., maxiter=20, out="opt")``) still work for
+        one release, with an :class:`~exudyn_atcm.AtcmDeprecationWarning`.
+
+    Other Parameters
+    ----------------
     penalty : float
         Weight of the relative violation (default 10: a 10 % violation costs as much as
         the whole objective).
@@ -154,10 +158,6 @@ def optimize(
         :class:`scipy.optimize.NonlinearConstraint` objects, handled by scipy's feasibility
         rules (Lampinen 2002: feasible beats infeasible, lower violation beats higher),
         with the population still evaluated at once (``vectorized=True``).
-    fixed : mapping, optional
-        Values of other parameters for every run.
-    x0 : mapping, optional
-        Start of a local method (default: the middle of the bounds).
     seed : int or None
         Seed of differential evolution (default 0: reproducible, and resumable from the store).
     maxiter, popsize, tol : int, int, float
@@ -213,6 +213,13 @@ def optimize(
     exudyn_atcm.study.lock.StudyLockedError
         If another optimisation of the case is writing ``out`` now.
     """
+    options, run = options_from_keywords("optimize", legacy, options=(OptimizeOptions, options), run=(RunOptions, run))
+    (seed, maxiter, popsize, tol, xatol, fatol, polish, max_evaluations, penalty, constraint_handling, rerun_best,
+     plot) = option_values(options)
+    workers, client, scheduler, out, store = option_values(run)[:5]
+    if option_values(run)[5:] != option_values(RunOptions())[5:]:
+        raise ValueError("optimize: run.retry_failed, run.progress and run.use_pandas apply to sweeps only; got "
+                         f"{run!r}")
     case = case if isinstance(case, Case) else load_case(case)
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")

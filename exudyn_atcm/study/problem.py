@@ -24,6 +24,7 @@ import numpy as np
 from ..casework import Case
 from .stops import ObjectiveNotFiniteError, SearchStopped
 from .sweep import run_study
+from .options import RunOptions
 from .table import Column
 
 __all__ = ["Problem", "Objective", "check_objective", "check_constraints",
@@ -97,7 +98,7 @@ class Problem:
         if not points:
             self._check_finite()
             return
-        result = run_study(self.case, points=points, fixed=self.fixed, store=self.store, engine=self.engine)
+        result = run_study(self.case, points=points, fixed=self.fixed, engine=self.engine, run=RunOptions(store=self.store))
         self.executed += result.executed
         for p, record in zip(points, result.records):
             self.records[self._key(p)] = record

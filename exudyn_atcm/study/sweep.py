@@ -1,9 +1,10 @@
 """Parameter studies: run a case over many points, in parallel, resumably.
 
 >>> from exudyn_atcm.casework import load_case
->>> from exudyn_atcm.study import sweep
+>>> from exudyn_atcm.study import RunOptions, sweep
 >>> case = load_case("paper_stroke_table")
->>> table = sweep(case, {"period": [1.0, 2.0], "points_per_period": [10, 20]}, out="out/study")  # doctest: +SKIP
+>>> table = sweep(case, {"period": [1.0, 2.0], "points_per_period": [10, 20]},
+...               run=RunOptions(out="out/study"))  # doctest: +SKIP
 
 See :doc:`/studies` for engines (process pool, Dask), resuming and the command line.
 """
@@ -19,12 +20,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .._checks import hide_keywords, option_values, options_from_keywords
 from ..io.atomic import make_directory, write_json
 from .._version import __version__
 from ..casework import Case, load_case, versions
 from .design import GridError, check_point, explicit_points, full_grid, sample_points
 from .engines import case_spec, make_engine
 from .lock import TableLock
+from .options import RunOptions
 from .inputs import environment, run_identity, run_inputs
 from .store import RunStore, run_key, run_key_before_inputs
 from .table import Column, StudyTable, table_columns, to_table, write_table_csv
@@ -126,6 +129,7 @@ def _varied(points: Sequence[Mapping[str, Any]]) -> list[str]:
     return [n for n in names if len({repr(p.get(n)) for p in points}) > 1]
 
 
+@hide_keywords
 def run_study(
     case: Case | str | os.PathLike,
     grid: Mapping[str, Any] | None = None,
@@ -136,20 +140,14 @@ def run_study(
     seed: int | None = 0,
     points: Sequence[Mapping[str, Any]] | None = None,
     fixed: Mapping[str, Any] | None = None,
-    workers: int | None = None,
-    client: Any = None,
-    scheduler: str | None = None,
-    out: str | os.PathLike | None = None,
-    store: str | os.PathLike | RunStore | None = None,
-    retry_failed: bool = False,
-    progress: StudyProgress | None = None,
-    use_pandas: bool | None = None,
+    run: RunOptions | None = None,
     engine: Any = None,
+    **legacy: Any,
 ) -> StudyResult:
     """Run a study and return everything about it (:func:`sweep` returns only the table).
 
     Parameters are those of :func:`sweep`; ``engine`` (an object from
-    :mod:`exudyn_atcm.study.engines`) replaces ``workers``/``client``/``scheduler`` and is
+    :mod:`exudyn_atcm.study.engines`) replaces ``run.workers``/``run.client``/``run.scheduler`` and is
     left open (for a caller that runs several studies on one pool).
 
     A ``KeyboardInterrupt`` (Ctrl-C; ``SIGTERM`` inside
@@ -159,6 +157,8 @@ def run_study(
     without a store), so that the caller can say what a new start will resume from.
     """
     start = time.perf_counter()
+    (run,) = options_from_keywords("run_study", legacy, run=(RunOptions, run))
+    workers, client, scheduler, out, store, retry_failed, progress, use_pandas = option_values(run)
     case = _as_case(case)
     spec = case_spec(case)
     fixed_values = check_point(case, fixed or {})
@@ -291,6 +291,7 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
     return result
 
 
+@hide_keywords
 def sweep(
     case: Case | str | os.PathLike,
     grid: Mapping[str, Any] | None = None,
@@ -301,14 +302,8 @@ def sweep(
     seed: int | None = 0,
     points: Sequence[Mapping[str, Any]] | None = None,
     fixed: Mapping[str, Any] | None = None,
-    workers: int | None = None,
-    client: Any = None,
-    scheduler: str | None = None,
-    out: str | os.PathLike | None = None,
-    store: str | os.PathLike | RunStore | None = None,
-    retry_failed: bool = False,
-    progress: StudyProgress | None = None,
-    use_pandas: bool | None = None,
+    run: RunOptions | None = None,
+    **legacy: Any,
 ):
     """Run a case over many parameter points and return the table of results.
 
@@ -331,26 +326,14 @@ def sweep(
         An explicit list of points instead of ``grid``/``samples``.
     fixed : mapping, optional
         Values of further parameters, the same for every run (others keep their defaults).
-    workers : int, optional
-        Worker processes on this machine (default: one per core; 1 runs in this process).
-    client : dask.distributed.Client, optional
-        Send the runs to this Dask cluster instead (``LocalCluster`` or a real one).
-    scheduler : str, optional
-        Address of a Dask scheduler (``"tcp://HOST:8786"``); a client is connected for the study.
-    out : str or os.PathLike, optional
-        Directory for ``<case>_sweep.csv`` (the table, units in the header),
-        ``<case>_sweep.json`` (what was run, how) and, unless ``store`` is given, the run
-        store ``runs/``.
-    store : str or os.PathLike or RunStore, optional
-        Run store directory (see :mod:`exudyn_atcm.study.store`).  Without ``out`` and
-        ``store``, nothing is stored and nothing can be resumed.
-    retry_failed : bool
-        Run again the points whose stored run failed (default: a failure is a result).
-    progress : callable, optional
-        ``progress(done, total, failed)`` after each finished run.
-    use_pandas : bool, optional
-        Deprecated (the table no longer depends on what is installed): ``True`` returns
-        ``table.to_pandas()``, ``False`` ``table.to_numpy()``, with a ``DeprecationWarning``.
+    run : RunOptions, optional
+        Where the runs execute and are stored (:class:`~exudyn_atcm.study.options.RunOptions`:
+        ``workers``, ``client``, ``scheduler``, ``out``, ``store``, ``retry_failed``, ``progress``,
+        ``use_pandas``).  With ``out``, the directory gets ``<case>_sweep.csv`` (the table, units
+        in the header), ``<case>_sweep.json`` (what was run, how) and, unless ``store`` is given,
+        the run store ``runs/``.  These names as flat keywords (``sweep(..., workers=2)``, the
+        earlier signature) still work for one release, with an
+        :class:`~exudyn_atcm.AtcmDeprecationWarning`.
 
     Returns
     -------
@@ -380,8 +363,6 @@ def sweep(
     study again (after an interruption, or with more points) executes only the runs not
     yet stored.
     """
-    return run_study(
-        case, grid, samples=samples, bounds=bounds, method=method, seed=seed, points=points, fixed=fixed,
-        workers=workers, client=client, scheduler=scheduler, out=out, store=store, retry_failed=retry_failed,
-        progress=progress, use_pandas=use_pandas,
-    ).table
+    (run,) = options_from_keywords("sweep", legacy, run=(RunOptions, run))
+    return run_study(case, grid, samples=samples, bounds=bounds, method=method, seed=seed, points=points, fixed=fixed,
+                     run=run).table

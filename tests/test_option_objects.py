@@ -1,0 +1,101 @@
+"""Option objects where a public signature had more than 10 parameters (issue 30, part 6).
+
+``optimize``, ``sweep`` and ``run_study`` take how runs execute as one ``RunOptions`` and the search
+settings as one ``OptimizeOptions``; the flat keywords of the earlier signatures still work for one
+release, warn ``AtcmDeprecationWarning`` and give the same result as the option objects (the same
+seeded search over the synthetic study case, whose key scalars are closed-form functions of its
+parameters: the minimum of ``y = (x - 1)^2 + ...`` is known).  No public function of the package
+keeps more than 10 parameters except the ones listed (counted with ``inspect`` here).
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+from pathlib import Path
+
+import pytest
+
+import exudyn_atcm
+from exudyn_atcm import AtcmDeprecationWarning
+from exudyn_atcm.study import OptimizeOptions, RunOptions, optimize, run_study, sweep
+
+SYNTHETIC = Path(__file__).resolve().parent / "study_cases" / "synthetic_study.py"
+
+
+def test_study_signatures_have_at_most_ten_parameters_and_the_option_objects():
+    for function in (optimize, sweep, run_study):
+        params = inspect.signature(function).parameters
+        assert len(params) <= 10, function.__name__
+        assert params["run"].kind is inspect.Parameter.KEYWORD_ONLY and params["run"].default is None
+    assert inspect.signature(optimize).parameters["options"].default is None
+
+
+def test_flat_keywords_warn_and_give_the_same_search_as_the_option_objects():
+    search = dict(method="nelder-mead", fixed={"n": 2})
+    new = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, **search,
+                   options=OptimizeOptions(maxiter=40, rerun_best=False), run=RunOptions(workers=1))
+    with pytest.warns(AtcmDeprecationWarning, match=r"optimize\(\): pass maxiter, rerun_best into options=OptimizeOptions"
+                                                    r"\(\.\.\.\); workers into run=RunOptions"):
+        old = optimize(SYNTHETIC, "y", {"x": (-1.0, 3.0)}, **search, maxiter=40, rerun_best=False, workers=1)
+    assert old.design == new.design and old.objective == new.objective and old.evaluations == new.evaluations
+    assert new.output is None and old.output is None  # rerun_best=False reached the search both ways
+
+
+def test_sweep_flat_keywords_warn_and_give_the_same_table(tmp_path):
+    new = sweep(SYNTHETIC, {"x": [0.0, 1.0]}, fixed={"n": 2}, run=RunOptions(workers=1))
+    with pytest.warns(AtcmDeprecationWarning, match=r"sweep\(\): pass workers, out into run=RunOptions"):
+        old = sweep(SYNTHETIC, {"x": [0.0, 1.0]}, fixed={"n": 2}, workers=1, out=tmp_path)
+    assert list(old["y [m]"]) == list(new["y [m]"])
+    assert (tmp_path / "synthetic_study_sweep.csv").is_file()  # out= reached the study through RunOptions
+
+
+def test_wrong_or_doubled_options_are_refused():
+    with pytest.raises(TypeError, match="unexpected keyword argument 'maxiterations'"):
+        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, maxiterations=3)
+    with pytest.raises(TypeError, match=r"workers given both as keywords and in run="):
+        sweep(SYNTHETIC, {"x": [0.0]}, run=RunOptions(out="x"), workers=1)
+    with pytest.raises(TypeError, match=r"run must be a RunOptions, got \{'workers': 1\}"):
+        run_study(SYNTHETIC, {"x": [0.0]}, run={"workers": 1})
+    with pytest.raises(ValueError, match="run.retry_failed, run.progress and run.use_pandas apply to sweeps only"):
+        optimize(SYNTHETIC, "y", {"x": (0.0, 1.0)}, run=RunOptions(retry_failed=True))
+
+
+def _wide_functions() -> dict[str, int]:
+    """Public functions and methods (every ``__all__``) with more than 10 parameters, self excluded."""
+    found: dict[str, int] = {}
+    modules = ["exudyn_atcm"] + [m.name for m in pkgutil.walk_packages(exudyn_atcm.__path__, "exudyn_atcm.")
+                                 if not m.name.rsplit(".", 1)[1].startswith("_")]
+    for name in modules:
+        module = importlib.import_module(name)
+        for public in getattr(module, "__all__", ()):
+            obj = getattr(module, public, None)
+            candidates = [obj] if inspect.isfunction(obj) else []
+            if inspect.isclass(obj) and not hasattr(obj, "__dataclass_fields__"):  # records are their own options
+                candidates += [obj] + [v for k, v in vars(obj).items() if inspect.isfunction(v) and not k.startswith("_")]
+            for f in candidates:
+                try:
+                    signature = inspect.signature(f)
+                except ValueError:  # a builtin type (an exception class) has none
+                    continue
+                params = [p for p in signature.parameters.values()
+                          if p.name not in ("self", "cls") and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+                if len(params) > 10:
+                    found[f"{f.__module__}.{f.__qualname__}"] = len(params)
+    return found
+
+
+def test_the_remaining_wide_signatures_are_the_listed_ones():
+    # issue 30's goal is none; these are left for their owners (the report lists them): identify (its
+    # family registry is being redone), the Bender/Flexure descriptions (part 1), two internal helpers and
+    # plot_fit_series (four axis-label keywords), the optimiser's internal Problem
+    assert set(_wide_functions()) <= {
+        "exudyn_atcm.hysteresis.model_choice.identify",
+        "exudyn_atcm.hysteresis.fit_report.make_report",
+        "exudyn_atcm.solve.static_fallback.equilibrium_with_fallback",
+        "exudyn_atcm.mechanism.bender.Bender",
+        "exudyn_atcm.mechanism.flexure.Flexure",
+        "exudyn_atcm.plots.identification.plot_fit_series",
+        "exudyn_atcm.study.problem.Problem",
+    }
