@@ -38,6 +38,7 @@ import numpy as np
 
 from exudyn_atcm import Result, preprocess, read_record
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.hysteresis import IdentifyOptions
 from exudyn_atcm.hysteresis import (
     ContinuousPreisach,
     DiscretePreisach,
@@ -80,8 +81,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 
     choice = None
     if n_fit < t.size:  # every family on the same split, ranked on the held-out part
-        choice = identify(u, y, n_fit=n_fit, n_levels=p.n_levels, smoothing=p.smoothing, prior=p.prior, n_plays=p.n_plays,
-                          n_relays=p.n_relays_eq12, reversal_tolerance=0.02, output_unit=unit)
+        choice = identify(u, y, n_fit=n_fit, output_unit=unit,
+                          options=IdentifyOptions(n_levels=p.n_levels, smoothing=p.smoothing, prior=p.prior,
+                                                  n_plays=p.n_plays, n_relays=p.n_relays_eq12, reversal_tolerance=0.02))
         print(choice.to_text())
         model = choice.candidate("everett").model
         report = choice.candidate("everett").report

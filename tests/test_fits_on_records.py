@@ -20,6 +20,7 @@ from exudyn_atcm.hysteresis import (ContinuousPreisach, DiscretePreisach, Everet
                                     identify)
 from exudyn_atcm.hysteresis.coverage import TriangleCoverage
 from exudyn_atcm.hysteresis.identification import relay_grid
+from exudyn_atcm.hysteresis.identify_options import IdentifyOptions
 from exudyn_atcm.io.record import Record
 
 from relays import relay_outputs
@@ -121,7 +122,7 @@ def test_identify_on_a_growing_amplitude_record_predicts_within_2x_its_fit_error
     u, y = preisach_record
     with warnings.catch_warnings():
         warnings.simplefilter("error", AccuracyWarning)  # no warning: the split covers the range
-        choice = identify(u, y, families=("everett", "prandtl_ishlinskii", "continuous"), n_levels=20)
+        choice = identify(u, y, families=("everett", "prandtl_ishlinskii", "continuous"), options=IdentifyOptions(n_levels=20))
     mask = choice.fit_mask
     assert choice.split.startswith("interleaved cycles") and 0.2 < (~mask).mean() < 0.5
     # the held-out inputs lie inside the fitted input range (checked here from the mask)
@@ -139,7 +140,7 @@ def test_identify_with_the_old_time_split_warns_naming_the_uncovered_range(preis
     # the extrapolated held-out part is also predicted no better than twice the straight line's error
     with pytest.warns(AccuracyWarning, match=r"held-out inputs reach 750 \.\.\. 1000, outside the fitted input range "
                                              r"0 \.\.\. 750"), pytest.warns(AccuracyWarning, match="linear_margin"):
-        choice = identify(u, y, split=0.6, families=("prandtl_ishlinskii",), n_plays=10)
+        choice = identify(u, y, split=0.6, families=("prandtl_ishlinskii",), options=IdentifyOptions(n_plays=10))
     assert choice.n_fit == round(0.6 * u.size)
 
 
@@ -269,7 +270,7 @@ def test_fits_record_the_output_unit_and_quantity():
         PrandtlIshlinskii.fit(u, y, 10, output_unit="mm", output_quantity="strain")
     # identify takes them from a Record's units: every candidate is a displacement model
     record = Record(np.arange(u.size) * 1e-3, u, y, units={"time": "s", "input": "V", "output": "m"})
-    choice = identify(record, families=("everett", "prandtl_ishlinskii"), n_levels=8, n_plays=10)
+    choice = identify(record, families=("everett", "prandtl_ishlinskii"), options=IdentifyOptions(n_levels=8, n_plays=10))
     assert choice.output_quantity == "displacement"
     assert all(c.model.output_quantity == "displacement" and c.model.output_unit == "m" for c in choice.candidates)
     with pytest.raises(ValueError, match=r"hysteresis must give the free strain"):
@@ -301,7 +302,7 @@ def test_identify_warns_when_no_model_beats_a_straight_line(kind, preisach_recor
         # follows the curvature only, 1.4x better than the line)
         u, y = u[::-1].copy(), y[::-1].copy()
     with pytest.warns(AccuracyWarning, match=r"the best straight line .* less than the 2x asked by linear_margin"):
-        identify(u, y, families=("everett", "prandtl_ishlinskii", "continuous"), n_levels=12)
+        identify(u, y, families=("everett", "prandtl_ishlinskii", "continuous"), options=IdentifyOptions(n_levels=12))
 
 
 def test_identify_on_the_shipped_record_beats_a_straight_line():
@@ -312,5 +313,5 @@ def test_identify_on_the_shipped_record_beats_a_straight_line():
                          time="time", input="voltage", output="displacement")
     with warnings.catch_warnings():
         warnings.simplefilter("error", AccuracyWarning)
-        choice = identify(record, families=("everett", "prandtl_ishlinskii"), n_levels=20)
+        choice = identify(record, families=("everett", "prandtl_ishlinskii"), options=IdentifyOptions(n_levels=20))
     assert choice.linear_held_out_rms_percent > 2.0 * choice.chosen.held_out_rms_percent  # measured 12x

@@ -13,6 +13,7 @@ from exudyn_atcm.hysteresis import (ContinuousPreisach, DiscretePreisach, Everet
                                     PrandtlIshlinskii, identify)
 from exudyn_atcm.errors import AccuracyWarning
 from exudyn_atcm.hysteresis.identification import relay_grid
+from exudyn_atcm.hysteresis.identify_options import IdentifyOptions
 from exudyn_atcm.plots.identification import plot_model_choice
 from exudyn_atcm.io.measurements import Record
 
@@ -68,7 +69,7 @@ def test_family_of_the_truth_is_chosen(family):
     y = clean + sigma * np.random.default_rng(16).standard_normal(U.size)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # e.g. from_loop on a record of another family
-        choice = identify(U, y, n_fit=N_FIT, **options)
+        choice = identify(U, y, n_fit=N_FIT, options=IdentifyOptions(**options))
     assert choice.chosen.family == family, choice.to_text()
     # the truth's family predicts the held-out part to about the noise (0.3 % of the range):
     # within 1.6x (a fit of a finite grid on ~1600 noisy samples; measured 1.0-1.45x); the
@@ -84,7 +85,7 @@ def test_family_of_the_truth_is_chosen(family):
 def test_table_fields_and_rule():
     clean = pi_truth().apply(U)
     y = clean + 0.003 * np.ptp(clean) * np.random.default_rng(1).standard_normal(U.size)
-    choice = identify(U, y, n_fit=N_FIT, n_levels=12, n_plays=10, output_unit="m")
+    choice = identify(U, y, n_fit=N_FIT, output_unit="m", options=IdentifyOptions(n_levels=12, n_plays=10))
     assert isinstance(choice, ModelChoice)
     by = {c.family: c for c in choice.candidates}
     assert set(by) == {"equal_gain", "discrete", "everett", "prandtl_ishlinskii", "continuous"}
@@ -113,7 +114,7 @@ def test_record_input_split_by_time_and_plot(tmp_path):
     clean = everett_truth().apply(U)
     t = np.arange(U.size) * 0.01
     record = Record(t, U, clean, units={"time": "s", "input": "V", "output": "m"})
-    choice = identify(record, split=0.5, families=("everett", "prandtl_ishlinskii"), n_levels=10, n_plays=8)
+    choice = identify(record, split=0.5, families=("everett", "prandtl_ishlinskii"), options=IdentifyOptions(n_levels=10, n_plays=8))
     assert choice.n_fit == int(np.searchsorted(t, 0.5 * t[-1]))
     assert choice.output_unit == "m" and [c.family for c in choice.candidates][0] == "everett"
     path = tmp_path / "choice.png"
@@ -127,7 +128,7 @@ def test_a_family_that_cannot_be_fitted_is_listed_with_the_reason():
     y = pi_truth().apply(u)
     with pytest.warns(RuntimeWarning, match=r"not fitted: equal_gain \(u, y must describe a loop with both branches"), \
             pytest.warns(AccuracyWarning, match=r"the held-out inputs reach 0.19 ... 0.5, outside the fitted input range"):
-        choice = identify(u, y, n_fit=120, families=("equal_gain", "prandtl_ishlinskii"), n_plays=5)
+        choice = identify(u, y, n_fit=120, families=("equal_gain", "prandtl_ishlinskii"), options=IdentifyOptions(n_plays=5))
     assert choice.chosen.family == "prandtl_ishlinskii"
     assert choice.candidates[-1].failure.startswith("u, y must describe a loop")
     assert "not fitted:" in choice.to_text()
@@ -137,7 +138,7 @@ def test_a_family_that_cannot_be_fitted_is_listed_with_the_reason():
     ({"families": ("preisach",)}, r"families must be a non-empty selection of"),
     ({"split": 1.0}, r"split must be a fraction in \(0, 1\)"),
     ({"n_fit": 10**6}, r"n_fit must be an integer in \[10, \d+\] \(a held-out part is needed\)"),
-    ({"relays_per_cell": 0}, r"relays_per_cell must be an integer >= 1, got 0"),
+    ({"options": IdentifyOptions(relays_per_cell=0)}, r"relays_per_cell must be an integer >= 1, got 0"),
 ])
 def test_bad_options_are_refused(kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):
@@ -155,7 +156,7 @@ def test_refined_relay_grid_in_the_table():
     truth = everett_truth()
     u = corners_path([-1, 1, -1, 1, -0.2, 0.5, -0.6, 0.9, -1, 0.3, -0.4, 1], 0.01)
     y = truth.apply(u)
-    choice = identify(u, y, families=("discrete", "everett"), n_levels=12, prior="smooth", relays_per_cell=8)
+    choice = identify(u, y, families=("discrete", "everett"), options=IdentifyOptions(n_levels=12, prior="smooth", relays_per_cell=8))
     rows = {c.family: c for c in choice.candidates}
     assert rows["discrete"].label == "discrete (12 levels, smooth, 8x8 relays per cell)"
     assert rows["discrete"].model.n_relays == 96 * 97 // 2

@@ -30,6 +30,7 @@ from .discrete import DiscretePreisach
 from .everett import EverettPreisach
 from .prandtl_ishlinskii import PrandtlIshlinskii
 from .model_choice import ModelChoice, identify
+from .identify_options import IdentifyOptions
 from .staircase import StaircasePreisach
 
 from .fit_report import FitReport, error_measures, make_report
@@ -49,6 +50,7 @@ __all__ = [
     "PrandtlIshlinskii",
     "ModelChoice",
     "identify",
+    "IdentifyOptions",
     "inverse_operator",
     "fit_rate_preisach",
     "FitReport",

@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import hide_keywords, option_values, options_from_keywords
 from ..io.atomic import write_json
 from .continuous import ContinuousPreisach
 from .discrete import DiscretePreisach
@@ -52,6 +53,7 @@ from .everett import EverettPreisach
 from .fit_report import FitReport, make_report
 from .base import quantity_from_unit
 from .identification import check_record
+from .identify_options import IdentifyOptions
 from .prandtl_ishlinskii import PrandtlIshlinskii
 from .record_split import choose_split
 from ..errors import AccuracyWarning, SetupWarning
@@ -231,12 +233,10 @@ def _record_arrays(record: Any, y: Any) -> tuple[Any, Any, str, Any]:
     return record, y, "", None
 
 
+@hide_keywords
 def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int | None = None,
-             fit_mask: Any = None, families: tuple[str, ...] = FAMILIES, n_levels: int = 30, n_plays: int = 20,
-             n_relays: int = 20, smoothing: float = 1e-3, prior: str = "pi", reversal_tolerance: float = 0.02,
-             levels: str = "paper", simpler_margin: float = 0.1, output_unit: str | None = None,
-             relays_per_cell: int = 1, output_quantity: str | None = None,
-             linear_margin: float = 1.0) -> ModelChoice:
+             fit_mask: Any = None, families: tuple[str, ...] = FAMILIES, output_unit: str | None = None,
+             output_quantity: str | None = None, options: IdentifyOptions | None = None, **legacy: Any) -> ModelChoice:
     """Fit every hysteresis family to a record and choose one by its held-out error.
 
     Parameters
@@ -260,36 +260,18 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
         The fitted samples (one entry per sample), instead of ``split``.
     families : tuple of str, optional
         Which of :data:`FAMILIES` to fit (default all).
-    n_levels : int, optional
-        Grid levels of the ``discrete`` and ``everett`` fits.
-    n_plays : int, optional
-        Plays of the ``prandtl_ishlinskii`` fit.
-    n_relays : int, optional
-        Relays of the ``equal_gain`` model.
-    smoothing : float, optional
-        Regularisation of the grid fits.
-    prior : {"pi", "smooth"}, optional
-        Prior of the grid fits where the record says nothing (default ``"pi"``, its strength
-        cross-validated on the fitted part: see :mod:`exudyn_atcm.hysteresis.priors`).
-    reversal_tolerance : float, optional
-        Of the ``equal_gain`` construction (fraction of the input range; see ``from_loop``).
-    levels : {"paper", "centred"}, optional
-        Level rule of the ``equal_gain`` construction.
-    simpler_margin : float, optional
-        A model with more parameters is chosen only if its held-out RMS error is below
-        ``1 + simpler_margin`` times that of every simpler one within reach (default 0.1).
     output_unit : str, optional
         Unit of ``y`` (default: the record's, or ``""``); every fitted model keeps it.
-    relays_per_cell : int, optional
-        Of the ``discrete`` fit: ``k > 1`` fits the weights as spread cells and realises each
-        cell as ``k × k`` relays (see :meth:`DiscretePreisach.fit`); the parameter count is the
-        fitted weights' (default 1).
     output_quantity : str, optional
         What ``y`` is (``"strain"``, ``"displacement"``, ...); default from the unit (a length
         unit: ``"displacement"``).
-    linear_margin : float, optional
-        Warn unless the best linear model's held-out RMS error is at least ``1 + linear_margin``
-        times the chosen model's (default 1: twice).
+    options : IdentifyOptions, optional
+        How each family is fitted and how one is chosen
+        (:class:`~exudyn_atcm.hysteresis.identify_options.IdentifyOptions`: ``n_levels``,
+        ``n_plays``, ``n_relays``, ``smoothing``, ``prior``, ``reversal_tolerance``, ``levels``,
+        ``relays_per_cell``, ``simpler_margin``, ``linear_margin``).  These names as flat keywords
+        (the earlier signature) still work for one release, with an
+        :class:`~exudyn_atcm.AtcmDeprecationWarning`.
 
     Returns
     -------
@@ -301,6 +283,9 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
         For a bad record (see :func:`~exudyn_atcm.hysteresis.identification.check_record`), no
         held-out part, an unknown family or split, or no family that could be fitted.
     """
+    (options,) = options_from_keywords("identify", legacy, options=(IdentifyOptions, options))
+    (n_levels, n_plays, n_relays, smoothing, prior, reversal_tolerance, levels, relays_per_cell, simpler_margin,
+     linear_margin) = option_values(options)
     u_in, y_in, unit, t = _record_arrays(u, y)
     unit = unit if output_unit is None else output_unit
     quantity = quantity_from_unit(unit, output_quantity)
