@@ -25,10 +25,12 @@ back (:mod:`exudyn_atcm.hysteresis.model_files`; the format:
 """
 
 from .base import HysteresisOperator
-from .continuous import ContinuousPreisach
+# the families register themselves for identify() in this order (equal_gain, discrete, everett,
+# prandtl_ishlinskii, continuous): the order identify fits them in and lists families it could not fit
 from .discrete import DiscretePreisach
 from .everett import EverettPreisach
 from .prandtl_ishlinskii import PrandtlIshlinskii
+from .continuous import ContinuousPreisach
 from .model_choice import ModelChoice, identify
 from .staircase import StaircasePreisach
 

@@ -9,6 +9,7 @@ import numpy as np
 from .._checks import finite_array, finite_float, same_length
 from ..physical_bounds import check_element_count
 from .base import HysteresisOperator, check_input
+from .families import FamilyFit, FitRequest, register_family
 from .pi_fit import fit_prandtl_ishlinskii
 
 
@@ -187,3 +188,14 @@ class PrandtlIshlinskii(HysteresisOperator):
         """
         return fit_prandtl_ishlinskii(cls, u, y, n, n_fit=n_fit, fit_mask=fit_mask, output_unit=output_unit,
                                       output_quantity=output_quantity, initial=initial)
+
+
+def _fit_pi(request: FitRequest) -> FamilyFit:
+    """The ``prandtl_ishlinskii`` family: :meth:`PrandtlIshlinskii.fit`."""
+    n_plays = request.options.get("n_plays", 20)
+    model, report = PrandtlIshlinskii.fit(request.u, request.y, n_plays, **request.rows, **request.units)
+    return FamilyFit(f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1)
+
+
+register_family("prandtl_ishlinskii", _fit_pi, inverse="analytic", operator=PrandtlIshlinskii,
+                description="weighted play operators, non-negative weights")
