@@ -37,7 +37,8 @@ def default_input_range(model: Any) -> tuple[float, float]:
         If the model declares neither range (then give ``input_range``).
     """
     declared = getattr(model, "saturation_range", None)
-    if declared is None:
+    saturates = declared is not None
+    if not saturates:
         declared = getattr(model, "fitted_range", None)
     if declared is None:
         raise ValueError(f"input_range must be given for a {type(model).__name__}: it declares neither a "
@@ -47,10 +48,12 @@ def default_input_range(model: Any) -> tuple[float, float]:
     if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
         raise ValueError(f"input_range: {type(model).__name__} declares the range {declared!r}; an inverse needs a "
                          "finite one with high > low (give input_range)")
-    probe = copy.deepcopy(model)
-    probe.reset()
-    if float(probe.evaluate(lo)) != float(probe.output):
-        lo -= 1e-6 * max(hi - lo, abs(lo), 1.0)
+    if saturates:  # the output is constant below the saturation range, unless a relay switches exactly at lo
+        below = lo - 1e-6 * max(hi - lo, abs(lo), 1.0)
+        probe = copy.deepcopy(model)
+        probe.reset()
+        if float(probe.evaluate(below)) != float(probe.evaluate(lo)):
+            lo = below
     return lo, hi
 
 
