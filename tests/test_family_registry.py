@@ -39,16 +39,18 @@ from test_identification import corners_path
 # ----------------------------------------------------------------------------- the family (one file)
 
 class BoucWen(HysteresisOperator):
-    """``y = offset + k u + z``, ``dz = A du − β |du| z − γ du |z|`` (Bouc-Wen, exponent 1), rate independent.
+    """``y = offset + k u − z``, ``dz = A du − β |du| z − γ du |z|`` (Bouc-Wen, exponent 1), rate independent.
 
-    Between two inputs the input moves monotonically, and ``z`` follows in closed form (a linear
-    ODE in ``u`` on each side of ``z = 0``).  Reset: ``u = 0``, ``z = 0``.  Needs ``A > 0``,
-    ``k >= 0`` and ``β > |γ|``: then the output does not decrease with the input.
+    The piezo form (e.g. Low and Guo 2009): the output lags the input, the ascending branch below
+    the descending one.  Between two inputs the input moves monotonically, and ``z`` follows in
+    closed form (a linear ODE in ``u`` on each side of ``z = 0``).  Reset: ``u = 0``, ``z = 0``.
+    Needs ``A > 0`` and ``β > |γ|`` (then ``|z| <= A/(β + γ)``, where ``dz/du <= 2Aβ/(β + γ)``) and
+    ``k > 2Aβ/(β + γ)``: then the output increases with the input.
     """
 
     def __init__(self, k: float, A: float, beta: float, gamma: float, offset: float = 0.0) -> None:
-        if not (k >= 0.0 and A > 0.0 and beta > abs(gamma)):
-            raise ValueError(f"need k >= 0, A > 0 and beta > |gamma|, got k={k!r}, A={A!r}, beta={beta!r}, "
+        if not (A > 0.0 and beta > abs(gamma) and k > 2.0 * A * beta / (beta + gamma)):
+            raise ValueError(f"need A > 0, beta > |gamma| and k > 2 A beta / (beta + gamma), got k={k!r}, A={A!r}, beta={beta!r}, "
                              f"gamma={gamma!r}")
         self.k, self.A, self.beta, self.gamma, self.offset = (float(v) for v in (k, A, beta, gamma, offset))
         self.reset()
@@ -71,7 +73,7 @@ class BoucWen(HysteresisOperator):
         return z_inf + (z - z_inf) * math.exp(-lam * xi)
 
     def evaluate(self, u: float) -> float:
-        return self.offset + self.k * u + self._z(float(u))
+        return self.offset + self.k * u - self._z(float(u))
 
     def commit(self, u: float) -> float:
         self._zc, self._u = self._z(float(u)), float(u)
@@ -88,25 +90,35 @@ class BoucWen(HysteresisOperator):
 
     @property
     def output(self) -> float:
-        return self.offset + self.k * self._u + self._zc
+        return self.offset + self.k * self._u - self._zc
 
     def inverse(self, input_range=None) -> HysteresisOperator:
         return BisectionInverse(self, input_range)  # monotone; default range: the declared fitted_range
 
 
+def z_along(u, beta, gamma):
+    """``z`` of ``A = 1`` along ``u`` from the reset state (``z`` is proportional to ``A``), for the fit's design matrix."""
+    unit = object.__new__(BoucWen)  # any beta, gamma the search tries, without the monotonicity check
+    unit.k, unit.A, unit.beta, unit.gamma, unit.offset = 0.0, 1.0, beta, gamma, 0.0
+    unit.reset()
+    return -unit.apply(u)
+
+
 def fit_bouc_wen(u, y, *, n_fit=None, fit_mask=None, output_unit="", output_quantity=None):
-    """Least squares: ``offset``, ``k``, ``A`` linear (``z`` is proportional to ``A``), ``β``, ``γ/β`` searched."""
+    """Least squares: ``offset``, ``k``, ``A`` linear (``z`` is proportional to ``A``), ``β``, ``γ/β`` searched.
+
+    A record the family cannot describe gives ``ValueError`` (from the constructor: not increasing)."""
     started = time.perf_counter()
     u_a, y_a, mask, stop = fit_samples(u, y, n_fit, fit_mask)
     scale = 1.0 / float(np.ptp(u_a[mask]))
 
     def solve(p):
         beta = math.exp(p[0]) * scale
-        X = np.column_stack([np.ones(u_a.size), u_a, BoucWen(0.0, 1.0, beta, beta * math.tanh(p[1])).apply(u_a)])
+        X = np.column_stack([np.ones(u_a.size), u_a, -z_along(u_a, beta, beta * math.tanh(p[1]))])
         coef = np.linalg.lstsq(X[mask], y_a[mask], rcond=None)[0]
         return beta, coef, X[mask] @ coef - y_a[mask]
 
-    p = least_squares(lambda q: solve(q)[2], [math.log(3.0), 0.0]).x
+    p = least_squares(lambda q: solve(q)[2], [math.log(3.0), 0.0], bounds=([-10.0, -3.0], [10.0, 3.0])).x
     beta, (offset, k, A), _ = solve(p)
     model = BoucWen(k, A, beta, beta * math.tanh(p[1]), offset)
     report = make_report(model, u_a, y_a, stop if fit_mask is None else u_a.size, 0, "BoucWen.fit",
@@ -160,10 +172,10 @@ def reference(u, k, A, beta, gamma, offset=0.0):
                         method="DOP853", t_eval=at, rtol=1e-12, atol=1e-14 * A / beta)
         z[start:stop + 1] = sol.y[0][where]
         start = stop
-    return offset + k * u[1:] + z[1:]
+    return offset + k * u[1:] - z[1:]
 
 
-TRUTH = dict(k=0.3, A=1.0, beta=4.0, gamma=1.5)  # u in [-1, 1]: z between -0.18 and 0.18
+TRUTH = dict(k=0.5, A=0.3, beta=2.0, gamma=1.0)  # u in [-1, 1]: |z| <= 0.1, output range 1.2
 U = corners_path([0.0, 1.0, -1.0, 1.0, -0.3, 0.6, -1.0, 1.0, 0.2, -0.5, 1.0, -1.0, 0.7, -0.6, 0.4, -0.2, 1.0,
                   -1.0, 0.5], 0.01)
 N_FIT = int(np.flatnonzero(np.isclose(U, -1.0))[2])  # fitted: up to the third visit of -1
@@ -180,8 +192,9 @@ def test_standalone_operator_is_the_integrated_equation():
     trial = op.evaluate(-0.4)
     assert op.evaluate(-0.4) == trial and op.output == op.evaluate(0.7)
     assert op.commit(-0.4) == trial
-    # and the loop is a real hysteresis: the two branches at u = 0 differ by 2 z_inf-ish
-    assert np.ptp(y) > 0.9
+    # a loop with the piezo's sense: at u = 0.5 the ascending branch (first rise) lies below the descending one
+    rising, falling = y[np.flatnonzero(np.isclose(U, 0.5))[:2]]
+    assert falling - rising > 0.1
 
 
 def test_inverse_operator_uses_the_declared_fitted_range():
@@ -227,16 +240,18 @@ def test_chosen_by_identify_on_a_bouc_wen_record():
     assert choice.chosen.family == "bouc_wen", choice.to_text()
     c = choice.candidate("bouc_wen")
     assert (c.parameters, c.invertible, c.inverse) == (5, True, "bisection")
-    # the truth's family predicts the held-out part to the noise (0.3 % of the range): within 1.3x
+    # the truth's family predicts the held-out part to the noise (0.3 % of the range): within 1.3x (measured
+    # 0.283 %; the next, prandtl_ishlinskii with 21 parameters, 0.641 %)
     assert c.held_out_rms_percent < 1.3 * 0.3
     assert "bouc_wen (n = 1) *" in choice.to_text()
 
 
 # ----------------------------------------------------------------------------- in a drive
 
-# volts to free strain: 3e-7/V linear plus a loop of about 1e-4 (the MFC's range is about 1.4e-3)
-STRAIN = dict(k=3e-7, A=6e-7, beta=1.0 / 250.0, gamma=0.4 / 250.0)
-REJECTING = {"timeIntegration.newton.maxIterations": 2, "timeIntegration.newton.useModifiedNewton": False}
+# volts to free strain: 3e-7/V linear and a loop about 1.2e-4 wide (|z| <= 6.25e-5; the MFC's range is 1.4e-3)
+STRAIN = dict(k=3e-7, A=1.5e-7, beta=1.0 / 500.0, gamma=0.2 / 500.0)
+# one Newton iteration per attempt: Exudyn rejects and cuts steps (measured 375 rejections in 0.1 s)
+REJECTING = {"timeIntegration.newton.maxIterations": 1, "timeIntegration.newton.useModifiedNewton": False}
 
 
 def strain_operator():
@@ -269,10 +284,11 @@ def test_simulation_exact_under_step_rejection():
         # steps left no trace (closed form vs DOP853: 1e-10 of the range)
         expected = reference(r["voltage"], **STRAIN)
         np.testing.assert_allclose(r["strain"], expected, rtol=0, atol=1e-10 * np.ptp(expected))
-        assert np.ptp(r["strain"]) > 7e-4
+        # the run covers the loop: -500 ... 1500 V, k 2000 V = 6e-4 less the loop's 1.25e-4 width at the ends
+        assert np.ptp(r["strain"]) > 4.5e-4
     # both runs, at the times both recorded, carry the same strain: the voltages there are the program's, and
     # the memory differs only where a coarse step cut a triangle corner (a corner at t = 0.025 s, 0.075 s;
-    # cut by at most one step of 2 ms, 80 V: measured below 1e-3 of the range)
+    # cut by at most one step of 2 ms, 80 V: measured 6.0e-4 of the range at 273 common times)
     common, i, j = np.intersect1d(np.round(coarse["time"], 12), np.round(fine["time"], 12), return_indices=True)
     assert common.size > 20
     np.testing.assert_allclose(coarse["strain"][i], fine["strain"][j], rtol=0, atol=1e-3 * np.ptp(fine["strain"]))
