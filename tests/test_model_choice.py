@@ -163,3 +163,13 @@ def test_refined_relay_grid_in_the_table():
     assert rows["discrete"].parameters == rows["everett"].parameters == 12 * 13 // 2 + 1
     # the relays' staircase over 96 levels stays within one fine step of the spread grid's output
     assert abs(rows["discrete"].held_out_rms_percent - rows["everett"].held_out_rms_percent) < 100 / 96
+
+
+def test_the_docs_family_table_is_the_registry():
+    """docs/identification.rst lists the registered families (name, operator, inverse, description), in order."""
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "identification.rst").read_text(encoding="utf-8")
+    rows = re.findall(r"^   \* - ``(\w+)``\n     - :class:`~[\w.]*\.(\w+)`\n     - (.+)\n     - (.+)$", text, re.M)
+    assert rows == [(f.name, f.operator.__name__, f.inverse, f.description) for f in registered_families().values()]

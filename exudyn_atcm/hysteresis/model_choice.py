@@ -4,16 +4,9 @@
 family registers itself, with its fit, parameter count and kind of inverse, in the module that
 defines its operator) on the same fitted part of a record and predicts the same held-out part
 with each (the model runs over the whole record from its reset state, so the held-out part
-starts from the memory the fitted part left).  The package registers:
-
-* ``equal_gain``: :meth:`DiscretePreisach.from_loop` (the paper's Eq. 12); no continuous inverse
-  (staircase);
-* ``discrete``: :meth:`DiscretePreisach.fit` (relay grid); no continuous inverse (staircase);
-* ``everett``: :meth:`EverettPreisach.fit` (grid, each weight spread over its cell); inverse by
-  bisection;
-* ``prandtl_ishlinskii``: :meth:`PrandtlIshlinskii.fit`; analytic inverse;
-* ``continuous``: :meth:`ContinuousPreisach.fit` (the paper's power law, Eqs. 8-10); inverse by
-  bisection.
+starts from the memory the fitted part left).  The package's families (equal-gain relays,
+the relay grid, the spread-cell grid, Prandtl-Ishlinskii, the continuous power law) are listed
+with their inverses on the :doc:`/identification` page.
 
 Which samples are fitted and which held out: :mod:`exudyn_atcm.hysteresis.record_split` (by
 default the held-out inputs lie inside the fitted input range: the first 60 % of the record
