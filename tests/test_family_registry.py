@@ -292,3 +292,30 @@ def test_simulation_exact_under_step_rejection():
     common, i, j = np.intersect1d(np.round(coarse["time"], 12), np.round(fine["time"], 12), return_indices=True)
     assert common.size > 20
     np.testing.assert_allclose(coarse["strain"][i], fine["strain"][j], rtol=0, atol=1e-3 * np.ptp(fine["strain"]))
+
+
+# ----------------------------------------------------------------------------- the registry's refusals
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"name": "Bouc Wen"}, "name must be lower case letters"),
+    ({"fit": "fit_bouc_wen"}, "fit must be callable"),
+    ({"inverse": "newton"}, r"inverse must be one of \('analytic', 'bisection', 'none \(staircase\)'\), got 'newton'"),
+    ({"operator": BoucWen(**TRUTH)}, "operator must be a class or None"),
+    ({"name": "bouc_wen"}, "name 'bouc_wen' is registered already"),
+])
+def test_register_family_refuses_bad_input(kwargs, match):
+    args = {"name": "another", "fit": bouc_wen_family, "inverse": "bisection", **kwargs}
+    with pytest.raises(ValueError, match=match):
+        register_family(args.pop("name"), args.pop("fit"), **args)
+    assert "another" not in registered_families()
+
+
+def test_identify_refuses_an_unknown_family_and_families_is_a_deprecated_name():
+    with pytest.raises(ValueError, match=r"families must be a non-empty selection of the registered families .*"
+                                         r"'bouc_wen'\), got \('bouc_wenn',\)"):
+        identify(U, reference(U, **TRUTH), families=("bouc_wenn",))
+    from exudyn_atcm.errors import AtcmDeprecationWarning
+    from exudyn_atcm.hysteresis import model_choice
+
+    with pytest.warns(AtcmDeprecationWarning, match="FAMILIES is deprecated"):
+        assert model_choice.FAMILIES == tuple(registered_families())

@@ -94,19 +94,10 @@ class FitRequest:
 
 @dataclass(frozen=True)
 class FamilyFit:
-    """What a family's fit returns.
-
-    Attributes
-    ----------
-    label : str
-        Family and size, e.g. ``"everett (30 levels, pi)"``.
-    model : HysteresisOperator
-        The identified operator.
-    report : FitReport
-        Its errors on the fitted and the held-out samples.
-    parameters : int
-        Identified numbers (weights, thresholds, gains, offset, ...).
-    """
+    """What a family's fit returns: ``label`` (family and size, e.g. ``"everett (30 levels, pi)"``),
+    ``model`` (the identified operator), ``report`` (its
+    :class:`~exudyn_atcm.hysteresis.FitReport` on the fitted and the held-out samples) and
+    ``parameters`` (the number of identified values: weights, thresholds, gains, offset, ...)."""
 
     label: str
     model: Any
