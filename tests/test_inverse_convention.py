@@ -178,3 +178,31 @@ def test_with_dynamics_inverse_apply_is_a_deprecated_shim_with_the_same_inputs()
         old = model.inverse_apply(y, T, inverse_operator(model.operator))
     # the same exact lag inverse, step by step instead of in one pass: rounding differences only
     np.testing.assert_allclose(model.inverse().apply(y, T), old, rtol=0, atol=1e-12 * np.ptp(U))
+
+
+def test_creep_hysteresis_inverse_and_the_deprecated_inverse_apply(tmp_path):
+    from exudyn_atcm.hysteresis import load_model
+    from exudyn_atcm.hysteresis.creep import CreepHysteresis, CreepHysteresisInverse
+
+    model = CreepHysteresis(pi(), Creep([0.003, 0.03], [0.05, 0.1]))
+    y = model.apply(U, T)
+    inverse = model.inverse()
+    assert isinstance(inverse, CreepHysteresisInverse)
+    # exact creep inverse, then the analytic PI inverse: rounding only
+    np.testing.assert_allclose(inverse.apply(y, T), U, rtol=0, atol=1e-10 * np.ptp(U))
+    np.testing.assert_allclose(inverse.inverse().apply(U, T), y, rtol=0, atol=0)
+    with pytest.warns(AtcmDeprecationWarning, match=r"inverse\(\)\.apply\(y, t\)"):
+        old = model.inverse_apply(y, T, inverse_operator(model.hysteresis))
+    np.testing.assert_array_equal(inverse.apply(y, T), old)
+    again = load_model(inverse.save(tmp_path / "inverse.json"))
+    np.testing.assert_array_equal(again.apply(y, T), old)
+
+
+def test_dynamics_inverse_is_saved_with_its_range(tmp_path):
+    from exudyn_atcm.hysteresis import load_model
+
+    inverse = with_dynamics().inverse(input_range=(-1.0, 1.0))
+    again = load_model(inverse.save(tmp_path / "inverse.json"))
+    assert type(again) is DynamicsInverse and again.requested_range == (-1.0, 1.0)
+    y = with_dynamics().apply(U, T)
+    np.testing.assert_array_equal(again.apply(y, T), inverse.apply(y, T))
