@@ -26,7 +26,7 @@ from exudyn_atcm.hysteresis.bisection import BisectionInverse
 from exudyn_atcm.hysteresis.families import FamilyFit, register_family, registered_families, unregister_family
 from exudyn_atcm.hysteresis.fit_report import make_report
 from exudyn_atcm.hysteresis.identification import fit_samples, record_fit
-from exudyn_atcm.hysteresis.model_registry import FLOAT, kind_named, register_model_kind
+from exudyn_atcm.hysteresis.model_registry import FLOAT, register_model_kind, unregister_model_kind
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.signals import Triangle
 from exudyn_atcm.solve import simulate, solve_static
@@ -135,14 +135,13 @@ def bouc_wen_family(request):
 
 @pytest.fixture(scope="module", autouse=True)
 def registered():
-    """Register the family for this file's tests only (the other files' families stay the package's)."""
+    """Register the family and its saved kind for this file's tests only (the other files' stay the package's)."""
     register_family("bouc_wen", bouc_wen_family, inverse="bisection", operator=BoucWen,
                     description="Bouc-Wen differential model, exponent 1")
-    if kind_named("bouc_wen") is None:
-        register_model_kind("bouc_wen", BoucWen, {"k": FLOAT, "A": FLOAT, "beta": FLOAT, "gamma": FLOAT,
-                                                  "offset": FLOAT})
+    register_model_kind("bouc_wen", BoucWen, {"k": FLOAT, "A": FLOAT, "beta": FLOAT, "gamma": FLOAT, "offset": FLOAT})
     yield
     unregister_family("bouc_wen")
+    unregister_model_kind("bouc_wen")
 
 
 # ----------------------------------------------------------------------------- the independent reference
@@ -319,3 +318,7 @@ def test_identify_refuses_an_unknown_family_and_families_is_a_deprecated_name():
 
     with pytest.warns(AtcmDeprecationWarning, match="FAMILIES is deprecated"):
         assert model_choice.FAMILIES == tuple(registered_families())
+    with pytest.raises(ValueError, match="name must be a registered family, one of .*, got 'no_such'"):
+        unregister_family("no_such")
+    with pytest.raises(ValueError, match="name must be a registered kind, one of .*, got 'no_such'"):
+        unregister_model_kind("no_such")
