@@ -111,7 +111,7 @@ def declared_benchmarks(name: str, benchmarks: Sequence[Mapping[str, Any]] | Non
         try:
             resolve(parameters)
         except ValueError as exc:
-            raise ValueError(f"{where} ({entry['id']}): parameters: {exc}") from None
+            raise ValueError(f"{where} ({entry['id']}): parameters: {_own(name, exc)}") from None
         entries.append(entry)
     return tuple(entries)
 
@@ -132,7 +132,7 @@ def declared_smoke(name: str, smoke: Mapping[str, Any] | None,
     try:
         resolve(smoke)
     except ValueError as exc:
-        raise ValueError(f"case {name}: smoke: {exc}") from None
+        raise ValueError(f"case {name}: smoke: {_own(name, exc)}") from None
     return dict(smoke)
 
 
@@ -149,3 +149,8 @@ def declared_order(name: str, table_order: float | None) -> float:
     if isinstance(table_order, bool) or not isinstance(table_order, (int, float)) or math.isnan(table_order):
         raise ValueError(f"case {name}: table_order must be a number (the row's position), got {table_order!r}")
     return float(table_order)
+
+
+def _own(name: str, exc: ValueError) -> str:
+    """The message of a refusal by the case itself, without its leading ``case NAME:``."""
+    return str(exc).removeprefix(f"case {name}: ")
