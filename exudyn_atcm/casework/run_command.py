@@ -11,7 +11,7 @@ import traceback
 import warnings
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 from ..io.progress import ProgressBar
 from ..solve.run_checks import SimulationInterrupted
@@ -19,10 +19,17 @@ from .output_folder import marker_name
 from .parameters import CaseError
 from .termination import StopSignal, stop_signals_as_interrupt
 
-if TYPE_CHECKING:  # only for the annotations: case.py imports this module
-    from .case import Case
+__all__ = ["add_run_options", "run_and_report", "RunnableCase"]
 
-__all__ = ["add_run_options", "run_and_report"]
+
+class RunnableCase(Protocol):
+    """What the command line needs of a case (:class:`~exudyn_atcm.casework.case.Case` has it)."""
+
+    name: str
+
+    def parse_assignments(self, assignments: Sequence[str]) -> dict[str, Any]: ...
+
+    def run(self, values: Any = None, *, out_dir: Any = None, plot: bool = True, progress: Any = None) -> Any: ...
 
 def add_run_options(parser: argparse.ArgumentParser) -> None:
     """The options shared by ``python cases/x.py`` and ``exudyn-atcm run``."""
@@ -34,7 +41,7 @@ def add_run_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
 
 
-def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool, debug: bool) -> int:
+def run_and_report(case: RunnableCase, assignments: Sequence[str], out: str, plot: bool, debug: bool) -> int:
     """Run ``case`` with ``NAME=VALUE`` overrides, print a summary; the exit status.
 
     Errors are printed as one line on stderr (with the traceback when ``debug``): exit
@@ -72,7 +79,7 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
     print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
-def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool, stop: StopSignal) -> int:
+def _interrupted(case: RunnableCase, exc: KeyboardInterrupt, out: str, debug: bool, stop: StopSignal) -> int:
     """Report Ctrl-C or a stop signal: where the simulation stopped and what was written.
 
     Exit status 130 for Ctrl-C, ``128 + signal number`` for a stop signal (143 for SIGTERM).
