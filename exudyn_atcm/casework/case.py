@@ -114,9 +114,8 @@ class Case:
     summary : str, optional
         The case's row in the case tables: what it shows (and its reference).
     table_order : float, optional
-        The row's position in the case tables (``None``: after the ordered rows, by name).
-
-    The four declarations are described in :mod:`exudyn_atcm.casework.declarations`.
+        The row's position in the case tables (``None``: after the ordered rows, by name).  The
+        four declarations are described in :mod:`exudyn_atcm.casework.declarations`.
 
     Raises
     ------
