@@ -125,6 +125,10 @@ def _list(cases_dir: str | None, table: str | None = None) -> int:
         print(f"    {case.description}")
         for parameter in case.parameters:
             print(f"    --set {parameter.describe()}")
+        if case.smoke:
+            print("    smoke test: " + " ".join(f"--set {k}={v}" for k, v in case.smoke.items()))
+        if case.benchmarks:
+            print("    regression benchmarks: " + ", ".join(b["id"] for b in case.benchmarks))
         print()
     return 0
 

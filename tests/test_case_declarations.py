@@ -170,6 +170,17 @@ def test_an_outside_case_is_discovered_smoke_run_benchmarked_and_tabled(tmp_path
     assert table.startswith(case_table(shipped_cases(), "md"))
 
 
+def test_list_shows_an_outside_case_with_its_declarations(tmp_path):
+    folder = tmp_path / "my_cases"
+    write_case(folder)
+    proc = cli(["list", "--cases-dir", str(folder)], tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    block = proc.stdout.split("cantilever_check  (")[1].split("\n\n")[0]
+    assert "    --set force = 0.1 [N] (float, > 0 and <= 10)" in block
+    assert "    smoke test: --set force=0.5" in block and "    regression benchmarks: cantilever_check_tip" in block
+    assert "    regression benchmarks: stiffness_ref_a, convergence_48_rigid_cells" in proc.stdout
+
+
 def test_an_outside_benchmark_with_a_wrong_reference_fails_the_bench(tmp_path):
     # the same case with its analytic value 1 % off: the command line's bench fails on it (exit status 1)
     folder = tmp_path / "my_cases"
