@@ -254,19 +254,19 @@ SMOKE = {"animation": False}
 #: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
 BENCHMARKS = [
     {
-      "id": "four_bar",
-      "quick": True,
-      "parameters": {"animation": False},
-      "scalars": [
-        {"name": "reference_error (coupler point vs rigid four-bar, / travel)", "scalar": "reference_error", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis (circle intersection) from the crank bender's simulated tip; static solver tolerance"},
-        {"name": "reference_error_linear (/ travel)", "scalar": "reference_error_linear", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis, linear drive"},
-        {"name": "reference_error_dynamic (/ travel)", "scalar": "reference_error_dynamic", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis at every recorded instant of the dynamic run"},
-        {"name": "rocker_joint_error_abs", "scalar": "rocker_joint_error_abs", "analytic": 0.0, "abs": 1e-8, "source": "rigid rocker: |C - D| = rocker length; static solver tolerance 1e-8 m"},
-        {"name": "loop_width_linear (no hysteresis, no loop)", "scalar": "loop_width_linear", "analytic": 0.0, "abs": 1e-8, "source": "a linear drive traces the same path up and down"},
-        {"scalar": "coupler_travel", "rel": 1e-6},
-        {"scalar": "loop_width_max", "rel": 1e-6},
-        {"scalar": "hysteresis_path_error_max", "rel": 1e-6}
-      ]
+        "id": "four_bar",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "reference_error (coupler point vs rigid four-bar, / travel)", "scalar": "reference_error", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis (circle intersection) from the crank bender's simulated tip; static solver tolerance"},
+            {"name": "reference_error_linear (/ travel)", "scalar": "reference_error_linear", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis, linear drive"},
+            {"name": "reference_error_dynamic (/ travel)", "scalar": "reference_error_dynamic", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis at every recorded instant of the dynamic run"},
+            {"name": "rocker_joint_error_abs", "scalar": "rocker_joint_error_abs", "analytic": 0.0, "abs": 1e-8, "source": "rigid rocker: |C - D| = rocker length; static solver tolerance 1e-8 m"},
+            {"name": "loop_width_linear (no hysteresis, no loop)", "scalar": "loop_width_linear", "analytic": 0.0, "abs": 1e-8, "source": "a linear drive traces the same path up and down"},
+            {"scalar": "coupler_travel", "rel": 1e-6},
+            {"scalar": "loop_width_max", "rel": 1e-6},
+            {"scalar": "hysteresis_path_error_max", "rel": 1e-6}
+        ]
     },
 ]
 

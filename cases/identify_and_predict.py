@@ -181,13 +181,13 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
 #: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
 BENCHMARKS = [
     {
-      "id": "identify_and_predict",
-      "quick": True,
-      "scalars": [
-        {"name": "held_out_rms_per_noise (<= 1.5)", "scalar": "held_out_rms_per_noise", "analytic": 1.0, "abs": 0.5, "source": "a perfect model's held-out RMS error equals the record's noise level (ratio 1); accepted up to 1.5 (and down to 0.5)"},
-        {"scalar": "held_out_rms_preisach", "rel": 1e-6},
-        {"scalar": "held_out_rms_linear", "rel": 1e-6}
-      ]
+        "id": "identify_and_predict",
+        "quick": True,
+        "scalars": [
+            {"name": "held_out_rms_per_noise (<= 1.5)", "scalar": "held_out_rms_per_noise", "analytic": 1.0, "abs": 0.5, "source": "a perfect model's held-out RMS error equals the record's noise level (ratio 1); accepted up to 1.5 (and down to 0.5)"},
+            {"scalar": "held_out_rms_preisach", "rel": 1e-6},
+            {"scalar": "held_out_rms_linear", "rel": 1e-6}
+        ]
     },
 ]
 

@@ -228,15 +228,15 @@ SMOKE = {"duration": 1.0}
 #: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
 BENCHMARKS = [
     {
-      "id": "tip_tracking",
-      "quick": True,
-      "scalars": [
-        {"scalar": "rms_error_linear", "rel": 1e-6},
-        {"scalar": "rms_error_feedforward", "rel": 1e-6},
-        {"scalar": "rms_error_pid", "rel": 1e-6},
-        {"scalar": "rms_error_pid_feedforward", "rel": 1e-6},
-        {"scalar": "linear_over_pid_feedforward", "rel": 1e-6}
-      ]
+        "id": "tip_tracking",
+        "quick": True,
+        "scalars": [
+            {"scalar": "rms_error_linear", "rel": 1e-6},
+            {"scalar": "rms_error_feedforward", "rel": 1e-6},
+            {"scalar": "rms_error_pid", "rel": 1e-6},
+            {"scalar": "rms_error_pid_feedforward", "rel": 1e-6},
+            {"scalar": "linear_over_pid_feedforward", "rel": 1e-6}
+        ]
     },
 ]
 
