@@ -247,7 +247,31 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("compliant_four_bar", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (no GIF): they change no check the defaults pass.
+SMOKE = {"animation": False}
+
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "four_bar",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "reference_error (coupler point vs rigid four-bar, / travel)", "scalar": "reference_error", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis (circle intersection) from the crank bender's simulated tip; static solver tolerance"},
+            {"name": "reference_error_linear (/ travel)", "scalar": "reference_error_linear", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis, linear drive"},
+            {"name": "reference_error_dynamic (/ travel)", "scalar": "reference_error_dynamic", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis at every recorded instant of the dynamic run"},
+            {"name": "rocker_joint_error_abs", "scalar": "rocker_joint_error_abs", "analytic": 0.0, "abs": 1e-8, "source": "rigid rocker: |C - D| = rocker length; static solver tolerance 1e-8 m"},
+            {"name": "loop_width_linear (no hysteresis, no loop)", "scalar": "loop_width_linear", "analytic": 0.0, "abs": 1e-8, "source": "a linear drive traces the same path up and down"},
+            {"scalar": "coupler_travel", "rel": 1e-6},
+            {"scalar": "loop_width_max", "rel": 1e-6},
+            {"scalar": "hysteresis_path_error_max", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("compliant_four_bar", __doc__, PARAMETERS, run, plot, smoke=SMOKE, benchmarks=BENCHMARKS, table_order=6,
+            summary="a bender as input crank, flexure hinges; the coupler path with and without hysteresis (rigid four-bar kinematics)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -221,7 +221,29 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("micro_gripper", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "micro_gripper",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "mirror_error (/ travel)", "scalar": "mirror_error", "analytic": 0.0, "abs": 1e-12, "source": "mirror symmetry of the gripper about its axis"},
+            {"name": "free_jaw_error_chain_polygon (/ travel)", "scalar": "free_jaw_error_chain_polygon", "analytic": 0.0, "abs": 1e-5, "source": "the stress-free rigid-cell polygon of the free bender plus the rigid jaw; static solver tolerance"},
+            {"name": "free_jaw_error (arc, / travel)", "scalar": "free_jaw_error", "analytic": 0.0, "abs": 1e-4, "source": "constant-curvature arc plus the rigid jaw (pure bending); discretisation error of 24 cells"},
+            {"name": "force_error_large_deflection_object (/ force)", "scalar": "force_error_large_deflection_object", "analytic": 0.0, "abs": 1e-3, "source": "large-deflection beam with end moment and end force (elastica), object spring"},
+            {"name": "force_error_large_deflection_stiff (/ force)", "scalar": "force_error_large_deflection_stiff", "analytic": 0.0, "abs": 1e-3, "source": "large-deflection beam (elastica), stiff object"},
+            {"scalar": "gap_initial", "analytic": 0.01, "abs": 1e-12, "source": "geometry: 2 (half_spacing - jaw_offset) = 10 mm"},
+            {"scalar": "gap_min", "rel": 1e-6},
+            {"scalar": "force_max_object", "rel": 1e-6},
+            {"scalar": "force_max_stiff", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("micro_gripper", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=7,
+            summary="two mirrored benders with jaws gripping a spring object (symmetry, blocked force)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

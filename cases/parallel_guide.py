@@ -149,7 +149,24 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("parallel_guide", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "parallel_guide",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "translation_error (/ travel)", "scalar": "translation_error", "analytic": 0.0, "abs": 1e-4, "source": "S-shaped bender of two opposite constant-curvature arcs: pure translation (large-deflection closed form); 8 cells per segment"},
+            {"name": "translation_error_chain_polygon (/ travel)", "scalar": "translation_error_chain_polygon", "analytic": 0.0, "abs": 1e-9, "source": "the stress-free rigid-cell polygon of the two segments; static solver tolerance"},
+            {"name": "rotation_max (stage rotation)", "scalar": "rotation_max", "analytic": 0.0, "abs": 1e-12, "source": "antisymmetric curvature: the stage translates without rotating"},
+            {"scalar": "translation_y_max", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("parallel_guide", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=8,
+            summary="two S-shaped two-segment benders and a coupler: a translational stage (guided S-blade)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())
