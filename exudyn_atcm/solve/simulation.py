@@ -28,6 +28,7 @@ from ..io.result import Result
 from ..model.strain_sources import InStepStrain
 from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_mechanism, actuator_result
+from .bender_checks import check_benders
 from .keywords import keyword_signature, legacy_positional
 from .run_setup import DEFAULT_STEP
 
@@ -225,16 +226,18 @@ def simulate(
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
 
-        return mechanism_solve.simulate(actuator, t_end, step, settings, progress, record_every)
+        result = mechanism_solve.simulate(actuator, t_end, step, settings, progress, record_every)
+        check_benders(actuator, result, stacklevel=3)  # every bender's cell-kind checks; warnings at the caller
+        return result
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
     # the mechanism solve is called from here (and from run_actuator) directly: as many frames between the
     # caller and the run checks as for a mechanism, so their warnings point at the caller's line
+    mech = actuator_mechanism(actuator, _check_force(tip_force))
     with actuator_interrupts(actuator):
-        result = mechanism_solve.simulate(actuator_mechanism(actuator, _check_force(tip_force)), t_end, step,
-                                          settings, progress, record_every)
-    return _finish_actuator_run(actuator, result, "prestep")
+        result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every)
+    return _finish_actuator_run(actuator, mech, result, "prestep")
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
@@ -254,19 +257,18 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
             f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
             "the voltage depends on the simulated response and cannot be tabulated beforehand"
         )
+    mech = actuator_mechanism(actuator, _check_force(tip_force))
     with actuator_interrupts(actuator):
-        result = mechanism_solve.simulate(actuator_mechanism(actuator, _check_force(tip_force)), t_end, step,
-                                          settings, progress, record_every,
+        result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every,
                                           sources=None if source is None else [source], stroke_path=stroke_path)
-    return _finish_actuator_run(actuator, result, stroke_path)
+    return _finish_actuator_run(actuator, mech, result, stroke_path)
 
 
-def _finish_actuator_run(actuator: BendingActuator, result: Result, stroke_path: str) -> Result:
-    """The actuator's result of its one-bender mechanism's run, checked by its cell kind."""
+def _finish_actuator_run(actuator: BendingActuator, mech: Mechanism, result: Result, stroke_path: str) -> Result:
+    """The actuator's result of its one-bender mechanism's run, checked by its cell kind as any bender is."""
     result.info["stroke_path"] = stroke_path
-    out = actuator_result(actuator, result)
-    actuator.cell.check_run(out, actuator, stacklevel=4)  # the caller of simulate
-    return out
+    check_benders(mech, result, stacklevel=4)  # the caller of simulate
+    return actuator_result(actuator, result)
 
 
 # ------------------------------------------------------------------------------ quasi-static sweep
