@@ -19,7 +19,8 @@ from ..physical_bounds import MAX_CELLS, check_cell_count
 from .damped import MaterialDamped
 from .points import PointRef, check_name, unknown_point
 
-#: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
+#: Names of the cell kinds a bender can be made of, a lone actuator (a one-bender mechanism) or a mechanism's
+#: bender alike (each other kind says why not).  The one meaning of ``CELL_TYPES`` in the package.
 CELL_TYPES = tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
 #: Names of those that can also make a passive strip (``active=None``).
 PASSIVE_STRIP_CELLS = tuple(name for name in CELL_TYPES if not CELL_KINDS[name].needs_active_layer)

@@ -27,7 +27,7 @@ from ..mechanism import Mechanism
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
 from . import mechanism_solve
-from .as_mechanism import actuator_interrupts, actuator_mechanism, actuator_result
+from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
 from .keywords import keyword_signature, legacy_positional
 from .run_setup import DEFAULT_STEP
@@ -47,13 +47,6 @@ def _check_actuator(actuator: Any) -> BendingActuator:
         raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
     return actuator
 
-
-def _check_force(tip_force: Any) -> tuple[float, float]:
-    try:
-        fx, fy = tip_force
-    except (TypeError, ValueError):
-        raise ValueError(f"tip_force must be a pair (Fx, Fy) of finite numbers [N], got {tip_force!r}") from None
-    return finite_float("tip_force[0]", fx), finite_float("tip_force[1]", fy)
 
 
 
@@ -115,10 +108,9 @@ def solve_static(
 
         return mechanism_solve.solve_static(actuator, voltage, load_steps)
     actuator = _check_actuator(actuator)
-    force = _check_force(tip_force)
+    mech = actuator.as_mechanism(tip_force)
     volts = None if voltage is None else finite_float("voltage", voltage)
-    return actuator_result(actuator, mechanism_solve.solve_static(actuator_mechanism(actuator, force), volts,
-                                                                  load_steps))
+    return actuator_result(actuator, mechanism_solve.solve_static(mech, volts, load_steps))
 
 
 # ------------------------------------------------------------------------------ dynamic solve
@@ -234,7 +226,7 @@ def simulate(
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
     # the mechanism solve is called from here (and from run_actuator) directly: as many frames between the
     # caller and the run checks as for a mechanism, so their warnings point at the caller's line
-    mech = actuator_mechanism(actuator, _check_force(tip_force))
+    mech = actuator.as_mechanism(tip_force)
     with actuator_interrupts(actuator):
         result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every)
     return _finish_actuator_run(actuator, mech, result, "prestep")
@@ -257,7 +249,7 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
             f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
             "the voltage depends on the simulated response and cannot be tabulated beforehand"
         )
-    mech = actuator_mechanism(actuator, _check_force(tip_force))
+    mech = actuator.as_mechanism(tip_force)
     with actuator_interrupts(actuator):
         result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every,
                                           sources=None if source is None else [source], stroke_path=stroke_path)
@@ -310,7 +302,7 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
         return mechanism_solve.static_sweep(system, voltages)
     if not isinstance(system, BendingActuator):
         raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {system!r}")
-    mech = actuator_mechanism(system, _check_force(tip_force))
+    mech = system.as_mechanism(tip_force)
     return actuator_result(system, mechanism_solve.static_sweep(mech, voltages))
 
 
@@ -378,10 +370,9 @@ def eigenfrequencies(
         return mechanism_solve.eigenfrequencies(actuator, n, voltage)
     actuator = _check_actuator(actuator)
     n = positive_int("n", n)
-    force = _check_force(tip_force)
+    mech = actuator.as_mechanism(tip_force)
     volts = None if voltage is None else finite_float("voltage", voltage)
-    return mechanism_solve.eigenfrequencies(actuator_mechanism(actuator, force), n, volts,
-                                            loaded=force != (0.0, 0.0))
+    return mechanism_solve.eigenfrequencies(mech, n, volts, loaded=bool(mech.forces))
 
 
 #: Defaults of the public solves' keyword arguments in their old positional order (the positional
