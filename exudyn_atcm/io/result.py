@@ -270,7 +270,10 @@ class Result(Mapping):
         return pd.DataFrame({f"{n} [{self._units[n]}]": self._series[n] for n in self._series})
 
     def plot(self, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
-        """Write the standard PNG plots to ``out_dir``; see :func:`exudyn_atcm.plots.result.plot_result`."""
+        """Write the standard PNG plots of this result (a lone actuator's or a mechanism's) to ``out_dir``.
+
+        Returns the paths written; see :func:`exudyn_atcm.plots.result.plot_result`.
+        """
         from ..plots.result import plot_result
 
         return plot_result(self, out_dir, prefix=prefix)
