@@ -73,6 +73,9 @@ def solve_static(
         operator, the voltage is reached by a monotone ramp from the operator's reset state.
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
     load_steps : int, optional
         Number of equal load steps in which strain and load are raised from zero together
         (each step is halved adaptively if Newton fails).  Default: about one step per
@@ -149,6 +152,9 @@ def simulate(
         repeated, not recorded).
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates, constant in time.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
     settings : callable or dict, optional
         Adjusts the underlying ``exudyn.SimulationSettings`` after the package defaults are
         set: a callable receiving the settings object, or a dict of dotted names, e.g.
@@ -282,7 +288,10 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
         Voltages [V] of all drives at each point, or per drive (equal lengths; drives not
         named follow their program at t = 0 throughout).
     tip_force : (float, float), optional
-        Actuator only: dead tip load [N], constant along the sweep.
+        Dead tip load [N], constant along the sweep.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
 
     Returns
     -------
@@ -335,7 +344,10 @@ def eigenfrequencies(
         operator the strain is the one reached by a monotone ramp from the operator's reset
         state, as in :func:`solve_static`.
     tip_force : (float, float), optional
-        Actuator only: dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+        Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
 
     Returns
     -------
