@@ -53,7 +53,8 @@ WIDTH = 28e-3
 def build_mechanism(p: Parameters) -> Mechanism:
     """The bender along +x with the lever welded to its tip."""
     drive = PiezoDrive(Triangle(500.0, 1000.0, p.period), hysteresis=paper_strain_preisach())
-    bender = Bender("bender", width=WIDTH, passive=CFC, active=MFC, length=p.length, n_cells=p.n_cells, drive=drive)
+    bender = Bender("bender", width=WIDTH, passive=CFC, active=MFC, length=p.length, n_cells=p.n_cells, drive=drive,
+                    cell="rigid")
     lever = Link("lever", {"root": (p.length, 0.0), "end": (p.length + p.lever, 0.0)},
                  mass=p.lever_mass, inertia=p.lever_mass * p.lever**2 / 12.0)
     return Mechanism("bender_with_lever").add(bender, lever).ground(bender.base).weld(bender.tip, lever.point("root"))

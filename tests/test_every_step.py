@@ -36,7 +36,7 @@ def _actuator(cell="rigid"):
 
 def _mechanism():
     b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3,
-                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD), hysteresis=paper_strain_preisach()))
+                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD), hysteresis=paper_strain_preisach()), cell="rigid")
     lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
     post = atcm.Link("post", {"P": (0.05, -0.01)}, mass=1e-4, inertia=1e-9)
     mech = atcm.Mechanism("m").add(b, lever, post).ground(b.base).weld(b.tip, lever.point("A"))

@@ -64,7 +64,7 @@ def test_an_actuator_run_keeps_the_coordinate_vector_in_place(fresh_reads, cell)
 
 
 def test_a_mechanism_run_with_rejected_steps_keeps_the_coordinate_vector_in_place(fresh_reads):
-    b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=_drive(0.04))
+    b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=_drive(0.04), cell="rigid")
     lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
     mech = atcm.Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A"))
     with warnings.catch_warnings():

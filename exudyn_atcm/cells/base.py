@@ -137,7 +137,12 @@ class CellKind:
         return f"the {self.name} cell does not carry tip loads"
 
     def check_run(self, result: Any, actuator: Any, stacklevel: int = 2) -> None:
-        """Checks of a finished run of a lone actuator made of this kind (warnings); none by default."""
+        """Checks of a finished run of a bender made of this kind (warnings); none by default.
+
+        Called for every bender of a simulated mechanism, a lone actuator included: ``result`` holds
+        the bender's own columns under bare names (:func:`exudyn_atcm.solve.bender_checks.bender_view`),
+        ``actuator`` is the :class:`~exudyn_atcm.Bender` (its ``laminate``, ``length``, ``n_cells``).
+        """
 
     def estimate_step_cost(self, n_cells: int) -> float | None:
         """Measured wall time per accepted step [s] for ``n_cells`` cells, or ``None`` if not measured."""

@@ -19,11 +19,17 @@ from ..physical_bounds import MAX_CELLS, check_cell_count
 from .damped import MaterialDamped
 from .points import PointRef, check_name, unknown_point
 
-#: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
+#: Names of the cell kinds a bender can be made of, a lone actuator (a one-bender mechanism) or a mechanism's
+#: bender alike (each other kind says why not).  The one meaning of ``CELL_TYPES`` in the package.
 CELL_TYPES = tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
 #: Names of those that can also make a passive strip (``active=None``).
 PASSIVE_STRIP_CELLS = tuple(name for name in CELL_TYPES if not CELL_KINDS[name].needs_active_layer)
 ACTIVE_SIDES = ("right", "left")
+#: The cell kind of a bender and of a lone actuator when none is given: the fastest at equal accuracy of the
+#: kinds that take every load and end connection (benchmarks/bench_discretisation.py, paper actuator: 3 modes
+#: reach 3e-4 in f1, bent f1 and tip angle at 0.36 s per simulated second; rigid 16 cells 2e-3 at 0.47 s,
+#: six-bar 16 cells 9e-3 at 6.3 s; issue 30).  Before 0.4: "rigid" for a Bender, "six-bar" for an actuator.
+DEFAULT_CELL = "rod"
 
 
 @dataclass(frozen=True)
@@ -89,9 +95,10 @@ class Bender(MaterialDamped):
         Base point in the reference pose [m] (default the origin).
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
-    cell : {"rigid", "six-bar", "beam", "ancf", "ritz"} or CellKind, optional
+    cell : {"rod", "rigid", "six-bar", "beam", "ancf", "ritz"} or CellKind, optional
         Cell model by name or as a :class:`~exudyn_atcm.cells.CellKind` (see
-        :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; ``"ancf"`` and ``"ritz"``
+        :class:`~exudyn_atcm.BendingActuator`), default :data:`DEFAULT_CELL` (``"rod"``, the same as a
+        lone actuator's: ``n_cells`` modes of a geometrically exact rod); ``"ancf"`` and ``"ritz"``
         join a mechanism as a cantilever only (base welded to the ground, tip free; other end
         connections are refused with the cell's own reason); the six-bar cell needs an active
         layer.  ``"beam"``: one geometrically exact beam element
@@ -140,7 +147,7 @@ class Bender(MaterialDamped):
         segments: Sequence[Segment] | None = None,
         base: tuple[float, float] = (0.0, 0.0),
         angle: float = 0.0,
-        cell: str | CellKind = "rigid",
+        cell: str | CellKind = DEFAULT_CELL,
         stiffness: str = "composite",
         active_side: str = "right",
         damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO,
