@@ -34,7 +34,7 @@ from .items import position_marker, rigid_marker
 from .model import MechanismModel
 from .tolerance_floor import ToleranceFloor
 from .stepping import Stepping
-from ..errors import SetupWarning, annotate
+from ..errors import SetupWarning
 
 #: Key in ``mbs.variables``: the component names already added by :func:`add_to`.
 ADDED_VARIABLE = "exudyn_atcm.added_components"

@@ -2,9 +2,12 @@
 
 :func:`exudyn_atcm.simulate`, :func:`exudyn_atcm.solve_static` and
 :func:`exudyn_atcm.eigenfrequencies` hand a mechanism to this module; :func:`static_sweep`
-is its own.  The hysteresis of every drive is evaluated in the solver step exactly as for a
-lone actuator (:class:`exudyn_atcm.model.strain_sources.InStepStrain`: trial from the committed memory
-in the pre-step hook, commit in the post-step hook of accepted steps only).
+is its own.  Each public solve builds the system and calls its ``*_on`` twin (:func:`static_on`,
+:func:`sweep_on`, :func:`simulate_on`), which solves a model already built: the twins also serve
+:class:`~exudyn_atcm.solve.built_system.BuiltSystem`.  Every solve trials, commits and records
+through one :class:`~exudyn_atcm.mbs.stepping.Stepping` (the same as :func:`exudyn_atcm.add_to`):
+the hysteresis of every drive is trialled from the committed memory in the pre-step hook and
+committed in the post-step hook of accepted steps only.
 
 The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
 :doc:`/mechanisms` page of the documentation.
