@@ -280,3 +280,14 @@ def test_the_old_step_record_path_warns():
 
     assert old.StepRecord is StepRecord
     assert any("exudyn_atcm.mbs.step_record" in str(w.message) for w in caught)
+
+
+def test_built_system_warnings_point_at_the_callers_line():
+    # as for simulate (tests/test_mechanism_run_checks.py): the step does not divide t_end, is coarse for the
+    # program, and the program goes beyond the rating; each warning names this file's line, not the package's
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3,
+                    drive=atcm.PiezoDrive(Triangle(1000.0, 1000.0, 0.02)))
+    built = atcm.BuiltSystem(atcm.Mechanism("lone").add(b).ground(b.base))
+    with pytest.warns(RuntimeWarning) as record:
+        built.simulate(0.01, step=3e-3)
+    assert len(record) == 3 and {w.filename for w in record} == {__file__}

@@ -13,16 +13,14 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
-from .._checks import positive_int
 from ..io.result import Result
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mechanism.assembly import Mechanism
 from ..mechanism.build_cost import warn_if_large
 from .long_runs import is_announced
-from .mechanism_checks import check_steps
-from .mechanism_solve import simulate_on, static_on, sweep_on, sweep_table
-from .run_setup import DEFAULT_STEP, prepare_run
+from . import mechanism_solve
+from .run_setup import DEFAULT_STEP
 
 __all__ = ["BuiltSystem"]
 
@@ -90,22 +88,18 @@ class BuiltSystem:
 
         As :func:`exudyn_atcm.solve_static` for a mechanism.
         """
-        if load_steps is not None:
-            load_steps = positive_int("load_steps", load_steps)
-        return static_on(self.mechanism, self._fresh(), voltage, load_steps)
+        return mechanism_solve.solve_static(self.mechanism, voltage, load_steps, built=self._fresh())
 
     def static_sweep(self, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
         """Quasi-static path over a voltage sequence [V]; as :func:`exudyn_atcm.static_sweep` for a mechanism."""
-        table = sweep_table(self.mechanism, voltages)
-        return sweep_on(self.mechanism, self._fresh(), table)
+        return mechanism_solve.static_sweep(self.mechanism, voltages, built=self._fresh())
 
     def simulate(self, t_end: float, *, step: float = DEFAULT_STEP, settings: Any = None,
                  progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
         """Dynamic response over ``t_end`` [s] with time step ``step`` [s]; as :func:`exudyn_atcm.simulate`
         for a mechanism (the same checks, warnings, ``record_every``, progress and Ctrl-C)."""
-        t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
-        check_steps(self.mechanism, grid, t_end, schedule)
-        return simulate_on(self.mechanism, self._fresh(), t_end, grid, schedule, settings, progress, None)
+        return mechanism_solve.simulate(self.mechanism, t_end, step, settings, progress, record_every,
+                                        stroke_path=self.stroke_path, built=self._fresh())
 
     def __repr__(self) -> str:
         return f"BuiltSystem({self.mechanism.name!r}, builds={self.builds})"

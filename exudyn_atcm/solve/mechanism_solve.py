@@ -2,9 +2,9 @@
 
 :func:`exudyn_atcm.simulate`, :func:`exudyn_atcm.solve_static` and
 :func:`exudyn_atcm.eigenfrequencies` hand a mechanism to this module; :func:`static_sweep`
-is its own.  Each public solve builds the system and calls its ``*_on`` twin (:func:`static_on`,
-:func:`sweep_on`, :func:`simulate_on`), which solves a model already built: the twins also serve
-:class:`~exudyn_atcm.solve.built_system.BuiltSystem`.  Every solve trials, commits and records
+is its own.  Each solve builds the system, or takes one already built (``built=``, from
+:class:`~exudyn_atcm.solve.built_system.BuiltSystem`, at the same call depth so that warnings
+point at the user's line either way).  Every solve trials, commits and records
 through one :class:`~exudyn_atcm.mbs.stepping.Stepping` (the same as :func:`exudyn_atcm.add_to`):
 the hysteresis of every drive is trialled from the committed memory in the pre-step hook and
 committed in the post-step hook of accepted steps only.
@@ -45,16 +45,17 @@ from .run_checks import is_interrupt
 
 # ------------------------------------------------------------------------------ public solves
 
-def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int | None = None) -> Result:
-    """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`)."""
+def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int | None = None, *,
+                 built: mb.MechanismModel | None = None) -> Result:
+    """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`).
+
+    ``built``: a model of ``mech`` already built and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
+    """
     if load_steps is not None:
         load_steps = positive_int("load_steps", load_steps)
-    warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build: it may be the dear part
-    return static_on(mech, mb.build(mech), voltage, load_steps)
-
-
-def static_on(mech: Mechanism, model: mb.MechanismModel, voltage: VoltageSpec, load_steps: int | None) -> Result:
-    """:func:`solve_static` on a model built from ``mech`` and in its reference state."""
+    if built is None:
+        warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build
+    model = built if built is not None else mb.build(mech)
     volts = drive_voltages(mech, voltage)
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
     strains = source_values(model, strains_by_drive, "solve_static")
@@ -96,15 +97,16 @@ def sweep_table(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequen
     return [{name: float(v) for name in drives} for v in values]
 
 
-def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
-    """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`)."""
+def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
+                 built: mb.MechanismModel | None = None) -> Result:
+    """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`).
+
+    ``built``: a model of ``mech`` already built and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
+    """
     table = sweep_table(mech, voltages)
-    warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
-    return sweep_on(mech, mb.build(mech), table)
-
-
-def sweep_on(mech: Mechanism, model: mb.MechanismModel, table: list[dict[str, float]]) -> Result:
-    """:func:`static_sweep` over the checked ``table`` on a model built from ``mech`` in its reference state."""
+    if built is None:
+        warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
+    model = built if built is not None else mb.build(mech)
     source_table = np.array([source_values(model, per_drive, f"static_sweep point {i}")
                              for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
     stepping = Stepping.static(model)
@@ -138,7 +140,8 @@ def sweep_on(mech: Mechanism, model: mb.MechanismModel, table: list[dict[str, fl
 
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
              progress: Callable[[float, float], None] | None = None, record_every: Any = None, *,
-             sources: Sequence[Any] | None = None, stroke_path: str = "prestep") -> Result:
+             sources: Sequence[Any] | None = None, stroke_path: str = "prestep",
+             built: mb.MechanismModel | None = None) -> Result:
     """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`).
 
     The same checks as for an actuator (:mod:`exudyn_atcm.solve.run_checks`): the step against every
@@ -154,17 +157,12 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     distinct drive in the order of ``model.sources`` (default: an
     :class:`~exudyn_atcm.model.strain_sources.InStepStrain` each; a
     :class:`~exudyn_atcm.model.strain_sources.TableStrain` follows a precomputed table), and
-    ``stroke_path`` (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`).
+    ``stroke_path`` (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`); ``built``: a model of ``mech``
+    already built (with its own stroke path) and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
     """
     t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
     check_steps(mech, grid, t_end, schedule)
-    model = mb.build(mech, stroke_path=stroke_path)
-    return simulate_on(mech, model, t_end, grid, schedule, settings, progress, sources)
-
-
-def simulate_on(mech: Mechanism, model: mb.MechanismModel, t_end: float, grid: Any, schedule: Any, settings: Any,
-                progress: Callable[[float, float], None] | None, sources: Sequence[Any] | None) -> Result:
-    """:func:`simulate` on a model built from ``mech`` in its reference state (run prepared and checked)."""
+    model = built if built is not None else mb.build(mech, stroke_path=stroke_path)
     feedback = feedback_controllers(mech, model)
     observers = [(c, measurement_reader(model, column)) for c, column in feedback]
     for controller, _ in feedback:
