@@ -11,7 +11,7 @@ the one place where the drives' hysteresis is trialled and committed:
   once for the initial state at ``t = 0``): every source committed once
   (:meth:`InStepStrain.commit <exudyn_atcm.model.strain_sources.InStepStrain.commit>`) and the step
   written as one row into the :class:`~exudyn_atcm.mbs.step_record.StepRecord`;
-* :meth:`Stepping.hold` (static sweeps): every operator committed once at a voltage held for ever;
+* :meth:`Stepping.hold_path` (static sweeps): every operator committed once per point, the voltage held for ever;
   :meth:`Stepping.record_state` writes an equilibrium into the same record.
 
 The rows are cut back into result columns by :class:`~exudyn_atcm.mbs.recording.RowLayout`, so a
