@@ -86,8 +86,8 @@ def four_bar(drive: atcm.PiezoDrive, spring: bool = False) -> atcm.Mechanism:
     return m
 
 
-def lone(drive: atcm.PiezoDrive, force=(0.0, -0.02)) -> atcm.Mechanism:
-    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4, drive=drive)
+def lone(drive: atcm.PiezoDrive, force=(0.0, -0.02), cell: str = "rigid") -> atcm.Mechanism:
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4, drive=drive, cell=cell)
     m = atcm.Mechanism("lone").add(b).ground(b.base)
     m.force(b.tip, force)
     return m
@@ -237,8 +237,12 @@ def assert_same(a: atcm.Result, b: atcm.Result) -> None:
         np.testing.assert_allclose(a[column], b[column], rtol=0, atol=1e-13, err_msg=column)
 
 
-@pytest.mark.parametrize("make", [lambda: four_bar(paper_drive()), lambda: lone(paper_drive())],
-                         ids=["four_bar", "lone"])
+@pytest.mark.parametrize("make", [lambda: four_bar(paper_drive()), lambda: lone(paper_drive()),
+                                  # cells with state of their own between steps (the rod's linearisation, the
+                                  # six-bar's motors, the beam's nodes)
+                                  lambda: lone(paper_drive(), cell="rod"), lambda: lone(paper_drive(), cell="six-bar"),
+                                  lambda: lone(paper_drive(), cell="beam")],
+                         ids=["four_bar", "lone", "lone_rod", "lone_six_bar", "lone_beam"])
 def test_resolve_without_rebuilding_equals_a_fresh_build(make):
     built = atcm.BuiltSystem(make())
     # every kind of solve, in an order that leaves each one's state for the next (deformed, hysteresis committed)
