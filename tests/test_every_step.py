@@ -1,7 +1,7 @@
 """Reported results do not depend on how often a run is recorded (``record_every``).
 
 Every accepted step goes through one preallocated recorder
-(:class:`exudyn_atcm.solve.step_record.StepRecord`); a thinned run keeps the light columns of
+(:class:`exudyn_atcm.mbs.step_record.StepRecord`); a thinned run keeps the light columns of
 every accepted step in :attr:`Result.every_step <exudyn_atcm.Result.every_step>`, and the cases
 compute their scalars from it.  The reference is the run that records every step: the solver
 and the hysteresis memory do not see the recording interval, so the every-step columns of a
@@ -18,7 +18,7 @@ import pytest
 import exudyn_atcm as atcm
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.model import Triangle, paper_strain_preisach
-from exudyn_atcm.solve.step_record import StepRecord
+from exudyn_atcm.mbs.step_record import StepRecord
 
 from _cli_helpers import CASES
 

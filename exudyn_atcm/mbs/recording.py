@@ -23,41 +23,12 @@ from ..errors import SolverError
 from .model import MechanismModel
 
 
-class Rows:
-    """Accepted states: time, voltages and strains per source, ODE2 coordinates, spring forces."""
-
-    def __init__(self, model: MechanismModel) -> None:
-        self.model = model
-        self.times: list[float] = []
-        self.volts: list[np.ndarray] = []
-        self.strains: list[np.ndarray] = []
-        self.q: list[np.ndarray] = []
-        self.forces: list[list[float]] = []
-
-    def add(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
-        """Record the model's current state (coordinates copied, spring and stop forces) at time ``t`` [s]."""
-        self.times.append(t)
-        self.volts.append(np.array(volts, dtype=float))
-        self.strains.append(np.array(strains, dtype=float))
-        self.q.append(np.array(self.model.coordinates()))
-        self.forces.append(self.model.connector_forces())
-
-    def last_time(self) -> float:
-        return self.times[-1] if self.times else 0.0
-
-    def result(self, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
-        """The recorded rows as a :class:`Result`; ``base`` names the first column and its unit."""
-        return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
-                           np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
-                           np.array(self.forces).reshape(len(self.times), -1), info, base=base)
-
-
 class RowLayout:
     """Where time, voltages, strains, coordinates and forces sit in one flat row of floats.
 
     A mechanism run records each accepted step as one row ``t, volts (one per source), strains
     (one per source), ODE2 coordinates, spring and stop forces``
-    (:class:`~exudyn_atcm.solve.step_record.StepRecord`); this object cuts rows back into
+    (:class:`~exudyn_atcm.mbs.step_record.StepRecord`, written by :class:`~exudyn_atcm.mbs.stepping.Stepping`); this object cuts rows back into
     those parts and makes the :class:`Result` of them.
     """
 
@@ -76,10 +47,11 @@ class RowLayout:
         return (rows[:, 0], rows[:, 1:1 + ns], rows[:, 1 + ns:1 + 2 * ns], rows[:, 1 + 2 * ns:1 + 2 * ns + nq],
                 rows[:, 1 + 2 * ns + nq:])
 
-    def result(self, rows: np.ndarray, times: np.ndarray, info: dict, every_step: Result | None = None) -> Result:
-        """The :class:`Result` of ``rows`` with the (snapped) ``times`` [s]."""
+    def result(self, rows: np.ndarray, times: np.ndarray, info: dict, every_step: Result | None = None,
+               base: tuple[str, str] = ("time", "s")) -> Result:
+        """The :class:`Result` of ``rows`` with the (snapped) ``times`` [s] (``base``: as for :func:`make_result`)."""
         _, volts, strains, q, forces = self.parts(rows)
-        return make_result(self.model, times, volts, strains, q, forces, info, every_step=every_step)
+        return make_result(self.model, times, volts, strains, q, forces, info, base=base, every_step=every_step)
 
     def every_step_columns(self, rows: np.ndarray, times: np.ndarray) -> np.ndarray:
         """Every column but the cell angles, of ``rows`` with ``times`` [s], as a 2-D array."""
