@@ -14,6 +14,7 @@ import warnings
 import numpy as np
 import pytest
 
+import exudyn_atcm as atcm
 from exudyn_atcm import Bender, Layer, Mechanism, PiezoDrive, simulate
 from exudyn_atcm.signals import PiecewiseLinear
 from exudyn_atcm.solve.bender_checks import bender_view
@@ -58,3 +59,12 @@ def test_a_slow_ramp_stays_silent_and_the_view_is_in_the_benders_frame(angle, si
     delta = rb.dynamic_rotation(view["tip_angle"], view["strain"], b.laminate.curvature_per_strain, L)
     assert 0.005 < delta < rb.DYNAMIC_ROTATION_LIMIT
     assert math.isclose(b.curvature_sign, 1.0 if side == "right" else -1.0)
+
+
+def test_a_built_system_runs_the_same_cell_checks():
+    """BuiltSystem.simulate checks every bender's cell kind as simulate does (the ritz overshoot of the first test)."""
+    mech, _ = _ritz_cantilever(1e-3, 0.0, "right")
+    built = atcm.BuiltSystem(mech)
+    with pytest.warns(RuntimeWarning, match=r"deviates by up to 0\.2\d* rad.*cell='beam'") as caught:
+        built.simulate(0.1)
+    assert any(w.filename == __file__ for w in caught)

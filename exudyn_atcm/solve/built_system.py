@@ -20,6 +20,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.build_cost import warn_if_large
 from .long_runs import is_announced
 from . import mechanism_solve
+from .bender_checks import check_benders
 from .run_setup import DEFAULT_STEP
 
 __all__ = ["BuiltSystem"]
@@ -98,8 +99,10 @@ class BuiltSystem:
                  progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
         """Dynamic response over ``t_end`` [s] with time step ``step`` [s]; as :func:`exudyn_atcm.simulate`
         for a mechanism (the same checks, warnings, ``record_every``, progress and Ctrl-C)."""
-        return mechanism_solve.simulate(self.mechanism, t_end, step, settings, progress, record_every,
-                                        stroke_path=self.stroke_path, built=self._fresh())
+        result = mechanism_solve.simulate(self.mechanism, t_end, step, settings, progress, record_every,
+                                          stroke_path=self.stroke_path, built=self._fresh())
+        check_benders(self.mechanism, result, stacklevel=3)  # every bender's cell-kind checks, at the caller's line
+        return result
 
     def __repr__(self) -> str:
         return f"BuiltSystem({self.mechanism.name!r}, builds={self.builds})"
