@@ -33,6 +33,7 @@ from .solve import SimulationInterrupted
 from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .mbs import add_to
+from .cells import register_cell_kind
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
                      RunCostWarning, SetupWarning, StabilityWarning, SuspectFileWarning, WriteError)
 
@@ -54,6 +55,7 @@ __all__ = [
     "solve_static",
     "static_sweep",
     "add_to",
+    "register_cell_kind",
     "eigenfrequencies",
     "step_error",
     "Result",

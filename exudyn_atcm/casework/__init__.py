@@ -23,13 +23,14 @@ from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_repo
 from .discovery import CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, list_cases, load_case
 from .metrics import MetricRow
 from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
-from .parameters import CaseError, Parameter, Parameters, closest
+from .parameters import CaseError, CellChoices, Parameter, Parameters, closest
 from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
 
 __all__ = [
     "Case",
     "CaseOutput",
     "Parameter",
+    "CellChoices",
     "Parameters",
     "RunContext",
     "PlannedRun",

@@ -12,7 +12,18 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal"]
+__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal", "set_name_lookup"]
+
+_LOOKUP: list = []
+
+
+def set_name_lookup(lookup) -> None:
+    """Set the function ``lookup(name) -> CellKind | None`` of the registry (by :mod:`exudyn_atcm.cells`)."""
+    _LOOKUP[:] = [lookup]
+
+
+def _registered(name: str):
+    return _LOOKUP[0](name) if _LOOKUP else None
 
 #: The bender's end is an interface body of its own (rigid cells).
 END_BODY = "body"
@@ -168,5 +179,12 @@ class CellKind:
         return self.name
 
     def __repr__(self) -> str:
-        # the name, as before cells were objects: messages and parameter listings stay the same
-        return repr(self.name)
+        # not the bare name: a message about a kind object must not read as if it were a string
+        return f"<cell kind {self.name!r} ({type(self).__name__})>"
+
+    def spelled(self) -> str:
+        """How to pass this kind as ``cell=``: its quoted name if that name is registered for it
+        (:func:`exudyn_atcm.register_cell_kind`), else the kind's class called."""
+        from_registry = _registered(self.name)
+        return repr(self.name) if from_registry is not None and type(from_registry) is type(self) \
+            else f"{type(self).__name__}()"

@@ -27,10 +27,10 @@ from .damped import MaterialDamped
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
 from ..physical_bounds import check_cell_count
 
-#: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
-CELL_TYPES = tuple(CELL_KINDS)
-#: The cells that carry a tip load (``tip_force``); ``"ritz"`` refuses one.
-TIP_LOAD_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)
+#: ``CELL_TYPES`` (the registered cell kinds' names, :data:`exudyn_atcm.cells.CELL_KINDS`) and ``TIP_LOAD_CELLS``
+#: (those that carry a tip load; ``"ritz"`` refuses one): module attributes read when asked
+_LIVE = {"CELL_TYPES": lambda: tuple(CELL_KINDS),
+         "TIP_LOAD_CELLS": lambda: tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)}
 
 
 class BendingActuator(MaterialDamped):
@@ -279,6 +279,13 @@ class BendingActuator(MaterialDamped):
         return (
             f"BendingActuator(n_cells={self.n_cells}, cell_length={self.cell_length!r}, "
             f"width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
-            f"drive={self.drive!r}, cell={self.cell!r}, stiffness={self.stiffness!r}, "
+            f"drive={self.drive!r}, cell={self.cell.spelled()}, stiffness={self.stiffness!r}, "
             f"damping={self.damping!r})"
         )
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
