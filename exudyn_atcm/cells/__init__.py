@@ -17,7 +17,7 @@ from typing import Any
 
 from ..suggestions import close_names
 from .ancf import AncfCell
-from .base import END_BODY, END_CHAIN, END_NODE, CellKind, set_name_lookup
+from .base import CELL_KINDS, END_BODY, END_CHAIN, END_NODE, CellKind
 from .beam import BeamCell
 from .rigid import RigidCell
 from .ritz import RitzCell
@@ -29,8 +29,7 @@ __all__ = ["CellKind", "RigidCell", "SixBarCell", "BeamCell", "AncfCell", "RitzC
 
 #: The cell kinds by name: the package's, then those registered with :func:`register_cell_kind` (the one
 #: place where kinds are listed; read it when used, never copy it at import).
-CELL_KINDS: dict[str, CellKind] = {kind.name: kind for kind in
-                                   (SixBarCell(), RigidCell(), BeamCell(), AncfCell(), RitzCell(), RodCell())}
+CELL_KINDS.update({kind.name: kind for kind in (SixBarCell(), RigidCell(), BeamCell(), AncfCell(), RitzCell(), RodCell())})
 
 
 def register_cell_kind(kind: CellKind | type[CellKind], *, replace: bool = False) -> CellKind:
@@ -74,7 +73,6 @@ def register_cell_kind(kind: CellKind | type[CellKind], *, replace: bool = False
 
 
 _PACKAGE_KINDS = frozenset(type(kind) for kind in CELL_KINDS.values())
-set_name_lookup(CELL_KINDS.get)
 
 
 def cell_kind_names(where: Callable[[CellKind], bool] | None = None) -> tuple[str, ...]:

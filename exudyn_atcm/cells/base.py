@@ -12,18 +12,11 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal", "set_name_lookup"]
+__all__ = ["CellKind", "CELL_KINDS", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal"]
 
-_LOOKUP: list = []
-
-
-def set_name_lookup(lookup) -> None:
-    """Set the function ``lookup(name) -> CellKind | None`` of the registry (by :mod:`exudyn_atcm.cells`)."""
-    _LOOKUP[:] = [lookup]
-
-
-def _registered(name: str):
-    return _LOOKUP[0](name) if _LOOKUP else None
+#: The registry of cell kinds by name, filled by :mod:`exudyn_atcm.cells` (the package's kinds) and
+#: :func:`exudyn_atcm.cells.register_cell_kind`; exported there as ``CELL_KINDS``.
+CELL_KINDS: dict[str, "CellKind"] = {}
 
 #: The bender's end is an interface body of its own (rigid cells).
 END_BODY = "body"
@@ -185,6 +178,5 @@ class CellKind:
     def spelled(self) -> str:
         """How to pass this kind as ``cell=``: its quoted name if that name is registered for it
         (:func:`exudyn_atcm.register_cell_kind`), else the kind's class called."""
-        from_registry = _registered(self.name)
-        return repr(self.name) if from_registry is not None and type(from_registry) is type(self) \
-            else f"{type(self).__name__}()"
+        registered = CELL_KINDS.get(self.name)
+        return repr(self.name) if type(registered) is type(self) else f"{type(self).__name__}()"

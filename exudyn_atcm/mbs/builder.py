@@ -1,12 +1,11 @@
 """The one builder: adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
 
 A lone :class:`~exudyn_atcm.BendingActuator` is built here too, as the one-bender mechanism it
-is (:mod:`exudyn_atcm.solve.as_mechanism`).  Each bender's cells are added by the realisation
-registered for its cell kind (:mod:`exudyn_atcm.mbs.cells`): rigid chains
-(:mod:`~exudyn_atcm.mbs.chains.rigid`), six-bar chains between real interface bodies
-(:mod:`~exudyn_atcm.mbs.chains.six_bar`), beam and ANCF chains whose end nodes join the groups
-(:mod:`~exudyn_atcm.mbs.chains.beam`, :mod:`~exudyn_atcm.mbs.chains.ancf`) and assumed modes
-(:mod:`~exudyn_atcm.mbs.chains.ritz`); the rest of this description is about rigid cells.
+is (:mod:`exudyn_atcm.solve.as_mechanism`).  The builder knows no cell kind: each bender's cells
+and ends are added by the realisation registered for its kind, through the calls of the written
+contract (:mod:`exudyn_atcm.mbs.realisation`) and the public build context the builder is
+(:mod:`exudyn_atcm.mbs.build_context`).  The package's realisations are in
+:mod:`exudyn_atcm.mbs.chains`; the rest of this description is about rigid cells.
 
 Model (planar, SI units):
 

@@ -1,4 +1,4 @@
-"""Chains whose ends are nodes (``END_NODE`` cell kinds: beam, ANCF and Ritz benders): what the builder
+"""Chains whose ends are nodes (beam, ANCF, assumed-mode and rod benders: :class:`NodeEnds`): what the builder
 and the kinds' realisations share.
 
 The bender's nodes are registered in the model's bodies under :func:`beam_node_key`; an end node

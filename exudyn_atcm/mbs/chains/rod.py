@@ -113,7 +113,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
     state = {"mass": mass0, "stiffened": False, "h": 0.0}
     # the mass matrix changes every step: in the package's own runs it is written as the item's
     # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, from
-    # model.varying_mass_benders); in a user's system (add_to), whose settings the package does not
+    # BuildContext.mark_varying_mass); in a user's system (add_to), whose settings the package does not
     # control, a mass matrix user function makes Exudyn treat it as varying in any solver (about
     # 10 us per call, several calls per step: a third of the rod four-bar's step)
     by_parameter = ctx.package_solves
