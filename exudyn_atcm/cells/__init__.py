@@ -1,11 +1,13 @@
-"""Cell kinds: one object per discretisation of a bender, listed once.
+"""Cell kinds: one object per discretisation of a bender, in one open registry by name.
 
-Every place that accepts ``cell=`` resolves it here with :func:`cell_kind`: a name from
-:data:`CELL_KINDS`, a :class:`CellKind` instance or a :class:`CellKind` subclass.  No other code
-compares cell names; it asks the cell object (``cell.carries_tip_load``, ``cell.end_kind``,
-``cell.mechanism_refusal()``, ...).  The Exudyn side of each kind is registered in
-:mod:`exudyn_atcm.mbs.cells` by class, so a subclass defined outside the package is realised
-like its parent.
+Every place that accepts ``cell=`` resolves it here with :func:`cell_kind`: a name registered in
+:data:`CELL_KINDS` (the package's kinds, and those of users registered with
+:func:`register_cell_kind`), a :class:`CellKind` instance or a :class:`CellKind` subclass.  No
+other code compares cell names; it asks the cell object (``cell.carries_tip_load``,
+``cell.mechanism_refusal()``, ...), and lists of names are read from the registry when used
+(:func:`cell_kind_names`).  The Exudyn side of each kind is registered by class in
+:mod:`exudyn_atcm.mbs.realisation`, so a subclass defined outside the package is realised like
+its parent unless it registers a realisation of its own.
 
 May import: :mod:`exudyn_atcm.theory` and the top-level helpers (no Exudyn, no solving).
 """

@@ -60,8 +60,9 @@ class CellKind:
         The ``cell_angle_j`` columns are rotations of cells of a chain: a warning is issued when
         one turns by more than 0.5 rad against its neighbour (coarse discretisation).
     end_kind : str
-        How a bender's end joins other parts in a mechanism: :data:`END_BODY`,
-        :data:`END_CHAIN` or :data:`END_NODE`.
+        How a bender's end joins other parts in a mechanism, in words for listings: :data:`END_BODY`,
+        :data:`END_CHAIN` or :data:`END_NODE`.  Informative only: the builder asks the kind's
+        realisation (:class:`exudyn_atcm.mbs.realisation.CellRealisation`), which joins the ends.
     joint_label : str
         What the points between cells are called in drawings.
     realises_mass_damping : bool
