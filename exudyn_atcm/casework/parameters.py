@@ -10,7 +10,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..cells import CELL_KINDS
+from ..cells import cell_kind_names
 from ..suggestions import close_names
 
 __all__ = ["Parameter", "Parameters", "CaseError", "CellChoices", "closest", "json_value"]
@@ -239,9 +239,9 @@ class CellChoices:
     first: tuple[str, ...] = ()
 
     def __call__(self) -> tuple[str, ...]:
-        names = [name for name, kind in CELL_KINDS.items()
-                 if (not self.joins_anywhere or all(kind.end_refusal(end, "joined") is None for end in ("base", "tip")))
-                 and (not self.carries_tip_load or kind.carries_tip_load)]
+        names = cell_kind_names(lambda kind: (not self.joins_anywhere or all(
+            kind.end_refusal(end, "joined") is None for end in ("base", "tip")))
+            and (not self.carries_tip_load or kind.carries_tip_load))
         return tuple([n for n in self.first if n in names] + [n for n in names if n not in self.first])
 
 
