@@ -260,7 +260,7 @@ def test_add_to_a_users_system_by_name():
                                                           storeInternal=True))
     mbs.Assemble()
     settings = exu.SimulationSettings()
-    settings.solutionSettings.writeSolutionToFile = False
+    settings.solution.file.write = False
     settings.staticSolver.newton.relativeTolerance = 1e-12
     settings.staticSolver.newton.absoluteTolerance = 1e-14
     settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
