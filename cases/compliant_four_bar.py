@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, PiezoDrive, Result, simulate, static_sweep
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
@@ -48,7 +48,7 @@ from exudyn_atcm.theory import RigidFourBar
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells of the crank bender", minimum=1),
-    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=("rigid", "six-bar", "beam", "rod")),
+    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=CellChoices(joins_anywhere=True, first=("rigid",))),
     Parameter("crank_length", 0.06, "m", "length of the crank bender", exclusive_minimum=0.0),
     Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*", exclusive_minimum=0.0),
     Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base", minimum=0.0),

@@ -44,14 +44,14 @@ import numpy as np
 
 from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, static_sweep
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.model import paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 24, "-", "cells per bender (rod: its modes; 4 are plenty)", minimum=1),
     Parameter("cell", "rigid", "-", "cell model of the benders; the *_chain_* scalars describe the rigid-cell chain",
-              choices=("rigid", "six-bar", "beam", "rod")),
+              choices=CellChoices(joins_anywhere=True, first=("rigid",))),
     Parameter("length", 0.04, "m", "bender length L", exclusive_minimum=0.0),
     Parameter("width", 10e-3, "m", "bender width b", exclusive_minimum=0.0),
     Parameter("half_spacing", 5e-3, "m", "distance of each bender's axis from the symmetry axis", exclusive_minimum=0.0),

@@ -39,8 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PiezoDrive, simulate
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.cells import CELL_KINDS
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.model import PAPER_LOOP, Triangle, paper_strain_preisach
 from exudyn_atcm.plots import (
     actuator_as_mechanism,
@@ -58,7 +57,7 @@ PARAMETERS = [
     Parameter("cycles", 3, "-", "number of input periods simulated (last_cycle_change needs >= 3)", minimum=1),
     Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
               "ritz: n_cells assumed modes of the whole bender)",
-              choices=tuple(CELL_KINDS)),
+              choices=CellChoices()),
     Parameter("n_cells", 3, "-", "number of cells", minimum=1),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j", exclusive_minimum=0.0),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),

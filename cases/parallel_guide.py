@@ -33,12 +33,12 @@ import numpy as np
 
 from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, Segment, static_sweep
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)", minimum=1),
-    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam", "rod")),
+    Parameter("cell", "rigid", "-", "cell model of the benders", choices=CellChoices(joins_anywhere=True, first=("rigid",))),
     Parameter("length", 0.06, "m", "bender length L (two segments of L/2)", exclusive_minimum=0.0),
     Parameter("width", 10e-3, "m", "bender width", exclusive_minimum=0.0),
     Parameter("spacing", 0.02, "m", "distance between the two benders", exclusive_minimum=0.0),

@@ -29,14 +29,13 @@ import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PiezoDrive, Result, eigenfrequencies, solve_static
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.cells import CELL_KINDS
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.plots import Curve, plot_loops
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "number of cells", minimum=1),
     Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
-              "not ritz, which refuses the tip force of the compliance run)", choices=tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)),
+              "not ritz, which refuses the tip force of the compliance run)", choices=CellChoices(carries_tip_load=True)),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j", exclusive_minimum=0.0),
     Parameter("width", 28e-3, "m", "width b of both layers", exclusive_minimum=0.0),
     Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness", exclusive_minimum=0.0),

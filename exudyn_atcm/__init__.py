@@ -35,6 +35,7 @@ from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .solve import BuiltSystem
 from .mbs import add_to
+from .cells import register_cell_kind
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
                      RunCostWarning, SetupWarning, StabilityWarning, SuspectFileWarning, WriteError)
 
@@ -57,6 +58,7 @@ __all__ = [
     "static_sweep",
     "BuiltSystem",
     "add_to",
+    "register_cell_kind",
     "eigenfrequencies",
     "step_error",
     "Result",

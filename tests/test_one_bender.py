@@ -68,7 +68,7 @@ def test_a_simulated_actuator_keeps_the_mechanism_columns_also_every_step():
 
 
 def test_cell_types_has_one_meaning():
-    assert actuator_module.CELL_TYPES is bender_module.CELL_TYPES
+    assert actuator_module.CELL_TYPES == bender_module.CELL_TYPES == bender_module.mechanism_cells()
 
 
 def test_the_drawing_of_an_actuator_draws_its_own_cell_kind():

@@ -30,13 +30,14 @@ from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_cas
                         load_case, load_cases)
 from .metrics import MetricRow
 from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
-from .parameters import CaseError, Parameter, Parameters, closest
+from .parameters import CaseError, CellChoices, Parameter, Parameters, closest
 from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
 
 __all__ = [
     "Case",
     "CaseOutput",
     "Parameter",
+    "CellChoices",
     "Parameters",
     "RunContext",
     "PlannedRun",

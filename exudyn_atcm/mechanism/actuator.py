@@ -19,7 +19,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
-from .bender import CELL_TYPES, DEFAULT_CELL, Bender
+from .bender import DEFAULT_CELL, Bender, mechanism_cells
 from .._checks import finite_float, positive_float, positive_int, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
@@ -29,11 +29,13 @@ from .damped import MaterialDamped
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping, damping_already_checked
 from ..physical_bounds import check_cell_count
 
-# CELL_TYPES (imported from .bender, one meaning): the cell kinds a bender can be made of, lone or in a mechanism
-#: The cells that carry a tip load (``tip_force``); ``"ritz"`` refuses one.
-TIP_LOAD_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)
 #: The bender's (and its drive's) name in the actuator's one-bender mechanism (:meth:`BendingActuator.as_mechanism`).
 NAME = "actuator"
+#: ``CELL_TYPES`` (one meaning: :data:`exudyn_atcm.mechanism.bender.CELL_TYPES`, the registered kinds a bender can be
+#: made of, lone or in a mechanism) and ``TIP_LOAD_CELLS`` (those that carry a tip load; ``"ritz"`` refuses one):
+#: module attributes read from the registry when asked
+_LIVE = {"CELL_TYPES": mechanism_cells,
+         "TIP_LOAD_CELLS": lambda: tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)}
 
 
 class BendingActuator(MaterialDamped):
@@ -332,6 +334,13 @@ class BendingActuator(MaterialDamped):
         return (
             f"BendingActuator(n_cells={self.n_cells}, cell_length={self.cell_length!r}, "
             f"width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
-            f"drive={self.drive!r}, cell={self.cell!r}, stiffness={self.stiffness!r}, "
+            f"drive={self.drive!r}, cell={self.cell.spelled()}, stiffness={self.stiffness!r}, "
             f"damping={self.damping!r})"
         )
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

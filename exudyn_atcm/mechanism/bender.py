@@ -19,11 +19,20 @@ from ..physical_bounds import MAX_CELLS, check_cell_count
 from .damped import MaterialDamped
 from .points import PointRef, check_name, unknown_point
 
-#: Names of the cell kinds a bender can be made of, a lone actuator (a one-bender mechanism) or a mechanism's
-#: bender alike (each other kind says why not).  The one meaning of ``CELL_TYPES`` in the package.
-CELL_TYPES = tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
-#: Names of those that can also make a passive strip (``active=None``).
-PASSIVE_STRIP_CELLS = tuple(name for name in CELL_TYPES if not CELL_KINDS[name].needs_active_layer)
+
+
+def mechanism_cells() -> tuple[str, ...]:
+    """Names of the registered cell kinds that a mechanism's bender can be made of (each other kind says why not)."""
+    return tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
+
+
+def passive_strip_cells() -> tuple[str, ...]:
+    """Names of those that can also make a passive strip (``active=None``)."""
+    return tuple(name for name in mechanism_cells() if not CELL_KINDS[name].needs_active_layer)
+
+
+#: ``CELL_TYPES`` and ``PASSIVE_STRIP_CELLS``: the same names as module attributes, read when asked
+_LIVE = {"CELL_TYPES": mechanism_cells, "PASSIVE_STRIP_CELLS": passive_strip_cells}
 ACTIVE_SIDES = ("right", "left")
 #: The cell kind of a bender and of a lone actuator when none is given: the fastest at equal accuracy of the
 #: kinds that take every load and end connection (benchmarks/bench_discretisation.py, paper actuator: 3 modes
@@ -195,7 +204,7 @@ class Bender(MaterialDamped):
         refusal = cell.mechanism_refusal()
         if refusal is not None:
             raise ValueError(f"cell={cell.name!r} cannot be a mechanism's bender: {refusal} "
-                             f"(the package's cells that can: {CELL_TYPES})")
+                             f"(the registered cells that can: {mechanism_cells()})")
         for pname, value, allowed in (("stiffness", stiffness, STIFFNESS_MODELS),
                                       ("active_side", active_side, ACTIVE_SIDES)):
             if not isinstance(value, str) or value not in allowed:
@@ -313,5 +322,12 @@ class Bender(MaterialDamped):
     def __repr__(self) -> str:
         return (f"Bender({self.name!r}, width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
                 f"segments={self.segments!r}, base={self.base_position!r}, angle={self.angle!r}, "
-                f"cell={self.cell!r}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
+                f"cell={self.cell.spelled()}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
                 f"damping={self.damping!r})")
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
