@@ -37,7 +37,7 @@ ACTIVE_SIDES = ("right", "left")
 #: The cell kind of a bender and of a lone actuator when none is given: the fastest at equal accuracy of the
 #: kinds that take every load and end connection (benchmarks/bench_discretisation.py, paper actuator: 3 modes
 #: reach 3e-4 in f1, bent f1 and tip angle at 0.36 s per simulated second; rigid 16 cells 2e-3 at 0.47 s,
-#: six-bar 16 cells 9e-3 at 6.3 s; issue 30).  Before 0.4: "rigid" for a Bender, "six-bar" for an actuator.
+#: six-bar 16 cells 9e-3 at 6.3 s; issue 30).  Before 0.3: "rigid" for a Bender, "six-bar" for an actuator.
 DEFAULT_CELL = "rod"
 
 
