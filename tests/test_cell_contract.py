@@ -206,7 +206,8 @@ def test_a_lone_bender_deflects_as_its_chain_of_springs():
     expected = -P * float(np.sum((b.length - x) ** 2 / k))
     assert r["b.tip_y"][0] == pytest.approx(expected, rel=1e-6)
     # the laminate's own chain (cell="rigid") is 1.5x more compliant at these joints: the kind's law is used
-    rigid = atcm.Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.05, n_cells=5, drive=atcm.PiezoDrive(0.0))
+    rigid = atcm.Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.05, n_cells=5, cell="rigid",
+                         drive=atcm.PiezoDrive(0.0))
     r_rigid = atcm.solve_static(atcm.Mechanism("m").add(rigid).ground(rigid.base).force(rigid.tip, (0.0, -P)))
     assert r_rigid["b.tip_y"][0] == pytest.approx(STIFFNESS_FACTOR * expected, rel=1e-6)
 

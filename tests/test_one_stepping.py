@@ -71,9 +71,10 @@ def offline_play(us, r: float) -> list[float]:
 
 
 def four_bar(drive: atcm.PiezoDrive, spring: bool = False) -> atcm.Mechanism:
-    """The README's four-bar (optionally with a spring, for a force column)."""
+    """The README's four-bar with rigid cells (main's values were taken with them; optionally a spring, for a force
+    column)."""
     crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=6, drive=drive,
-                        angle=math.pi / 2)
+                        angle=math.pi / 2, cell="rigid")
     coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
     rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
     m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
@@ -289,7 +290,7 @@ def test_the_old_step_record_path_warns():
 def test_built_system_warnings_point_at_the_callers_line():
     # as for simulate (tests/test_mechanism_run_checks.py): the step does not divide t_end, is coarse for the
     # program, and the program goes beyond the rating; each warning names this file's line, not the package's
-    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3,
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, cell="rigid",
                     drive=atcm.PiezoDrive(Triangle(1000.0, 1000.0, 0.02)))
     built = atcm.BuiltSystem(atcm.Mechanism("lone").add(b).ground(b.base))
     with pytest.warns(RuntimeWarning) as record:
