@@ -44,7 +44,6 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import PASSIVE_STRIP_CELLS, Bender
-from ..mechanism.connections import Pin, Slider, joint_label
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
@@ -57,7 +56,7 @@ from .items import position_marker as _marker_position
 from .items import rigid_marker as _rigid_marker
 from .model import Body, Element, EndReadout, Hinge, MechanismModel
 from .graphics import part_graphics, shift_graphics
-from .loads import add_loads
+from .build_context import BuildContext, realise_connections
 from ..cells import END_CHAIN, END_NODE
 from . import chains
 from .cells import add_mechanism_bender
@@ -135,15 +134,12 @@ class _Builder:
                 model.bodies[key] = model.bodies[beam_end_key(mech.components[name], end)]
         self._anchor_points()
         self._end_hinges()
-        for j in mech.joints:
-            with self._labelled(joint_label(j)):
-                if isinstance(j, Pin):
-                    self._pin(j)
-                elif isinstance(j, Slider):
-                    self._slider(j)
+        context = BuildContext(model, self.gcoord, self._pin, self._slider)
+        # joints with the bodies (their springs join the hinges'), then the loads and other connections
+        realise_connections(context, mech.joints, self._labelled)
         self._flexure_pivots()
         self._realise_hinges()
-        add_loads(mbs, mech, model)
+        realise_connections(context, [c for c in mech.connections if not c.holds], self._labelled)
         return model
 
     def _flexure_pivots(self) -> None:
@@ -353,46 +349,46 @@ class _Builder:
         g = self.groups[self.group_of[part]]
         return part if g.kind == "virtual" else g.key
 
-    def _movable(self, j, side_a: str, side_b: str) -> None:
+    def _movable(self, label: str, side_a: str, side_b: str) -> None:
         """Refuse a joint between two points of one rigid group (welded together): it could not move."""
         if side_a == side_b:
             group = self.groups[self.group_of[side_a]] if side_a in self.group_of else self.groups[side_a]
             parts = ", ".join(sorted(p.replace("#", ".") for p in group.parts))
             raise MechanismError(
-                f"{joint_label(j)} joins two points of one rigid group (welded together: {parts}); it cannot "
+                f"{label} joins two points of one rigid group (welded together: {parts}); it cannot "
                 "move. Remove the joint or one of the welds")
 
-    def _pin(self, j: Pin) -> None:
-        side_a, side_b = self._side(j.p), self._side(j.q)
-        self._movable(j, side_a, side_b)
-        k = j.stiffness
-        pin_el = Element(k, j.damping, self.zeros(), self.zeros())
-        self._chain(side_a, pin_el, side_b, self.mech.position(j.p))
+    def _pin(self, p: PointRef, q: PointRef | None, stiffness: float, damping: float, label: str) -> None:
+        side_a, side_b = self._side(p), self._side(q)
+        self._movable(label, side_a, side_b)
+        pin_el = Element(stiffness, damping, self.zeros(), self.zeros())
+        self._chain(side_a, pin_el, side_b, self.mech.position(p))
 
-    def _slider(self, j: Slider) -> None:
+    def _slider(self, p: PointRef, q: PointRef | None, axis: tuple[float, float], stiffness: float, damping: float,
+                label: str) -> None:
         mbs, model = self.mbs, self.model
-        a, b = self._side(j.p), self._side(j.q)
-        self._movable(j, a, b)
+        a, b = self._side(p), self._side(q)
+        self._movable(label, a, b)
         body_a, body_b = model.bodies[a], model.bodies[b]
-        pos = self.mech.position(j.p)
-        pos_q = pos if j.q is None else self.mech.position(j.q)
+        pos = self.mech.position(p)
+        pos_q = pos if q is None else self.mech.position(q)
         la, lb = local_point(body_a, pos), local_point(body_b, pos_q)
         ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
         cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
-        ax, ay = j.axis
+        ax, ay = axis
         axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
         normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
         ma, mb = _rigid_marker(mbs, body_a, la), _rigid_marker(mbs, body_b, lb)
         mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
                                                 constrainRotation=True, visualization=_NOVIS))
-        if j.stiffness > 0.0 or j.damping > 0.0:
+        if stiffness > 0.0 or damping > 0.0:
             # the sliding coordinate: relative translation along the axis (zero in the reference pose)
             coord = mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
                 bodyNumbers=[body_a.item, body_b.item], localPosition0=[la[0], la[1], 0.0],
                 localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
             item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
-                markerNumbers=[self.gcoord, coord], stiffness=j.stiffness, damping=j.damping, visualization=_NOVIS))
-            model.springs.append((item, j.stiffness, "damping"))
+                markerNumbers=[self.gcoord, coord], stiffness=stiffness, damping=damping, visualization=_NOVIS))
+            model.springs.append((item, stiffness, "damping"))
 
     # ---------------------------------------------------------------- springs of the hinges, actuation torques
     def _realise_hinges(self) -> None:
