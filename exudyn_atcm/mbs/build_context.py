@@ -18,7 +18,7 @@ from exudyn import itemInterface as ii
 from ..mechanism.connection import Readout
 from ..mechanism.points import MechanismError, PointRef
 from . import loads
-from .items import position_marker, rigid_marker, rotation_marker
+from .items import NOVIS, position_marker, rigid_marker, rotation_marker
 from .model import MechanismModel
 
 __all__ = ["BuildContext"]
@@ -138,7 +138,7 @@ class BuildContext:
 
         return self.add_object(ii.ObjectConnectorCoordinateSpringDamper(
             markerNumbers=[m0, m1], stiffness=0.0, damping=0.0, springForceUserFunction=user,
-            visualization={'show': False}))
+            visualization=NOVIS))
 
     def add_hinge(self, p: PointRef, q: PointRef | None, stiffness: float, damping: float, label: str) -> None:
         """A revolute joint at ``p`` (= ``q``; ``None``: the ground) with a torsion spring [N m/rad] and
