@@ -21,12 +21,13 @@ On import it registers its degrees-of-freedom count and its check of dependent j
 from __future__ import annotations
 
 from ..mechanism.realisation import register_dof_counter, register_redundancy_check
+from .build_context import BuildContext
 from .builder import build
 from .hooks import StepHooks, add_post_newton, add_post_step, add_pre_step, step_hooks
 from .linear import DofReport, degrees_of_freedom
 from .user_system import MechanismHandle, add_to
 
-__all__ = ["add_to", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_step", "add_post_newton", "step_hooks",
+__all__ = ["add_to", "BuildContext", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_step", "add_post_newton", "step_hooks",
            "DofReport"]
 
 

@@ -309,31 +309,32 @@ class Mechanism:
         return self
 
     # ------------------------------------------------------------------ queries
-    def _of_type(self, kind: type) -> list:
-        return [c for c in self.connections if isinstance(c, kind)]
+    def _of_type(self, kind: type) -> tuple:
+        return tuple(c for c in self.connections if isinstance(c, kind))
 
+    # read-only views of :attr:`connections` (tuples: add through the methods or add_connection)
     @property
-    def joints(self) -> list[Joint]:
+    def joints(self) -> tuple[Joint, ...]:
         """The connections that hold parts together (weld, pin, slider), in order."""
-        return [c for c in self.connections if c.holds]
+        return tuple(c for c in self.connections if c.holds)
 
     @property
-    def forces(self) -> list[Force]:
+    def forces(self) -> tuple[Force, ...]:
         """The point forces (:meth:`force`)."""
         return self._of_type(Force)
 
     @property
-    def torques(self) -> list[Torque]:
+    def torques(self) -> tuple[Torque, ...]:
         """The torques (:meth:`torque`)."""
         return self._of_type(Torque)
 
     @property
-    def springs(self) -> list[Spring]:
+    def springs(self) -> tuple[Spring, ...]:
         """The springs between points (:meth:`spring`)."""
         return self._of_type(Spring)
 
     @property
-    def stops(self) -> list[Stop]:
+    def stops(self) -> tuple[Stop, ...]:
         """The one-sided stops (:meth:`stop`)."""
         return self._of_type(Stop)
 

@@ -2,8 +2,9 @@
 
 A joint's second point ``q`` is ``None`` for a connection to the ground (at ``p``'s reference
 position).  Welds fuse the parts they join into one rigid group (:mod:`exudyn_atcm.mbs.layout`);
-pins and sliders are realised through the build context's :meth:`add_hinge` and
-:meth:`add_slider` (:class:`exudyn_atcm.mbs.BuildContext`).  Each draws its ground symbol.
+pins and sliders are realised through the build context's
+:meth:`~exudyn_atcm.mbs.build_context.BuildContext.add_hinge` and
+:meth:`~exudyn_atcm.mbs.build_context.BuildContext.add_slider`.  Each draws its ground symbol.
 """
 
 from __future__ import annotations
