@@ -190,3 +190,25 @@ def test_a_connection_recording_other_columns_than_it_declares_is_refused():
     mech.add_connection(stop)
     with pytest.raises(MechanismError, match=r"recorded the columns \[Readout\(column='stop.torque'.*declares \[\]"):
         solve_static(mech)
+
+
+def test_add_to_records_the_stop_as_simulate_does():
+    import exudyn as exu
+
+    import exudyn_atcm as atcm
+    from exudyn_atcm.mbs import solver_settings
+
+    def ramp(t: float) -> float:  # the arm reaches the gap after about 0.02 s
+        return 1e-2 * min(t / 0.005, 1.0)
+
+    reference = simulate(_mechanism(ramp)[0], 0.05, step=1e-3)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    handle = atcm.add_to(mbs, _mechanism(ramp)[0])
+    mbs.Assemble()
+    mbs.SolveDynamic(solver_settings.dynamic_settings(0.05, 1e-3))
+    result = handle.result()
+    assert result.unit("stop.torque") == "N m"
+    # the same system and solver settings: the same values to round-off
+    np.testing.assert_allclose(result["stop.torque"], reference["stop.torque"], rtol=0, atol=1e-12)
+    assert np.any(result["stop.torque"] > 0.0)
