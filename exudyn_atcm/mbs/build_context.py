@@ -9,6 +9,7 @@ result columns; recording, measurements and feedback find them through the model
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any, Callable
 
 import exudyn as exu
@@ -157,8 +158,7 @@ class BuildContext:
         kind = getattr(exu.OutputVariableType, variable, None)
         if kind is None:
             raise ValueError(f"variable must be an exudyn.OutputVariableType name such as 'Force', got {variable!r}")
-        get = self._model.mbs.GetObjectOutput
-        return lambda: get(item, kind)
+        return partial(self._model.mbs.GetObjectOutput, item, kind)
 
     def add_readout(self, readout: Readout, read: Callable[[], Any]) -> None:
         """Record ``read()`` (a float in ``readout.unit``) as the result column ``readout.column``."""
