@@ -9,5 +9,5 @@ from .connection import Connection, ConnectionBase, Readout
 from .joints import Joint, JointBase, Pin, Slider, Weld, joint_label
 from .loads import Force, ForceValue, Spring, Stop, Torque, TorqueValue
 
-__all__ = ["Connection", "ConnectionBase", "Readout", "Joint", "JointBase", "Weld", "Pin", "Slider",
-           "joint_label", "Force", "Torque", "Spring", "Stop", "ForceValue", "TorqueValue"]
+# the documented names; Joint, JointBase, joint_label, ForceValue and TorqueValue import from here too
+__all__ = ["Connection", "ConnectionBase", "Readout", "Weld", "Pin", "Slider", "Force", "Torque", "Spring", "Stop"]
