@@ -212,3 +212,13 @@ def test_add_to_records_the_stop_as_simulate_does():
     # the same system and solver settings: the same values to round-off
     np.testing.assert_allclose(result["stop.torque"], reference["stop.torque"], rtol=0, atol=1e-12)
     assert np.any(result["stop.torque"] > 0.0)
+
+
+def test_joints_added_through_the_protocol_get_the_joint_checks():
+    from exudyn_atcm.mechanism import Pin
+
+    mech, stop = _mechanism(0.0)
+    with pytest.raises(MechanismError, match=r"already joined by pin\(frame.O, arm.O\)"):
+        mech.add_connection(Pin(PointRef("frame", "O"), PointRef("arm", "O")))
+    with pytest.raises(MechanismError, match="holds=True, which is for joints"):
+        mech.add_connection(type("Holding", (RotationalStop,), {"holds": True})(stop.p, stop.q, GAP, K_STOP, "h"))

@@ -11,7 +11,7 @@ import numpy as np
 from .._checks import finite_float
 from .bender import Bender
 from .connection import Connection
-from .joints import Joint, Pin, Slider, Weld, joint_label
+from .joints import Joint, JointBase, Pin, Slider, Weld, joint_label
 from .loads import Force, Spring, Stop, Torque
 from .flexure import Flexure
 from .link import Link
@@ -122,6 +122,11 @@ class Mechanism:
         if missing or not isinstance(getattr(connection, "name", None), str):
             raise MechanismError(f"add_connection: {connection!r} does not implement the connection protocol "
                                  f"(missing: {', '.join(missing) or 'a str name'}); derive it from ConnectionBase")
+        if connection.holds:  # a joint: its own checks, named joint_k unless named
+            if not isinstance(connection, JointBase):
+                raise MechanismError(f"add_connection: {connection!r} has holds=True, which is for joints: subclasses "
+                                     "of JointBase (points p and q) that the rigid groups and the ground check use")
+            connection = self._checked_joint(connection)
         check_name("connection name", connection.name)
         if connection.name in self._load_names() or connection.name in self.components:
             raise MechanismError(f"duplicate name {connection.name!r}: loads, springs, stops and components "
@@ -142,6 +147,9 @@ class Mechanism:
         return self
 
     def _joint(self, joint: Joint) -> "Mechanism":
+        return self.add_connection(joint)
+
+    def _checked_joint(self, joint: JointBase) -> JointBase:
         if joint.q is not None and joint.p.component == joint.q.component:
             raise MechanismError(
                 f"{joint_label(joint)} connects component {joint.p.component!r} to itself; "
@@ -154,7 +162,7 @@ class Mechanism:
                 raise MechanismError(
                     f"{joint_label(joint)}: the points {' and '.join(sorted(key))} are already joined by "
                     f"{joint_label(other)}; a pair of points can be joined once only (joined {how})")
-        return self.add_connection(dataclasses.replace(joint, name=f"joint_{len(self.joints) + 1}"))
+        return joint if joint.name else dataclasses.replace(joint, name=f"joint_{len(self.joints) + 1}")
 
     def _other(self, q: PointLike | None) -> PointRef | None:
         return None if q is None else self.resolve(q)

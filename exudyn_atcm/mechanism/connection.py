@@ -13,8 +13,9 @@ Every connection or load of a :class:`~exudyn_atcm.Mechanism` is an object with
 * ``realise(context)``: adds its items to the Exudyn system through the public build context
   (:class:`exudyn_atcm.mbs.build_context.BuildContext`: markers at points, items, loads, read-outs);
 * ``draw(canvas)``: draws it on a mechanism drawing (:class:`exudyn_atcm.plots.canvas.MechanismCanvas`);
-* the class attributes ``holds`` (True for a joint that holds parts together: weld, pin, slider;
-  they are realised with the bodies, before the hinges' springs) and ``loads_points`` (True when
+* the class attributes ``holds`` (True for a joint that holds parts together: weld, pin, slider,
+  subclasses of :class:`~exudyn_atcm.mechanism.joints.JointBase` that the rigid groups and the
+  ground check use; they are realised with the bodies, before the hinges' springs) and ``loads_points`` (True when
   it loads its points, so that a cell kind that refuses tip loads refuses it).
 
 :class:`ConnectionBase` gives the defaults; a new kind is one file: a subclass with ``points``,
