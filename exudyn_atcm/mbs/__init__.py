@@ -24,6 +24,7 @@ from __future__ import annotations
 from ..mechanism.realisation import register_dof_counter, register_redundancy_check
 from .build_context import BuildContext
 from .builder import build
+from .connection_context import ConnectionContext
 from .hooks import StepHooks, add_post_newton, add_post_step, add_pre_step, step_hooks
 from .linear import DofReport, degrees_of_freedom
 from .node_chain import NodeEnds
@@ -31,7 +32,8 @@ from .realisation import CellRealisation, HingedEnds, register_realisation
 from .user_system import MechanismHandle, add_to
 
 __all__ = ["add_to", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_step", "add_post_newton", "step_hooks",
-           "DofReport", "CellRealisation", "HingedEnds", "NodeEnds", "BuildContext", "register_realisation"]
+           "DofReport", "CellRealisation", "HingedEnds", "NodeEnds", "BuildContext", "ConnectionContext",
+           "register_realisation"]
 
 
 def _count(mechanism) -> DofReport:

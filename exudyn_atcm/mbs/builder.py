@@ -43,7 +43,6 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender, passive_strip_cells
-from ..mechanism.connections import Pin, Slider, joint_label
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
@@ -56,7 +55,7 @@ from .items import local_point
 from .items import rigid_marker as _rigid_marker
 from .model import Body, Element, MechanismModel
 from .graphics import part_graphics, shift_graphics
-from .loads import add_loads
+from .connection_context import ConnectionContext, realise_connections
 from . import chains
 from .mass_damping import MassDampers, part_mass_damping_factor
 from .realisation import make_realisation
@@ -124,12 +123,9 @@ class _Builder(BuildContext):
             for end in ("base", "tip"):
                 with self._labelled(end_label(mech, bender, end)):
                     self.realisations[bender.name].connect_end(self, end)
-        for j in mech.joints:
-            with self._labelled(joint_label(j)):
-                if isinstance(j, Pin):
-                    self._pin(j)
-                elif isinstance(j, Slider):
-                    self._slider(j)
+        context = ConnectionContext(model, self.ground_coordinate, self._pin, self._slider)
+        # joints with the bodies (their springs join the hinges'), then the loads and other connections
+        realise_connections(context, mech.joints, self._labelled)
         self._flexure_pivots()
         for realisation in self.realisations.values():
             writer, hook = realisation.strain_writer(), realisation.linearisation_hook()
@@ -138,7 +134,7 @@ class _Builder(BuildContext):
             if hook is not None:
                 self.add_linearisation_hook(hook)
         realise_actuation(mbs, mech, model, self.ground_coordinate, self.zeros, self.clamped)
-        add_loads(mbs, mech, model)
+        realise_connections(context, [c for c in mech.connections if not c.holds], self._labelled)
         return model
 
     def _end_body_key(self, part: str) -> str | None:
@@ -243,46 +239,46 @@ class _Builder(BuildContext):
         g = self.groups[self.group_of[part]]
         return part if g.kind == "virtual" else g.key
 
-    def _movable(self, j, side_a: str, side_b: str) -> None:
+    def _movable(self, label: str, side_a: str, side_b: str) -> None:
         """Refuse a joint between two points of one rigid group (welded together): it could not move."""
         if side_a == side_b:
             group = self.groups[self.group_of[side_a]] if side_a in self.group_of else self.groups[side_a]
             parts = ", ".join(sorted(p.replace("#", ".") for p in group.parts))
             raise MechanismError(
-                f"{joint_label(j)} joins two points of one rigid group (welded together: {parts}); it cannot "
+                f"{label} joins two points of one rigid group (welded together: {parts}); it cannot "
                 "move. Remove the joint or one of the welds")
 
-    def _pin(self, j: Pin) -> None:
-        side_a, side_b = self._side(j.p), self._side(j.q)
-        self._movable(j, side_a, side_b)
-        k = j.stiffness
-        pin_el = Element(k, j.damping, self.zeros(), self.zeros())
-        self.join_in_series(side_a, pin_el, side_b, self.mech.position(j.p))
+    def _pin(self, p: PointRef, q: PointRef | None, stiffness: float, damping: float, label: str) -> None:
+        side_a, side_b = self._side(p), self._side(q)
+        self._movable(label, side_a, side_b)
+        pin_el = Element(stiffness, damping, self.zeros(), self.zeros())
+        self.join_in_series(side_a, pin_el, side_b, self.mech.position(p))
 
-    def _slider(self, j: Slider) -> None:
+    def _slider(self, p: PointRef, q: PointRef | None, axis: tuple[float, float], stiffness: float, damping: float,
+                label: str) -> None:
         mbs, model = self.mbs, self.model
-        a, b = self._side(j.p), self._side(j.q)
-        self._movable(j, a, b)
+        a, b = self._side(p), self._side(q)
+        self._movable(label, a, b)
         body_a, body_b = model.bodies[a], model.bodies[b]
-        pos = self.mech.position(j.p)
-        pos_q = pos if j.q is None else self.mech.position(j.q)
+        pos = self.mech.position(p)
+        pos_q = pos if q is None else self.mech.position(q)
         la, lb = local_point(body_a, pos), local_point(body_b, pos_q)
         ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
         cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
-        ax, ay = j.axis
+        ax, ay = axis
         axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
         normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
         ma, mb = _rigid_marker(mbs, body_a, la), _rigid_marker(mbs, body_b, lb)
         mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
                                                 constrainRotation=True, visualization=_NOVIS))
-        if j.stiffness > 0.0 or j.damping > 0.0:
+        if stiffness > 0.0 or damping > 0.0:
             # the sliding coordinate: relative translation along the axis (zero in the reference pose)
             coord = mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
                 bodyNumbers=[body_a.item, body_b.item], localPosition0=[la[0], la[1], 0.0],
                 localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
             item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
-                markerNumbers=[self.ground_coordinate, coord], stiffness=j.stiffness, damping=j.damping, visualization=_NOVIS))
-            model.springs.append((item, j.stiffness, "damping"))
+                markerNumbers=[self.ground_coordinate, coord], stiffness=stiffness, damping=damping, visualization=_NOVIS))
+            model.springs.append((item, stiffness, "damping"))
 
 
 def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,

@@ -5,8 +5,9 @@ Columns (``name [unit]``): ``time [s]``; per drive ``{drive}.voltage [V]`` and
 ``{link}.angle [rad]`` (rotation from the reference pose); per bender and flexure
 ``{comp}.base_angle``, ``{comp}.tip_angle`` and ``{comp}.cell_angle_{j}`` [rad] (absolute
 direction of the axis; the reference value is the component's angle; a pseudo-rigid-body
-flexure has two "cells", its segments); per spring and stop ``{name}.force [N]`` (tension
-positive for springs, compression positive for stops).
+flexure has two "cells", its segments); the columns each connection declares
+(:meth:`~exudyn_atcm.mechanism.connection.Connection.readouts`, e.g. per spring and stop
+``{name}.force [N]``: tension positive for springs, compression positive for stops).
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ class RowLayout:
         self.model = model
         self.n_sources = len(model.sources)
         self.n_coordinates = len(model.coordinates())
-        self.n_forces = len(model.spring_items)
+        self.n_forces = len(model.readouts)
         self.width = 1 + 2 * self.n_sources + self.n_coordinates + self.n_forces
         self._every_names: list[str] | None = None
         self._every_units: list[str] | None = None
@@ -190,8 +191,8 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
         units[f"{c}.base_angle"] = units[f"{c}.tip_angle"] = "rad"
         for j, values in enumerate(cells):
             series[f"{c}.cell_angle_{j + 1}"], units[f"{c}.cell_angle_{j + 1}"] = values, "rad"
-    for k, name in enumerate(model.connector_names()):
-        series[f"{name}.force"], units[f"{name}.force"] = forces[:, k], "N"
+    for k, (name, unit) in enumerate(zip(model.connector_names(), model.connector_units())):
+        series[name], units[name] = forces[:, k], unit
     info = dict(info)
     info.setdefault("exudyn_version", runs.exudyn_version())
     result = Result(series, units, parameters=mech.parameters(), info=info, every_step=every_step)

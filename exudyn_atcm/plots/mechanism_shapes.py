@@ -77,7 +77,8 @@ def result_column(result, name: str) -> np.ndarray:
         ) from None
 
 
-def _point_at(result, mechanism: Mechanism, ref: str, row: int, scale: float) -> np.ndarray:
+def point_at(result, mechanism: Mechanism, ref: str, row: int, scale: float) -> np.ndarray:
+    """Position [m] of point ``ref`` (``"comp.point"``) at ``row`` of ``result``, displacements times ``scale``."""
     component, point = ref.split(".")
     x = result_column(result, f"{ref}_x")[row]
     y = result_column(result, f"{ref}_y")[row]
@@ -158,7 +159,7 @@ def mechanism_shape(
         if isinstance(comp, Bender):
             shape.benders.append(_bender_shape(comp, result, row, scale, offset_scale))
         elif isinstance(comp, Link):
-            pts = {p: _point_at(result, mechanism, f"{comp.name}.{p}", row, scale) for p in comp.points}
+            pts = {p: point_at(result, mechanism, f"{comp.name}.{p}", row, scale) for p in comp.points}
             shape.link_points[comp.name] = pts
             shape.links[comp.name] = order_around_centroid(np.array(list(pts.values())))
         elif isinstance(comp, Flexure):
@@ -166,15 +167,15 @@ def mechanism_shape(
                 bent = _bender_shape(comp.as_bender(), result, row, scale, offset_scale)
                 shape.flexures[comp.name] = bent.passive
             else:
-                base = _point_at(result, mechanism, f"{comp.name}.base", row, scale)
-                tip = _point_at(result, mechanism, f"{comp.name}.tip", row, scale)
+                base = point_at(result, mechanism, f"{comp.name}.base", row, scale)
+                tip = point_at(result, mechanism, f"{comp.name}.tip", row, scale)
                 angle = comp.angle + scale * (result_column(result, f"{comp.name}.base_angle")[row] - comp.angle)
                 pivot = base + comp.segment_lengths[0] * np.array([math.cos(angle), math.sin(angle)])
                 shape.flexures[comp.name] = np.array([base, pivot, tip])
                 shape.pivots[comp.name] = pivot
     for spring in mechanism.springs:
-        p = _point_at(result, mechanism, str(spring.p), row, scale)
-        q = _point_at(result, mechanism, str(spring.q), row, scale)
+        p = point_at(result, mechanism, str(spring.p), row, scale)
+        q = point_at(result, mechanism, str(spring.q), row, scale)
         shape.springs.append((spring.name, p, q))
     return shape
 
