@@ -69,6 +69,7 @@ CELLS = {
     "beam": (2, 4, 8, 16, 32),
     "ancf": (1, 2, 3, 4, 8),
     "ritz": (1, 2, 3, 4, 6, 8),
+    "rod": (1, 2, 3, 4, 6, 8),
     "GE by hand": (2, 4, 8, 16, 32),
 }
 REPEATS = 3  # cost: best of this many runs
@@ -271,6 +272,9 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description="exudyn_atcm discretisation benchmark")
     parser.add_argument("--quick", action="store_true", help="fewer cell counts (smoke run)")
     parser.add_argument("--repeats", type=int, default=REPEATS, help="cost: best of this many runs (default 3)")
+    parser.add_argument("--cells", default=None,
+                        help="comma-separated discretisations to measure (default: all of CELLS)")
+    parser.add_argument("--max-n", type=int, default=None, help="largest cell count measured (default: all)")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
     args = parser.parse_args(argv)
     if args.repeats < 1:
@@ -284,9 +288,15 @@ def main(argv=None) -> int:
     counts = sorted({n for ns in CELLS.values() for n in ns})
     if args.quick:
         counts = counts[:3]
+    if args.max_n is not None:
+        counts = [n for n in counts if n <= args.max_n]
+    chosen = list(CELLS) if args.cells is None else [c.strip() for c in args.cells.split(",")]
+    unknown = [c for c in chosen if c not in CELLS]
+    if unknown:
+        parser.error(f"--cells: unknown {unknown}; known: {list(CELLS)}")
     for n in counts:
         for name, ns in CELLS.items():
-            if n not in ns:
+            if n not in ns or name not in chosen:
                 continue
             try:
                 m = measure(name, n, args.repeats)

@@ -53,7 +53,8 @@ WIDTH = 28e-3
 def build_mechanism(p: Parameters) -> Mechanism:
     """The bender along +x with the lever welded to its tip."""
     drive = PiezoDrive(Triangle(500.0, 1000.0, p.period), hysteresis=paper_strain_preisach())
-    bender = Bender("bender", width=WIDTH, passive=CFC, active=MFC, length=p.length, n_cells=p.n_cells, drive=drive)
+    bender = Bender("bender", width=WIDTH, passive=CFC, active=MFC, length=p.length, n_cells=p.n_cells, drive=drive,
+                    cell="rigid")
     lever = Link("lever", {"root": (p.length, 0.0), "end": (p.length + p.lever, 0.0)},
                  mass=p.lever_mass, inertia=p.lever_mass * p.lever**2 / 12.0)
     return Mechanism("bender_with_lever").add(bender, lever).ground(bender.base).weld(bender.tip, lever.point("root"))
@@ -133,7 +134,29 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("bender_with_lever", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (no GIF): they change no check the defaults pass.
+SMOKE = {"animation": False}
+
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "bender_with_lever",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "lever_error (/ travel)", "scalar": "lever_error", "analytic": 0.0, "abs": 1e-12, "source": "welded rigid lever: end = tip + a (cos theta, sin theta) at every recorded instant"},
+            {"name": "static_error_chain_polygon (/ travel)", "scalar": "static_error_chain_polygon", "analytic": 0.0, "abs": 1e-9, "source": "the stress-free rigid-cell polygon plus the rigid lever; static solver tolerance"},
+            {"name": "static_error_arc (/ travel)", "scalar": "static_error_arc", "analytic": 0.0, "abs": 1e-3, "source": "constant-curvature arc plus the lever (pure bending, Timoshenko 1925); discretisation error of 6 cells"},
+            {"name": "static_tip_angle_error", "scalar": "static_tip_angle_error", "analytic": 0.0, "abs": 1e-12, "source": "tip angle = kappa L, exact for every number of rigid cells"},
+            {"scalar": "lever_end_y_max", "rel": 1e-6},
+            {"scalar": "lever_end_y_min", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("bender_with_lever", __doc__, PARAMETERS, run, plot, smoke=SMOKE, benchmarks=BENCHMARKS, table_order=9,
+            summary="a rigid extension welded to a bender tip (lever kinematics)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import Bender, Flexure, Layer, Link, Mechanism, PiezoDrive, Result, simulate, static_sweep
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.hysteresis import ContinuousPreisach
 from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
@@ -48,7 +48,7 @@ from exudyn_atcm.theory import RigidFourBar
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells of the crank bender", minimum=1),
-    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=("rigid", "six-bar", "beam", "rod")),
+    Parameter("cell", "rigid", "-", "cell model of the crank bender", choices=CellChoices(joins_anywhere=True, first=("rigid",))),
     Parameter("crank_length", 0.06, "m", "length of the crank bender", exclusive_minimum=0.0),
     Parameter("coupler_length", 0.05, "m", "distance of the coupler's hinges B* - C*", exclusive_minimum=0.0),
     Parameter("rocker_pivot_height", 0.02, "m", "height of the rocker's ground pivot D* above the crank's base", minimum=0.0),
@@ -248,7 +248,31 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("compliant_four_bar", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (no GIF): they change no check the defaults pass.
+SMOKE = {"animation": False}
+
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "four_bar",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "reference_error (coupler point vs rigid four-bar, / travel)", "scalar": "reference_error", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis (circle intersection) from the crank bender's simulated tip; static solver tolerance"},
+            {"name": "reference_error_linear (/ travel)", "scalar": "reference_error_linear", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis, linear drive"},
+            {"name": "reference_error_dynamic (/ travel)", "scalar": "reference_error_dynamic", "analytic": 0.0, "abs": 1e-6, "source": "closed-form four-bar position analysis at every recorded instant of the dynamic run"},
+            {"name": "rocker_joint_error_abs", "scalar": "rocker_joint_error_abs", "analytic": 0.0, "abs": 1e-8, "source": "rigid rocker: |C - D| = rocker length; static solver tolerance 1e-8 m"},
+            {"name": "loop_width_linear (no hysteresis, no loop)", "scalar": "loop_width_linear", "analytic": 0.0, "abs": 1e-8, "source": "a linear drive traces the same path up and down"},
+            {"scalar": "coupler_travel", "rel": 1e-6},
+            {"scalar": "loop_width_max", "rel": 1e-6},
+            {"scalar": "hysteresis_path_error_max", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("compliant_four_bar", __doc__, PARAMETERS, run, plot, smoke=SMOKE, benchmarks=BENCHMARKS, table_order=6,
+            summary="a bender as input crank, flexure hinges; the coupler path with and without hysteresis (rigid four-bar kinematics)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

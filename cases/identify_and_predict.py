@@ -173,7 +173,22 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("identify_and_predict", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "identify_and_predict",
+        "quick": True,
+        "scalars": [
+            {"name": "held_out_rms_per_noise (<= 1.5)", "scalar": "held_out_rms_per_noise", "analytic": 1.0, "abs": 0.5, "source": "a perfect model's held-out RMS error equals the record's noise level (ratio 1); accepted up to 1.5 (and down to 0.5)"},
+            {"scalar": "held_out_rms_preisach", "rel": 1e-6},
+            {"scalar": "held_out_rms_linear", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("identify_and_predict", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=10,
+            summary="fit on part of a record, predict the rest (the known density of the shipped record)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -44,14 +44,14 @@ import numpy as np
 
 from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, static_sweep
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.model import paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 24, "-", "cells per bender (rod: its modes; 4 are plenty)", minimum=1),
     Parameter("cell", "rigid", "-", "cell model of the benders; the *_chain_* scalars describe the rigid-cell chain",
-              choices=("rigid", "six-bar", "beam", "rod")),
+              choices=CellChoices(joins_anywhere=True, first=("rigid",))),
     Parameter("length", 0.04, "m", "bender length L", exclusive_minimum=0.0),
     Parameter("width", 10e-3, "m", "bender width b", exclusive_minimum=0.0),
     Parameter("half_spacing", 5e-3, "m", "distance of each bender's axis from the symmetry axis", exclusive_minimum=0.0),
@@ -222,7 +222,29 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("micro_gripper", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "micro_gripper",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "mirror_error (/ travel)", "scalar": "mirror_error", "analytic": 0.0, "abs": 1e-12, "source": "mirror symmetry of the gripper about its axis"},
+            {"name": "free_jaw_error_chain_polygon (/ travel)", "scalar": "free_jaw_error_chain_polygon", "analytic": 0.0, "abs": 1e-5, "source": "the stress-free rigid-cell polygon of the free bender plus the rigid jaw; static solver tolerance"},
+            {"name": "free_jaw_error (arc, / travel)", "scalar": "free_jaw_error", "analytic": 0.0, "abs": 1e-4, "source": "constant-curvature arc plus the rigid jaw (pure bending); discretisation error of 24 cells"},
+            {"name": "force_error_large_deflection_object (/ force)", "scalar": "force_error_large_deflection_object", "analytic": 0.0, "abs": 1e-3, "source": "large-deflection beam with end moment and end force (elastica), object spring"},
+            {"name": "force_error_large_deflection_stiff (/ force)", "scalar": "force_error_large_deflection_stiff", "analytic": 0.0, "abs": 1e-3, "source": "large-deflection beam (elastica), stiff object"},
+            {"scalar": "gap_initial", "analytic": 0.01, "abs": 1e-12, "source": "geometry: 2 (half_spacing - jaw_offset) = 10 mm"},
+            {"scalar": "gap_min", "rel": 1e-6},
+            {"scalar": "force_max_object", "rel": 1e-6},
+            {"scalar": "force_max_stiff", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("micro_gripper", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=7,
+            summary="two mirrored benders with jaws gripping a spring object (symmetry, blocked force)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -244,7 +244,11 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return [save_figure(fig, out_dir / f"{output.case}_work.png")]
 
 
-CASE = Case("optimise_bender", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (3 iterations, no nonlinear check): they change no check the defaults pass.
+SMOKE = {"maxiter": 3, "check_nonlinear": False}
+
+CASE = Case("optimise_bender", __doc__, PARAMETERS, run, plot, smoke=SMOKE, table_order=12,
+            summary="passive layer and cell count for the most actuator work (closed-form optimum)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -39,8 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PiezoDrive, simulate
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.cells import CELL_KINDS
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.model import PAPER_LOOP, Triangle, paper_strain_preisach
 from exudyn_atcm.plots import (
     actuator_as_mechanism,
@@ -58,7 +57,7 @@ PARAMETERS = [
     Parameter("cycles", 3, "-", "number of input periods simulated (last_cycle_change needs >= 3)", minimum=1),
     Parameter("cell", "six-bar", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
               "ritz: n_cells assumed modes of the whole bender)",
-              choices=tuple(CELL_KINDS)),
+              choices=CellChoices()),
     Parameter("n_cells", 3, "-", "number of cells", minimum=1),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j", exclusive_minimum=0.0),
     Parameter("exponents", "exact", "-", "continuous Preisach exponents", choices=("exact", "rounded")),
@@ -218,7 +217,36 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("paper_bending_actuator", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (one cycle of a rigid chain, no GIF): they change no check the defaults pass.
+SMOKE = {"cycles": 1, "cell": 'rigid', "animation": False}
+
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "bending_actuator_fig12",
+        "quick": True,
+        "parameters": {"period": 1.0, "cycles": 3, "cell": "six-bar", "n_cells": 3, "exponents": "exact", "step": 1e-4, "record_every": 1e-3},
+        "channels": {
+            "voltage": {"rms": 1e-9, "max": 1e-9},
+            "strain": {"rms": 1e-15, "max": 1e-14},
+            "stroke": {"rms": 1e-12, "max": 1e-11},
+            "tip_y": {"rms": 1e-8, "max": 5e-8},
+            "tip_x": {"rms": 1e-8, "max": 5e-8}
+        },
+        "scalars": [
+            {"scalar": "stroke_max", "analytic": 40e-6, "abs": 1e-11, "source": "paper Sect. 3: 40 µm at 1500 V (the loop's x_max)"},
+            {"scalar": "stroke_min", "analytic": -4e-6, "abs": 1e-11, "source": "paper Sect. 3: -4 µm at -500 V"},
+            {"scalar": "tip_y_max_last_cycle", "rel": 1e-6},
+            {"scalar": "tip_y_500V_rising", "rel": 1e-6},
+            {"scalar": "tip_y_500V_falling", "rel": 1e-6},
+            {"scalar": "last_cycle_change", "abs": 1e-8}
+        ]
+    },
+]
+
+CASE = Case("paper_bending_actuator", __doc__, PARAMETERS, run, plot, smoke=SMOKE, benchmarks=BENCHMARKS, table_order=4,
+            summary="Fig. 12: the actuator driven through the Preisach loop (the paper's strokes; beam theory)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

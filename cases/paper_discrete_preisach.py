@@ -124,7 +124,29 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return [xy, series, plane]
 
 
-CASE = Case("paper_discrete_preisach", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "discrete_preisach",
+        "quick": True,
+        "parameters": {"n_relays": 6, "exponents": "exact", "loop_samples": 2000, "segment_time": 0.5, "samples_per_segment": 200},
+        "channels": {
+            "voltage": {"rms": 1e-9, "max": 1e-9},
+            "stroke_continuous": {"rms": 1e-12, "max": 1e-11},
+            "stroke_discrete": {"rms": 1e-12, "max": 1e-11}
+        },
+        "scalars": [
+            {"scalar": "gain", "analytic": 7.3333333e-6, "abs": 1e-12, "source": "Eq. 12: (40 µm - (-4 µm)) / 6"},
+            {"scalar": "loop_area_continuous", "analytic": 0.0216050, "abs": 5e-8, "source": "docs/theory.rst, hysteresis: 21605.0 µm·V"},
+            {"scalar": "max_difference", "rel": 1e-6},
+            {"scalar": "loop_area_discrete", "rel": 1e-9}
+        ]
+    },
+]
+
+CASE = Case("paper_discrete_preisach", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=3,
+            summary="the paper's Figs. 6, 8, 9, 13-15 (the paper's numbers)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

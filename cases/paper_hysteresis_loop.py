@@ -110,7 +110,37 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return [loop, series]
 
 
-CASE = Case("paper_hysteresis_loop", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "hysteresis_loop",
+        "quick": True,
+        "parameters": {"period": 1.0, "cycles": 2, "samples_per_period": 400},
+        "channels": {
+            "voltage": {"rms": 1e-9, "max": 1e-9},
+            "stroke": {"rms": 1e-12, "max": 1e-11},
+            "stroke_rounded": {"rms": 1e-12, "max": 1e-11}
+        },
+        "scalars": [
+            {"scalar": "r1", "analytic": 1.459432, "abs": 5e-7, "source": "docs/theory.rst, hysteresis (corrected Eq. 10)"},
+            {"scalar": "r2", "analytic": 1.874469, "abs": 5e-7, "source": "docs/theory.rst, hysteresis (corrected Eq. 10)"},
+            {"scalar": "loop_area", "analytic": 0.0216050, "abs": 5e-8, "source": "docs/theory.rst, hysteresis: 21605.0 µm·V"},
+            {"scalar": "loop_area_rounded", "analytic": 0.0234667, "abs": 5e-8, "source": "docs/theory.rst, hysteresis: 23466.7 µm·V"},
+            {"name": "loop_area_series (vs analytic)", "scalar": "loop_area_series", "analytic": 0.0216050, "rel": 1e-4, "source": "docs/theory.rst, hysteresis: 21605.0 µm·V; trapezoidal rule on 400 samples"},
+            {"scalar": "loop_area_series", "rel": 1e-9},
+            {"scalar": "stroke_max", "analytic": 40e-6, "abs": 1e-12, "source": "paper Sect. 3: 40 µm at 1500 V"},
+            {"scalar": "stroke_min", "analytic": -4e-6, "abs": 1e-12, "source": "paper Sect. 3: -4 µm at -500 V"},
+            {"scalar": "ascending_at_u_m", "analytic": 12e-6, "abs": 1e-12, "source": "paper Sect. 3: x_m1 = 12 µm at 500 V"},
+            {"scalar": "descending_at_u_m", "analytic": 28e-6, "abs": 1e-12, "source": "paper Sect. 3: x_m2 = 28 µm at 500 V"},
+            {"scalar": "ascending_rounded_at_u_m", "analytic": 11.556e-6, "abs": 5e-10, "source": "docs/theory.rst, hysteresis: 11.556 µm with r1 = 1.5"},
+            {"scalar": "descending_rounded_at_u_m", "analytic": 29.000e-6, "abs": 5e-10, "source": "docs/theory.rst, hysteresis: 29.000 µm with r2 = 2"}
+        ]
+    },
+]
+
+CASE = Case("paper_hysteresis_loop", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=1,
+            summary="the paper's Figs. 6, 8, 9, 13-15 (the paper's numbers)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -87,7 +87,28 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return [series, table]
 
 
-CASE = Case("paper_stroke_table", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "stroke_table",
+        "quick": True,
+        "parameters": {"period": 1.0, "cycles": 1, "points_per_period": 20, "exponents": "rounded"},
+        "channels": {
+            "voltage": {"rms": 1e-9, "max": 1e-9},
+            "stroke": {"rms": 1e-12, "max": 1e-11}
+        },
+        "scalars": [
+            {"scalar": "stroke_max", "analytic": 40e-6, "abs": 1e-12, "source": "paper Sect. 3: total stroke 40 µm"},
+            {"scalar": "stroke_min", "analytic": -4e-6, "abs": 1e-12, "source": "paper Sect. 3: -4 µm at -500 V"},
+            {"scalar": "stroke_linear_law", "analytic": 40.02e-6, "abs": 5e-9, "source": "docs/theory.rst, piezo actuation: x_a = 40.02 µm (Eqs. 2, 3)"},
+            {"scalar": "table_max_interpolation_error", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("paper_stroke_table", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=2,
+            summary="the paper's Figs. 6, 8, 9, 13-15 (the paper's numbers)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -33,12 +33,12 @@ import numpy as np
 
 from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, Segment, static_sweep
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 8, "-", "cells per segment (two segments per bender)", minimum=1),
-    Parameter("cell", "rigid", "-", "cell model of the benders", choices=("rigid", "six-bar", "beam", "rod")),
+    Parameter("cell", "rigid", "-", "cell model of the benders", choices=CellChoices(joins_anywhere=True, first=("rigid",))),
     Parameter("length", 0.06, "m", "bender length L (two segments of L/2)", exclusive_minimum=0.0),
     Parameter("width", 10e-3, "m", "bender width", exclusive_minimum=0.0),
     Parameter("spacing", 0.02, "m", "distance between the two benders", exclusive_minimum=0.0),
@@ -150,7 +150,24 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("parallel_guide", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "parallel_guide",
+        "quick": True,
+        "parameters": {"animation": False},
+        "scalars": [
+            {"name": "translation_error (/ travel)", "scalar": "translation_error", "analytic": 0.0, "abs": 1e-4, "source": "S-shaped bender of two opposite constant-curvature arcs: pure translation (large-deflection closed form); 8 cells per segment"},
+            {"name": "translation_error_chain_polygon (/ travel)", "scalar": "translation_error_chain_polygon", "analytic": 0.0, "abs": 1e-9, "source": "the stress-free rigid-cell polygon of the two segments; static solver tolerance"},
+            {"name": "rotation_max (stage rotation)", "scalar": "rotation_max", "analytic": 0.0, "abs": 1e-12, "source": "antisymmetric curvature: the stage translates without rotating"},
+            {"scalar": "translation_y_max", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("parallel_guide", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=8,
+            summary="two S-shaped two-segment benders and a coupler: a translational stage (guided S-blade)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

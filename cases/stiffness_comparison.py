@@ -29,14 +29,13 @@ import numpy as np
 
 from exudyn_atcm import BendingActuator, Layer, PiezoDrive, Result, eigenfrequencies, solve_static
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
-from exudyn_atcm.cells import CELL_KINDS
+from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.plots import Curve, plot_loops
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "number of cells", minimum=1),
     Parameter("cell", "rigid", "-", "cell model (beam, ancf: Exudyn's 2-D beam elements, one per cell; "
-              "not ritz, which refuses the tip force of the compliance run)", choices=tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)),
+              "not ritz, which refuses the tip force of the compliance run)", choices=CellChoices(carries_tip_load=True)),
     Parameter("cell_length", 29e-3, "m", "length of one cell L_j", exclusive_minimum=0.0),
     Parameter("width", 28e-3, "m", "width b of both layers", exclusive_minimum=0.0),
     Parameter("h1", 0.2e-3, "m", "passive (CFC) layer thickness", exclusive_minimum=0.0),
@@ -157,7 +156,54 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return [path]
 
 
-CASE = Case("stiffness_comparison", __doc__, PARAMETERS, run, plot)
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "stiffness_ref_a",
+        "quick": True,
+        "base": "voltage",
+        "parameters": {"n_cells": 3, "cell": "rigid", "cell_length": 0.029, "n_voltages": 6, "tip_force": 0.01},
+        "channels": {
+            "tip_y_composite": {"rms": 1e-9, "max": 1e-9},
+            "tip_x_composite": {"rms": 1e-9, "max": 1e-9},
+            "tip_y_paper": {"rms": 1e-9, "max": 1e-9}
+        },
+        "scalars": [
+            {"scalar": "EI_theory_composite", "analytic": 1.28699e-2, "rel": 1e-5, "source": "docs/theory.rst, the paper's actuator: EI = 1.28699e-2 N m²"},
+            {"scalar": "curvature_theory_composite", "analytic": 4.13984, "rel": 1e-5, "source": "docs/theory.rst, the paper's actuator: κ = 4.13984 1/m"},
+            {"name": "tip_angle_composite (static curvature, = κL)", "scalar": "tip_angle_composite", "analytic": 0.36016608, "rel": 1e-5, "source": "docs/theory.rst, reference actuator: κ L = 4.13984 · 0.087, exact for every N"},
+            {"scalar": "arc_tip_y_composite", "analytic": 15.499e-3, "abs": 1e-6, "source": "docs/theory.rst, the paper's actuator: arc tip y = 15.499 mm"},
+            {"scalar": "compliance_theory_composite", "analytic": 17.055e-3, "rel": 1e-4, "source": "docs/theory.rst, the paper's actuator: 17.055 mm/N"},
+            {"name": "compliance_composite (tip compliance, 3 rigid cells)", "scalar": "compliance_composite", "analytic": 18.0025e-3, "rel": 2e-4, "source": "docs/theory.rst, reference actuator: 17.055 mm/N · (1 + 1/(2·3²))"},
+            {"scalar": "f1_theory_composite", "analytic": 35.97, "abs": 0.005, "source": "docs/theory.rst, the paper's actuator: f1 = 35.97 Hz"},
+            {"scalar": "EI_ratio_paper_to_composite", "analytic": 1.49, "abs": 0.005, "source": "docs/theory.rst, stiffness calibration: printed model 1.49x too stiff"},
+            {"scalar": "curvature_ratio_paper_to_composite", "analytic": 1.11, "abs": 0.005, "source": "docs/theory.rst, stiffness calibration: free curvature 1.11x too large"},
+            {"scalar": "tip_y_composite", "rel": 1e-6},
+            {"scalar": "tip_y_paper", "rel": 1e-6},
+            {"scalar": "compliance_paper", "rel": 1e-6},
+            {"scalar": "f1_composite", "rel": 1e-6},
+            {"scalar": "f1_paper", "rel": 1e-6}
+        ]
+    },
+    {
+        "id": "convergence_48_rigid_cells",
+        "quick": True,
+        "base": "voltage",
+        "parameters": {"n_cells": 48, "cell": "rigid", "cell_length": 0.0018125, "n_voltages": 2, "tip_force": 0.01, "elastica_alpha": 2.0, "elastica_cells": 48},
+        "scalars": [
+            {"name": "f1_composite (eigenfrequency, 48 cells)", "scalar": "f1_composite", "analytic": 35.97, "abs": 0.02, "source": "docs/theory.rst, the paper's actuator: f1 = 35.97 Hz (continuum; 48 cells within 0.02 Hz)"},
+            {"name": "compliance_composite (48 rigid cells)", "scalar": "compliance_composite", "analytic": 17.0587e-3, "rel": 2e-4, "source": "docs/theory.rst, reference actuator: 17.055 mm/N · (1 + 1/(2·48²))"},
+            {"name": "elastica y/L (alpha = 2)", "scalar": "elastica_y_over_L", "analytic": 0.49346, "abs": 5e-4, "source": "docs/theory.rst, reference actuator (Bisshopp & Drucker 1945)"},
+            {"name": "elastica 1-x/L (alpha = 2)", "scalar": "elastica_1_minus_x_over_L", "analytic": 0.16064, "abs": 5e-4, "source": "docs/theory.rst, reference actuator (Bisshopp & Drucker 1945)"},
+            {"scalar": "f1_composite", "rel": 1e-6},
+            {"scalar": "elastica_y_over_L", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("stiffness_comparison", __doc__, PARAMETERS, run, plot, benchmarks=BENCHMARKS, table_order=5,
+            summary="the paper's calibration against lamination theory (beam theory, elastica)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -388,7 +388,11 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return files
 
 
-CASE = Case("synthesise_path", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (the known design evaluated, not searched): they change no check the defaults pass.
+SMOKE = {"mode": 'evaluate'}
+
+CASE = Case("synthesise_path", __doc__, PARAMETERS, run, plot, smoke=SMOKE, table_order=13,
+            summary="four-bar dimensions through precision points, with hysteresis (a known design recovered)")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

@@ -221,7 +221,27 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     return [save_figure(fig, out_dir / f"{output.case}.png")]
 
 
-CASE = Case("tip_tracking", __doc__, PARAMETERS, run, plot)
+#: Cheap settings for the smoke test (1 s instead of the whole trajectory): they change no check the defaults pass.
+SMOKE = {"duration": 1.0}
+
+#: The case's regression benchmarks (``exudyn-atcm bench``; stored references in
+#: benchmarks/regression/references/<id>.*; schema in exudyn_atcm.casework.regression).
+BENCHMARKS = [
+    {
+        "id": "tip_tracking",
+        "quick": True,
+        "scalars": [
+            {"scalar": "rms_error_linear", "rel": 1e-6},
+            {"scalar": "rms_error_feedforward", "rel": 1e-6},
+            {"scalar": "rms_error_pid", "rel": 1e-6},
+            {"scalar": "rms_error_pid_feedforward", "rel": 1e-6},
+            {"scalar": "linear_over_pid_feedforward", "rel": 1e-6}
+        ]
+    },
+]
+
+CASE = Case("tip_tracking", __doc__, PARAMETERS, run, plot, smoke=SMOKE, benchmarks=BENCHMARKS, table_order=11,
+            summary="linear inversion, inverse-Preisach feedforward, PID, and both")
 
 if __name__ == "__main__":
     raise SystemExit(CASE.main())

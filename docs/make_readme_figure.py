@@ -23,7 +23,7 @@ def main() -> Path:
     actuator = atcm.BendingActuator(
         n_cells=3, cell_length=29e-3, width=28e-3,
         passive=atcm.Layer(0.2e-3, 70e9, 1550.0), active=atcm.Layer(0.3e-3, 30.336e9, 5440.0),
-        drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, 2.0), hysteresis=paper_strain_preisach()),
+        drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, 2.0), hysteresis=paper_strain_preisach()), cell="six-bar"
     )
     result = atcm.simulate(actuator, t_end=4.0)
     last = result["time"] >= 2.0

@@ -5,7 +5,8 @@
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
-``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``), results and files
+``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``, ``BuiltSystem`` to solve one
+build many times), results and files
 (``Result``, ``read_csv``, ``read_record``, ``preprocess``), displacement to strain (``record_to_strain``,
 ``model_to_strain``), closed loop (``PIDController``), the errors
 (``MechanismError``, ``SolverError``, ``SimulationInterrupted``), the warning categories (``AtcmWarning``
@@ -32,7 +33,9 @@ from .io.result import Result
 from .solve import SimulationInterrupted
 from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
+from .solve import BuiltSystem
 from .mbs import add_to
+from .cells import register_cell_kind
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
                      RunCostWarning, SetupWarning, StabilityWarning, SuspectFileWarning, WriteError)
 
@@ -53,7 +56,9 @@ __all__ = [
     "simulate",
     "solve_static",
     "static_sweep",
+    "BuiltSystem",
     "add_to",
+    "register_cell_kind",
     "eigenfrequencies",
     "step_error",
     "Result",

@@ -3,6 +3,7 @@
 ::
 
     exudyn-atcm list                                   the cases, their description and parameters
+    exudyn-atcm list --table md|rst                    the case table of the README (md) or the docs (rst)
     exudyn-atcm run CASE [--set NAME=VALUE ...] [--out DIR] [--no-plot]
     exudyn-atcm step-error CASE [--set NAME=VALUE ...] [--no-order-check] [--out DIR]
     exudyn-atcm sweep CASE --grid NAME=START:STOP:N [--grid NAME=A,B,C] [--samples N] [--workers N] [--out DIR]
@@ -59,7 +60,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub_common = _common(argparse.SUPPRESS)
-    sub.add_parser("list", help="list the cases with description and parameters", parents=[sub_common])
+    listing = sub.add_parser("list", help="list the cases with description and parameters", parents=[sub_common])
+    listing.add_argument("--table", choices=_cases.TABLE_FORMATS, default=None,
+                         help="print the case table instead (md: the README's, rst: the docs'), from the case files")
     run = sub.add_parser("run", help="run a case (a name or a path to a case file)", parents=[sub_common])
     run.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
     run.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a parameter (repeatable)")
@@ -99,11 +102,17 @@ def _study_command(args: argparse.Namespace) -> int:
     return sweep_command(args) if args.command == "sweep" else optimize_command(args)
 
 
-def _list(cases_dir: str | None) -> int:
+def _list(cases_dir: str | None, table: str | None = None) -> int:
     files = _cases.list_cases(cases_dir)
     if not files:
         dirs = ", ".join(str(d) for d in _cases.case_dirs(cases_dir)) or "none"
         return _error(f"no cases found (searched: {dirs}); pass --cases-dir DIR or set ${_cases.ENV_CASES}", False, 1)
+    if table is not None:
+        cases, failed = _cases.load_cases(cases_dir)
+        if failed:
+            return _error("; ".join(f"{path}: cannot be loaded: {message}" for path, message in failed), False, 1)
+        print(_cases.case_table(cases, table))
+        return 0
     for path in files:
         try:
             case = _cases.load_case(path)
@@ -116,6 +125,10 @@ def _list(cases_dir: str | None) -> int:
         print(f"    {case.description}")
         for parameter in case.parameters:
             print(f"    --set {parameter.describe()}")
+        if case.smoke:
+            print("    smoke test: " + " ".join(f"--set {k}={v}" for k, v in case.smoke.items()))
+        if case.benchmarks:
+            print("    regression benchmarks: " + ", ".join(b["id"] for b in case.benchmarks))
         print()
     return 0
 
@@ -135,6 +148,7 @@ def _bench(args: argparse.Namespace) -> int:
             plots=not args.no_plots,
             only=args.only,
             echo=print,
+            cases_dir=args.cases_dir,
         )
     except Exception as exc:  # noqa: BLE001 - one-line error
         return _error(exc, args.debug, 2 if isinstance(exc, ValueError) else 1)
@@ -178,7 +192,7 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 def _dispatch(args: argparse.Namespace, debug: bool) -> int:
     """Run the command of ``args``; its exit status."""
     if args.command == "list":
-        return _list(args.cases_dir)
+        return _list(args.cases_dir, args.table)
     if args.command == "run":
         try:
             case = _cases.load_case(args.case, args.cases_dir)

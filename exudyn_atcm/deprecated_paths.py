@@ -57,6 +57,7 @@ MOVED = {
     "signals": "model.signals",
     "simulation": "solve.simulation",
     "strain_sources": "model.strain_sources",
+    "solve.step_record": "mbs.step_record",
 }
 
 #: old paths that are part of the public face and stay without a warning

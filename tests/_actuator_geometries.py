@@ -31,7 +31,7 @@ class Geometry:
         return BendingActuator(
             n, self.length / n, self.width,
             Layer(self.h1, self.E1, self.rho1), Layer(self.h2, self.E2, self.rho2),
-            drive if isinstance(drive, PiezoDrive) else PiezoDrive(drive), **kwargs,
+            drive if isinstance(drive, PiezoDrive) else PiezoDrive(drive), **{"cell": "six-bar", **kwargs},
         )
 
 

@@ -23,7 +23,7 @@ MFC = Layer(0.3e-3, 30.336e9, 5440.0)
 
 
 def ref_a(**kwargs) -> BendingActuator:
-    return BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(1500.0), **kwargs)
+    return BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(1500.0), **{"cell": "six-bar", **kwargs})
 
 
 # ----------------------------------------------------------------------------- beam theory vs docs/theory.rst
@@ -126,7 +126,7 @@ def test_actuator_rejects_bad_input_naming_parameter_and_value(change, name):
     kwargs = dict(n_cells=3, cell_length=29e-3, width=28e-3, passive=CFC, active=MFC, drive=PiezoDrive(0.0))
     kwargs.update(change)
     with pytest.raises(ValueError, match=name) as info:
-        BendingActuator(**kwargs)
+        BendingActuator(**{"cell": "six-bar", **kwargs})
     assert repr(change[name])[:20] in str(info.value) or str(change[name])[:20] in str(info.value)
 
 

@@ -11,7 +11,7 @@ import warnings
 
 import pytest
 
-from exudyn_atcm.casework import load_case
+from exudyn_atcm.casework import load_case, load_cases
 from exudyn_atcm.errors import AtcmWarning, InputRangeWarning
 
 from _cli_helpers import CASES
@@ -41,36 +41,29 @@ def test_a_voltage_beyond_the_rating_is_warned_once_quoting_it(optimise_bender):
 
 
 # ----------------------------------------------------------------------------- every case, once, as typed
-#: Every case with settings that keep it cheap (about 25 s in all, measured on an idle machine). Cases
-#: listed with no settings run on their defaults; the others are shortened (fewer cycles, a rigid
-#: chain, no animation) in ways that change no check the defaults pass.
-CHEAP = {
-    "paper_stroke_table": {},
-    "paper_hysteresis_loop": {},
-    "paper_discrete_preisach": {},
-    "stiffness_comparison": {},
-    "identify_and_predict": {},
-    "parallel_guide": {},
-    "micro_gripper": {},
-    "bender_with_lever": {"animation": False},
-    "compliant_four_bar": {"animation": False},
-    "optimise_bender": {"maxiter": 3, "check_nonlinear": False},
-    "paper_bending_actuator": {"cycles": 1, "cell": "rigid", "animation": False},
-    "tip_tracking": {"duration": 1.0},
-    "synthesise_path": {"mode": "evaluate"},
-}
+#: Every shipped case, each run with the smoke settings its file declares (``Case(..., smoke=...)``: about
+#: 25 s in all, measured on an idle machine). A case without settings runs on its defaults; the others are
+#: shortened (fewer cycles, a rigid chain, no animation) in ways that change no check the defaults pass.
+SHIPPED = sorted(p.stem for p in CASES.glob("*.py") if p.stem != "__init__")
 
 
-def test_every_case_is_listed():
-    assert sorted(CHEAP) == sorted(p.stem for p in CASES.glob("*.py") if p.stem != "__init__")
+def test_every_shipped_case_loads_with_its_declarations():
+    cases, failed = load_cases(CASES, package=False)
+    assert failed == []
+    assert sorted(c.name for c in cases) == SHIPPED
+    # the settings a smoke test needs, where the defaults are not cheap (the GIF, a six-bar chain, an optimisation)
+    smoke = {c.name: c.smoke for c in cases}
+    assert smoke["paper_bending_actuator"] == {"cycles": 1, "cell": "rigid", "animation": False}
+    assert smoke["optimise_bender"] == {"maxiter": 3, "check_nonlinear": False}
+    assert smoke["paper_stroke_table"] == {}
 
 
-@pytest.mark.parametrize("name", sorted(CHEAP))
+@pytest.mark.parametrize("name", SHIPPED)
 def test_no_package_warning_on_the_defaults(name):
     case = load_case(CASES / f"{name}.py")
     with warnings.catch_warnings():
         warnings.simplefilter("error", AtcmWarning)
-        case.run(CHEAP[name], plot=False)
+        case.run(case.smoke, plot=False)
 
 
 @pytest.mark.parametrize("name, settings, quoted", [

@@ -171,7 +171,9 @@ def test_fig12_case_draws_layers_joints_and_motors_with_the_scale(tmp_path, monk
     assert {"paper_bending_actuator_shapes.png", "paper_bending_actuator_animation.gif"} <= names
     (ax,) = figures[0].axes
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert "passive layer" in labels and "cell joints" in labels and "motor, drive actuator" in labels
+    # a beam-cell actuator's joints are its beam nodes (the kind's joint_label; before issue 30 the drawing's
+    # own conversion made every actuator a rigid chain, labelled "cell joints")
+    assert "passive layer" in labels and "beam nodes" in labels and "motor, drive actuator" in labels
     assert any(label.startswith("active layer") for label in labels)
     assert "(true scale)" in ax.get_title() and "3 beam cells" in ax.get_title()
     assert ax.get_xlabel() == "x [mm]" and ax.get_ylabel() == "y [mm]"

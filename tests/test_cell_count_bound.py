@@ -51,8 +51,8 @@ def no_build(monkeypatch):
 
 @pytest.mark.parametrize("make", [
     lambda n: bender(n),
-    lambda n: Bender("b", width=10e-3, passive=CFC, active=MFC, segments=[Segment(0.03, n)]),
-    lambda n: BendingActuator(n, 0.03 / n, 10e-3, CFC, MFC, PiezoDrive(0.0)),
+    lambda n: Bender("b", width=10e-3, passive=CFC, active=MFC, segments=[Segment(0.03, n)], cell="rigid"),
+    lambda n: BendingActuator(n, 0.03 / n, 10e-3, CFC, MFC, PiezoDrive(0.0), cell="six-bar"),
     lambda n: Flexure("f", base=(0.0, 0.0), tip=(0.03, 0.0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9,
                       density=1550.0, model="cells", n_cells=n),
 ])
@@ -66,7 +66,7 @@ def test_more_cells_than_the_bound_are_refused_where_they_are_given(make):
 def test_segments_within_the_bound_that_sum_beyond_it_are_refused():
     half = MAX_CELLS // 2 + 1
     with pytest.raises(ValueError, match=r"bender 'b': n_cells \(all segments\) = 100002"):
-        Bender("b", width=10e-3, passive=CFC, active=MFC, segments=[Segment(0.015, half), Segment(0.015, half)])
+        Bender("b", width=10e-3, passive=CFC, active=MFC, segments=[Segment(0.015, half), Segment(0.015, half)], cell="rigid")
 
 
 @pytest.mark.parametrize("solve, words", [

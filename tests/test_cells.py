@@ -163,23 +163,26 @@ class Unrealised(CellKind):
 def test_a_new_kind_without_a_realisation_says_how_to_register_one():
     # one builder: the lone actuator is a one-bender mechanism, so one message for both
     with pytest.raises(ValueError, match=r"cell kind 'unrealised' \(Unrealised\) has no Exudyn realisation: "
-                                         r"register one with exudyn_atcm.mbs.cells.add_mechanism_bender"):
+                                         r"register one with exudyn_atcm.mbs.realisation.register_realisation"):
         atcm.solve_static(actuator(Unrealised()))
     with pytest.raises(ValueError, match=r"has no Exudyn realisation: register one with "
-                                         r"exudyn_atcm.mbs.cells.add_mechanism_bender"):
+                                         r"exudyn_atcm.mbs.realisation.register_realisation"):
         atcm.simulate(bender_with_lever(Unrealised()), 0.005, step=1e-4)
 
 
 def test_a_new_kind_registers_its_own_realisation():
     """A kind that is no subclass of a package kind, realised by delegating to the rigid chain's realisation:
-    one registration serves the lone actuator and mechanisms (one builder)."""
+    one registration serves the lone actuator and mechanisms (one builder).  Registered through the
+    deprecated generic function of earlier releases (the contract's registration: tests/test_cell_contract.py)."""
+    from exudyn_atcm.errors import AtcmDeprecationWarning
 
     class Delegating(CellKind):
         name = "delegating"
 
-    @add_mechanism_bender.register(Delegating)
-    def _(cell, builder, bender):
-        add_mechanism_bender(RigidCell(), builder, bender)
+    with pytest.warns(AtcmDeprecationWarning, match="register a CellRealisation subclass"):
+        @add_mechanism_bender.register(Delegating)
+        def _(cell, builder, bender):
+            add_mechanism_bender(RigidCell(), builder, bender)
 
     ref = atcm.solve_static(actuator("rigid", voltage=800.0))
     mine = atcm.solve_static(actuator(Delegating(), voltage=800.0))
@@ -198,10 +201,12 @@ def test_every_kind_is_one_description_file_and_one_realisation_file_named_alike
     described = sorted(p.stem for p in (PACKAGE / "cells").glob("*.py") if p.stem not in ("__init__", "base"))
     assert list(chains.MODULES) == described
     assert sorted(p.stem for p in (PACKAGE / "mbs" / "chains").glob("*.py") if p.stem != "__init__") == described
-    unrealised = add_mechanism_bender.dispatch(CellKind)
+    from exudyn_atcm.mbs.realisation import realisation_for
+
+    with pytest.raises(ValueError, match="has no Exudyn realisation"):
+        realisation_for(CellKind)
     for kind in CELL_KINDS.values():
-        realisation = add_mechanism_bender.dispatch(type(kind))
-        assert realisation is not unrealised, kind.name
+        realisation = realisation_for(kind)
         stem = type(kind).__module__.rpartition(".")[2]
         assert realisation.__module__ == f"exudyn_atcm.mbs.chains.{stem}"
     # the builder imports the chains package, not the kinds' modules one by one
@@ -315,8 +320,8 @@ def test_the_retired_actuator_registry_warns_and_says_where_to_register():
     class Old(RigidCell):
         name = "old"
 
-    with pytest.warns(AtcmDeprecationWarning, match="register the kind's realisation once with "
-                                                    r"exudyn_atcm.mbs.cells.add_mechanism_bender.register"):
+    with pytest.warns(AtcmDeprecationWarning, match="register a CellRealisation subclass with "
+                                                    r"exudyn_atcm.mbs.realisation.register_realisation"):
         @add_actuator_cells.register(Old)
         def _(cell, SC, mbs, act, stroke_path, tip_force):
             raise AssertionError("never called: the one builder realises Old as its parent kind")

@@ -81,7 +81,7 @@ def test_fit_reaches_the_noise_and_beats_the_rate_independent_fit(identified):
 def test_feedforward_cancels_hysteresis_and_creep(identified):
     u, t, clean, y, sigma, model, info = identified
     wanted = clean
-    u_ff = model.inverse_apply(wanted, t, inverse_operator(model.hysteresis))
+    u_ff = model.inverse().apply(wanted, t)  # was model.inverse_apply(wanted, t, inverse_operator(model.hysteresis))
     achieved = CreepHysteresis(pi_truth(), TRUTH).apply(u_ff, t)
     plain, _ = PrandtlIshlinskii.fit(u, y, 20)
     u_plain = inverse_operator(plain).apply(wanted)

@@ -24,7 +24,7 @@ MFC = Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
 
 def bender(damping):
     return Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4, drive=PiezoDrive(0.0),
-                  damping=damping)
+                  damping=damping, cell="rigid")
 
 
 def actuator(damping):

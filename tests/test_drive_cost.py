@@ -102,7 +102,7 @@ def test_the_drive_is_measured_in_place_and_put_back():
 def test_a_drive_shared_by_segments_counts_once_and_a_plain_drive_adds_nothing():
     drive = atcm.PiezoDrive(atcm.signals.Triangle(500.0, 1000.0, 0.5), hysteresis=SlowOperator())
     b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC,
-                    segments=[atcm.Segment(0.04, 2, drive), atcm.Segment(0.04, 2, drive)])
+                    segments=[atcm.Segment(0.04, 2, drive), atcm.Segment(0.04, 2, drive)], cell="rigid")
     mech = atcm.Mechanism("m").add(b).ground(b.base)
     shared = extra_drive_cost(mech.drives.values(), 1e-4)
     single = extra_drive_cost([drive], 1e-4)

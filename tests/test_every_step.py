@@ -1,7 +1,7 @@
 """Reported results do not depend on how often a run is recorded (``record_every``).
 
 Every accepted step goes through one preallocated recorder
-(:class:`exudyn_atcm.solve.step_record.StepRecord`); a thinned run keeps the light columns of
+(:class:`exudyn_atcm.mbs.step_record.StepRecord`); a thinned run keeps the light columns of
 every accepted step in :attr:`Result.every_step <exudyn_atcm.Result.every_step>`, and the cases
 compute their scalars from it.  The reference is the run that records every step: the solver
 and the hysteresis memory do not see the recording interval, so the every-step columns of a
@@ -18,7 +18,7 @@ import pytest
 import exudyn_atcm as atcm
 from exudyn_atcm.casework import load_case
 from exudyn_atcm.model import Triangle, paper_strain_preisach
-from exudyn_atcm.solve.step_record import StepRecord
+from exudyn_atcm.mbs.step_record import StepRecord
 
 from _cli_helpers import CASES
 
@@ -36,7 +36,7 @@ def _actuator(cell="rigid"):
 
 def _mechanism():
     b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3,
-                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD), hysteresis=paper_strain_preisach()))
+                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD), hysteresis=paper_strain_preisach()), cell="rigid")
     lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
     post = atcm.Link("post", {"P": (0.05, -0.01)}, mass=1e-4, inertia=1e-9)
     mech = atcm.Mechanism("m").add(b, lever, post).ground(b.base).weld(b.tip, lever.point("A"))

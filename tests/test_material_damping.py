@@ -202,7 +202,7 @@ def test_a_damping_ratio_is_the_material_beta_at_the_benders_own_first_mode():
 def test_material_damping_is_the_laminates_and_independent_of_length():
     d = RayleighDamping(alpha=1.0, beta=2e-4)
     for length in (0.03, 0.1):
-        b = Bender("b", width=W, passive=CFC, active=MFC, length=length, n_cells=3, drive=PiezoDrive(0.0), damping=d)
+        b = Bender("b", width=W, passive=CFC, active=MFC, length=length, n_cells=3, drive=PiezoDrive(0.0), damping=d, cell="rigid")
         assert b.laminate.damping is d
         assert (b.mass_damping_factor, b.stiffness_damping_factor) == (1.0, 2e-4)
         act = BendingActuator(3, length / 3, W, CFC, MFC, PiezoDrive(0.0), cell="rigid", damping=d)

@@ -138,7 +138,7 @@ def test_rigid_and_beam_benders_welded_end_to_end_join_exactly():
     """A rigid-cell bender's tip welded to a beam bender's base: the beam's first node is the
     joint body; no load, so every part takes its free shape: the tip angle is kappa L in total."""
     drive = PiezoDrive(1000.0)
-    a = Bender("a", width=W, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=drive)
+    a = Bender("a", width=W, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=drive, cell="rigid")
     b = beam("b", drive=drive, n_cells=4, length=0.04, base=(0.03, 0.0))
     r = solve_static(Mechanism().add(a, b).ground(a.base).weld(a.tip, b.base))
     kappa = a.laminate.curvature_per_strain * drive.linear_strain(1000.0)

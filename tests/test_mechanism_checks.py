@@ -23,7 +23,7 @@ MFC = Layer(0.3e-3, 30.336e9, 5440.0)
 def crank(name="crank", **kw):
     kw.setdefault("length", 0.03)
     kw.setdefault("n_cells", 4)
-    return Bender(name, width=10e-3, passive=CFC, active=MFC, drive=PiezoDrive(500.0), **kw)
+    return Bender(name, width=10e-3, passive=CFC, active=MFC, drive=PiezoDrive(500.0), **{"cell": "rigid", **kw})
 
 
 def four_bar():
@@ -131,28 +131,28 @@ def test_slider_off_axis_is_refused_with_gap():
 
 def test_shared_hysteresis_operator_between_drives_is_refused():
     op = paper_strain_preisach()
-    a = Bender("a", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, drive=PiezoDrive(1.0, hysteresis=op))
+    a = Bender("a", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, drive=PiezoDrive(1.0, hysteresis=op), cell="rigid")
     b = Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, base=(0.0, 0.01),
-               drive=PiezoDrive(1.0, hysteresis=op))
+               drive=PiezoDrive(1.0, hysteresis=op), cell="rigid")
     m = Mechanism().add(a, b).ground(a.base).ground(b.base)
     with pytest.raises(MechanismError, match="drives 'a' and 'b' .* sharing one hysteresis operator"):
         m.check()
     # one PiezoDrive object for both benders is allowed (one strain for both)
     d = PiezoDrive(1.0, hysteresis=paper_strain_preisach())
-    a2 = Bender("a", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, drive=d)
-    b2 = Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, base=(0.0, 0.01), drive=d)
+    a2 = Bender("a", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, drive=d, cell="rigid")
+    b2 = Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, n_cells=2, base=(0.0, 0.01), drive=d, cell="rigid")
     Mechanism().add(a2, b2).ground(a2.base).ground(b2.base).check()
 
 
 def test_component_arguments_are_checked():
     with pytest.raises(ValueError, match="either length, n_cells and drive, or segments"):
-        Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, segments=[Segment(0.03, 2)])
+        Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.03, segments=[Segment(0.03, 2)], cell="rigid")
     with pytest.raises(ValueError, match=r"no active layer.*segment\(s\) \[1\]"):
-        Bender("b", width=1e-2, passive=CFC, length=0.03, n_cells=2, drive=PiezoDrive(1.0))
+        Bender("b", width=1e-2, passive=CFC, length=0.03, n_cells=2, drive=PiezoDrive(1.0), cell="rigid")
     with pytest.raises(MechanismError, match="Bender name"):
-        Bender("a.b", width=1e-2, passive=CFC, length=0.03, n_cells=2)
+        Bender("a.b", width=1e-2, passive=CFC, length=0.03, n_cells=2, cell="rigid")
     with pytest.raises(ValueError, match="active_side must be one of"):
-        Bender("b", width=1e-2, passive=CFC, length=0.03, n_cells=2, active_side="top")
+        Bender("b", width=1e-2, passive=CFC, length=0.03, n_cells=2, active_side="top", cell="rigid")
     with pytest.raises(MechanismError, match="reserved for the ground"):
         Mechanism().add(Link("ground", {"A": (0, 0)}, mass=1.0, inertia=1.0))
     with pytest.raises(ValueError, match="gamma must be in"):
@@ -167,7 +167,7 @@ def test_component_arguments_are_checked():
 def test_bender_laminate_equals_bending_actuator():
     """Same formulas as BendingActuator (shared Laminate): EI, curvature, mass, damping factor."""
     drive = PiezoDrive(500.0)
-    b = Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=drive)
+    b = Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=drive, cell="rigid")
     act = BendingActuator(3, 0.029, 28e-3, CFC, MFC, drive, cell="rigid")
     lam = b.laminate
     assert lam.bending_stiffness == act.bending_stiffness
@@ -184,7 +184,7 @@ def test_bender_laminate_equals_bending_actuator():
 def test_segments_drive_names_and_geometry():
     d1, d2 = PiezoDrive(100.0), PiezoDrive(-100.0)
     s = Bender("s", width=1e-2, passive=CFC, active=MFC, segments=[Segment(0.02, 2, d1), Segment(0.01, 3, d2)],
-               base=(0.01, 0.02), angle=math.pi)
+               base=(0.01, 0.02), angle=math.pi, cell="rigid")
     assert list(s.drives) == ["s.1", "s.2"]
     assert s.n_cells == 5 and s.length == pytest.approx(0.03)
     np.testing.assert_allclose(s.cell_lengths, [0.01, 0.01, 0.01 / 3, 0.01 / 3, 0.01 / 3])

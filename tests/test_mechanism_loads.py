@@ -131,7 +131,7 @@ def test_prbm_flexure_tip_under_end_moment_turns_by_m_over_k():
 def test_cells_flexure_equals_a_passive_bender():
     kw = dict(base=(0.0, 0.0), tip=(0.0, 0.02), width=5e-3, thickness=0.1e-3, youngs_modulus=70e9, density=1550.0)
     fx = Flexure("hinge", model="cells", n_cells=6, **kw)
-    b = Bender("hinge", width=5e-3, passive=Layer(0.1e-3, 70e9, 1550.0), length=0.02, n_cells=6, angle=math.pi / 2)
+    b = Bender("hinge", width=5e-3, passive=Layer(0.1e-3, 70e9, 1550.0), length=0.02, n_cells=6, angle=math.pi / 2, cell="rigid")
     r1 = solve_static(Mechanism().add(fx).ground(fx.base).force(fx.tip, (1e-3, 0.0)))
     r2 = solve_static(Mechanism().add(b).ground(b.base).force(b.tip, (1e-3, 0.0)))
     for name in ("hinge.tip_x", "hinge.tip_y", "hinge.tip_angle"):

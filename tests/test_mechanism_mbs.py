@@ -30,7 +30,7 @@ EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "docs" / "examples" / "m
 
 def bender_with_lever(program=Triangle(750.0, 750.0, 0.1)):
     b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=6,
-                    drive=atcm.PiezoDrive(program))
+                    drive=atcm.PiezoDrive(program), cell="rigid")
     lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
     return atcm.Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A"))
 
@@ -79,7 +79,7 @@ def test_docs_example_runs_and_equals_the_package_mechanism():
     ns = runpy.run_path(str(EXAMPLE), run_name="example")
     r = ns["result"]
     drive = atcm.PiezoDrive(Triangle(750.0, 750.0, 0.2))
-    b = atcm.Bender("bender", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=8, drive=drive)
+    b = atcm.Bender("bender", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=8, drive=drive, cell="rigid")
     lam = b.laminate
     s_if = min(0.5e-3, 0.1 * 0.03 / 8)
     m_if = lam.mass_per_length * s_if
@@ -196,7 +196,7 @@ def test_degrees_of_freedom_of_rigid_and_compliant_four_bars():
     # Gruebler: 3 (n - 1) - 2 j = 3 * 3 - 2 * 4 = 1
     assert rigid.degrees_of_freedom() == atcm.mbs.DofReport(dof=1, coordinates=9, constraints=8, redundant=0)
     bender = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=5,
-                         drive=atcm.PiezoDrive(0.0), angle=math.pi / 2)
+                         drive=atcm.PiezoDrive(0.0), angle=math.pi / 2, cell="rigid")
     compliant = four_bar(bender).ground("crank.base")
     # 5 cell bodies + 2 links = 21 coordinates; clamp, 4 inner joints and 3 pins = 16 constraints
     report = compliant.degrees_of_freedom()
@@ -238,7 +238,7 @@ def chain_reference(b: atcm.Bender, strain: float) -> np.ndarray:
 @pytest.mark.parametrize("n_cells", [4, 8])
 def test_eigenfrequencies_about_the_bent_equilibrium_match_the_minimal_coordinate_chain(n_cells):
     drive = atcm.PiezoDrive(500.0)
-    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=n_cells, drive=drive)
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=n_cells, drive=drive, cell="rigid")
     m = atcm.Mechanism().add(b).ground(b.base)
     undeformed = atcm.eigenfrequencies(m, n=3)
     bent = atcm.eigenfrequencies(m, n=3, voltage=1500.0)
@@ -252,7 +252,7 @@ def test_eigenfrequencies_about_the_bent_equilibrium_match_the_minimal_coordinat
 
 
 def test_first_frequency_tends_to_the_beam():
-    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=32, drive=atcm.PiezoDrive(0.0))
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=32, drive=atcm.PiezoDrive(0.0), cell="rigid")
     f1 = atcm.eigenfrequencies(atcm.Mechanism().add(b).ground(b.base), n=1)[0]
     # Euler-Bernoulli cantilever; the 32-cell chain is 0.05 % low (discretisation error ~ 1/N^2)
     assert f1 == pytest.approx(b.laminate.first_frequency(0.087), rel=1e-3)
@@ -284,7 +284,7 @@ def test_eigenfrequencies_about_a_prestressed_six_bar_equilibrium_match_the_rigi
 def test_actuator_eigenfrequencies_about_its_bent_equilibrium_use_the_mechanism_path():
     drive = atcm.PiezoDrive(0.0)
     act = atcm.BendingActuator(4, 0.087 / 4, 28e-3, CFC, MFC, drive, cell="rigid")
-    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4, drive=drive)
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=4, drive=drive, cell="rigid")
     np.testing.assert_allclose(atcm.eigenfrequencies(act, n=3, voltage=1500.0),
                                chain_reference(b, drive.static_strain(1500.0))[:3], rtol=1e-9)
     # a tip load: the joints carry it; the actuator path's tangent includes that (see

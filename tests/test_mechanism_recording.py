@@ -1,7 +1,7 @@
 """A thinned mechanism record closes with the last accepted step.
 
 The mechanism path writes every accepted step's state into a preallocated block in the
-post-step hook (:class:`exudyn_atcm.solve.step_record.StepRecord`), so the last accepted step
+post-step hook (:class:`exudyn_atcm.mbs.step_record.StepRecord`), so the last accepted step
 is at hand when the run ends however it ends.  An earlier version read that state after the
 solve instead; the first tests keep what was measured then about what Exudyn 1.13 leaves
 behind after each way a run can end (a fact about Exudyn that any code reading the state

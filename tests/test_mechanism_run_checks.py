@@ -28,7 +28,7 @@ W = 28e-3
 
 
 def bender(name, drive, length=0.087, n_cells=3):
-    return Bender(name, width=W, passive=CFC, active=MFC, length=length, n_cells=n_cells, drive=drive)
+    return Bender(name, width=W, passive=CFC, active=MFC, length=length, n_cells=n_cells, drive=drive, cell="rigid")
 
 
 def cantilever(b):
@@ -38,7 +38,7 @@ def cantilever(b):
 def two_benders(drive_a, drive_b, length_b=0.087):
     """Two cantilevers side by side (independent; one mechanism)."""
     a = bender("a", drive_a)
-    b = Bender("b", width=W, passive=CFC, active=MFC, length=length_b, n_cells=3, drive=drive_b, base=(0.0, 0.05))
+    b = Bender("b", width=W, passive=CFC, active=MFC, length=length_b, n_cells=3, drive=drive_b, base=(0.0, 0.05), cell="rigid")
     return Mechanism("pair").add(a, b).ground(a.base).ground(b.base)
 
 
@@ -239,7 +239,7 @@ def test_warnings_point_at_the_callers_line():
 def test_actuator_warnings_point_at_the_callers_line_too():
     from exudyn_atcm import BendingActuator
 
-    act = BendingActuator(3, 0.029, W, CFC, MFC, PiezoDrive(Triangle(1000.0, 1000.0, 0.02)))
+    act = BendingActuator(3, 0.029, W, CFC, MFC, PiezoDrive(Triangle(1000.0, 1000.0, 0.02)), cell="six-bar")
     with pytest.warns(RuntimeWarning) as record:
         simulate(act, 0.01, step=3e-3)  # does not divide, coarse for the program, beyond the rating
     assert len(record) == 3 and {w.filename for w in record} == {__file__}
@@ -249,7 +249,7 @@ def test_segments_sharing_one_program_are_checked_once_naming_both():
     from exudyn_atcm import Segment
 
     drive = PiezoDrive(Triangle(500.0, 500.0, 0.02))
-    s = Bender("s", width=W, passive=CFC, active=MFC, segments=[Segment(0.04, 2, drive), Segment(0.04, 2, drive)])
+    s = Bender("s", width=W, passive=CFC, active=MFC, segments=[Segment(0.04, 2, drive), Segment(0.04, 2, drive)], cell="rigid")
     mech = Mechanism("m").add(s).ground(s.base)
     with pytest.warns(RuntimeWarning) as record:
         simulate(mech, 0.002, step=1e-3)  # 10 steps per 0.01 s ramp: a warning, once

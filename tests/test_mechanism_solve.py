@@ -8,12 +8,14 @@ mirror symmetry, and the hysteresis operator applied offline to the recorded vol
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import pytest
 
 from exudyn_atcm import (Bender, BendingActuator, Layer, Link, Mechanism, PiezoDrive, Segment, eigenfrequencies, simulate,
                          solve_static, static_sweep)
+from exudyn_atcm import Result as atcm_result
 from exudyn_atcm import read_csv as atcm_read_csv
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import Triangle
@@ -25,7 +27,7 @@ W = 28e-3
 
 def bender(name="b", drive=None, n_cells=3, length=0.087, **kw):
     return Bender(name, width=W, passive=CFC, active=MFC, length=length, n_cells=n_cells,
-                  drive=drive if drive is not None else PiezoDrive(500.0), **kw)
+                  drive=drive if drive is not None else PiezoDrive(500.0), **{"cell": "rigid", **kw})
 
 
 def cantilever(b, force=(0.0, 0.0)):
@@ -230,7 +232,7 @@ def test_s_shaped_two_segment_bender_takes_the_stress_free_polygon():
     """
     d1, d2 = PiezoDrive(800.0), PiezoDrive(-800.0)
     s = Bender("s", width=W, passive=CFC, active=MFC, segments=[Segment(0.03, 3, d1), Segment(0.02, 5, d2)],
-               base=(0.01, 0.02), angle=0.3)
+               base=(0.01, 0.02), angle=0.3, cell="rigid")
     r = solve_static(Mechanism().add(s).ground(s.base))
     c = s.laminate.curvature_per_strain
     half = [0.5 * c * 0.01 * d1.linear_strain(800.0)] * 3 + [0.5 * c * 0.004 * d2.linear_strain(-800.0)] * 5
@@ -298,10 +300,30 @@ def test_static_sweep_of_a_bending_actuator_keeps_its_columns(cell):
     assert r["tip_y"][3] > r["tip_y"][1]  # descending branch above the ascending one
 
 
-def test_actuator_plots_refuse_a_mechanism_result_with_the_alternative(tmp_path):
-    r = solve_static(cantilever(bender()))
-    with pytest.raises(ValueError, match="for a mechanism use exudyn_atcm.plots.mechanism.plot_mechanism"):
-        r.plot(tmp_path)
+def test_result_plot_draws_a_mechanism_result_from_its_columns(tmp_path, monkeypatch):
+    # issue 30: Result.plot() works for every result (it refused a mechanism's before); the drawn lines are
+    # the result's own columns in the plots' units (mm), found by their component-named suffixes
+    from exudyn_atcm.plots import mechanism_series
+
+    figures = []
+    save = mechanism_series.save_figure
+    monkeypatch.setattr(mechanism_series, "save_figure", lambda fig, path: figures.append(fig) or save(fig, path))
+    r = static_sweep(cantilever(bender()), [0.0, 500.0, 1500.0])
+    written = r.plot(tmp_path, prefix="b_")
+    assert [os.path.basename(p) for p in written] == ["b_time_series.png", "b_tip_vs_voltage.png",
+                                                      "b_point_paths.png"]
+    assert all(open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n" for p in written)
+    volts, tips = figures[0].axes
+    np.testing.assert_array_equal(volts.lines[0].get_ydata(), r["b.voltage"])
+    np.testing.assert_array_equal(tips.lines[0].get_xdata(), r["point"])
+    np.testing.assert_allclose(tips.lines[0].get_ydata(), r["b.tip_y"] * 1e3, rtol=1e-15)
+    (loop,) = figures[1].axes[0].lines
+    np.testing.assert_array_equal(loop.get_xdata(), [0.0, 500.0, 1500.0])
+    paths = {line.get_label(): line for line in figures[2].axes[0].lines}
+    assert set(paths) == {"b.base", "b.tip"}
+    np.testing.assert_allclose(paths["b.tip"].get_xdata(), r["b.tip_x"] * 1e3, rtol=1e-15)
+    with pytest.raises(ValueError, match="a lone actuator's .* or a mechanism's"):
+        atcm_result({"time": [0.0], "q": [1.0]}, {"time": "s", "q": "m"}).plot(tmp_path)
 
 
 # incidental warning: a 5-step run at 1 ms (coarse for the crank's 302 Hz mode) is enough for a file round trip

@@ -18,8 +18,8 @@ MFC = Layer(0.3e-3, 30.336e9, 5440.0)
 
 
 def pair(drive_a, drive_b):
-    a = Bender("a", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=drive_a)
-    b = Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=drive_b, base=(0.0, 0.05))
+    a = Bender("a", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=drive_a, cell="rigid")
+    b = Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=drive_b, base=(0.0, 0.05), cell="rigid")
     return Mechanism("pair").add(a, b).ground(a.base).ground(b.base)
 
 

@@ -12,6 +12,7 @@ import pytest
 from exudyn_atcm.hysteresis import (ContinuousPreisach, DiscretePreisach, EverettPreisach, ModelChoice,
                                     PrandtlIshlinskii, identify)
 from exudyn_atcm.errors import AccuracyWarning
+from exudyn_atcm.hysteresis.families import registered_families
 from exudyn_atcm.hysteresis.identification import relay_grid
 from exudyn_atcm.hysteresis.identify_options import IdentifyOptions
 from exudyn_atcm.plots.identification import plot_model_choice
@@ -88,7 +89,8 @@ def test_table_fields_and_rule():
     choice = identify(U, y, n_fit=N_FIT, output_unit="m", options=IdentifyOptions(n_levels=12, n_plays=10))
     assert isinstance(choice, ModelChoice)
     by = {c.family: c for c in choice.candidates}
-    assert set(by) == {"equal_gain", "discrete", "everett", "prandtl_ishlinskii", "continuous"}
+    # every registered family is fitted (the registry, not a list kept here: a new family is one module)
+    assert list(by) and set(by) == set(registered_families())
     assert (by["discrete"].parameters, by["everett"].parameters, by["prandtl_ishlinskii"].parameters) == (79, 79, 11)
     assert by["equal_gain"].parameters == 2 * 20 + 2 and by["continuous"].parameters == 6
     assert by["prandtl_ishlinskii"].invertible and not by["discrete"].invertible and by["everett"].invertible
@@ -107,7 +109,7 @@ def test_table_fields_and_rule():
     text = choice.to_text()
     assert "held-out RMS [%]" in text and "* chosen: prandtl_ishlinskii (10 plays)" in text and str(choice) == text
     data = json.loads(json.dumps(choice.to_dict(), allow_nan=False))
-    assert data["chosen"] == "prandtl_ishlinskii" and len(data["candidates"]) == 5
+    assert data["chosen"] == "prandtl_ishlinskii" and len(data["candidates"]) == len(registered_families())
 
 
 def test_record_input_split_by_time_and_plot(tmp_path):
@@ -163,3 +165,13 @@ def test_refined_relay_grid_in_the_table():
     assert rows["discrete"].parameters == rows["everett"].parameters == 12 * 13 // 2 + 1
     # the relays' staircase over 96 levels stays within one fine step of the spread grid's output
     assert abs(rows["discrete"].held_out_rms_percent - rows["everett"].held_out_rms_percent) < 100 / 96
+
+
+def test_the_docs_family_table_is_the_registry():
+    """docs/identification.rst lists the registered families (name, operator, inverse, description), in order."""
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "identification.rst").read_text(encoding="utf-8")
+    rows = re.findall(r"^   \* - ``(\w+)``\n     - :class:`~[\w.]*\.(\w+)`\n     - (.+)\n     - (.+)$", text, re.M)
+    assert rows == [(f.name, f.operator.__name__, f.inverse, f.description) for f in registered_families().values()]

@@ -49,7 +49,7 @@ def test_an_interval_resolving_the_program_is_silent_and_keeps_the_peak():
 
 def test_a_mechanism_run_names_the_drive():
     b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4,
-                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD)))
+                    drive=atcm.PiezoDrive(Triangle(500.0, 1000.0, PERIOD)), cell="rigid")
     lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
     mech = atcm.Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A"))
     with pytest.warns(RuntimeWarning, match=r"record_every = 0\.05 s keeps only 2 .* the voltage program of drive 'crank'"):

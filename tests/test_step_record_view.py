@@ -4,7 +4,7 @@ Both solve paths take ``mbs.systemData.GetODE2Coordinates(copy=False)`` once and
 after every accepted step (a fresh call costs about 3 us per step).  That is right only while
 Exudyn keeps the current coordinates in the same vector for the whole run, step reductions and
 rejected steps included.  These tests measure it with Exudyn 1.13 against a fresh read in every
-post-step hook; :func:`~exudyn_atcm.solve.step_record.check_view` refuses a stale view after the run.
+post-step hook; :func:`~exudyn_atcm.mbs.step_record.check_view` refuses a stale view after the run.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pytest
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import solver_runs
 from exudyn_atcm.model import Triangle, paper_strain_preisach
-from exudyn_atcm.solve.step_record import check_view
+from exudyn_atcm.mbs.step_record import check_view
 
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
 MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)
@@ -64,7 +64,7 @@ def test_an_actuator_run_keeps_the_coordinate_vector_in_place(fresh_reads, cell)
 
 
 def test_a_mechanism_run_with_rejected_steps_keeps_the_coordinate_vector_in_place(fresh_reads):
-    b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=_drive(0.04))
+    b = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=_drive(0.04), cell="rigid")
     lever = atcm.Link("lever", {"A": (0.03, 0.0), "E": (0.05, 0.0)}, mass=2e-4, inertia=1e-8)
     mech = atcm.Mechanism("m").add(b, lever).ground(b.base).weld(b.tip, lever.point("A"))
     with warnings.catch_warnings():

@@ -19,14 +19,14 @@ ACTIVE = Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
 def _bender(**kw):
     args = dict(width=0.028, passive=PASSIVE, active=ACTIVE, length=0.087, n_cells=3, drive=PiezoDrive(1500.0))
     args.update(kw)
-    return Bender("b", **args)
+    return Bender("b", **{"cell": "rigid", **args})
 
 
 def test_plausible_si_geometry_is_quiet():
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         _bender(base=(0.01, -0.02), angle=-0.5 * np.pi)
-        BendingActuator(3, 29e-3, 28e-3, PASSIVE, ACTIVE, PiezoDrive(1500.0))
+        BendingActuator(3, 29e-3, 28e-3, PASSIVE, ACTIVE, PiezoDrive(1500.0), cell="six-bar")
         Link("L", {"A": (0.087, 0.0), "B": (0.1, 0.0)}, mass=1e-3, inertia=1e-7)
         Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
 
@@ -40,7 +40,7 @@ def test_plausible_si_geometry_is_quiet():
         (lambda: _bender(angle=90.0), "bender 'b': angle = 90.0 rad is outside the plausible range |value| <= 6.28319 rad; "
                                       "is it an angle in degrees passed as radians?"),
         (lambda: _bender(base=(0.0, 20.0)), "bender 'b': base y = 20.0 m"),
-        (lambda: BendingActuator(3, 29.0, 28e-3, PASSIVE, ACTIVE, PiezoDrive(1500.0)), "BendingActuator: cell_length = 29.0 m"),
+        (lambda: BendingActuator(3, 29.0, 28e-3, PASSIVE, ACTIVE, PiezoDrive(1500.0), cell="six-bar"), "BendingActuator: cell_length = 29.0 m"),
         (lambda: Link("L", {"A": (87.0, 0.0), "B": (100.0, 0.0)}, mass=1e-3, inertia=1e-7), "link 'L': point A x = 87.0 m"),
         (lambda: Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5e-3, thickness=0.2, youngs_modulus=70e9,
                          density=1550.0), "flexure 'f': thickness = 0.2 m is outside the plausible range 1e-05 ... 0.01 m"),
@@ -72,7 +72,7 @@ def test_add_to_refuses_a_second_copy_and_a_non_system():
     with pytest.raises(MechanismError, match=r"add_to: component\(s\) \['b'\] are already in this MainSystem"):
         add_to(mbs, _bender(base=(0.0, 0.05)))
     add_to(mbs, Bender("b2", width=0.028, passive=PASSIVE, active=ACTIVE, length=0.087, n_cells=3,
-                       drive=PiezoDrive(1500.0), base=(0.0, 0.05)))  # another name is fine
+                       drive=PiezoDrive(1500.0), base=(0.0, 0.05), cell="rigid"))  # another name is fine
     with pytest.raises(ValueError, match="mbs must be an exudyn MainSystem .*got SystemContainer"):
         add_to(sc, _bender())
 

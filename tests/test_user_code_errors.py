@@ -44,7 +44,7 @@ def lone_actuator(program) -> BendingActuator:
 def crank_mechanism(program) -> Mechanism:
     """A bender crank with a link pinned to its tip and to the ground (a closed loop)."""
     crank = Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4,
-                   drive=PiezoDrive(program))
+                   drive=PiezoDrive(program), cell="rigid")
     link = Link("link", {"A": (0.03, 0.0), "O": (0.03, 0.02)}, mass=1e-4, inertia=1e-8)
     return (Mechanism("crank_mech").add(crank, link).ground(crank.base).pin(crank.tip, link.point("A"))
             .ground("link.O", joint="pin"))
@@ -175,7 +175,7 @@ def test_in_the_users_own_model_the_program_error_is_the_cause_with_its_notes():
             return {}["missing"]
         return 0.0
 
-    bender = Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4, drive=PiezoDrive(program))
+    bender = Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4, drive=PiezoDrive(program), cell="rigid")
     error = solve_own(*own_system(bender))
     # Exudyn reports a user function's exception as its own ModelError; the user's is its cause
     assert isinstance(error.__cause__, KeyError)
@@ -192,7 +192,7 @@ def test_in_the_users_own_model_a_step_function_error_is_the_cause_naming_the_fu
             raise RuntimeError("my sensor is offline")
         return True
 
-    bender = Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4, drive=PiezoDrive(0.0))
+    bender = Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=4, drive=PiezoDrive(0.0), cell="rigid")
     error = solve_own(*own_system(bender, adder, my_step))
     assert isinstance(error.__cause__, RuntimeError) and str(error.__cause__) == "my sensor is offline"
     which = "pre" if adder is add_pre_step else "post"

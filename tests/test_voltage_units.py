@@ -85,10 +85,10 @@ def test_no_rating_no_kv_check():
 
 
 def test_mechanism_names_the_drive_in_kv_and_spares_the_others():
-    a = Bender("a", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=PiezoDrive(Triangle(0.5, 1.0, 0.1)))
+    a = Bender("a", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=PiezoDrive(Triangle(0.5, 1.0, 0.1)), cell="rigid")
     b = Bender("b", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=PiezoDrive(Triangle(5.0, 10.0, 0.1)),
-               base=(0.0, 0.05))
-    c = Bender("c", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=PiezoDrive(0.0), base=(0.0, 0.1))
+               base=(0.0, 0.05), cell="rigid")
+    c = Bender("c", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3, drive=PiezoDrive(0.0), base=(0.0, 0.1), cell="rigid")
     mech = Mechanism("three").add(a, b, c).ground(a.base).ground(b.base).ground(c.base)
     _, messages = _run_quietly(simulate, mech, 0.1, step=1e-3)
     hits = [m for m in messages if KV in m]
@@ -142,7 +142,7 @@ def test_a_run_over_part_of_a_period_stays_silent():
 
 def test_mechanism_period_in_ms_names_the_drive():
     a = Bender("a", width=W, passive=CFC, active=MFC, length=0.087, n_cells=3,
-               drive=PiezoDrive(Triangle(500.0, 1000.0, 500.0)))
+               drive=PiezoDrive(Triangle(500.0, 1000.0, 500.0)), cell="rigid")
     mech = Mechanism("one").add(a).ground(a.base)
     with pytest.warns(RuntimeWarning, match=r"the voltage program of drive 'a' hardly changes during the run"):
         simulate(mech, 0.2, step=1e-3)

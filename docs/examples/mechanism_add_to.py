@@ -10,7 +10,7 @@ from exudyn_atcm.model import Triangle
 cfc = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
 mfc = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
 bender = atcm.Bender("bender", width=10e-3, passive=cfc, active=mfc, length=0.03, n_cells=8,
-                     drive=atcm.PiezoDrive(Triangle(750.0, 750.0, 0.2)))  # 0 V -> 1500 V -> 0 V
+                     drive=atcm.PiezoDrive(Triangle(750.0, 750.0, 0.2)), cell="rigid")  # 0 V -> 1500 V -> 0 V
 
 SC = exu.SystemContainer()
 mbs = SC.AddSystem()

@@ -8,9 +8,13 @@ needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
 * :mod:`~exudyn_atcm.casework.outputs`: :class:`RunContext`, :class:`CaseOutput`, :func:`versions`
   (and, from :mod:`exudyn_atcm.solve.run_plan`, :class:`PlannedRun` / :class:`RunPlan` for a run of
   several simulations);
-* :mod:`~exudyn_atcm.casework.case`: :class:`Case`, running and reporting from the command line;
+* :mod:`~exudyn_atcm.casework.case`: :class:`Case`; :mod:`~exudyn_atcm.casework.run_command`: running
+  and reporting from the command line;
+* :mod:`~exudyn_atcm.casework.declarations`: what a case declares besides its parameters (smoke
+  settings, regression benchmarks, its row in the case tables); :mod:`~exudyn_atcm.casework.case_table`:
+  the README's and the docs' case tables, :func:`case_table`;
 * :mod:`~exudyn_atcm.casework.discovery`: :func:`case_dirs`, :func:`list_cases`, :func:`find_case`,
-  :func:`load_case`;
+  :func:`load_case`, :func:`load_cases`;
 * :mod:`~exudyn_atcm.casework.regression` (with :mod:`~exudyn_atcm.casework.metrics`): the
   regression suite, :func:`run_suite`;
 * :mod:`~exudyn_atcm.casework.step_check`: a case's key scalars at step, step/2 and step/4
@@ -20,16 +24,20 @@ May import everything below it; :mod:`exudyn_atcm.study` and the command line bu
 """
 
 from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_report
-from .discovery import CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, list_cases, load_case
+from .case_table import TABLE_FORMATS, case_table
+from .declarations import check_benchmark
+from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, follows_convention, list_cases,
+                        load_case, load_cases)
 from .metrics import MetricRow
 from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
-from .parameters import CaseError, Parameter, Parameters, closest
+from .parameters import CaseError, CellChoices, Parameter, Parameters, closest
 from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
 
 __all__ = [
     "Case",
     "CaseOutput",
     "Parameter",
+    "CellChoices",
     "Parameters",
     "RunContext",
     "PlannedRun",
@@ -43,6 +51,11 @@ __all__ = [
     "find_case",
     "case_files",
     "load_case",
+    "load_cases",
+    "follows_convention",
+    "case_table",
+    "TABLE_FORMATS",
+    "check_benchmark",
     "add_run_options",
     "run_and_report",
     "closest",

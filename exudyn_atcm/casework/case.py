@@ -68,23 +68,22 @@ import argparse
 import os
 import sys
 import time
-import traceback
-import warnings
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from ..io.atomic import make_directory, write_json
-from ..io.progress import ProgressBar, ProgressCallback, no_progress, reporting
+from ..io.progress import ProgressCallback, no_progress, reporting
 from ..io.result import Result
 from ..solve.run_checks import SimulationInterrupted
-from .output_folder import OutputFolder, describe_stop, marker_name
+from .declarations import declared_benchmarks, declared_order, declared_smoke
+from .output_folder import OutputFolder, describe_stop
 from .outputs import CaseOutput, RunContext, versions
 from .parameters import CaseError, Parameter, Parameters, closest
+from .run_command import add_run_options, run_and_report
 from .run_warnings import warnings_once
-from .termination import StopSignal, stop_signals_as_interrupt
 
-__all__ = ["Case", "RunFunction", "PlotFunction", "add_run_options", "run_and_report"]
+__all__ = ["Case", "RunFunction", "PlotFunction", "add_run_options", "run_and_report"]  # the last two: .run_command
 
 
 # ----------------------------------------------------------------------------- the case
@@ -108,6 +107,20 @@ class Case:
         :class:`RunContext`.
     plot : callable, optional
         ``plot(output, p, out_dir) -> list of paths`` writing PNG files.
+    smoke : mapping, optional
+        The cheap parameter values a smoke test runs the case with (``None``: the defaults).
+    benchmarks : sequence of mapping, optional
+        The case's regression benchmarks, each a ``suite.json`` entry without ``"case"``.
+    summary : str, optional
+        The case's row in the case tables: what it shows (and its reference).
+    table_order : float, optional
+        The row's position in the case tables (``None``: after the ordered rows, by name).  The
+        four declarations are described in :mod:`exudyn_atcm.casework.declarations`.
+
+    Raises
+    ------
+    ValueError
+        For a bad name, duplicate parameters, or a smoke setting, benchmark or order the case refuses.
     """
 
     def __init__(
@@ -117,6 +130,11 @@ class Case:
         parameters: Sequence[Parameter],
         run: RunFunction,
         plot: PlotFunction | None = None,
+        *,
+        smoke: Mapping[str, Any] | None = None,
+        benchmarks: Sequence[Mapping[str, Any]] | None = None,
+        summary: str | None = None,
+        table_order: float | None = None,
     ) -> None:
         if not isinstance(name, str) or not name or any(c in name for c in "/\\ "):
             raise ValueError(f"name must be a non-empty name without spaces or slashes, got {name!r}")
@@ -132,6 +150,10 @@ class Case:
         self.parameters: tuple[Parameter, ...] = tuple(parameters)
         self._run = run
         self._plot = plot
+        self.smoke: dict[str, Any] = declared_smoke(name, smoke, self.resolve)
+        self.benchmarks: tuple[dict[str, Any], ...] = declared_benchmarks(name, benchmarks, self.resolve)
+        self.summary: str = " ".join((summary or self.description).split())
+        self.table_order: float = declared_order(name, table_order)
         caller = sys._getframe(1).f_globals.get("__file__")
         self.source: Path | None = Path(caller).resolve() if caller else None
 
@@ -353,82 +375,3 @@ class Case:
         parser = self.argument_parser()
         args = parser.parse_args(argv)
         return run_and_report(self, args.set, args.out, not args.no_plot, args.debug)
-
-
-def add_run_options(parser: argparse.ArgumentParser) -> None:
-    """The options shared by ``python cases/x.py`` and ``exudyn-atcm run``."""
-    parser.add_argument(
-        "--set", action="append", default=[], metavar="NAME=VALUE", help="override a parameter (repeatable)"
-    )
-    parser.add_argument("--out", default="out", metavar="DIR", help="output directory (default: ./out)")
-    parser.add_argument("--no-plot", action="store_true", help="do not write the PNG plots")
-    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
-
-
-def run_and_report(case: Case, assignments: Sequence[str], out: str, plot: bool, debug: bool) -> int:
-    """Run ``case`` with ``NAME=VALUE`` overrides, print a summary; the exit status.
-
-    Errors are printed as one line on stderr (with the traceback when ``debug``): exit
-    status 2 for a bad parameter, 1 for a failure of the run, 130 for Ctrl-C and 143 for
-    SIGTERM (what was computed until then is written, marked partial).
-    """
-    try:
-        values = case.parse_assignments(assignments)
-    except CaseError as exc:
-        return _fail(exc, debug, 2)
-    bar = ProgressBar(sys.stdout) if sys.stdout.isatty() else None
-    stop = StopSignal()
-    try:
-        with warnings.catch_warnings(), stop_signals_as_interrupt() as stop:
-            warnings.showwarning = _show_warning
-            output = case.run(values, out_dir=out, plot=plot, progress=bar)
-    except KeyboardInterrupt as exc:
-        if bar is not None:
-            bar.close()
-        return _interrupted(case, exc, out, debug, stop)
-    except Exception as exc:  # noqa: BLE001 - reported as one line
-        return _fail(exc, debug, 2 if isinstance(exc, CaseError) else 1)
-    finally:
-        if bar is not None:
-            bar.close()
-    print(f"{case.name}: {output.steps} steps in {output.wall_time:.3g} s")
-    for name, value in output.scalars.items():
-        print(f"  {name} = {value:.7g} [{output.scalar_units[name]}]")
-    print(f"  wrote {len(output.files)} files to {out}")
-    return 0
-
-
-def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """Warnings of a command-line run as one line ``warning: ...`` on stderr (no source line)."""
-    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
-
-
-def _interrupted(case: Case, exc: KeyboardInterrupt, out: str, debug: bool, stop: StopSignal) -> int:
-    """Report Ctrl-C or a stop signal: where the simulation stopped and what was written.
-
-    Exit status 130 for Ctrl-C, ``128 + signal number`` for a stop signal (143 for SIGTERM).
-    """
-    how = "interrupted" if stop.signum is None else f"stopped by {stop.name}"
-    marker = Path(out) / marker_name(case.name)
-    unfinished = f"; {out} holds this unfinished run, listed in {marker}" if marker.is_file() else ""
-    if isinstance(exc, SimulationInterrupted):
-        files = getattr(exc, "files", [])
-        rows = exc.result.n_rows if exc.result is not None else 0
-        if files:
-            written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}{unfinished}"
-        else:
-            written = "; nothing was written (no output directory, or nothing computed yet)"
-        return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{written}", debug, stop.exit_status)
-    if unfinished:
-        return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; the files "
-                     f"written are one unfinished run, listed in {marker}", debug, stop.exit_status)
-    return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; "
-                 f"{out} holds no unfinished run (no {marker.name})", debug, stop.exit_status)
-
-
-def _fail(exc: BaseException | str, debug: bool, status: int) -> int:
-    if debug and isinstance(exc, BaseException):
-        traceback.print_exception(type(exc), exc, exc.__traceback__)
-    message = " ".join(str(exc).split()) or type(exc).__name__
-    print(f"error: {message}", file=sys.stderr)
-    return status

@@ -8,13 +8,15 @@ from __future__ import annotations
 import importlib.util
 import os
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
 
 from .case import Case
 from .parameters import CaseError, closest
 from ..errors import SetupWarning
 
-__all__ = ["ENV_CASES", "CASE_MARKERS", "case_dirs", "case_files", "list_cases", "find_case", "load_case"]
+__all__ = ["ENV_CASES", "CASE_MARKERS", "case_dirs", "case_files", "list_cases", "find_case", "load_case",
+           "follows_convention", "load_cases"]
 
 #: Environment variable with extra case directories (``os.pathsep``-separated).
 ENV_CASES = "EXUDYN_ATCM_CASES"
@@ -23,23 +25,27 @@ ENV_CASES = "EXUDYN_ATCM_CASES"
 CASE_MARKERS = ("exudyn_atcm.casework", "exudyn_atcm.cases")
 
 
-def case_dirs(cases_dir: str | os.PathLike | None = None) -> list[Path]:
+def case_dirs(cases_dir: str | os.PathLike | Sequence[str | os.PathLike] | None = None, *,
+              package: bool = True) -> list[Path]:
     """Directories searched for cases by name, in order (existing ones only).
 
-    ``cases_dir`` (``--cases-dir``), then ``$EXUDYN_ATCM_CASES`` (``os.pathsep``-separated),
-    then the ``cases/`` folder of the source checkout beside the package (only if it is this
-    package's checkout), then the example cases installed with the package
-    (``exudyn_atcm.example_cases``).  Not the current directory's ``cases/`` unless given.
+    ``cases_dir`` (``--cases-dir``; several in order), then ``$EXUDYN_ATCM_CASES``
+    (``os.pathsep``-separated), then, with ``package``, the ``cases/`` folder of the source
+    checkout beside the package (only if it is this package's checkout), then the example cases
+    installed with the package (``exudyn_atcm.example_cases``).  Not the current directory's
+    ``cases/`` unless given.
     """
     candidates: list[Path] = []
-    if cases_dir is not None:
+    if isinstance(cases_dir, (str, os.PathLike)):
         candidates.append(Path(cases_dir))
+    elif cases_dir is not None:
+        candidates.extend(Path(d) for d in cases_dir)
     env = os.environ.get(ENV_CASES, "")
     candidates.extend(Path(p) for p in env.split(os.pathsep) if p.strip())
-    checkout = _checkout_cases_dir()
+    checkout = _checkout_cases_dir() if package else None
     if checkout is not None:
         candidates.append(checkout)
-    installed = _installed_cases_dir()
+    installed = _installed_cases_dir() if package else None
     if installed is not None:
         candidates.append(installed)
     seen: list[Path] = []
@@ -71,10 +77,14 @@ def _installed_cases_dir() -> Path | None:
     return Path(list(spec.submodule_search_locations)[0])
 
 
-def list_cases(cases_dir: str | os.PathLike | None = None) -> list[Path]:
-    """Case files found by name: ``*.py`` not starting with ``_``; the first of a name wins."""
+def list_cases(cases_dir: str | os.PathLike | Sequence[str | os.PathLike] | None = None, *,
+               package: bool = True) -> list[Path]:
+    """Case files found by name: ``*.py`` not starting with ``_``; the first of a name wins.
+
+    ``cases_dir`` and ``package`` as for :func:`case_dirs`.
+    """
     found: dict[str, Path] = {}
-    for directory in case_dirs(cases_dir):
+    for directory in case_dirs(cases_dir, package=package):
         for path in sorted(directory.glob("*.py")):
             if not path.name.startswith("_") and path.stem not in found:
                 found[path.stem] = path
@@ -160,7 +170,7 @@ def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise CaseError(f"{path}: cannot be read: {exc}") from None
-    if "CASE" not in text or not any(marker in text for marker in CASE_MARKERS):
+    if not follows_convention(text):
         # not executed: a plain script might run a whole simulation on import
         raise CaseError(f"{path}: does not follow the case convention (no CASE = exudyn_atcm.casework.Case(...))")
     module_name = f"exudyn_atcm_case_{path.stem}"
@@ -178,3 +188,31 @@ def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
         raise CaseError(f"{path}: defines no CASE = exudyn_atcm.casework.Case(...)")
     case.source = path
     return case
+
+
+def follows_convention(text: str) -> bool:
+    """Whether a case file's text mentions ``CASE`` and the case framework (:data:`CASE_MARKERS`).
+
+    Read before a file is executed: a file that does not is not a case (a helper module, a plain script).
+    """
+    return "CASE" in text and any(marker in text for marker in CASE_MARKERS)
+
+
+def load_cases(cases_dir: str | os.PathLike | Sequence[str | os.PathLike] | None = None, *,
+               package: bool = True) -> tuple[list[Case], list[tuple[Path, str]]]:
+    """Every case found by name (:func:`list_cases`) loaded: the cases, and the files that failed.
+
+    Files that do not follow the convention (:func:`follows_convention`) are not cases and are left
+    out unexecuted; a case file whose import or declarations fail is returned with the error message
+    (the regression suite reports it as a failed run, the smoke test fails on it).
+    """
+    cases: list[Case] = []
+    failed: list[tuple[Path, str]] = []
+    for path in list_cases(cases_dir, package=package):
+        try:
+            if not follows_convention(path.read_text(encoding="utf-8")):
+                continue
+            cases.append(load_case(path))
+        except (OSError, UnicodeDecodeError, CaseError) as exc:
+            failed.append((path, " ".join(str(exc).split())))
+    return cases, failed

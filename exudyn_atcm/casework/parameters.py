@@ -6,13 +6,14 @@ loaded or configured.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..cells import cell_kind_names
 from ..suggestions import close_names
 
-__all__ = ["Parameter", "Parameters", "CaseError", "closest", "json_value"]
+__all__ = ["Parameter", "Parameters", "CaseError", "CellChoices", "closest", "json_value"]
 
 _TYPES = ("float", "int", "bool", "str", "floats")
 #: bound fields of a :class:`Parameter` and their comparison
@@ -70,8 +71,10 @@ class Parameter:
         SI unit of the value (``"-"`` if unit-free).
     help : str
         One-line description.
-    choices : tuple, optional
-        Allowed values (for ``str`` parameters, typically).
+    choices : tuple or callable, optional
+        Allowed values (for ``str`` parameters, typically), or a function of no arguments returning
+        them when they are used (a registry that may grow after the case is loaded, e.g.
+        :class:`CellChoices`).
     minimum, exclusive_minimum, maximum, exclusive_maximum : float, optional
         Bounds of a number (``float``, ``int``; for a list of floats, of every item), in the
         parameter's unit, as in JSON Schema: ``value >= minimum``, ``value > exclusive_minimum``,
@@ -84,7 +87,7 @@ class Parameter:
     default: Any
     unit: str = "-"
     help: str = ""
-    choices: tuple | None = None
+    choices: tuple | Callable[[], tuple] | None = None
     minimum: float | None = None
     exclusive_minimum: float | None = None
     maximum: float | None = None
@@ -98,9 +101,10 @@ class Parameter:
         if self.kind == "floats":
             object.__setattr__(self, "default", tuple(float(v) for v in self.default))
         if self.choices is not None:
-            object.__setattr__(self, "choices", tuple(self.choices))
-            if self.default not in self.choices:
-                raise ValueError(f"default of {self.name!r} must be one of {self.choices}, got {self.default!r}")
+            if not callable(self.choices):
+                object.__setattr__(self, "choices", tuple(self.choices))
+            if self.default not in self.allowed():
+                raise ValueError(f"default of {self.name!r} must be one of {self.allowed()}, got {self.default!r}")
         bounds = {key: getattr(self, key) for key in _BOUNDS}
         given = {key: value for key, value in bounds.items() if value is not None}
         if given and self.kind not in ("float", "int", "floats"):
@@ -112,10 +116,16 @@ class Parameter:
         if given and not self._in_bounds(self.default):
             raise ValueError(f"default of {self.name!r} must be {self._bounds_text()}, got {self.default!r}")
 
+    def allowed(self) -> tuple | None:
+        """The allowed values, read now (``None``: any value of the type)."""
+        if self.choices is None:
+            return None
+        return tuple(self.choices()) if callable(self.choices) else self.choices
+
     def describe(self) -> str:
         """``name = default [unit] (type): help``."""
         default = ",".join(repr(v) for v in self.default) if self.kind == "floats" else repr(self.default)
-        choices = f", one of {'/'.join(map(str, self.choices))}" if self.choices else ""
+        choices = f", one of {'/'.join(map(str, self.allowed()))}" if self.choices else ""
         bounds = f", {self._bounds_text()}" if self._bounds_text() else ""
         return f"{self.name} = {default} [{self.unit}] ({self.kind}{choices}{bounds}): {self.help}"
 
@@ -168,8 +178,8 @@ class Parameter:
                 ok = False
         if not ok:
             raise ValueError(f"{self.name} must be {self._kind_text()}, got {value!r}")
-        if self.choices is not None and value not in self.choices:
-            raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.choices))}, got {value!r}")
+        if self.choices is not None and value not in self.allowed():
+            raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.allowed()))}, got {value!r}")
         self.check_range(value)
         return value
 
@@ -207,6 +217,32 @@ class Parameter:
             "str": "a string",
             "floats": f"comma-separated finite real numbers [{self.unit}]",
         }[self.kind]
+
+
+@dataclass(frozen=True)
+class CellChoices:
+    """The names of the registered cell kinds a case accepts, read when used (so that a kind registered with
+    :func:`exudyn_atcm.register_cell_kind` after the case was loaded is accepted by name).
+
+    Parameters
+    ----------
+    joins_anywhere : bool
+        Only kinds whose bender ends can be joined to other parts (no cantilever-only kinds).
+    carries_tip_load : bool
+        Only kinds that carry tip loads.
+    first : tuple of str
+        Names listed first (the case's usual choice), the others in registration order.
+    """
+
+    joins_anywhere: bool = False
+    carries_tip_load: bool = False
+    first: tuple[str, ...] = ()
+
+    def __call__(self) -> tuple[str, ...]:
+        names = cell_kind_names(lambda kind: (not self.joins_anywhere or all(
+            kind.end_refusal(end, "joined") is None for end in ("base", "tip")))
+            and (not self.carries_tip_load or kind.carries_tip_load))
+        return tuple([n for n in self.first if n in names] + [n for n in names if n not in self.first])
 
 
 class Parameters(Mapping):

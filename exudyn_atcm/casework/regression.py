@@ -2,12 +2,16 @@
 
 A suite is a directory (``benchmarks/regression/`` in the source checkout)::
 
-    suite.json                 the benchmark list (cases, fixed parameters, tolerances)
+    suite.json                 the suite: its description, its case folder ("cases_dir") and
+                               optionally explicit benchmark entries
     references/<id>.csv        reference time series of benchmark <id> (Result CSV)
     references/<id>.json       reference scalars, wall time, steps and provenance history
     references/HISTORY.md      one line per reference change: date, versions, platform, reason
 
-Each benchmark in ``suite.json`` runs one case with fixed parameters and checks
+The benchmarks are declared by the cases themselves (``Case(..., benchmarks=[...])``,
+:mod:`exudyn_atcm.casework.declarations`): the suite runs those of every case in its case folders
+(the suite's ``"cases_dir"``, ``--cases-dir``, ``$EXUDYN_ATCM_CASES``; :func:`load_suite`), after the
+entries ``suite.json`` lists itself, if any.  Each benchmark runs one case with fixed parameters and checks
 
 * ``channels``: whole time series; the new series is interpolated linearly onto the
   reference's base (``"base"``, default ``time``) and its RMS and maximum error are compared
@@ -37,7 +41,9 @@ from pathlib import Path
 from typing import Any, Sequence
 
 from ..io.atomic import write_json, write_text
-from .discovery import find_case, load_case
+from .case import Case
+from .declarations import check_benchmark
+from .discovery import ENV_CASES, find_case, load_case, load_cases
 from .outputs import versions
 from .parameters import json_value
 from ..io.result import read_csv
@@ -140,53 +146,61 @@ def _now() -> str:
 
 
 # ----------------------------------------------------------------------------- suite file
-_BENCH_KEYS = {"id", "case", "parameters", "quick", "channels", "scalars", "enabled", "note", "base"}
-_SCALAR_KEYS = {"name", "scalar", "analytic", "source", "abs", "rel"}
+def load_suite(suite_dir: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> dict[str, Any]:
+    """Read ``suite.json`` and collect the benchmarks: its own entries and those the cases declare.
 
+    The declared benchmarks are those of every case in the suite's case folders: ``cases_dir``
+    (``exudyn-atcm bench --cases-dir``), the suite's ``"cases_dir"`` (relative to the suite), and
+    ``$EXUDYN_ATCM_CASES``, the first file of a name winning (:func:`~exudyn_atcm.casework.discovery.list_cases`).
 
-def load_suite(suite_dir: str | os.PathLike) -> dict[str, Any]:
-    """Read and check ``suite.json``.
+    Returns
+    -------
+    dict
+        ``suite.json``'s content with ``"benchmarks"`` the explicit entries followed by the declared
+        ones (each with its ``"case"``), and ``"failed_cases"``: ``[path, message]`` of each case
+        file in those folders that could not be loaded.
 
     Raises
     ------
     ValueError
-        For a missing file, invalid JSON or an entry with unknown keys, a missing case or
-        scalar name, or a tolerance that is not a number >= 0.
+        For a missing file, invalid JSON, an entry with unknown keys, a missing case or scalar
+        name, a tolerance that is not a number >= 0, or an id given twice.
     """
-    path = Path(suite_dir) / "suite.json"
+    suite, _, _ = _collect(Path(suite_dir), cases_dir)
+    return suite
+
+
+def _collect(suite_path: Path, cases_dir: str | os.PathLike | None) -> tuple[dict[str, Any], dict[str, Case], list[Path]]:
+    """The suite (as :func:`load_suite`), the declaring case of each declared benchmark id, the case folders."""
+    path = suite_path / "suite.json"
     try:
         suite = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise ValueError(f"{path}: no suite file (suite_dir must hold suite.json)") from None
     except json.JSONDecodeError as exc:
         raise ValueError(f"{path}, line {exc.lineno}: invalid JSON: {exc.msg}") from None
-    ids = set()
-    for i, bench in enumerate(suite.get("benchmarks", [])):
-        where = f"{path}: benchmarks[{i}]"
-        unknown = set(bench) - _BENCH_KEYS
-        if unknown:
-            raise ValueError(f"{where}: unknown keys {sorted(unknown)}; allowed: {sorted(_BENCH_KEYS)}")
-        for key in ("id", "case"):
-            if not isinstance(bench.get(key), str):
-                raise ValueError(f"{where}: {key!r} must be a string, got {bench.get(key)!r}")
-        if bench["id"] in ids:
-            raise ValueError(f"{where}: duplicate id {bench['id']!r}")
-        ids.add(bench["id"])
-        for channel, tol in bench.get("channels", {}).items():
-            for key in ("rms", "max"):
-                if not isinstance(tol.get(key), (int, float)) or tol[key] < 0:
-                    raise ValueError(f"{where}: channels[{channel!r}][{key!r}] must be a number >= 0, got {tol.get(key)!r}")
-        for j, metric in enumerate(bench.get("scalars", [])):
-            unknown = set(metric) - _SCALAR_KEYS
-            if unknown:
-                raise ValueError(f"{where}: scalars[{j}]: unknown keys {sorted(unknown)}; allowed: {sorted(_SCALAR_KEYS)}")
-            if not isinstance(metric.get("scalar"), str):
-                raise ValueError(f"{where}: scalars[{j}]: 'scalar' must name a key scalar of the case")
-            if "abs" not in metric and "rel" not in metric:
-                raise ValueError(f"{where}: scalars[{j}] ({metric['scalar']}): give a tolerance 'abs' and/or 'rel'")
-            if "analytic" in metric and "source" not in metric:
-                raise ValueError(f"{where}: scalars[{j}] ({metric['scalar']}): an analytic value needs its 'source'")
-    return suite
+    benchmarks = list(suite.get("benchmarks", []))
+    for i, bench in enumerate(benchmarks):
+        check_benchmark(bench, f"{path}: benchmarks[{i}]")
+        if bench["id"] in [b["id"] for b in benchmarks[:i]]:
+            raise ValueError(f"{path}: benchmarks[{i}]: duplicate id {bench['id']!r}")
+    folders = [Path(cases_dir)] if cases_dir is not None else []
+    if suite.get("cases_dir"):
+        folders.append((suite_path / suite["cases_dir"]).resolve())
+    cases, failed = load_cases(folders, package=False) if folders or os.environ.get(ENV_CASES) else ([], [])
+    declaring: dict[str, Case] = {}
+    where = {b["id"]: f"{path}: benchmarks[{i}]" for i, b in enumerate(benchmarks)}
+    for case in cases:
+        for bench in case.benchmarks:
+            if bench["id"] in where:
+                raise ValueError(f"benchmark id {bench['id']!r} is declared by case {case.name} ({case.source}) and "
+                                 f"in {where[bench['id']]}: give each benchmark its own id")
+            where[bench["id"]] = f"case {case.name} ({case.source})"
+            declaring[bench["id"]] = case
+            benchmarks.append(dict(bench))
+    suite["benchmarks"] = benchmarks
+    suite["failed_cases"] = [[str(p), message] for p, message in failed]
+    return suite, declaring, [f for f in folders if f.is_dir()]
 
 
 # ----------------------------------------------------------------------------- running
@@ -200,6 +214,7 @@ def run_suite(
     plots: bool = True,
     only: Sequence[str] | None = None,
     echo: Any = None,
+    cases_dir: str | os.PathLike | None = None,
 ) -> SuiteReport:
     """Run the suite, compare, write ``report.md``, ``report.json`` and the channel plots.
 
@@ -221,6 +236,9 @@ def run_suite(
         Run only the benchmarks with these ids (for example to update one reference).
     echo : callable, optional
         ``echo(text)`` for progress lines (e.g. ``print``).
+    cases_dir : str or os.PathLike, optional
+        A further folder of cases whose declared benchmarks join the suite, searched first
+        (``exudyn-atcm bench --cases-dir``; see :func:`load_suite`).
 
     Returns
     -------
@@ -235,7 +253,7 @@ def run_suite(
     if update and (not reason or not reason.strip()):
         raise ValueError("reason must be a non-empty text when updating references, got " + repr(reason))
     suite_path = Path(suite_dir) if suite_dir is not None else default_suite_dir()
-    suite = load_suite(suite_path)
+    suite, declaring, folders = _collect(suite_path, cases_dir)
     if only is not None:
         known = [b["id"] for b in suite.get("benchmarks", [])]
         unknown = [b for b in only if b not in known]
@@ -244,10 +262,14 @@ def run_suite(
     ref_dir = suite_path / "references"
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    cases_dir = (suite_path / suite["cases_dir"]).resolve() if suite.get("cases_dir") else None
+    search = folders[0] if folders else None  # where the explicit entries' cases are found first
     say = echo or (lambda text: None)
     report = SuiteReport()
     start_all = time.perf_counter()
+    for file, message in suite["failed_cases"] if only is None else []:  # a broken case must not drop out unseen
+        report.rows.append(MetricRow(Path(file).stem, "load", "run", "-", math.nan, math.nan, math.nan, math.nan, "loads",
+                                     False, math.nan, None, message))
+        say(f"  FAILED to load {file}: {message}")
     for bench in suite.get("benchmarks", []):
         bid = bench["id"]
         if only is not None and bid not in only:
@@ -260,7 +282,7 @@ def run_suite(
             continue
         say(f"running {bid} ({bench['case']}) ...")
         try:
-            case = load_case(find_case(bench["case"], cases_dir))
+            case = declaring[bid] if bid in declaring else load_case(find_case(bench["case"], search))
             output = case.run(bench.get("parameters", {}), out_dir=out / bid, plot=False)
         except Exception as exc:  # noqa: BLE001 - a failing case is a failed metric
             message = " ".join(str(exc).split())

@@ -12,7 +12,11 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-__all__ = ["CellKind", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal"]
+__all__ = ["CellKind", "CELL_KINDS", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal"]
+
+#: The registry of cell kinds by name, filled by :mod:`exudyn_atcm.cells` (the package's kinds) and
+#: :func:`exudyn_atcm.cells.register_cell_kind`; exported there as ``CELL_KINDS``.
+CELL_KINDS: dict[str, "CellKind"] = {}
 
 #: The bender's end is an interface body of its own (rigid cells).
 END_BODY = "body"
@@ -56,8 +60,9 @@ class CellKind:
         The ``cell_angle_j`` columns are rotations of cells of a chain: a warning is issued when
         one turns by more than 0.5 rad against its neighbour (coarse discretisation).
     end_kind : str
-        How a bender's end joins other parts in a mechanism: :data:`END_BODY`,
-        :data:`END_CHAIN` or :data:`END_NODE`.
+        How a bender's end joins other parts in a mechanism, in words for listings: :data:`END_BODY`,
+        :data:`END_CHAIN` or :data:`END_NODE`.  Informative only: the builder asks the kind's
+        realisation (:class:`exudyn_atcm.mbs.realisation.CellRealisation`), which joins the ends.
     joint_label : str
         What the points between cells are called in drawings.
     realises_mass_damping : bool
@@ -137,7 +142,12 @@ class CellKind:
         return f"the {self.name} cell does not carry tip loads"
 
     def check_run(self, result: Any, actuator: Any, stacklevel: int = 2) -> None:
-        """Checks of a finished run of a lone actuator made of this kind (warnings); none by default."""
+        """Checks of a finished run of a bender made of this kind (warnings); none by default.
+
+        Called for every bender of a simulated mechanism, a lone actuator included: ``result`` holds
+        the bender's own columns under bare names (:func:`exudyn_atcm.solve.bender_checks.bender_view`),
+        ``actuator`` is the :class:`~exudyn_atcm.Bender` (its ``laminate``, ``length``, ``n_cells``).
+        """
 
     def estimate_step_cost(self, n_cells: int) -> float | None:
         """Measured wall time per accepted step [s] for ``n_cells`` cells, or ``None`` if not measured."""
@@ -168,5 +178,11 @@ class CellKind:
         return self.name
 
     def __repr__(self) -> str:
-        # the name, as before cells were objects: messages and parameter listings stay the same
-        return repr(self.name)
+        # not the bare name: a message about a kind object must not read as if it were a string
+        return f"<cell kind {self.name!r} ({type(self).__name__})>"
+
+    def spelled(self) -> str:
+        """How to pass this kind as ``cell=``: its quoted name if that name is registered for it
+        (:func:`exudyn_atcm.register_cell_kind`), else the kind's class called."""
+        registered = CELL_KINDS.get(self.name)
+        return repr(self.name) if type(registered) is type(self) else f"{type(self).__name__}()"

@@ -37,7 +37,8 @@ class RitzCell(CellKind):
 
     def check_run(self, result: Any, actuator: Any, stacklevel: int = 2) -> None:
         """Warn when the dynamic tip rotation leaves the quasi-static arc by more than 0.05 rad."""
-        ritz_beam.warn_large_dynamic_rotation(result["tip_angle"], result["strain"], actuator.curvature_per_strain,
+        ritz_beam.warn_large_dynamic_rotation(result["tip_angle"], result["strain"],
+                                              actuator.laminate.curvature_per_strain,
                                               actuator.length, stacklevel=stacklevel + 1)
 
     def tip_load_refusal(self) -> str | None:

@@ -12,8 +12,10 @@ effect), ``commit(u)`` (accept ``u``), ``reset()``, ``apply(u_series)`` and
 * :class:`PrandtlIshlinskii`: play operators with the analytic inverse.
 
 Identification from records: :mod:`exudyn_atcm.hysteresis.identification` (fit reports:
-:func:`make_report`), and :func:`identify` (every family fitted and ranked on held-out data);
-inverses: :func:`inverse_operator` (:mod:`exudyn_atcm.hysteresis.inverse`); rate families with
+:func:`make_report`), and :func:`identify` (every registered family fitted and ranked on
+held-out data; a new family registers itself with :func:`register_family`,
+:mod:`exudyn_atcm.hysteresis.families`);
+inverses: ``inverse()`` of every operator, :func:`inverse_operator` (:mod:`exudyn_atcm.hysteresis.inverse`); rate families with
 asymmetric loops: :func:`fit_rate_preisach` (an Everett operator, a creep law and a rate lag).  Feed-forward
 programs and the synthetic reference record build on voltage programs and live in
 :mod:`exudyn_atcm.model`.
@@ -25,16 +27,19 @@ back (:mod:`exudyn_atcm.hysteresis.model_files`; the format:
 """
 
 from .base import HysteresisOperator
-from .continuous import ContinuousPreisach
+# the families register themselves for identify() in this order (equal_gain, discrete, everett,
+# prandtl_ishlinskii, continuous): the order identify fits them in and lists families it could not fit
 from .discrete import DiscretePreisach
 from .everett import EverettPreisach
 from .prandtl_ishlinskii import PrandtlIshlinskii
+from .continuous import ContinuousPreisach
 from .model_choice import ModelChoice, identify
 from .identify_options import IdentifyOptions
 from .staircase import StaircasePreisach
 
 from .fit_report import FitReport, error_measures, make_report
 from .inverse import inverse_operator
+from .families import register_family, registered_families
 from . import model_kinds  # noqa: F401 - registers the package's model kinds for save/load_model
 from .model_files import load_model, save_model
 from .model_format import ModelFileError
@@ -52,6 +57,8 @@ __all__ = [
     "identify",
     "IdentifyOptions",
     "inverse_operator",
+    "register_family",
+    "registered_families",
     "fit_rate_preisach",
     "FitReport",
     "error_measures",

@@ -171,6 +171,24 @@ class HysteresisOperator(SavableModel, abc.ABC):
     def restore(self, snapshot: Any) -> None:
         """Put back a memory returned by :meth:`checkpoint` of this operator."""
 
+    def inverse(self, input_range: tuple[float, float] | None = None) -> "HysteresisOperator":
+        """The inverse operator: its input is a wanted output, its output the input that produces it.
+
+        The one convention of every operator class of the package: an operator (this interface)
+        starting, like this one after :meth:`reset`, from the reset state, whose memory follows
+        this operator's for the inputs it returns.  ``input_range`` bounds the inputs it may
+        return (outputs beyond reach are clipped with an
+        :class:`~exudyn_atcm.errors.OutOfReachWarning` on commit); default: the range the operator
+        declares (:func:`~exudyn_atcm.hysteresis.bisection.default_input_range`).
+
+        This default raises ``NotImplementedError``; a class outside the package whose output
+        does not decrease with the input gets a bisection inverse from
+        :func:`~exudyn_atcm.hysteresis.inverse_operator` without implementing it.
+        """
+        raise NotImplementedError(f"{type(self).__name__} does not implement inverse(); for an operator whose output "
+                                  "does not decrease with its input use exudyn_atcm.hysteresis.inverse_operator(model, "
+                                  "input_range) (bisection)")
+
     @property
     @abc.abstractmethod
     def output(self) -> float:

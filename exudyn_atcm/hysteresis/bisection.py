@@ -20,20 +20,41 @@ __all__ = ["BisectionInverse", "default_input_range"]
 
 
 def default_input_range(model: Any) -> tuple[float, float]:
-    """Input range over which a Preisach model's output changes (beyond it, it saturates)."""
-    edges = getattr(model, "edges", None)
-    if edges is not None:  # EverettPreisach
-        return float(edges[0]), float(edges[-1])
-    if getattr(model, "alpha", None) is not None and getattr(model, "beta", None) is not None:  # DiscretePreisach
-        # just below the lowest switch-off threshold every relay is off (also one with alpha == beta)
-        lo, hi = float(model.beta.min()), float(model.alpha.max())
-        return lo - 1e-6 * max(hi - lo, abs(lo), 1.0), hi
-    if getattr(model, "u_min", None) is not None and getattr(model, "u_max", None) is not None:  # ContinuousPreisach
-        return model.u_min, model.u_max
-    raise ValueError(
-        f"input_range must be given for a {type(model).__name__}; the default is known for DiscretePreisach "
-        "and ContinuousPreisach only"
-    )
+    """The input range an inverse of ``model`` searches when none is given: the range the model declares.
+
+    Read from the operator contract (:class:`~exudyn_atcm.hysteresis.HysteresisOperator`), never
+    from other attributes: its :attr:`~exudyn_atcm.hysteresis.HysteresisOperator.saturation_range`
+    (the inputs over which the output changes; beyond them nothing more is reached) if it
+    declares one, else its :attr:`~exudyn_atcm.hysteresis.HysteresisOperator.fitted_range` (a
+    fitted model without saturation, e.g. a Prandtl-Ishlinskii or a Bouc-Wen fit).  If the
+    output from the reset state already moves at the low end (a relay with ``alpha == beta`` at
+    the lowest threshold is on there), the range starts just below it (by ``1e-6`` of the range),
+    so the reset output is reachable.
+
+    Raises
+    ------
+    ValueError
+        If the model declares neither range (then give ``input_range``).
+    """
+    declared = getattr(model, "saturation_range", None)
+    saturates = declared is not None
+    if not saturates:
+        declared = getattr(model, "fitted_range", None)
+    if declared is None:
+        raise ValueError(f"input_range must be given for a {type(model).__name__}: it declares neither a "
+                         "saturation_range nor a fitted_range (the HysteresisOperator contract), so the inputs to "
+                         "search are unknown")
+    lo, hi = (float(v) for v in declared)
+    if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+        raise ValueError(f"input_range: {type(model).__name__} declares the range {declared!r}; an inverse needs a "
+                         "finite one with high > low (give input_range)")
+    if saturates:  # the output is constant below the saturation range, unless a relay switches exactly at lo
+        below = lo - 1e-6 * max(hi - lo, abs(lo), 1.0)
+        probe = copy.deepcopy(model)
+        probe.reset()
+        if float(probe.evaluate(below)) != float(probe.evaluate(lo)):
+            lo = below
+    return lo, hi
 
 
 class BisectionInverse(HysteresisOperator):
@@ -124,6 +145,21 @@ class BisectionInverse(HysteresisOperator):
             else:
                 hi, y_hi = mid, y_mid
         return (hi if y_hi - y <= y - y_lo else lo), 0.0
+
+    def inverse(self, input_range: tuple[float, float] | None = None) -> HysteresisOperator:
+        """The inverse of this inverse: a copy of the forward model, at its reset state.
+
+        Raises
+        ------
+        ValueError
+            If ``input_range`` is given (the forward model takes any input).
+        """
+        if input_range is not None:
+            raise ValueError(f"input_range must be None for the inverse of an inverse (the forward model), got "
+                             f"{input_range!r}")
+        forward = copy.deepcopy(self.model)
+        forward.reset()
+        return forward
 
     def evaluate(self, y: float) -> float:
         """Input that produces ``y`` from the committed memory (clipped silently: trial only)."""

@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 from .._checks import finite_float
+from .families import FamilyFit, FitRequest, register_family
 from .staircase import StaircasePreisach
 from .identification import fit_continuous
 
@@ -193,3 +194,13 @@ def _ranges(u_min: float, u_max: float, y_min: float, y_max: float) -> tuple[flo
     if y_max <= y_min:
         raise ValueError(f"y_max must be > y_min = {y_min!r}, got {y_max!r}")
     return u_min, u_max, y_min, y_max
+
+
+def _fit_continuous(request: FitRequest) -> FamilyFit:
+    """The ``continuous`` family: :meth:`ContinuousPreisach.fit` (the paper's power law)."""
+    model, report = ContinuousPreisach.fit(request.u, request.y, **request.rows, **request.units)
+    return FamilyFit("continuous (power law)", model, report, 6)
+
+
+register_family("continuous", _fit_continuous, inverse="bisection", operator=ContinuousPreisach,
+                description="the paper's power-law loop (Eqs. 8-10)")

@@ -28,16 +28,20 @@ identification from a step record: :func:`~exudyn_atcm.hysteresis.dynamics_fit.c
 
 from __future__ import annotations
 
+import copy
 import math
+import warnings
 from typing import Any, Callable
 
 import numpy as np
 from scipy.optimize import nnls
 
 from .._checks import finite_array, same_length, sample_times
+from ..errors import AtcmDeprecationWarning
+from .inverse import inverse_operator
 from .model_files import SavableModel
 
-__all__ = ["Creep", "CreepHysteresis"]
+__all__ = ["Creep", "CreepHysteresis", "CreepHysteresisInverse"]
 
 
 def _lag_states(h: np.ndarray, t: np.ndarray, tau: np.ndarray) -> np.ndarray:
@@ -164,12 +168,21 @@ class CreepHysteresis(SavableModel):
         """Output for inputs ``u`` at times ``t`` [s], from the hysteresis operator's reset state."""
         return self.creep.response(self.hysteresis.apply(u), t)
 
-    def inverse_apply(self, y: Any, t: Any, inverse: Any) -> np.ndarray:
-        """Inputs that produce the wanted outputs ``y`` at times ``t``.
+    def inverse(self, input_range: tuple[float, float] | None = None) -> "CreepHysteresisInverse":
+        """The inverse (offline, like this model): ``inverse().apply(y, t)`` are the inputs that give ``y``.
 
-        ``inverse``: the hysteresis operator's inverse
-        (:func:`exudyn_atcm.hysteresis.inverse.inverse_operator`), from its reset state.
+        ``input_range`` bounds the inputs (default: the hysteresis operator's declared range).
         """
+        return CreepHysteresisInverse(self, input_range)
+
+    def inverse_apply(self, y: Any, t: Any, inverse: Any) -> np.ndarray:
+        """Deprecated (0.3): use ``inverse().apply(y, t)`` (:meth:`inverse`).
+
+        Inputs that produce the wanted outputs ``y`` at times ``t``: ``inverse`` (the hysteresis
+        operator's inverse) from its reset state after the creep's exact inverse.
+        """
+        warnings.warn("CreepHysteresis.inverse_apply(y, t, inverse) is deprecated: use model.inverse().apply(y, t) "
+                      "(the same inputs; inverse(input_range) bounds them)", AtcmDeprecationWarning, stacklevel=2)
         return np.asarray(inverse.apply(self.creep.inverse_response(y, t)), dtype=float)
 
     @classmethod
@@ -204,3 +217,44 @@ class CreepHysteresis(SavableModel):
             creep = Creep.fit(h, y_a, t_a, tau=tau, n_lags=n_lags)
             history.append(float(math.sqrt(np.mean((creep.response(h, t_a) - y_a) ** 2))))
         return cls(hysteresis, creep), {"rms": history}
+
+
+class CreepHysteresisInverse(SavableModel):
+    """Inverse of a :class:`CreepHysteresis` (offline): the creep's exact inverse
+    (:meth:`Creep.inverse_response`), then the hysteresis operator's inverse from its reset state.
+
+    Parameters
+    ----------
+    model : CreepHysteresis
+        The forward model (copied).
+    input_range : (float, float), optional
+        Inputs the hysteresis operator's inverse may return (default: the range it declares).
+    """
+
+    def __init__(self, model: CreepHysteresis, input_range: tuple[float, float] | None = None) -> None:
+        if not isinstance(model, CreepHysteresis):
+            raise ValueError(f"model must be a CreepHysteresis, got {type(model).__name__}")
+        self.model = copy.deepcopy(model)
+        self.requested_range = None if input_range is None else tuple(float(v) for v in input_range)
+        self.hysteresis_inverse = inverse_operator(self.model.hysteresis, input_range)
+
+    def apply(self, y: Any, t: Any) -> np.ndarray:
+        """Inputs that give the wanted outputs ``y`` at times ``t`` [s] (the hysteresis inverse's clip counters
+        say what was unreachable)."""
+        return np.asarray(self.hysteresis_inverse.apply(self.model.creep.inverse_response(y, t)), dtype=float)
+
+    def inverse(self, input_range: tuple[float, float] | None = None) -> CreepHysteresis:
+        """The forward model (a copy).
+
+        Raises
+        ------
+        ValueError
+            If ``input_range`` is given (the forward model takes any input).
+        """
+        if input_range is not None:
+            raise ValueError(f"input_range must be None for the inverse of an inverse (the forward model), got "
+                             f"{input_range!r}")
+        return copy.deepcopy(self.model)
+
+    def __repr__(self) -> str:
+        return f"CreepHysteresisInverse({self.model!r})"

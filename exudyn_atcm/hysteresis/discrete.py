@@ -11,6 +11,8 @@ import numpy as np
 from .._checks import finite_array, finite_float, same_length
 from ..physical_bounds import check_element_count
 from ._dominance import DominanceSums
+from .families import FamilyFit, FitRequest, register_family
+from .fit_report import make_report
 from .staircase import StaircasePreisach
 from .identification import fit_discrete
 from .loop_identification import identify_from_loop
@@ -357,3 +359,35 @@ class DiscretePreisach(StaircasePreisach):
     def __repr__(self) -> str:
         return f"DiscretePreisach(n_relays={self.n_relays}, offset={self.offset!r}, kernel={self.kernel!r})"
 
+
+def _fit_equal_gain(request: FitRequest) -> FamilyFit:
+    """The ``equal_gain`` family: :meth:`DiscretePreisach.from_loop` (the paper's Eq. 12)."""
+    n_relays = request.options.get("n_relays", 20)
+    levels = request.options.get("levels", "paper")
+    rows = {} if request.contiguous else {"fit_mask": request.fit_mask}
+    stop = request.n_fit if request.contiguous else request.u.size
+    model, fitted = DiscretePreisach.from_loop(request.u[:stop], request.y[:stop], n_relays,
+                                               reversal_tolerance=request.options.get("reversal_tolerance", 0.02),
+                                               report=True, levels=levels, **rows, **request.units)
+    low = np.flatnonzero(request.u <= float(model.beta.min()))
+    report = make_report(model, request.u, request.y, request.n_fit if request.contiguous else request.u.size,
+                         int(low[0]) if low.size else 0, "DiscretePreisach.from_loop", settings=fitted.settings,
+                         notes=fitted.notes, output_unit=request.output_unit, fit_time=fitted.fit_time,
+                         fit_mask=None if request.contiguous else request.fit_mask)
+    return FamilyFit(f"equal_gain ({n_relays} relays, {levels})", model, report, 2 * n_relays + 2)
+
+
+def _fit_grid(request: FitRequest) -> FamilyFit:
+    """The ``discrete`` family: :meth:`DiscretePreisach.fit` on a relay grid."""
+    n_levels, prior = request.options.get("n_levels", 30), request.options.get("prior", "pi")
+    per_cell = request.options.get("relays_per_cell", 1)
+    model, report = DiscretePreisach.fit(request.u, request.y, n_levels, smoothing=request.options.get("smoothing", 1e-3),
+                                         prior=prior, relays_per_cell=per_cell, **request.rows, **request.units)
+    refined = f", {per_cell}x{per_cell} relays per cell" if per_cell != 1 else ""
+    return FamilyFit(f"discrete ({n_levels} levels, {prior}{refined})", model, report, n_levels * (n_levels + 1) // 2 + 1)
+
+
+register_family("equal_gain", _fit_equal_gain, inverse="none (staircase)", operator=DiscretePreisach,
+                description="equal-gain relays from one major loop (the paper's Eq. 12)")
+register_family("discrete", _fit_grid, inverse="none (staircase)", operator=DiscretePreisach,
+                description="relay grid, weights by regularised non-negative least squares")

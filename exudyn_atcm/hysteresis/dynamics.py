@@ -28,13 +28,16 @@ time and state, nothing changed) and ``commit(u, t)``; it has :attr:`WithDynamic
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
 
 from .._checks import finite_array, finite_float, positive_float, sample_times
 from .base import HysteresisOperator, check_input
+from ..errors import AtcmDeprecationWarning
 from .creep import Creep
+from .dynamics_inverse import DynamicsInverse
 from .model_files import SavableModel
 
 __all__ = ["lag_step", "LagSum", "RateLag", "WithDynamics"]
@@ -336,14 +339,51 @@ class WithDynamics(HysteresisOperator):
         h = float(self.operator.apply([check_input(u)])[-1])
         return self.lags.static_gain * h
 
-    def inverse_apply(self, y: Any, t: Any, inverse: Any) -> np.ndarray:
-        """Inputs that make :meth:`apply` give ``y`` at times ``t`` [s] (offline feedforward).
+    def operator_output_for(self, y: float, t: float | None = None) -> float:
+        """The operator output ``h`` that makes :meth:`evaluate` give ``y`` at time ``t`` [s] from the committed state.
 
-        ``inverse``: the operator's inverse (:func:`~exudyn_atcm.hysteresis.inverse.inverse_operator`),
-        applied from its reset state to the lag block's exact inverse (:meth:`LagSum.inverse_response`
-        at rest at the operator's initial output).  Exists wherever the operator's inverse does;
-        with a lag, ``y[0]`` must be the rest output (a lag cannot jump).
+        The exact inverse of one lag step (``h`` linear in time over it): the output is linear in
+        the new ``h`` with slope ``d + Σ g_j (1 − ramp_j)`` > 0.  Where the output does not depend
+        on ``h`` (no feed-through and no time passed: a lag cannot jump), the committed ``h``.
         """
+        y_f = check_input(y)
+        z, _, t_f = self._advance(self._h, t)  # checks t; z: the lags with h held
+        dt = 0.0 if self._t is None else t_f - self._t
+        if dt == 0.0:
+            slope, rest = self.lags.d, float(self.lags.g @ self._z)
+        else:
+            x = dt / self.lags.tau
+            a = np.exp(-x)
+            ramp = -np.expm1(-x) / x
+            slope = self.lags.d + float(self.lags.g @ (1.0 - ramp))
+            rest = float(self.lags.g @ (self._z * a + self._h * (ramp - a)))
+        return self._h if slope == 0.0 else (y_f - rest) / slope
+
+    def advance_lags(self, h: float, t: float | None) -> float:
+        """Commit the time ``t`` [s] with the operator output ``h`` given, not computed (the operator's memory
+        is not touched): what an inverse does, which knows ``h`` and keeps the operator's memory itself.
+        Returns the output."""
+        self._z, self._y, self._t = self._advance(check_input(h), t)
+        self._h = float(h)
+        return self._y
+
+    def inverse(self, input_range: tuple[float, float] | None = None) -> HysteresisOperator:
+        """The inverse operator with the time, a :class:`~exudyn_atcm.hysteresis.dynamics_inverse.DynamicsInverse`.
+
+        ``inverse().apply(y, t)`` are the inputs that make :meth:`apply` give ``y`` at the times
+        ``t`` [s] (feedforward); ``input_range`` bounds them (default: the operator's declared range).
+        """
+        return DynamicsInverse(self, input_range)
+
+    def inverse_apply(self, y: Any, t: Any, inverse: Any) -> np.ndarray:
+        """Deprecated (0.3): use ``inverse().apply(y, t)`` (:meth:`inverse`).
+
+        Inputs that make :meth:`apply` give ``y`` at times ``t`` [s]: ``inverse`` (the operator's
+        inverse) applied from its reset state to the lag block's exact inverse
+        (:meth:`LagSum.inverse_response` at rest at the operator's initial output).
+        """
+        warnings.warn("WithDynamics.inverse_apply(y, t, inverse) is deprecated: use model.inverse().apply(y, t) "
+                      "(the same inputs; inverse(input_range) bounds them)", AtcmDeprecationWarning, stacklevel=2)
         saved = self.checkpoint()
         try:
             self.reset()

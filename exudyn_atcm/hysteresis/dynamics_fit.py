@@ -234,7 +234,7 @@ def fit_rate_lag(records: Any, n_plays: int, *, creep: Creep | None = None,
     Notes
     -----
     The weights are non-negative and ``p0 >= 10⁻³ Δy/Δu``, so the operator has its analytic
-    inverse and the whole model is invertible (:meth:`WithDynamics.inverse_apply`).  The search
+    inverse and the whole model is invertible (:meth:`WithDynamics.inverse`).  The search
     over ``log T`` is a bounded scalar minimisation (Brent): it finds the minimum of a cost that
     has one minimum over the range, which is the case for records whose rates span the lag.
     """

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import finite_array, finite_float, same_length
+from .families import FamilyFit, FitRequest, register_family
 from .staircase import StaircasePreisach
 from .identification import fit_discrete
 
@@ -155,3 +156,15 @@ class EverettPreisach(StaircasePreisach):
     def __repr__(self) -> str:
         return (f"EverettPreisach(cells={len(self._edges) - 1}, range=({self._edges[0]!r}, {self._edges[-1]!r}), "
                 f"offset={self.offset!r})")
+
+
+def _fit_everett(request: FitRequest) -> FamilyFit:
+    """The ``everett`` family: :meth:`EverettPreisach.fit` (grid, each weight spread over its cell)."""
+    n_levels, prior = request.options.get("n_levels", 30), request.options.get("prior", "pi")
+    model, report = EverettPreisach.fit(request.u, request.y, n_levels, smoothing=request.options.get("smoothing", 1e-3),
+                                        prior=prior, **request.rows, **request.units)
+    return FamilyFit(f"everett ({n_levels} levels, {prior})", model, report, n_levels * (n_levels + 1) // 2 + 1)
+
+
+register_family("everett", _fit_everett, inverse="bisection", operator=EverettPreisach,
+                description="relay grid with each weight spread over its cell (continuous output)")

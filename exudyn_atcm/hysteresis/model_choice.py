@@ -1,17 +1,12 @@
 """Which hysteresis model a record supports: every family fitted and compared on held-out data.
 
-:func:`identify` fits the families the package has on the same fitted part of a record and
-predicts the same held-out part with each (the model runs over the whole record from its
-reset state, so the held-out part starts from the memory the fitted part left):
-
-* ``equal_gain``: :meth:`DiscretePreisach.from_loop` (the paper's Eq. 12); no continuous inverse
-  (staircase);
-* ``discrete``: :meth:`DiscretePreisach.fit` (relay grid); no continuous inverse (staircase);
-* ``everett``: :meth:`EverettPreisach.fit` (grid, each weight spread over its cell); inverse by
-  bisection;
-* ``prandtl_ishlinskii``: :meth:`PrandtlIshlinskii.fit`; analytic inverse;
-* ``continuous``: :meth:`ContinuousPreisach.fit` (the paper's power law, Eqs. 8-10); inverse by
-  bisection.
+:func:`identify` fits every registered family (:mod:`exudyn_atcm.hysteresis.families`: each
+family registers itself, with its fit, parameter count and kind of inverse, in the module that
+defines its operator) on the same fitted part of a record and predicts the same held-out part
+with each (the model runs over the whole record from its reset state, so the held-out part
+starts from the memory the fitted part left).  The package's families (equal-gain relays,
+the relay grid, the spread-cell grid, Prandtl-Ishlinskii, the continuous power law) are listed
+with their inverses on the :doc:`/identification` page.
 
 Which samples are fitted and which held out: :mod:`exudyn_atcm.hysteresis.record_split` (by
 default the held-out inputs lie inside the fitted input range: the first 60 % of the record
@@ -47,24 +42,25 @@ import numpy as np
 
 from .._checks import hide_keywords, option_values, options_from_keywords
 from ..io.atomic import write_json
-from .continuous import ContinuousPreisach
-from .discrete import DiscretePreisach
-from .everett import EverettPreisach
-from .fit_report import FitReport, make_report
+from .families import FitRequest, family_named, registered_families
+from .fit_report import FitReport
 from .base import quantity_from_unit
 from .identification import check_record
 from .identify_options import IdentifyOptions
-from .prandtl_ishlinskii import PrandtlIshlinskii
 from .record_split import choose_split
-from ..errors import AccuracyWarning, SetupWarning
+from ..errors import AccuracyWarning, AtcmDeprecationWarning, SetupWarning
 
-__all__ = ["FAMILIES", "Candidate", "ModelChoice", "identify"]
+__all__ = ["Candidate", "ModelChoice", "identify"]
 
-#: The families :func:`identify` knows, in the order they are fitted.
-FAMILIES = ("equal_gain", "discrete", "everett", "prandtl_ishlinskii", "continuous")
 
-_INVERSE = {"equal_gain": "none (staircase)", "discrete": "none (staircase)", "everett": "bisection",
-            "prandtl_ishlinskii": "analytic", "continuous": "bisection"}
+def __getattr__(name: str) -> Any:
+    """``FAMILIES`` (deprecated in 0.3): the registered family names, read from the registry."""
+    if name == "FAMILIES":
+        warnings.warn("exudyn_atcm.hysteresis.model_choice.FAMILIES is deprecated: use "
+                      "tuple(exudyn_atcm.hysteresis.families.registered_families()), which includes families "
+                      "registered outside the package", AtcmDeprecationWarning, stacklevel=2)
+        return tuple(registered_families())
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass
@@ -74,7 +70,7 @@ class Candidate:
     Attributes
     ----------
     family : str
-        One of :data:`FAMILIES`.
+        A registered family (:func:`~exudyn_atcm.hysteresis.families.registered_families`).
     label : str
         Family and size, e.g. ``"everett (30 levels)"``.
     held_out_rms_percent, fit_rms_percent : float
@@ -235,7 +231,7 @@ def _record_arrays(record: Any, y: Any) -> tuple[Any, Any, str, Any]:
 
 @hide_keywords
 def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int | None = None,
-             fit_mask: Any = None, families: tuple[str, ...] = FAMILIES, output_unit: str | None = None,
+             fit_mask: Any = None, families: tuple[str, ...] | None = None, output_unit: str | None = None,
              output_quantity: str | None = None, options: IdentifyOptions | None = None, **legacy: Any) -> ModelChoice:
     """Fit every hysteresis family to a record and choose one by its held-out error.
 
@@ -259,7 +255,8 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
     fit_mask : array_like of bool, optional
         The fitted samples (one entry per sample), instead of ``split``.
     families : tuple of str, optional
-        Which of :data:`FAMILIES` to fit (default all).
+        Which registered families to fit (default all of
+        :func:`~exudyn_atcm.hysteresis.families.registered_families`, in their order).
     output_unit : str, optional
         Unit of ``y`` (default: the record's, or ``""``); every fitted model keeps it.
     output_quantity : str, optional
@@ -290,8 +287,11 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
     unit = unit if output_unit is None else output_unit
     quantity = quantity_from_unit(unit, output_quantity)
     u_a, y_a, _ = check_record(u_in, y_in)
-    if not families or any(f not in FAMILIES for f in families):
-        raise ValueError(f"families must be a non-empty selection of {FAMILIES}, got {families!r}")
+    known = registered_families()
+    families = tuple(known) if families is None else families
+    if isinstance(families, str) or not families or any(f not in known for f in families):
+        raise ValueError(f"families must be a non-empty selection of the registered families {tuple(known)}, "
+                         f"got {families!r}")
     if isinstance(relays_per_cell, bool) or not isinstance(relays_per_cell, (int, np.integer)) or relays_per_cell < 1:
         raise ValueError(f"relays_per_cell must be an integer >= 1, got {relays_per_cell!r}")
     if not (isinstance(simpler_margin, (int, float)) and 0.0 <= simpler_margin < 10.0):
@@ -301,52 +301,29 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
     mask, how = choose_split(u_a, t, split, n_fit, fit_mask)
     contiguous = how.startswith("the first")
     n_fit = int(np.argmin(mask)) if contiguous else int(u_a.size)
-    rows = {"n_fit": n_fit} if contiguous else {"fit_mask": mask}
-    fit_unit = {"output_unit": unit, "output_quantity": quantity}
-
-    def fit_one(family: str) -> tuple[str, Any, FitReport, int]:
-        if family == "equal_gain":
-            if contiguous:
-                model, fitted = DiscretePreisach.from_loop(u_a[:n_fit], y_a[:n_fit], n_relays,
-                                                           reversal_tolerance=reversal_tolerance, report=True,
-                                                           levels=levels, **fit_unit)
-            else:
-                model, fitted = DiscretePreisach.from_loop(u_a, y_a, n_relays, reversal_tolerance=reversal_tolerance,
-                                                           report=True, levels=levels, fit_mask=mask, **fit_unit)
-            low = np.flatnonzero(u_a <= float(model.beta.min()))
-            start = int(low[0]) if low.size else 0
-            report = make_report(model, u_a, y_a, n_fit, start, "DiscretePreisach.from_loop", settings=fitted.settings,
-                                 notes=fitted.notes, output_unit=unit, fit_time=fitted.fit_time,
-                                 fit_mask=None if contiguous else mask)
-            return f"equal_gain ({n_relays} relays, {levels})", model, report, 2 * n_relays + 2
-        if family in ("discrete", "everett"):
-            options = {"relays_per_cell": relays_per_cell} if family == "discrete" else {}
-            cls = DiscretePreisach if family == "discrete" else EverettPreisach
-            model, report = cls.fit(u_a, y_a, n_levels, smoothing=smoothing, prior=prior, **rows, **fit_unit, **options)
-            refined = f", {relays_per_cell}x{relays_per_cell} relays per cell" if options and relays_per_cell != 1 else ""
-            return f"{family} ({n_levels} levels, {prior}{refined})", model, report, n_levels * (n_levels + 1) // 2 + 1
-        if family == "prandtl_ishlinskii":
-            model, report = PrandtlIshlinskii.fit(u_a, y_a, n_plays, **rows, **fit_unit)
-            return f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1
-        model, report = ContinuousPreisach.fit(u_a, y_a, **rows, **fit_unit)
-        return "continuous (power law)", model, report, 6
+    request = FitRequest(u_a, y_a, mask, n_fit if contiguous else None, unit, quantity,
+                         {"n_levels": n_levels, "n_plays": n_plays, "n_relays": n_relays, "smoothing": smoothing,
+                          "prior": prior, "reversal_tolerance": reversal_tolerance, "levels": levels,
+                          "relays_per_cell": relays_per_cell})
 
     output_range = float(np.ptp(y_a))  # the whole record's: one reference for every family's % figures
     candidates = []
     failed = []
-    for family in families:
+    for name in families:
+        family = family_named(name)
         started = time.perf_counter()
         try:
-            label, model, report, parameters = fit_one(family)
+            fitted = family.fit(request)
         except ValueError as exc:
-            failed.append(Candidate(family, family, math.nan, math.nan, 0, time.perf_counter() - started,
-                                    _INVERSE[family] != "none (staircase)", _INVERSE[family], failure=str(exc)))
+            failed.append(Candidate(name, name, math.nan, math.nan, 0, time.perf_counter() - started,
+                                    family.invertible, family.inverse, failure=str(exc)))
             continue
+        report = fitted.report
         candidates.append(Candidate(
-            family, label, 100.0 * report.model_errors["held_out"]["rms"] / output_range,
+            name, fitted.label, 100.0 * report.model_errors["held_out"]["rms"] / output_range,
             100.0 * report.model_errors["fit"]["rms"] / output_range,
-            parameters, time.perf_counter() - started, _INVERSE[family] != "none (staircase)", _INVERSE[family],
-            model=model, report=report))
+            int(fitted.parameters), time.perf_counter() - started, family.invertible, family.inverse,
+            model=fitted.model, report=report))
     if not candidates:
         raise ValueError("identify: no family could be fitted to the record: "
                          + "; ".join(f"{c.family}: {c.failure}" for c in failed))

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from typing import Any
 
 __all__ = ["FLOAT", "FLOATS", "INT", "RANGE", "STRING", "ParameterType", "ModelKind", "nested",
-           "register_model_kind", "registered_kinds", "kind_named", "kind_of"]
+           "register_model_kind", "unregister_model_kind", "registered_kinds", "kind_named", "kind_of"]
 
 
 @dataclass(frozen=True)
@@ -134,6 +134,21 @@ def register_model_kind(name: str, cls: type, parameters: Mapping[str, Parameter
         _BY_CLASS.pop(old.cls, None)
     _KINDS[name] = kind
     _BY_CLASS[cls] = kind
+    return kind
+
+
+def unregister_model_kind(name: str) -> ModelKind:
+    """Remove a registered kind (e.g. one a test registered) and return it.
+
+    Raises
+    ------
+    ValueError
+        If no kind is registered as ``name``.
+    """
+    kind = _KINDS.pop(name, None) if isinstance(name, str) else None
+    if kind is None:
+        raise ValueError(f"name must be a registered kind, one of {tuple(_KINDS)}, got {name!r}")
+    _BY_CLASS.pop(kind.cls, None)
     return kind
 
 

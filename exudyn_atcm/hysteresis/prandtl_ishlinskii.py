@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 import numpy as np
@@ -9,6 +10,8 @@ import numpy as np
 from .._checks import finite_array, finite_float, same_length
 from ..physical_bounds import check_element_count
 from .base import HysteresisOperator, check_input
+from .bisection import BisectionInverse
+from .families import FamilyFit, FitRequest, register_family
 from .pi_fit import fit_prandtl_ishlinskii
 
 
@@ -94,8 +97,13 @@ class PrandtlIshlinskii(HysteresisOperator):
         self._y = self.offset + self.p0 * v + float(self.weights @ self._z)
         return self._y
 
-    def inverse(self) -> "PrandtlIshlinskii":
-        r"""The analytic inverse, again a Prandtl-Ishlinskii operator.
+    def inverse(self, input_range: tuple[float, float] | None = None) -> HysteresisOperator:
+        r"""The analytic inverse, again a Prandtl-Ishlinskii operator (a :class:`ShiftedPIInverse`).
+
+        Without ``input_range`` the analytic inverse (every output is reachable: a PI operator with
+        ``p0 > 0`` is unbounded).  With ``input_range`` (e.g. a drive's voltage limits [V]) a
+        :class:`~exudyn_atcm.hysteresis.bisection.BisectionInverse` on that range, which clips
+        unreachable outputs with a warning.
 
         With ``P_j = p0 + Σ_{i<=j} p_i`` (plays of radius 0 are merged into ``p0``):
         :math:`\hat p_0 = 1/p_0`,
@@ -105,6 +113,19 @@ class PrandtlIshlinskii(HysteresisOperator):
         inverse has ``input_offset = c`` and ``offset = d`` (a fitted model, whose ``offset`` is
         the output at rest, inverts with its offset included).  Starting both from the reset
         state, ``inverse().apply(apply(u)) == u``.
+
+        Raises
+        ------
+        ValueError
+            If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible).
+        """
+        if input_range is not None:
+            self.inverse_parameters()  # refuses an operator that is not strictly increasing
+            return BisectionInverse(self, input_range)
+        return ShiftedPIInverse(self)
+
+    def inverse_parameters(self) -> dict[str, Any]:
+        """Constructor parameters of the analytic inverse (see :meth:`inverse`): radii, weights, p0, offsets.
 
         Raises
         ------
@@ -126,7 +147,8 @@ class PrandtlIshlinskii(HysteresisOperator):
         inv_radii = p0 * radii + np.array(
             [float(np.sum(weights[: j + 1] * (radii[j] - radii[: j + 1]))) for j in range(radii.size)]
         )
-        return PrandtlIshlinskii(inv_radii, inv_weights, 1.0 / p0, offset=self.input_offset, input_offset=self.offset)
+        return {"radii": inv_radii, "weights": inv_weights, "p0": 1.0 / p0, "offset": self.input_offset,
+                "input_offset": self.offset}
 
     def __repr__(self) -> str:
         extra = (f", offset={self.offset!r}" if self.offset else "") + (
@@ -187,3 +209,44 @@ class PrandtlIshlinskii(HysteresisOperator):
         """
         return fit_prandtl_ishlinskii(cls, u, y, n, n_fit=n_fit, fit_mask=fit_mask, output_unit=output_unit,
                                       output_quantity=output_quantity, initial=initial)
+
+
+class ShiftedPIInverse(PrandtlIshlinskii):
+    """The analytic inverse of ``y = offset + P[u − input_offset]``: again a Prandtl-Ishlinskii operator.
+
+    What :meth:`PrandtlIshlinskii.inverse` returns: the inverse's radii, weights, ``p0`` and
+    swapped offsets (:meth:`PrandtlIshlinskii.inverse_parameters`), plus the forward model
+    (``model``, a copy: what :meth:`save` writes and :meth:`inverse` returns) and the clip
+    counters of the other inverses (always 0: every output is reachable).
+    """
+
+    def __init__(self, model: PrandtlIshlinskii) -> None:
+        if not isinstance(model, PrandtlIshlinskii):
+            raise ValueError(f"model must be a PrandtlIshlinskii, got {type(model).__name__}")
+        super().__init__(**model.inverse_parameters())
+        self.model = copy.deepcopy(model)  # the forward model, kept for save() and inverse()
+        self.model.reset()
+        self.clip_count = 0
+        self.largest_clip = 0.0
+
+    def inverse(self, input_range: tuple[float, float] | None = None) -> HysteresisOperator:
+        """The forward model (a copy at its reset state); with ``input_range`` its bisection inverse's range."""
+        if input_range is not None:
+            return BisectionInverse(self, input_range)
+        forward = copy.deepcopy(self.model)
+        forward.reset()
+        return forward
+
+    def __repr__(self) -> str:
+        return f"ShiftedPIInverse({self.model!r})"
+
+
+def _fit_pi(request: FitRequest) -> FamilyFit:
+    """The ``prandtl_ishlinskii`` family: :meth:`PrandtlIshlinskii.fit`."""
+    n_plays = request.options.get("n_plays", 20)
+    model, report = PrandtlIshlinskii.fit(request.u, request.y, n_plays, **request.rows, **request.units)
+    return FamilyFit(f"prandtl_ishlinskii ({n_plays} plays)", model, report, n_plays + 1)
+
+
+register_family("prandtl_ishlinskii", _fit_pi, inverse="analytic", operator=PrandtlIshlinskii,
+                description="weighted play operators, non-negative weights")

@@ -20,10 +20,9 @@ operator's loop is the same at every rate, the lag's phase grows with the rate.
 Why a lag, not rate-dependent weights: see :class:`~exudyn_atcm.hysteresis.dynamics.RateLag`
 (linear in the weights for each ``T``, an exact inverse, few parameters for a few rates).  The
 fitted model runs in the solver step (``PiezoDrive(..., hysteresis=model)``) and has an inverse
-for feedforward: :meth:`WithDynamics.inverse_apply
-<exudyn_atcm.hysteresis.dynamics.WithDynamics.inverse_apply>` with
-:func:`~exudyn_atcm.hysteresis.inverse.inverse_operator` of its operator (bisection on the
-Everett operator after the lag block's exact inverse).
+for feedforward: :meth:`WithDynamics.inverse()
+<exudyn_atcm.hysteresis.dynamics.WithDynamics.inverse>` (bisection on the Everett operator after
+the lag block's exact inverse).
 """
 
 from __future__ import annotations

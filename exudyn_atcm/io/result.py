@@ -36,6 +36,11 @@ class Result(Mapping):
     every_step : Result, optional
         The light columns at every accepted solver step, for a run whose record is thinned
         (see :attr:`every_step`); default: this result itself.
+    bender_columns : Result, optional
+        The same run under the column names of a mechanism's bender (a lone actuator's result: its
+        one-bender mechanism's columns ``actuator.tip_y``, ``actuator.cell_angle_1``, ...).  Those
+        names can be read (``result["actuator.tip_y"]``, :meth:`unit`, ``in``) beside the result's
+        own; they are not iterated, counted or written to files.
 
     Examples
     --------
@@ -61,6 +66,7 @@ class Result(Mapping):
         parameters: Mapping[str, Any] | None = None,
         info: Mapping[str, Any] | None = None,
         every_step: "Result | None" = None,
+        bender_columns: "Result | None" = None,
     ) -> None:
         data: dict[str, np.ndarray] = {}
         length = None
@@ -86,6 +92,11 @@ class Result(Mapping):
         if every_step is not None and not isinstance(every_step, Result):
             raise ValueError(f"every_step must be a Result or None, got {type(every_step).__name__}")
         self._every_step = every_step
+        if bender_columns is not None and (not isinstance(bender_columns, Result)
+                                           or bender_columns.n_rows != self.n_rows):
+            raise ValueError(f"bender_columns must be a Result of the same {self.n_rows} rows or None, got "
+                             f"{bender_columns!r}")
+        self._bender_columns = bender_columns
 
     @property
     def every_step(self) -> "Result":
@@ -105,7 +116,16 @@ class Result(Mapping):
         try:
             return self._series[name]
         except KeyError:
-            raise self._missing(name) from None
+            pass
+        if self._bender_columns is not None and name in self._bender_columns._series:
+            return self._bender_columns._series[name]
+        raise self._missing(name) from None
+
+    @property
+    def bender_columns(self) -> "Result":
+        """The run under a mechanism's bender column names (``actuator.tip_y``, ...; see the constructor);
+        this result itself when it is a mechanism's (its columns are those names already)."""
+        return self if self._bender_columns is None else self._bender_columns
 
     def _missing(self, name: Any) -> KeyError:
         """KeyError for an unknown series, with the closest name (a unit or component prefix is a common slip)."""
@@ -138,9 +158,11 @@ class Result(Mapping):
 
     def unit(self, name: str) -> str:
         """Unit of series ``name`` (SI; ``"-"`` if unit-free)."""
-        if name not in self._units:
-            raise self._missing(name)
-        return self._units[name]
+        if name in self._units:
+            return self._units[name]
+        if self._bender_columns is not None and name in self._bender_columns._units:
+            return self._bender_columns._units[name]
+        raise self._missing(name)
 
     @property
     def units(self) -> dict[str, str]:
@@ -248,7 +270,10 @@ class Result(Mapping):
         return pd.DataFrame({f"{n} [{self._units[n]}]": self._series[n] for n in self._series})
 
     def plot(self, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
-        """Write the standard PNG plots to ``out_dir``; see :func:`exudyn_atcm.plots.result.plot_result`."""
+        """Write the standard PNG plots of this result (a lone actuator's or a mechanism's) to ``out_dir``.
+
+        Returns the paths written; see :func:`exudyn_atcm.plots.result.plot_result`.
+        """
         from ..plots.result import plot_result
 
         return plot_result(self, out_dir, prefix=prefix)

@@ -1,12 +1,11 @@
 """The one builder: adds a :class:`~exudyn_atcm.mechanism.Mechanism` to an Exudyn ``MainSystem``.
 
 A lone :class:`~exudyn_atcm.BendingActuator` is built here too, as the one-bender mechanism it
-is (:mod:`exudyn_atcm.solve.as_mechanism`).  Each bender's cells are added by the realisation
-registered for its cell kind (:mod:`exudyn_atcm.mbs.cells`): rigid chains
-(:mod:`~exudyn_atcm.mbs.chains.rigid`), six-bar chains between real interface bodies
-(:mod:`~exudyn_atcm.mbs.chains.six_bar`), beam and ANCF chains whose end nodes join the groups
-(:mod:`~exudyn_atcm.mbs.chains.beam`, :mod:`~exudyn_atcm.mbs.chains.ancf`) and assumed modes
-(:mod:`~exudyn_atcm.mbs.chains.ritz`); the rest of this description is about rigid cells.
+is (:mod:`exudyn_atcm.solve.as_mechanism`).  The builder knows no cell kind: each bender's cells
+and ends are added by the realisation registered for its kind, through the calls of the written
+contract (:mod:`exudyn_atcm.mbs.realisation`) and the public build context the builder is
+(:mod:`exudyn_atcm.mbs.build_context`).  The package's realisations are in
+:mod:`exudyn_atcm.mbs.chains`; the rest of this description is about rigid cells.
 
 Model (planar, SI units):
 
@@ -43,27 +42,23 @@ import numpy as np
 from exudyn import itemInterface as ii
 
 from ..mechanism.assembly import Mechanism
-from ..mechanism.bender import PASSIVE_STRIP_CELLS, Bender
-from ..mechanism.connections import Pin, Slider, joint_label
+from ..mechanism.bender import Bender, passive_strip_cells
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
 from .actuation import realise_actuation
+from .build_context import BuildContext
 from .layout import check_end_connections, part_of, rigid_groups
 from .items import NOVIS as _NOVIS
 from .items import add_body as _add_body
 from .items import local_point
-from .items import position_marker as _marker_position
 from .items import rigid_marker as _rigid_marker
-from .model import Body, Element, EndReadout, Hinge, MechanismModel
+from .model import Body, Element, MechanismModel
 from .graphics import part_graphics, shift_graphics
-from .loads import add_loads
-from ..cells import END_CHAIN, END_NODE
+from .connection_context import ConnectionContext, realise_connections
 from . import chains
-from .cells import add_mechanism_bender
-from .chains.six_bar import six_bar_end_mass
-from .node_chain import beam_end_key, weld_node
 from .mass_damping import MassDampers, part_mass_damping_factor
+from .realisation import make_realisation
 from .redundancy import CELLS_LABEL, end_label, labelled, refuse_redundant
 
 #: The cell kinds' realisation modules (:mod:`exudyn_atcm.mbs.chains`), imported and so registered with it.
@@ -72,16 +67,12 @@ REALISATIONS = chains.MODULES
 
 # ---------------------------------------------------------------------------- building
 
-class _Builder:
+class _Builder(BuildContext):
     def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False,
                  stroke_path: str = "prestep", package_solves: bool = False) -> None:
-        self.mbs = mbs
+        super().__init__(mbs, mech, MechanismModel(mechanism=mech, mbs=mbs, stroke_path=stroke_path), package_solves)
         self.mech = mech
         self.free_end_bodies = free_end_bodies
-        #: only the package's runs solve this system (they apply ``model.settings_adjusters``); False
-        #: after :func:`~exudyn_atcm.add_to`, whose user may solve with any settings
-        self.package_solves = package_solves
-        self.model = MechanismModel(mechanism=mech, mbs=mbs, stroke_path=stroke_path)
         self.ground_item = ground_item
         sources: list = []
         for name, drive in mech.drives.items():
@@ -93,13 +84,6 @@ class _Builder:
                 self.model.drive_source[name] = len(sources)
                 sources.append(drive)
         self.model.sources = sources
-        self.n_sources = len(sources)
-        #: per rigid-cell bender: (theta(j), moment_full(j), EI, beta, cell lengths), for its end springs
-        self.cell_rotations: dict[str, tuple] = {}
-        self._clamped: set[str] = set()  # beam nodes clamped to the ground (no actuation torque)
-
-    def zeros(self) -> np.ndarray:
-        return np.zeros(self.n_sources)
 
     def _labelled(self, label: str):
         """Label the objects added inside this ``with`` block as realising ``label`` (redundancy messages)."""
@@ -113,38 +97,50 @@ class _Builder:
             if bender.cell.needs_active_layer and bender.active is None:
                 raise MechanismError(
                     f"bender {bender.name!r}: the {bender.cell.name} cell models two layers; a passive strip "
-                    f"(active=None) needs {' or '.join(f'cell={n!r}' for n in PASSIVE_STRIP_CELLS)}")
+                    f"(active=None) needs {' or '.join(f'cell={n!r}' for n in passive_strip_cells())}")
+            self.realisations[bender.name] = make_realisation(bender)
         if self.ground_item is None:
             self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
                                                                             'graphicsData': []}))
         gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
-        self.gcoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
-        self.dampers = MassDampers(mbs, self.ground_item, self.gcoord)
+        self.ground_coordinate = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+        self.dampers = MassDampers(mbs, self.ground_item, self.ground_coordinate)
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
-        six_bar = {b.name for b in mech.benders if b.cell.end_kind == END_CHAIN}
-        beam = {b.name for b in mech.benders if b.cell.end_kind == END_NODE}
-        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, six_bar, beam)
+        on_group_body = {name for name, r in self.realisations.items() if r.ends_on_group_body}
+        node_ends = {name for name, r in self.realisations.items() if r.ends_are_nodes}
+        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, on_group_body, node_ends)
         check_end_connections(mech, self.groups, self.group_of, self.free_end_bodies)
         self._group_bodies()
         for bender in mech.benders:
             with self._labelled(CELLS_LABEL.format(name=bender.name)):
-                self._bender_cells(bender)
+                self.realisations[bender.name].add_cells(self)
         for key, g in self.groups.items():
-            if g.kind == "beam-node":  # the group's body is the first beam end's node
-                name, _, end = next(p for p in g.interfaces if p.partition("#")[0] in beam).partition("#")
-                model.bodies[key] = model.bodies[beam_end_key(mech.components[name], end)]
+            if g.kind == "beam-node":  # the group's body is the first node end among its parts
+                keys = (self._end_body_key(p) for p in g.interfaces)
+                model.bodies[key] = model.bodies[next(k for k in keys if k is not None)]
         self._anchor_points()
-        self._end_hinges()
-        for j in mech.joints:
-            with self._labelled(joint_label(j)):
-                if isinstance(j, Pin):
-                    self._pin(j)
-                elif isinstance(j, Slider):
-                    self._slider(j)
+        for bender in mech.benders:
+            for end in ("base", "tip"):
+                with self._labelled(end_label(mech, bender, end)):
+                    self.realisations[bender.name].connect_end(self, end)
+        context = ConnectionContext(model, self.ground_coordinate, self._pin, self._slider)
+        # joints with the bodies (their springs join the hinges'), then the loads and other connections
+        realise_connections(context, mech.joints, self._labelled)
         self._flexure_pivots()
-        self._realise_hinges()
-        add_loads(mbs, mech, model)
+        for realisation in self.realisations.values():
+            writer, hook = realisation.strain_writer(), realisation.linearisation_hook()
+            if writer is not None:
+                self.add_strain_writer(writer)
+            if hook is not None:
+                self.add_linearisation_hook(hook)
+        realise_actuation(mbs, mech, model, self.ground_coordinate, self.zeros, self.clamped)
+        realise_connections(context, [c for c in mech.connections if not c.holds], self._labelled)
         return model
+
+    def _end_body_key(self, part: str) -> str | None:
+        name, _, end = part.partition("#")
+        realisation = self.realisations.get(name)
+        return realisation.end_body_key(end) if realisation is not None else None
 
     def _flexure_pivots(self) -> None:
         """The pseudo-rigid-body flexures' characteristic pivots: a hinge with the spring ``K``."""
@@ -156,7 +152,7 @@ class _Builder:
                 k = comp.torsion_stiffness
                 el = Element(k, comp.stiffness_damping_factor * k, self.zeros(), self.zeros())
                 with self._labelled(f"the pivot of flexure {comp.name!r}"):
-                    self._hinge_at(a, b, [el], comp.pivot)
+                    self.hinge_at(a, b, [el], comp.pivot)
 
     def _group_bodies(self) -> None:
         model = self.model
@@ -171,10 +167,8 @@ class _Builder:
                 continue
             masses, graphics, damped = [], [], []
             for part in g.parts:
-                # a rigid-cell end's interface mass only where nothing else carries the bender end
-                if g.kind == "body" and part in g.interfaces and not self._is_six_bar(part):
-                    continue
-                own = self._part_masses(part)
+                # a bender end carried by the group's other parts adds what its realisation says
+                own = self._part_masses(part, carried=g.kind == "body")
                 masses += own
                 damped += [(part_mass_damping_factor(self.mech, part), mm, j, c) for mm, j, c in own]
                 graphics += part_graphics(self.mech, part)
@@ -184,10 +178,10 @@ class _Builder:
             local_graphics = [shift_graphics(gd, -com) for gd in graphics]
             model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
             for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre
-                self.dampers.add(model.bodies[key], alpha, mm, j, c - com)
+                self.add_mass_damping(model.bodies[key], alpha, mm, j, c - com)
 
-    def _part_masses(self, part: str) -> list[tuple[float, float, np.ndarray]]:
-        """(mass, inertia about own centre, centre) of a rigid part."""
+    def _part_masses(self, part: str, carried: bool = False) -> list[tuple[float, float, np.ndarray]]:
+        """(mass, inertia about own centre, centre) of a rigid part; a bender end's from its realisation."""
         if part == GROUND:
             return []
         name, _, end = part.partition("#")
@@ -196,58 +190,28 @@ class _Builder:
             return [(comp.mass, comp.inertia, np.array(comp.center_of_mass))]
         if isinstance(comp, Flexure) and comp.model == "prbm":
             return [comp.segment_masses()[0 if end == "base" else 1]]
-        bender = comp if isinstance(comp, Bender) else comp.as_bender()
-        if bender.cell.end_kind == END_CHAIN:
-            m, j, center, _ = six_bar_end_mass(bender, end)
-            return [(m, j, center)]
-        # a rigid-cell end's interface body: the laminate over s = min(h1 + h2, L_c/10)
-        lam = bender.laminate
-        lc = float(bender.cell_lengths[0 if end == "base" else -1])
-        h = lam.passive.thickness + (lam.active.thickness if lam.active is not None else 0.0)
-        s = lam.interface_length(lc)
-        m = lam.mass_per_length * s
-        return [(m, m * (s**2 + h**2) / 12.0, np.array(bender.points[end]))]
+        return self._end_realisation(comp).end_masses(end, carried)
 
-    def _is_six_bar(self, part: str) -> bool:
-        comp = self.mech.components[part.partition("#")[0]]
-        return isinstance(comp, Bender) and comp.cell.end_kind == END_CHAIN
+    def _end_realisation(self, comp):
+        """The realisation of a bender (or a cells flexure's bender)."""
+        if comp.name in self.realisations:
+            return self.realisations[comp.name]
+        return make_realisation(comp if isinstance(comp, Bender) else comp.as_bender())
 
     def _interface_body(self, key: str, part: str) -> Body:
         """A bender end's own interface body: node at the end point, the bender's reference angle."""
         name, _, end = part.partition("#")
         comp = self.mech.components[name]
-        bender = comp if isinstance(comp, Bender) else comp.as_bender()
-        point = bender.points[end]
-        if bender.cell.end_kind == END_CHAIN:
-            m, j, _, offset = six_bar_end_mass(bender, end)
-            com = (0.0, -bender.curvature_sign * offset)
-        else:
-            (m, j, _), = self._part_masses(part)
-            com = (0.0, 0.0)
-        body = _add_body(self.mbs, key, point, bender.angle, m, j, com, [])
-        self.dampers.add(body, bender.mass_damping_factor, m, j, com)
+        realisation = self._end_realisation(comp)
+        bender = realisation.bender
+        m, j, com = realisation.interface_body_mass(end)
+        body = _add_body(self.mbs, key, bender.points[end], bender.angle, m, j, com, [])
+        self.add_mass_damping(body, bender.mass_damping_factor, m, j, com)
         return body
-
-    # ---------------------------------------------------------------- benders
-    def _bender_cells(self, bender: Bender) -> None:
-        """The bender's cells, as its cell kind's registered realisation adds them (:mod:`~exudyn_atcm.mbs.cells`)."""
-        add_mechanism_bender(bender.cell, self, bender)
 
     def end_element(self, bender_name: str, end: str) -> tuple[Element, str, tuple[float, float]]:
         """The end spring of a bender end: element, end cell key, the end point in the cell's frame."""
-        theta, moment_full, ei, beta, lengths = self.cell_rotations[bender_name]
-        j = 0 if end == "base" else len(lengths) - 1
-        k = 2.0 * ei / lengths[j]
-        el = Element(k, beta * k, theta(j), moment_full(j))
-        cell = self.model.cells[bender_name][j]
-        local = (-lengths[j], 0.0) if end == "base" else (0.0, 0.0)
-        return el, cell, local
-
-    def revolute(self, a: Body, la, b: Body, lb) -> None:
-        """A revolute joint between point ``la`` of ``a`` and ``lb`` of ``b`` (body frames)."""
-        self.mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[_marker_position(self.mbs, a, la),
-                                                                   _marker_position(self.mbs, b, lb)],
-                                                    visualization=_NOVIS))
+        return self.realisations[bender_name].end_spring(self, end)
 
     # ---------------------------------------------------------------- points
     def _anchor_points(self) -> None:
@@ -268,140 +232,53 @@ class _Builder:
                     _, cell, local = self.end_element(comp.name, pname)
                     model.anchors[str(ref)] = (cell, np.array(local, dtype=float))
 
-    # ---------------------------------------------------------------- hinges at bender ends
-    def _end_hinges(self) -> None:
-        for bender in self.mech.benders:
-            for end in ("base", "tip"):
-                with self._labelled(end_label(self.mech, bender, end)):
-                    self._end_hinge(bender, end)
-
-    def _end_hinge(self, bender: Bender, end: str) -> None:
-        """The hinge (or weld) joining one bender end to the rest of the mechanism."""
-        model = self.model
-        part = f"{bender.name}#{end}"
-        g = self.groups[self.group_of[part]]
-        label = f"{bender.name}.{end}"
-        if bender.cell.end_kind == END_CHAIN:  # the chain ends on the group's body itself
-            model.ends[label] = EndReadout("body", body=g.key)
-            return
-        if bender.cell.end_kind == END_NODE:  # the end node, welded to its group's body unless it is that body
-            key = beam_end_key(bender, end)
-            node, body = model.bodies[key], model.bodies[g.key]
-            if body is not node:
-                if node.weld is not None:  # the kind's own weld (ANCF slope, assumed modes)
-                    node.weld(self.mbs, body, self.gcoord)
-                else:
-                    weld_node(self.mbs, node, body, self.gcoord)
-                if body.node is None:
-                    self._clamped.add(key)
-            model.ends[label] = EndReadout("body", body=key)
-            return
-        el, cell, _ = self.end_element(bender.name, end)
-        if g.kind != "virtual":
-            a, b = (cell, g.key) if end == "tip" else (g.key, cell)
-            self._hinge_at(a, b, [el], bender.points[end])
-            model.ends[label] = EndReadout("body", body=g.key)
-        elif not g.joints and len(g.interfaces) == 1:
-            sign = 1.0 if end == "tip" else -1.0
-            model.ends[label] = EndReadout("free", body=cell, sign=sign, theta=el.theta)
-        elif not g.joints and part == g.interfaces[0]:
-            # two ends welded together: one hinge from the first end cell to the second
-            self._chain(g.interfaces[0], None, g.interfaces[1], bender.points[end])
-
-    def _chain(self, side_a: str, link: Element | None, side_b: str, position) -> None:
-        """A hinge from ``side_a`` to ``side_b`` (body keys, or ``"bender#end"`` for virtual interfaces)
-        through the interfaces' end springs and ``link`` (a pin's spring; ``None`` for a weld)."""
-        model = self.model
-        els: list[Element] = []
-        # A side
-        if self._virtual(side_a):
-            name, end = side_a.split("#")
-            el, cell_a, _ = self.end_element(name, end)
-            # tip on the A side: the interface turns +theta from the cell; base: -theta
-            els.append(el if end == "tip" else _flipped(el))
-            a_key, a_node = cell_a, (f"{name}.{end}", 1)
-        else:
-            a_key, a_node = side_a, None
-        if link is not None:
-            els.append(link)
-        if self._virtual(side_b):
-            name, end = side_b.split("#")
-            el, cell_b, _ = self.end_element(name, end)
-            els.append(el if end == "base" else _flipped(el))
-            b_key, b_node = cell_b, (f"{name}.{end}", len(els) - 1)
-        else:
-            b_key, b_node = side_b, None
-        index = self._hinge_at(a_key, b_key, els, position)
-        for node in (a_node, b_node):
-            if node is not None:
-                model.ends[node[0]] = EndReadout("hinge", hinge=index, node=node[1])
-
-    def _hinge_at(self, a: str, b: str, elements: list[Element], position) -> int:
-        body_a, body_b = self.model.bodies[a], self.model.bodies[b]
-        self.revolute(body_a, local_point(body_a, position), body_b, local_point(body_b, position))
-        self.model.hinges.append(Hinge(a, b, elements))
-        return len(self.model.hinges) - 1
-
     # ---------------------------------------------------------------- joints
-    def _virtual(self, side: str) -> bool:
-        """True if ``side`` is a bender-end part of a virtual group (not a body key)."""
-        return side in self.group_of and self.groups[self.group_of[side]].kind == "virtual"
-
     def _side(self, ref: PointRef | None) -> str:
         """Group key, or the interface part if ``ref`` is a virtual bender end."""
         part = part_of(self.mech, ref)
         g = self.groups[self.group_of[part]]
         return part if g.kind == "virtual" else g.key
 
-    def _movable(self, j, side_a: str, side_b: str) -> None:
+    def _movable(self, label: str, side_a: str, side_b: str) -> None:
         """Refuse a joint between two points of one rigid group (welded together): it could not move."""
         if side_a == side_b:
             group = self.groups[self.group_of[side_a]] if side_a in self.group_of else self.groups[side_a]
             parts = ", ".join(sorted(p.replace("#", ".") for p in group.parts))
             raise MechanismError(
-                f"{joint_label(j)} joins two points of one rigid group (welded together: {parts}); it cannot "
+                f"{label} joins two points of one rigid group (welded together: {parts}); it cannot "
                 "move. Remove the joint or one of the welds")
 
-    def _pin(self, j: Pin) -> None:
-        side_a, side_b = self._side(j.p), self._side(j.q)
-        self._movable(j, side_a, side_b)
-        k = j.stiffness
-        pin_el = Element(k, j.damping, self.zeros(), self.zeros())
-        self._chain(side_a, pin_el, side_b, self.mech.position(j.p))
+    def _pin(self, p: PointRef, q: PointRef | None, stiffness: float, damping: float, label: str) -> None:
+        side_a, side_b = self._side(p), self._side(q)
+        self._movable(label, side_a, side_b)
+        pin_el = Element(stiffness, damping, self.zeros(), self.zeros())
+        self.join_in_series(side_a, pin_el, side_b, self.mech.position(p))
 
-    def _slider(self, j: Slider) -> None:
+    def _slider(self, p: PointRef, q: PointRef | None, axis: tuple[float, float], stiffness: float, damping: float,
+                label: str) -> None:
         mbs, model = self.mbs, self.model
-        a, b = self._side(j.p), self._side(j.q)
-        self._movable(j, a, b)
+        a, b = self._side(p), self._side(q)
+        self._movable(label, a, b)
         body_a, body_b = model.bodies[a], model.bodies[b]
-        pos = self.mech.position(j.p)
-        pos_q = pos if j.q is None else self.mech.position(j.q)
+        pos = self.mech.position(p)
+        pos_q = pos if q is None else self.mech.position(q)
         la, lb = local_point(body_a, pos), local_point(body_b, pos_q)
         ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
         cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
-        ax, ay = j.axis
+        ax, ay = axis
         axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
         normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
         ma, mb = _rigid_marker(mbs, body_a, la), _rigid_marker(mbs, body_b, lb)
         mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
                                                 constrainRotation=True, visualization=_NOVIS))
-        if j.stiffness > 0.0 or j.damping > 0.0:
+        if stiffness > 0.0 or damping > 0.0:
             # the sliding coordinate: relative translation along the axis (zero in the reference pose)
             coord = mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
                 bodyNumbers=[body_a.item, body_b.item], localPosition0=[la[0], la[1], 0.0],
                 localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
             item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
-                markerNumbers=[self.gcoord, coord], stiffness=j.stiffness, damping=j.damping, visualization=_NOVIS))
-            model.springs.append((item, j.stiffness, "damping"))
-
-    # ---------------------------------------------------------------- springs of the hinges, actuation torques
-    def _realise_hinges(self) -> None:
-        """The hinges' springs and how the strains reach the system (:mod:`~exudyn_atcm.mbs.actuation`)."""
-        realise_actuation(self.mbs, self.mech, self.model, self.gcoord, self.zeros, self._clamped)
-
-
-def _flipped(el: Element) -> Element:
-    return Element(el.stiffness, el.damping, -el.theta, -el.moment)
+                markerNumbers=[self.ground_coordinate, coord], stiffness=stiffness, damping=damping, visualization=_NOVIS))
+            model.springs.append((item, stiffness, "damping"))
 
 
 def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,

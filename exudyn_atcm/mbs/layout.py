@@ -25,7 +25,6 @@ from dataclasses import dataclass, field
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
-from ..mechanism.connections import Pin, Slider, Weld
 from ..mechanism.flexure import Flexure
 from ..mechanism.link import Link
 from ..mechanism.points import GROUND, MechanismError, PointRef
@@ -89,7 +88,7 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
         return a
 
     for j in mech.joints:
-        if isinstance(j, Weld):
+        if j.fuses:
             a, b = find(part_of(mech, j.p)), find(part_of(mech, j.q))
             if a != b:
                 # keep the ground as the root so that its group key is "ground"
@@ -103,7 +102,7 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
         groups.setdefault(root, Group(root)).parts.append(p)
         group_of[p] = root
     for j in mech.joints:
-        if isinstance(j, Weld):
+        if j.fuses:
             continue
         for ref in (j.p, j.q):
             g = groups[group_of[part_of(mech, ref)]]
@@ -117,9 +116,9 @@ def rigid_groups(mech: Mechanism, free_end_bodies: bool = False,
         elif others or any(p.partition("#")[0] in six_bar for p in ifaces):
             g.kind = "body"
         elif any(p.partition("#")[0] in beam for p in ifaces):
-            g.kind = "interface-body" if any(isinstance(j, Slider) for j in g.joints) else "beam-node"
+            g.kind = "interface-body" if any(j.kind == "slider" for j in g.joints) else "beam-node"
         elif (len(ifaces) == 1 and not g.joints and not free_end_bodies) or \
-                (len(ifaces) == 1 and len(g.joints) == 1 and isinstance(g.joints[0], Pin)) or \
+                (len(ifaces) == 1 and len(g.joints) == 1 and g.joints[0].kind == "pin") or \
                 (len(ifaces) == 2 and not g.joints):
             g.kind = "virtual"
         else:
@@ -155,8 +154,7 @@ def check_end_connections(mech: Mechanism, groups: dict[str, Group], group_of: d
             refusal = bender.cell.end_refusal(end, connection)
             if refusal is not None:
                 raise MechanismError(f"bender {bender.name!r}: {refusal}")
-    loaded = [(f.name, f.point) for f in mech.forces] + [(s.name, s.p) for s in mech.springs] + \
-        [(s.name, s.q) for s in mech.springs] + [(s.name, s.point) for s in mech.stops]
+    loaded = [(c.name, ref) for c in mech.connections if c.loads_points for ref in c.points()]
     for name, ref in loaded:
         comp = mech.components.get(ref.component) if ref is not None else None
         refusal = comp.cell.tip_load_refusal() if isinstance(comp, Bender) else None

@@ -11,7 +11,6 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
-import exudyn as exu
 import numpy as np
 
 from ..mechanism.assembly import Mechanism
@@ -135,6 +134,8 @@ class MechanismModel:
     motor_offsets: list[tuple[int, float, int]] = field(default_factory=list)  # six-bar: (item, L_c, source)
     loads: list[LoadRecord] = field(default_factory=list)
     spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
+    # the connections' recorded columns and their readers (ConnectionContext.add_readout), in column order
+    readouts: list[tuple[Any, Callable[[], Any]]] = field(default_factory=list)
     ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
     cells: dict[str, list[str]] = field(default_factory=dict)   # bender -> its cell body keys
     # beam benders: cells[name] holds the N + 1 node keys; a cell's angle is the mean of its nodes'
@@ -378,31 +379,25 @@ class MechanismModel:
 
     # ------------------------------------------------------------------ connectors
     def connector_names(self) -> list[str]:
-        """Names of the springs and stops, in the order of :meth:`connector_forces`."""
-        return list(self.spring_items)
+        """The connections' recorded columns (without unit), in the order of :meth:`connector_forces`."""
+        return [r.column for r, _ in self.readouts]
+
+    def connector_units(self) -> list[str]:
+        """The units of :meth:`connector_names`."""
+        return [r.unit for r, _ in self.readouts]
 
     def connector_forces(self) -> list[float]:
-        """Force [N] of every spring (tension positive) and stop (compression positive) now."""
-        if self._connectors is None or self._connectors[0] != len(self.spring_items):
-            self._connectors = (len(self.spring_items), self.connector_reader())
+        """Every connection's recorded value now (springs' tension [N], stops' compression [N], ...)."""
+        if self._connectors is None or self._connectors[0] != len(self.readouts):
+            self._connectors = (len(self.readouts), self.connector_reader())
         return self._connectors[1]()
 
     def connector_reader(self) -> Callable[[], list[float]]:
         """A function giving :meth:`connector_forces`, its plan made once (a run calls it every step)."""
-        normals = {s.name: tuple(map(float, s.normal)) for s in self.mechanism.stops}
-        plan = [(item, normals.get(name)) for name, item in self.spring_items.items()]
-        get = self.mbs.GetObjectOutput
-        force_type, along_type = exu.OutputVariableType.Force, exu.OutputVariableType.ForceLocal
+        readers = [read for _, read in self.readouts]
 
         def read() -> list[float]:
-            out = []
-            for item, normal in plan:
-                if normal is None:  # a spring-damper's force along its axis, tension positive: one call
-                    out.append(float(get(item, along_type)))
-                else:
-                    force = get(item, force_type).tolist()  # Python floats: cheaper than numpy for 3 components
-                    out.append(-(force[0] * normal[0] + force[1] * normal[1]))
-            return out
+            return [float(r()) for r in readers]
 
         return read
 

@@ -1,4 +1,4 @@
-"""Chains whose ends are nodes (``END_NODE`` cell kinds: beam, ANCF and Ritz benders): what the builder
+"""Chains whose ends are nodes (beam, ANCF, assumed-mode and rod benders: :class:`NodeEnds`): what the builder
 and the kinds' realisations share.
 
 The bender's nodes are registered in the model's bodies under :func:`beam_node_key`; an end node
@@ -17,10 +17,28 @@ from exudyn import itemInterface as ii
 
 from ..mechanism.bender import Bender
 from .items import NOVIS, position_marker, rotation_marker
-from .model import Body, MechanismModel
+from .model import Body, EndReadout, MechanismModel
+from .realisation import CellRealisation
 
-__all__ = ["beam_node_key", "beam_end_key", "node_positions", "register_element_chain", "actuation_torques",
-           "reference_curvatures", "weld_node"]
+__all__ = ["NodeEnds", "beam_node_key", "beam_end_key", "node_positions", "register_element_chain",
+           "actuation_torques", "reference_curvatures", "weld_node"]
+
+
+class NodeEnds(CellRealisation):
+    """Ends that are nodes of the bender (keys :func:`beam_end_key`): welded to the body of their group, or
+    that body themselves (a group of bender ends only); a node clamped to the ground gets no actuation torque."""
+
+    ends_are_nodes = True
+
+    def end_body_key(self, end: str) -> str | None:
+        return beam_end_key(self.bender, end)
+
+    def connect_end(self, ctx, end: str) -> None:
+        key = beam_end_key(self.bender, end)
+        node, body = ctx.body(key), ctx.group_body(self.bender, end)
+        if body is not node:
+            ctx.weld_node(node, body)
+        ctx.set_end_readout(self.bender, end, EndReadout("body", body=key))
 
 
 def beam_node_key(bender: Bender, i: int) -> str:
@@ -42,19 +60,17 @@ def node_positions(bender: Bender) -> list[np.ndarray]:
     return [x0 + si * d for si in s[:-1]] + [np.array(bender.points["tip"], dtype=float)]
 
 
-def register_element_chain(model: MechanismModel, bender: Bender, keys: list[str], items: list[int]) -> None:
-    """Register a chain of beam or ANCF elements: its node keys as the bender's cells (a cell's angle is
-    the mean of its nodes'), its elements, and the Newton tolerances its stiff axis needs."""
-    model.cells[bender.name] = keys
-    model.elements[bender.name] = items
-    model.beam_benders.add(bender.name)
+def register_element_chain(ctx, bender: Bender, keys: list[str], items: list[int]) -> None:
+    """Register a chain of beam or ANCF elements through the build context ``ctx``: its node keys as the bender's
+    cells (a cell's angle is the mean of its nodes'), its elements, and the Newton tolerances its stiff axis needs."""
+    ctx.add_element_chain(bender, keys, items)
     # an axial force EA/L_c du resolves positions only to round-off eps L: its residual floor is
     # ~eps (EA/L_c) L; 10x that is the smallest reachable Newton tolerance, and the static solves
     # need the relative tolerance 1e-10 there
     ea = bender.laminate.axial_rigidity
     floor = 10.0 * np.finfo(float).eps * ea / float(np.min(bender.cell_lengths)) * bender.length
-    model.newton_tolerance_floor = max(model.newton_tolerance_floor, floor)
-    model.static_relative_tolerance = 1e-10
+    ctx.raise_newton_tolerance_floor(floor)
+    ctx.set_static_relative_tolerance(1e-10)
 
 
 def actuation_torques(model: MechanismModel, bender: Bender, zeros) -> dict[str, np.ndarray]:

@@ -5,8 +5,9 @@ Columns (``name [unit]``): ``time [s]``; per drive ``{drive}.voltage [V]`` and
 ``{link}.angle [rad]`` (rotation from the reference pose); per bender and flexure
 ``{comp}.base_angle``, ``{comp}.tip_angle`` and ``{comp}.cell_angle_{j}`` [rad] (absolute
 direction of the axis; the reference value is the component's angle; a pseudo-rigid-body
-flexure has two "cells", its segments); per spring and stop ``{name}.force [N]`` (tension
-positive for springs, compression positive for stops).
+flexure has two "cells", its segments); the columns each connection declares
+(:meth:`~exudyn_atcm.mechanism.connection.Connection.readouts`, e.g. per spring and stop
+``{name}.force [N]``: tension positive for springs, compression positive for stops).
 """
 
 from __future__ import annotations
@@ -23,41 +24,12 @@ from ..errors import SolverError
 from .model import MechanismModel
 
 
-class Rows:
-    """Accepted states: time, voltages and strains per source, ODE2 coordinates, spring forces."""
-
-    def __init__(self, model: MechanismModel) -> None:
-        self.model = model
-        self.times: list[float] = []
-        self.volts: list[np.ndarray] = []
-        self.strains: list[np.ndarray] = []
-        self.q: list[np.ndarray] = []
-        self.forces: list[list[float]] = []
-
-    def add(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
-        """Record the model's current state (coordinates copied, spring and stop forces) at time ``t`` [s]."""
-        self.times.append(t)
-        self.volts.append(np.array(volts, dtype=float))
-        self.strains.append(np.array(strains, dtype=float))
-        self.q.append(np.array(self.model.coordinates()))
-        self.forces.append(self.model.connector_forces())
-
-    def last_time(self) -> float:
-        return self.times[-1] if self.times else 0.0
-
-    def result(self, info: dict, base: tuple[str, str] = ("time", "s")) -> Result:
-        """The recorded rows as a :class:`Result`; ``base`` names the first column and its unit."""
-        return make_result(self.model, np.array(self.times), np.array(self.volts).reshape(len(self.times), -1),
-                           np.array(self.strains).reshape(len(self.times), -1), np.array(self.q),
-                           np.array(self.forces).reshape(len(self.times), -1), info, base=base)
-
-
 class RowLayout:
     """Where time, voltages, strains, coordinates and forces sit in one flat row of floats.
 
     A mechanism run records each accepted step as one row ``t, volts (one per source), strains
     (one per source), ODE2 coordinates, spring and stop forces``
-    (:class:`~exudyn_atcm.solve.step_record.StepRecord`); this object cuts rows back into
+    (:class:`~exudyn_atcm.mbs.step_record.StepRecord`, written by :class:`~exudyn_atcm.mbs.stepping.Stepping`); this object cuts rows back into
     those parts and makes the :class:`Result` of them.
     """
 
@@ -65,7 +37,7 @@ class RowLayout:
         self.model = model
         self.n_sources = len(model.sources)
         self.n_coordinates = len(model.coordinates())
-        self.n_forces = len(model.spring_items)
+        self.n_forces = len(model.readouts)
         self.width = 1 + 2 * self.n_sources + self.n_coordinates + self.n_forces
         self._every_names: list[str] | None = None
         self._every_units: list[str] | None = None
@@ -76,10 +48,11 @@ class RowLayout:
         return (rows[:, 0], rows[:, 1:1 + ns], rows[:, 1 + ns:1 + 2 * ns], rows[:, 1 + 2 * ns:1 + 2 * ns + nq],
                 rows[:, 1 + 2 * ns + nq:])
 
-    def result(self, rows: np.ndarray, times: np.ndarray, info: dict, every_step: Result | None = None) -> Result:
-        """The :class:`Result` of ``rows`` with the (snapped) ``times`` [s]."""
+    def result(self, rows: np.ndarray, times: np.ndarray, info: dict, every_step: Result | None = None,
+               base: tuple[str, str] = ("time", "s")) -> Result:
+        """The :class:`Result` of ``rows`` with the (snapped) ``times`` [s] (``base``: as for :func:`make_result`)."""
         _, volts, strains, q, forces = self.parts(rows)
-        return make_result(self.model, times, volts, strains, q, forces, info, every_step=every_step)
+        return make_result(self.model, times, volts, strains, q, forces, info, base=base, every_step=every_step)
 
     def every_step_columns(self, rows: np.ndarray, times: np.ndarray) -> np.ndarray:
         """Every column but the cell angles, of ``rows`` with ``times`` [s], as a 2-D array."""
@@ -218,8 +191,8 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
         units[f"{c}.base_angle"] = units[f"{c}.tip_angle"] = "rad"
         for j, values in enumerate(cells):
             series[f"{c}.cell_angle_{j + 1}"], units[f"{c}.cell_angle_{j + 1}"] = values, "rad"
-    for k, name in enumerate(model.connector_names()):
-        series[f"{name}.force"], units[f"{name}.force"] = forces[:, k], "N"
+    for k, (name, unit) in enumerate(zip(model.connector_names(), model.connector_units())):
+        series[name], units[name] = forces[:, k], unit
     info = dict(info)
     info.setdefault("exudyn_version", runs.exudyn_version())
     result = Result(series, units, parameters=mech.parameters(), info=info, every_step=every_step)

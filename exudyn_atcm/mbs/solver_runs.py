@@ -32,6 +32,7 @@ class SolvableModel(Protocol):
 
     mbs: Any
     uf_strains: Any
+    sources: list
     springs: list
     newton_tolerance_floor: float
     static_relative_tolerance: float | None
@@ -148,6 +149,37 @@ def set_current_as_initial(model: SolvableModel, zero_velocity: bool = False) ->
         zeros = np.zeros(n)
         mbs.systemData.SetODE2Coordinates_t(zeros, configuration=exu.ConfigurationType.Initial)
         mbs.systemData.SetODE2Coordinates_tt(zeros, configuration=exu.ConfigurationType.Initial)
+
+
+_RESTORED = (exu.ConfigurationType.Initial, exu.ConfigurationType.Current, exu.ConfigurationType.StartOfStep)
+
+
+def save_state(model: SolvableModel) -> list:
+    """The system's initial state (every coordinate, velocity, algebraic and data coordinate), for :func:`restore_state`."""
+    sd = model.mbs.systemData
+    state = sd.GetSystemState(configuration=exu.ConfigurationType.Initial)
+    return [np.array(v, dtype=float) for v in state] + [np.array(sd.GetODE2Coordinates_tt(
+        configuration=exu.ConfigurationType.Initial), dtype=float)]
+
+
+def restore_state(model: SolvableModel, saved: list) -> None:
+    """Put a state :func:`save_state` took back as the initial, current and start-of-step state at time 0.
+
+    The actuation and loads are reset too: zero strains, load factor 1, no static path, the loads
+    written at ``t = 0``; a built model is then as :func:`~exudyn_atcm.mbs.builder.build` left it.
+    """
+    sd = model.mbs.systemData
+    state, accelerations = [v.copy() for v in saved[:-1]], saved[-1]
+    for cfg in _RESTORED:
+        sd.SetSystemState(systemStateList=state, configuration=cfg)
+        sd.SetODE2Coordinates_tt(accelerations.copy(), configuration=cfg)
+        sd.SetTime(0.0, cfg)
+    n = len(model.sources)
+    model.uf_strains = None
+    model.path_from, model.path_to = np.zeros(n), np.zeros(n)
+    model.ramp_loads, model.load_factor, model.time = True, 1.0, 0.0
+    model.set_strains(np.zeros(n))
+    model.scale_loads(1.0)
 
 
 def reset_to_reference(model: SolvableModel) -> None:

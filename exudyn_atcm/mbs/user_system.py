@@ -3,7 +3,8 @@
 The convention of ``exudyn.robotics`` and ``exudyn.beams``: :func:`add_to` adds the items to
 ``mbs`` and returns a handle with markers for the user's joints, the body numbers and
 sensors.  The drives' hysteresis runs in the step through :class:`~exudyn_atcm.mbs.hooks.StepHooks`
-(trial in ``PreStep``, commit in ``PostStep``), so any solver the user calls
+(trial in ``PreStep``, commit and record in ``PostStep``, by the same
+:class:`~exudyn_atcm.mbs.stepping.Stepping` as the package's own solves), so any solver the user calls
 (``mbs.SolveDynamic``, ``exudyn.SolveStatic``...) takes the voltage programs into account.
 
 An error a voltage program or controller raises in those hooks reaches the user through Exudyn,
@@ -27,14 +28,13 @@ from ..mechanism.bender import Bender
 from ..mechanism.build_cost import warn_if_large
 from ..mechanism.points import MechanismError, PointRef, closest
 from ..io.result import Result
-from ..model.strain_sources import InStepStrain
 from .builder import add_mechanism
 from .hooks import add_post_step, add_pre_step
 from .items import position_marker, rigid_marker
 from .model import MechanismModel
 from .tolerance_floor import ToleranceFloor
-from .recording import make_result
-from ..errors import SetupWarning, annotate
+from .stepping import Stepping
+from ..errors import SetupWarning
 
 #: Key in ``mbs.variables``: the component names already added by :func:`add_to`.
 ADDED_VARIABLE = "exudyn_atcm.added_components"
@@ -62,13 +62,13 @@ class MechanismHandle:
         (:class:`~exudyn_atcm.mbs.tolerance_floor.ToleranceFloor`); 0 without beam cells.
     """
 
-    def __init__(self, mechanism: Mechanism, model: MechanismModel, sources: list) -> None:
+    def __init__(self, mechanism: Mechanism, model: MechanismModel, stepping: Stepping) -> None:
         self.mechanism = mechanism
         self.model = model
         self.sensors: dict[str, int] = {}
         self.newton_tolerance_floor = float(model.newton_tolerance_floor)
-        self._sources = sources
-        self._rows: list[tuple] = []
+        #: the drives' trial and commit and the record of every accepted step (as in :func:`exudyn_atcm.simulate`)
+        self.stepping = stepping
 
     # ------------------------------------------------------------------ markers and bodies
     def _anchor(self, point: PointRef | str) -> tuple[Any, np.ndarray]:
@@ -110,29 +110,24 @@ class MechanismHandle:
         return int(self.model.bodies[key].item)
 
     # ------------------------------------------------------------------ recording
-    def _record(self, t: float, committed: list) -> None:
-        self._rows.append((t, [u for u, _ in committed], [e for _, e in committed],
-                           np.array(self.model.coordinates()), self.model.connector_forces()))
-
     def result(self) -> Result:
         """The accepted steps recorded by the package's post-step hook, with the columns of
-        :func:`exudyn_atcm.simulate` for mechanisms (``result.info`` is empty of solver statistics)."""
-        if not self._rows:
+        :func:`exudyn_atcm.simulate` for mechanisms (``result.info`` is empty of solver statistics).
+
+        Recorded by the same :class:`~exudyn_atcm.mbs.stepping.Stepping` as :func:`exudyn_atcm.simulate`'s runs.
+        """
+        record = self.stepping.record
+        if record is None or not record.accepted:
             raise ValueError("nothing recorded yet: solve the system (e.g. mbs.SolveDynamic) first; if you did, the "
                              "package's post-step hook did not run: a later mbs.SetPostStepUserFunction replaced it "
                              "(add your own functions with exudyn_atcm.mbs.add_post_step / add_pre_step instead)")
         self.model.resolve_indices()
-        n = len(self._sources)
-        times = np.array([r[0] for r in self._rows])
-        volts = np.array([r[1] for r in self._rows], dtype=float).reshape(-1, n)
-        strains = np.array([r[2] for r in self._rows], dtype=float).reshape(-1, n)
-        q = np.array([r[3] for r in self._rows])
-        forces = np.array([r[4] for r in self._rows], dtype=float).reshape(len(times), -1)
-        return make_result(self.model, times, volts, strains, q, forces, {"solver": "user (add_to)"})
+        self.stepping.close()
+        return self.stepping.result({"solver": "user (add_to)"})
 
     def clear(self) -> None:
         """Forget the recorded rows (e.g. before a second solve)."""
-        self._rows.clear()
+        self.stepping.record = None
 
 
 def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bool = True) -> MechanismHandle:
@@ -189,9 +184,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
             "give the second copy other names (e.g. Bender('b2', ...)), or add both in one Mechanism")
     warn_if_large(mechanism, "add_to", stacklevel=3)  # before the build: for many cells it is the dear part
     model = add_mechanism(mbs, mechanism, free_end_bodies=True)
-    sources = [InStepStrain(drive) for drive in model.sources]
-    handle = MechanismHandle(mechanism, model, sources)
-    n = len(sources)
+    n = len(model.sources)
     model.path_from, model.path_to = np.zeros(n), np.zeros(n)
     model.ramp_loads, model.load_factor = False, 1.0
 
@@ -202,16 +195,15 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
     labels = [f"drive {', '.join(repr(n) for n, j in model.drive_source.items() if j == k)} added by exudyn_atcm.add_to"
               for k in range(n)]
 
-    def each_source(t: float, hook: str, step) -> list:
-        out = []
-        for k, source in enumerate(sources):
-            try:
-                out.append(step(source, t))
-            except Exception as exc:  # the user's program or controller: its own error, naming the drive
-                annotate(exc, f"({labels[k]}, in its {hook}-step hook at t = {t:.9g} s; Exudyn reports this as its "
-                              "ModelError, whose __cause__ is this exception)")
-                raise
-        return out
+    def note(hook: str, t: float, label: str) -> str:
+        return (f"({label}, in its {hook}-step hook at t = {t:.9g} s; Exudyn reports this as its ModelError, whose "
+                "__cause__ is this exception)")
+
+    # the same trial, commit and record as the package's own runs; a fresh view of the coordinates in each
+    # step, since the user may assemble the system again between solves
+    stepping = Stepping(model, labels=labels, note=note, system=f"mechanism {mechanism.name!r} added by add_to",
+                        fixed_view=False)
+    handle = MechanismHandle(mechanism, model, stepping)
 
     def _hooks_replaced(which: str, t: float) -> None:
         if not calls["warned"]:
@@ -227,8 +219,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
         calls["pre_since_post"] += 1
         if calls["pre_since_post"] > 50:  # a few repeats are step rejections; 50 without a post step is not
             _hooks_replaced("post", t)
-        model.time = t
-        model.set_strains(np.array(each_source(t, "pre", InStepStrain.trial)))
+        stepping.pre_step(t)
         return True
 
     def post_step(mbs_, t: float) -> bool:
@@ -237,7 +228,7 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
             if calls["post_without_pre"] > 1:  # the first post step (t = 0 initial state) may come alone
                 _hooks_replaced("pre", t)
         calls["pre_since_post"] = 0
-        handle._record(t, each_source(t, "post", InStepStrain.commit))
+        stepping.post_step(t)
         return True
 
     if handle.newton_tolerance_floor > 0.0:  # beam cells: raise a user's solve's tolerance to what they reach

@@ -19,18 +19,23 @@ from __future__ import annotations
 from typing import Any
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
-from .._checks import positive_float, positive_int, warn_implausible
+from .bender import DEFAULT_CELL, Bender, mechanism_cells
+from .._checks import finite_float, positive_float, positive_int, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
+from .assembly import Mechanism
 from .damped import MaterialDamped
-from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
+from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping, damping_already_checked
 from ..physical_bounds import check_cell_count
 
-#: Names of the package's cell kinds (:data:`exudyn_atcm.cells.CELL_KINDS`).
-CELL_TYPES = tuple(CELL_KINDS)
-#: The cells that carry a tip load (``tip_force``); ``"ritz"`` refuses one.
-TIP_LOAD_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)
+#: The bender's (and its drive's) name in the actuator's one-bender mechanism (:meth:`BendingActuator.as_mechanism`).
+NAME = "actuator"
+#: ``CELL_TYPES`` (one meaning: :data:`exudyn_atcm.mechanism.bender.CELL_TYPES`, the registered kinds a bender can be
+#: made of, lone or in a mechanism) and ``TIP_LOAD_CELLS`` (those that carry a tip load; ``"ritz"`` refuses one):
+#: module attributes read from the registry when asked
+_LIVE = {"CELL_TYPES": mechanism_cells,
+         "TIP_LOAD_CELLS": lambda: tuple(name for name, kind in CELL_KINDS.items() if kind.carries_tip_load)}
 
 
 class BendingActuator(MaterialDamped):
@@ -51,10 +56,14 @@ class BendingActuator(MaterialDamped):
         Active layer (MFC), layer 2 (index 2 in the formulas).
     drive : PiezoDrive
         Voltage program and voltage-to-strain law of the active layer.
-    cell : {"six-bar", "rigid", "beam", "ancf", "ritz"} or CellKind, optional
+    cell : {"rod", "six-bar", "rigid", "beam", "ancf", "ritz"} or CellKind, optional
         A cell kind by name, or a :class:`~exudyn_atcm.cells.CellKind` (also one defined outside the
         package, e.g. a subclass of an existing kind); ``actuator.cell`` is the kind object.
-        ``"six-bar"`` (default): the paper's cell (Fig. 2): interface elements, the passive
+        Default :data:`~exudyn_atcm.mechanism.bender.DEFAULT_CELL`, ``"rod"`` (as for a
+        :class:`~exudyn_atcm.Bender`; before 0.4 ``"six-bar"``: pass ``cell="six-bar"`` for the paper's
+        cell): ``n_cells`` modes of a geometrically exact rod (:class:`~exudyn_atcm.cells.RodCell`),
+        exact arc under actuation, f1 +2.8e-4 at 3 modes, tip loads carried.
+        ``"six-bar"``: the paper's cell (Fig. 2): interface elements, the passive
         bar, the active layer as three bodies A1-A2-A3, four revolute joints with torsion
         spring-dampers, the prismatic motor A1-A2 (prescribed stroke) and the prismatic
         joint A2-A3 carrying the axial spring ``k1``.
@@ -133,7 +142,7 @@ class BendingActuator(MaterialDamped):
         passive: Layer,
         active: Layer,
         drive: PiezoDrive,
-        cell: str | CellKind = "six-bar",
+        cell: str | CellKind = DEFAULT_CELL,
         stiffness: str = "composite",
         damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO,
     ) -> None:
@@ -249,6 +258,52 @@ class BendingActuator(MaterialDamped):
         return self.laminate.first_frequency(self.length)
 
 
+    # ------------------------------------------------------------------ the one-bender mechanism
+    @property
+    def bender(self) -> Bender:
+        """The actuator as a :class:`~exudyn_atcm.Bender` named ``"actuator"``: base at the origin along +x,
+        active layer on its right, the same layers, cells, cell kind, stiffness model, damping and drive."""
+        with damping_already_checked():  # a damping ratio was warned about where the actuator was made
+            return Bender(NAME, width=self.width, passive=self.passive, active=self.active, length=self.length,
+                          n_cells=self.n_cells, drive=self.drive, cell=self.cell, stiffness=self.stiffness,
+                          damping=self.damping)
+
+    def as_mechanism(self, tip_force: tuple[float, float] = (0.0, 0.0)) -> Mechanism:
+        """The actuator as what it is: a one-bender :class:`~exudyn_atcm.Mechanism` named ``"actuator"``.
+
+        The :attr:`bender` with its base welded to the ground and, if not zero, the dead ``tip_force``
+        ``(Fx, Fy)`` [N] at its tip (a mechanism force, ``mechanism.force(bender.tip, tip_force)``).  A
+        drive with a controller observes ``"actuator.tip_y"``.  Every solve and drawing of an actuator
+        goes through this one description (the result columns are those of any bender,
+        ``actuator.tip_y`` ..., see :func:`exudyn_atcm.solve.as_mechanism.actuator_result`).
+
+        Raises
+        ------
+        ValueError
+            For a ``tip_force`` that is not a pair of finite numbers, or one a cell kind refuses
+            (:meth:`~exudyn_atcm.cells.CellKind.tip_load_refusal`; ``"ritz"``), or a cell kind that cannot
+            join a mechanism (:meth:`~exudyn_atcm.cells.CellKind.mechanism_refusal`).
+        """
+        try:
+            fx, fy = tip_force
+        except (TypeError, ValueError):
+            raise ValueError(f"tip_force must be a pair (Fx, Fy) of finite numbers [N], got {tip_force!r}") from None
+        force = (finite_float("tip_force[0]", fx), finite_float("tip_force[1]", fy))
+        refusal = self.cell.mechanism_refusal()
+        if refusal is not None:
+            raise ValueError(f"cell={self.cell.name!r} cannot be solved as a one-bender mechanism: {refusal}")
+        refusal = self.cell.tip_load_refusal()
+        if refusal is not None and force != (0.0, 0.0):
+            raise ValueError(f"tip_force must be (0, 0) for cell={self.cell.name!r}, got {tuple(tip_force)!r}: "
+                             f"{refusal}")
+        bender = self.bender
+        mech = Mechanism(NAME).add(bender).ground(bender.base)
+        if force != (0.0, 0.0):
+            mech.force(bender.tip, force)
+        if getattr(self.drive, "controller", None) is not None:
+            mech.feedback(NAME, f"{NAME}.tip_y")
+        return mech
+
     # ------------------------------------------------------------------ description
     def parameters(self) -> dict[str, Any]:
         """Parameters with units, for headers of result files."""
@@ -279,6 +334,13 @@ class BendingActuator(MaterialDamped):
         return (
             f"BendingActuator(n_cells={self.n_cells}, cell_length={self.cell_length!r}, "
             f"width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
-            f"drive={self.drive!r}, cell={self.cell!r}, stiffness={self.stiffness!r}, "
+            f"drive={self.drive!r}, cell={self.cell.spelled()}, stiffness={self.stiffness!r}, "
             f"damping={self.damping!r})"
         )
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

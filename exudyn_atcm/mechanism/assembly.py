@@ -3,15 +3,19 @@
 from __future__ import annotations
 
 import math
+import dataclasses
 from typing import Any, Union
 
 import numpy as np
 
 from .._checks import finite_float
 from .bender import Bender
-from .connections import Force, Joint, Pin, Slider, Spring, Stop, Torque, Weld, joint_label
+from .connection import Connection
+from .joints import Joint, JointBase, Pin, Slider, Weld, joint_label
+from .loads import Force, Spring, Stop, Torque
 from .flexure import Flexure
 from .link import Link
+from .assembly_checks import check_assembly, check_connected, check_drives
 from .realisation import check_redundancy, count_degrees_of_freedom
 from .points import GROUND, MechanismError, PointRef, check_name, closest
 
@@ -49,7 +53,9 @@ class Mechanism:
     -----
     Build it with :meth:`add`, connect points with :meth:`weld`, :meth:`pin`, :meth:`slider`
     and :meth:`ground`, load it with :meth:`force`, :meth:`torque`, :meth:`spring` and
-    :meth:`stop`.  Points are :class:`PointRef` objects (``bender.tip``, ``link.point("P")``)
+    :meth:`stop`, or add any object of the connection protocol
+    (:mod:`exudyn_atcm.mechanism.connection`) with :meth:`add_connection`; all are kept in
+    one list, :attr:`connections`.  Points are :class:`PointRef` objects (``bender.tip``, ``link.point("P")``)
     or strings ``"component.point"``.  Names are resolved when a connection is made (the
     components must have been added); :meth:`check` runs the whole-mechanism checks, and
     every solve runs it first.  All errors are :class:`MechanismError` (a ``ValueError``)
@@ -66,11 +72,9 @@ class Mechanism:
     def __init__(self, name: str = "mechanism") -> None:
         self.name = check_name("Mechanism name", name)
         self.components: dict[str, Component] = {}
-        self.joints: list[Joint] = []
-        self.forces: list[Force] = []
-        self.torques: list[Torque] = []
-        self.springs: list[Spring] = []
-        self.stops: list[Stop] = []
+        #: every joint and load, in the order added (the one list the build, the recording, the
+        #: parameters and the drawings iterate)
+        self.connections: list[Connection] = []
         #: drive name -> result column its controller observes (see :meth:`feedback`)
         self.measurements: dict[str, str] = {}
 
@@ -107,7 +111,45 @@ class Mechanism:
         ref = self.resolve(point)
         return np.array(self.components[ref.component].points[ref.point], dtype=float)
 
+    def add_connection(self, connection: Connection) -> "Mechanism":
+        """Add a joint or load of the connection protocol (:mod:`exudyn_atcm.mechanism.connection`).
+
+        Refused (:class:`MechanismError`) unless it implements the protocol, its name is new among
+        the components and connections, and its points and components exist in this mechanism.
+        """
+        missing = [m for m in ("points", "components", "parameters", "describe", "readouts", "realise", "draw")
+                   if not callable(getattr(connection, m, None))]
+        if missing or not isinstance(getattr(connection, "name", None), str):
+            raise MechanismError(f"add_connection: {connection!r} does not implement the connection protocol "
+                                 f"(missing: {', '.join(missing) or 'a str name'}); derive it from ConnectionBase")
+        if connection.holds:  # a joint: its own checks, named joint_k unless named
+            if not isinstance(connection, JointBase):
+                raise MechanismError(f"add_connection: {connection!r} has holds=True, which is for joints: subclasses "
+                                     "of JointBase (points p and q) that the rigid groups and the ground check use")
+            connection = self._checked_joint(connection)
+        check_name("connection name", connection.name)
+        if connection.name in self._load_names() or connection.name in self.components:
+            raise MechanismError(f"duplicate name {connection.name!r}: loads, springs, stops and components "
+                                 "need distinct names")
+        what = connection.describe()
+        for ref in connection.points():
+            if not isinstance(ref, PointRef):
+                raise MechanismError(f"{what}: points() must give PointRef objects, got {ref!r}")
+            try:
+                self.resolve(ref)
+            except MechanismError as exc:
+                raise MechanismError(f"{what}: {exc}") from None
+        for cname in connection.components():
+            if cname not in self.components:
+                raise MechanismError(f"{what}: unknown component {cname!r}{closest(str(cname), self.components)} "
+                                     f"(components: {', '.join(self.components) or 'none added yet'})")
+        self.connections.append(connection)
+        return self
+
     def _joint(self, joint: Joint) -> "Mechanism":
+        return self.add_connection(joint)
+
+    def _checked_joint(self, joint: JointBase) -> JointBase:
         if joint.q is not None and joint.p.component == joint.q.component:
             raise MechanismError(
                 f"{joint_label(joint)} connects component {joint.p.component!r} to itself; "
@@ -120,8 +162,7 @@ class Mechanism:
                 raise MechanismError(
                     f"{joint_label(joint)}: the points {' and '.join(sorted(key))} are already joined by "
                     f"{joint_label(other)}; a pair of points can be joined once only (joined {how})")
-        self.joints.append(joint)
-        return self
+        return joint if joint.name else dataclasses.replace(joint, name=f"joint_{len(self.joints) + 1}")
 
     def _other(self, q: PointLike | None) -> PointRef | None:
         return None if q is None else self.resolve(q)
@@ -172,8 +213,7 @@ class Mechanism:
 
     # ------------------------------------------------------------------ loads
     def _load_names(self) -> set[str]:
-        return {s.name for s in self.springs} | {s.name for s in self.stops} | {f.name for f in self.forces} \
-            | {t.name for t in self.torques}
+        return {c.name for c in self.connections}
 
     def _load_name(self, name: str | None, prefix: str, count: int) -> str:
         if name is None:
@@ -194,8 +234,7 @@ class Mechanism:
             force = _vector("force", force)
         if not isinstance(follower, bool):
             raise MechanismError(f"follower must be True or False, got {follower!r}")
-        self.forces.append(Force(ref, force, follower, self._load_name(name, "force", len(self.forces))))
-        return self
+        return self.add_connection(Force(ref, force, follower, self._load_name(name, "force", len(self.forces))))
 
     def torque(self, component: str | Link, torque: Any, *, name: str | None = None) -> "Mechanism":
         """Torque [N m] (number or callable of t) on a link, counter-clockwise positive."""
@@ -209,8 +248,7 @@ class Mechanism:
                 "bender or flexure end and load the link)")
         if not callable(torque):
             torque = finite_float("torque", torque)
-        self.torques.append(Torque(cname, torque, self._load_name(name, "torque", len(self.torques))))
-        return self
+        return self.add_connection(Torque(cname, torque, self._load_name(name, "torque", len(self.torques))))
 
     def spring(self, p: PointLike, q: PointLike, stiffness: float, *, damping: float = 0.0,
                rest_length: float | None = None, name: str | None = None) -> "Mechanism":
@@ -232,9 +270,8 @@ class Mechanism:
             raise MechanismError(
                 f"spring {pr}-{qr}: the points coincide in the reference pose, so the spring has no direction; "
                 "attach it between points that are apart")
-        self.springs.append(Spring(pr, qr, k, _nonneg("damping", damping), rest_length,
-                                   self._load_name(name, "spring", len(self.springs))))
-        return self
+        return self.add_connection(Spring(pr, qr, k, _nonneg("damping", damping), rest_length,
+                                          self._load_name(name, "spring", len(self.springs))))
 
     def stop(self, p: PointLike, *, position: tuple[float, float], normal: tuple[float, float], stiffness: float,
              damping: float = 0.0, name: str | None = None) -> "Mechanism":
@@ -251,9 +288,8 @@ class Mechanism:
         k = finite_float("stiffness", stiffness)
         if k <= 0.0:
             raise MechanismError(f"stop stiffness must be > 0 N/m, got {stiffness!r}")
-        self.stops.append(Stop(ref, _vector("position", position), (nx / norm, ny / norm), k,
-                               _nonneg("damping", damping), self._load_name(name, "stop", len(self.stops))))
-        return self
+        return self.add_connection(Stop(ref, _vector("position", position), (nx / norm, ny / norm), k,
+                                        _nonneg("damping", damping), self._load_name(name, "stop", len(self.stops))))
 
     def feedback(self, drive: str, measurement: str) -> "Mechanism":
         """Declare what the controller of ``drive`` observes: a result column of the mechanism.
@@ -281,6 +317,35 @@ class Mechanism:
         return self
 
     # ------------------------------------------------------------------ queries
+    def _of_type(self, kind: type) -> tuple:
+        return tuple(c for c in self.connections if isinstance(c, kind))
+
+    # read-only views of :attr:`connections` (tuples: add through the methods or add_connection)
+    @property
+    def joints(self) -> tuple[Joint, ...]:
+        """The connections that hold parts together (weld, pin, slider), in order."""
+        return tuple(c for c in self.connections if c.holds)
+
+    @property
+    def forces(self) -> tuple[Force, ...]:
+        """The point forces (:meth:`force`)."""
+        return self._of_type(Force)
+
+    @property
+    def torques(self) -> tuple[Torque, ...]:
+        """The torques (:meth:`torque`)."""
+        return self._of_type(Torque)
+
+    @property
+    def springs(self) -> tuple[Spring, ...]:
+        """The springs between points (:meth:`spring`)."""
+        return self._of_type(Spring)
+
+    @property
+    def stops(self) -> tuple[Stop, ...]:
+        """The one-sided stops (:meth:`stop`)."""
+        return self._of_type(Stop)
+
     @property
     def benders(self) -> list[Bender]:
         """Benders, and flexures of the ``"cells"`` model as passive benders, in insertion order."""
@@ -315,23 +380,8 @@ class Mechanism:
         out: dict[str, Any] = {"mechanism": self.name}
         for comp in self.components.values():
             out.update(comp.parameters())
-        for k, j in enumerate(self.joints):
-            extra = ""
-            if isinstance(j, (Pin, Slider)) and (j.stiffness or j.damping):
-                extra = f" stiffness={j.stiffness!r} damping={j.damping!r}"
-            if isinstance(j, Slider):
-                extra += f" axis={j.axis!r}"
-            out[f"joint_{k + 1}"] = joint_label(j) + extra
-        for f in self.forces:
-            out[f"{f.name} [N]"] = f"{f.point} {f.force!r}{' follower' if f.follower else ''}"
-        for t in self.torques:
-            out[f"{t.name} [N m]"] = f"{t.component} {t.torque!r}"
-        for s in self.springs:
-            out[f"{s.name}"] = (f"{s.p}-{s.q} stiffness={s.stiffness!r} N/m damping={s.damping!r} N s/m "
-                                f"rest_length={s.rest_length!r} m")
-        for s in self.stops:
-            out[f"{s.name}"] = (f"{s.point} position={s.position!r} m normal={s.normal!r} stiffness={s.stiffness!r} "
-                                f"N/m damping={s.damping!r} N s/m")
+        for connection in self.connections:
+            out.update(connection.parameters())
         return out
 
     def degrees_of_freedom(self):
@@ -374,77 +424,22 @@ class Mechanism:
         if not self.components:
             raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")
         if not grounded:
-            self._check_assembly()
-            self._check_drives()
+            check_assembly(self, ASSEMBLY_TOLERANCE)
+            check_drives(self)
             return
         if not any(j.q is None for j in self.joints):
             raise MechanismError(
                 f"mechanism {self.name!r} has no ground connection; connect at least one point to the ground "
                 f"with mechanism.ground(point) (components: {', '.join(self.components)})")
-        self._check_connected()
-        self._check_assembly()
-        self._check_drives()
+        check_connected(self)
+        check_assembly(self, ASSEMBLY_TOLERANCE)
+        check_drives(self)
         if redundancy:
             check_redundancy(self)
 
-    def _check_connected(self) -> None:
-        parent = {name: name for name in [GROUND, *self.components]}
-
-        def find(a: str) -> str:
-            while parent[a] != a:
-                parent[a] = parent[parent[a]]
-                a = parent[a]
-            return a
-
-        for j in self.joints:
-            parent[find(j.p.component)] = find(GROUND if j.q is None else j.q.component)
-        floating = [name for name in self.components if find(name) != find(GROUND)]
-        if floating:
-            by_spring = [n for n in floating if any(n in (s.p.component, s.q.component) for s in self.springs)]
-            hint = (f"; {', '.join(by_spring)} hang(s) on springs only, which do not hold a body in place"
-                    if by_spring else "")
-            raise MechanismError(
-                f"component(s) {', '.join(repr(n) for n in floating)} of mechanism {self.name!r} are not connected "
-                f"to the ground through any joint{hint}; weld, pin or slide them to the rest of the mechanism")
-
-    def _check_assembly(self) -> None:
-        tol = ASSEMBLY_TOLERANCE * max(self.size, 1e-300)
-        for j in self.joints:
-            xp = self.position(j.p)
-            xq = xp if j.q is None else self.position(j.q)
-            if isinstance(j, Slider):
-                axis = np.array(j.axis)
-                d = xq - xp
-                gap = abs(float(d[0] * axis[1] - d[1] * axis[0]))
-                what = f"{j.q} lies off the slider axis {j.axis} through {j.p}"
-            else:
-                gap = float(np.linalg.norm(xq - xp))
-                what = "the joined points do not coincide"
-            if gap > tol:
-                qname = GROUND if j.q is None else str(j.q)
-                raise MechanismError(
-                    f"{joint_label(j)} cannot be assembled: {what} in the reference pose: {j.p} at "
-                    f"({xp[0]:.9g}, {xp[1]:.9g}) m, {qname} at ({xq[0]:.9g}, {xq[1]:.9g}) m, gap {gap:.3g} m "
-                    f"(allowed {tol:.3g} m). Describe the mechanism in its assembled pose (benders straight)")
-
-    def _check_drives(self) -> None:
-        seen: dict[int, tuple[str, Any]] = {}
-        for name, drive in self.drives.items():
-            op = drive.hysteresis
-            if op is None:
-                continue
-            first = seen.get(id(op))
-            if first is not None and first[1] is not drive:
-                raise MechanismError(
-                    f"drives {first[0]!r} and {name!r} are different PiezoDrive objects sharing one hysteresis "
-                    "operator object; its memory would be updated twice per step. Give each drive its own "
-                    "operator, or use one PiezoDrive object for both")
-            seen.setdefault(id(op), (name, drive))
-
     def __repr__(self) -> str:
         return (f"Mechanism({self.name!r}: {len(self.components)} components, {len(self.joints)} joints, "
-                f"{len(self.forces)} forces, {len(self.torques)} torques, {len(self.springs)} springs, "
-                f"{len(self.stops)} stops)")
+                f"{len(self.connections) - len(self.joints)} loads and other connections)")
 
 
 __all__ = ["Mechanism", "MechanismError", "ASSEMBLY_TOLERANCE"]

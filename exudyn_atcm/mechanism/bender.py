@@ -19,11 +19,26 @@ from ..physical_bounds import MAX_CELLS, check_cell_count
 from .damped import MaterialDamped
 from .points import PointRef, check_name, unknown_point
 
-#: Names of the cell kinds that a mechanism's bender can be made of (each other kind says why not).
-CELL_TYPES = tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
-#: Names of those that can also make a passive strip (``active=None``).
-PASSIVE_STRIP_CELLS = tuple(name for name in CELL_TYPES if not CELL_KINDS[name].needs_active_layer)
+
+
+def mechanism_cells() -> tuple[str, ...]:
+    """Names of the registered cell kinds that a mechanism's bender can be made of (each other kind says why not)."""
+    return tuple(name for name, kind in CELL_KINDS.items() if kind.mechanism_refusal() is None)
+
+
+def passive_strip_cells() -> tuple[str, ...]:
+    """Names of those that can also make a passive strip (``active=None``)."""
+    return tuple(name for name in mechanism_cells() if not CELL_KINDS[name].needs_active_layer)
+
+
+#: ``CELL_TYPES`` and ``PASSIVE_STRIP_CELLS``: the same names as module attributes, read when asked
+_LIVE = {"CELL_TYPES": mechanism_cells, "PASSIVE_STRIP_CELLS": passive_strip_cells}
 ACTIVE_SIDES = ("right", "left")
+#: The cell kind of a bender and of a lone actuator when none is given: the fastest at equal accuracy of the
+#: kinds that take every load and end connection (benchmarks/bench_discretisation.py, paper actuator: 3 modes
+#: reach 3e-4 in f1, bent f1 and tip angle at 0.36 s per simulated second; rigid 16 cells 2e-3 at 0.47 s,
+#: six-bar 16 cells 9e-3 at 6.3 s; issue 30).  Before 0.3: "rigid" for a Bender, "six-bar" for an actuator.
+DEFAULT_CELL = "rod"
 
 
 @dataclass(frozen=True)
@@ -89,9 +104,10 @@ class Bender(MaterialDamped):
         Base point in the reference pose [m] (default the origin).
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
-    cell : {"rigid", "six-bar", "beam", "ancf", "ritz"} or CellKind, optional
+    cell : {"rod", "rigid", "six-bar", "beam", "ancf", "ritz"} or CellKind, optional
         Cell model by name or as a :class:`~exudyn_atcm.cells.CellKind` (see
-        :class:`~exudyn_atcm.BendingActuator`), default ``"rigid"``; ``"ancf"`` and ``"ritz"``
+        :class:`~exudyn_atcm.BendingActuator`), default :data:`DEFAULT_CELL` (``"rod"``, the same as a
+        lone actuator's: ``n_cells`` modes of a geometrically exact rod); ``"ancf"`` and ``"ritz"``
         join a mechanism as a cantilever only (base welded to the ground, tip free; other end
         connections are refused with the cell's own reason); the six-bar cell needs an active
         layer.  ``"beam"``: one geometrically exact beam element
@@ -140,7 +156,7 @@ class Bender(MaterialDamped):
         segments: Sequence[Segment] | None = None,
         base: tuple[float, float] = (0.0, 0.0),
         angle: float = 0.0,
-        cell: str | CellKind = "rigid",
+        cell: str | CellKind = DEFAULT_CELL,
         stiffness: str = "composite",
         active_side: str = "right",
         damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO,
@@ -188,7 +204,7 @@ class Bender(MaterialDamped):
         refusal = cell.mechanism_refusal()
         if refusal is not None:
             raise ValueError(f"cell={cell.name!r} cannot be a mechanism's bender: {refusal} "
-                             f"(the package's cells that can: {CELL_TYPES})")
+                             f"(the registered cells that can: {mechanism_cells()})")
         for pname, value, allowed in (("stiffness", stiffness, STIFFNESS_MODELS),
                                       ("active_side", active_side, ACTIVE_SIDES)):
             if not isinstance(value, str) or value not in allowed:
@@ -306,5 +322,12 @@ class Bender(MaterialDamped):
     def __repr__(self) -> str:
         return (f"Bender({self.name!r}, width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
                 f"segments={self.segments!r}, base={self.base_position!r}, angle={self.angle!r}, "
-                f"cell={self.cell!r}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
+                f"cell={self.cell.spelled()}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
                 f"damping={self.damping!r})")
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

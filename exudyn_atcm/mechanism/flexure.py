@@ -168,7 +168,8 @@ class Flexure(MaterialDamped):
         """The ``"cells"`` model: a passive :class:`Bender` of ``n_cells`` rigid cells with this name."""
         with damping_already_checked():  # a damping ratio was warned about where the flexure was made
             return Bender(self.name, width=self.width, passive=self.layer, active=None, length=self.length,
-                          n_cells=self.n_cells, base=self.base_position, angle=self.angle, damping=self.damping)
+                          n_cells=self.n_cells, base=self.base_position, angle=self.angle, damping=self.damping,
+                          cell="rigid")
 
     def segment_masses(self) -> list[tuple[float, float, np.ndarray]]:
         """PRBM: (mass [kg], inertia about the centre [kg m²], centre [m]) of the base and tip segments."""

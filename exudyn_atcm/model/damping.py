@@ -67,7 +67,14 @@ _CHECKED: contextvars.ContextVar[bool] = contextvars.ContextVar("exudyn_atcm_dam
 #: laminates, not a value from the paper).
 DEFAULT_DAMPING_RATIO = 0.02
 
-MASS_DAMPING_CELLS = tuple(name for name, kind in CELL_KINDS.items() if kind.realises_mass_damping)
+
+
+def mass_damping_cells() -> tuple[str, ...]:
+    """The registered cell kinds that realise ``alpha M`` exactly (also as the module attribute ``MASS_DAMPING_CELLS``)."""
+    return tuple(name for name, kind in CELL_KINDS.items() if kind.realises_mass_damping)
+
+
+_LIVE = {"MASS_DAMPING_CELLS": mass_damping_cells}
 
 
 def _real(name: str, value: object, *, allow_zero: bool = True) -> float:
@@ -269,7 +276,7 @@ def check_damping(damping: object, *, cell: str | CellKind, owner: str, stacklev
             raise ValueError(
                 f"{owner}: damping={damping!r} has a mass-proportional part alpha={damping.alpha!r} 1/s, which the "
                 f"{cell.name!r} cell cannot realise exactly (its mass matrix is not a set of rigid bodies); cells that "
-                f"can: {MASS_DAMPING_CELLS}. Use alpha=0 (stiffness-proportional damping) with cell={cell.name!r}")
+                f"can: {mass_damping_cells()}. Use alpha=0 (stiffness-proportional damping) with cell={cell.name!r}")
         return damping
     if isinstance(damping, bool) or not isinstance(damping, numbers.Real) or not math.isfinite(float(damping)):
         raise ValueError(f"damping must be a finite damping ratio >= 0 or a RayleighDamping, got {damping!r}")
@@ -277,3 +284,10 @@ def check_damping(damping: object, *, cell: str | CellKind, owner: str, stacklev
         raise ValueError(f"damping must be a damping ratio >= 0 or a RayleighDamping, got {damping!r}")
     warn_damping_ratio(float(damping), owner, stacklevel=stacklevel)
     return float(damping)
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

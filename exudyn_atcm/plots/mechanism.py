@@ -9,9 +9,10 @@ What is drawn, for every recorded instant (row) of a mechanism :class:`~exudyn_a
 * **links**: a filled polygon through their named points (ordered around their centroid);
 * **flexures**: the two rigid segments of the pseudo-rigid-body model with the pivot as an
   open circle, or the cell polyline of the ``"cells"`` model;
-* **springs** (grasped objects) as zigzags between their points, **stops** as hatched walls;
-* **ground** connections as hatched symbols (weld: a wall behind the point; pin: a
-  triangle; slider: a rail along the axis).
+* **connections and loads**: each draws itself on a
+  :class:`~exudyn_atcm.plots.canvas.MechanismCanvas` (its ``draw``): springs (grasped objects) as
+  zigzags between their points, stops as hatched walls, ground connections as hatched symbols
+  (weld: a wall behind the point; pin: a triangle; slider: a rail along the axis).
 
 Deformation can be exaggerated: with ``scale = s`` every displacement from the reference
 pose is multiplied by ``s`` (bender cells: their rotations, with the chain's closure gap to
@@ -38,8 +39,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..mechanism import Bender, Flexure, Link, Mechanism
-from ..mechanism.connections import Pin, Slider, Weld
+from ..mechanism import Link, Mechanism
 from .mechanism_shapes import (
     BenderShape,
     MechanismShape,
@@ -47,7 +47,9 @@ from .mechanism_shapes import (
     order_around_centroid,
     actuator_as_mechanism,
     mechanism_shape,
+    point_at,
 )
+from .canvas import MechanismCanvas
 from .gif import save_gif
 from .style import COLORS, axis_label, new_figure
 from .target import figure_axes, finish, legacy_path
@@ -67,71 +69,12 @@ _MM = 1e3  # drawings in millimetres
 _PASSIVE = "#404040"
 _LINK = "#9ecae1"
 _FLEXURE = "#6a3d9a"
-_SPRING = "#8c510a"
 _ACTIVE = "#E69F00"
 #: motor marks per drive: the package colours without the active layer's
 _DRIVE_COLORS = [c for c in COLORS if c.upper() != _ACTIVE]
 
 
 # ----------------------------------------------------------------------------- drawing
-def _zigzag(p: np.ndarray, q: np.ndarray, width: float, turns: int = 6) -> np.ndarray:
-    d = q - p
-    length = float(np.hypot(*d))
-    if length == 0.0:
-        return np.array([p, q])
-    u = d / length
-    n = np.array([-u[1], u[0]])
-    s = np.concatenate([[0.0, 0.2], 0.2 + 0.6 * (np.arange(2 * turns) + 0.5) / (2 * turns), [0.8, 1.0]])
-    amp = np.concatenate([[0.0, 0.0], np.where(np.arange(2 * turns) % 2 == 0, 1.0, -1.0), [0.0, 0.0]])
-    return p + s[:, None] * d + (amp * width)[:, None] * n
-
-
-def _hatch(ax, center: np.ndarray, along: np.ndarray, size: float, behind: np.ndarray, **kw) -> None:
-    """A ground wall through ``center`` along ``along`` with hatch strokes towards ``behind``."""
-    along = along / np.hypot(*along)
-    behind = behind / np.hypot(*behind)
-    a, b = center - 0.5 * size * along, center + 0.5 * size * along
-    ax.plot(*(np.array([a, b]) * _MM).T, color="k", lw=1.5, **kw)
-    for t in np.linspace(0.0, 1.0, 6):
-        start = a + t * (b - a)
-        end = start + 0.25 * size * (behind - 0.6 * along)
-        ax.plot(*(np.array([start, end]) * _MM).T, color="k", lw=0.8)
-
-
-def _component_direction(comp, point: str) -> np.ndarray:
-    if isinstance(comp, (Bender, Flexure)):
-        d = np.array([math.cos(comp.angle), math.sin(comp.angle)])
-        return d if point == "base" else -d
-    c = np.array(comp.center_of_mass) - np.array(comp.points[point])
-    return c if np.hypot(*c) > 0 else np.array([1.0, 0.0])
-
-
-def _draw_ground(ax, mechanism: Mechanism, size: float) -> None:
-    for joint in mechanism.joints:
-        if joint.q is not None:
-            continue
-        comp = mechanism.components[joint.p.component]
-        x = np.array(comp.points[joint.p.point])
-        inward = _component_direction(comp, joint.p.point)
-        inward = inward / np.hypot(*inward)
-        normal = np.array([-inward[1], inward[0]])
-        if isinstance(joint, Weld):
-            _hatch(ax, x, normal, size, -inward)
-        elif isinstance(joint, Pin):
-            tri = np.array([x, x + size * (-0.35 * normal - 0.5 * inward), x + size * (0.35 * normal - 0.5 * inward), x])
-            ax.plot(*(tri * _MM).T, color="k", lw=1.2)
-            _hatch(ax, x - 0.5 * size * inward, normal, size, -inward)
-        elif isinstance(joint, Slider):
-            axis = np.array(joint.axis, dtype=float)
-            _hatch(ax, x + 0.15 * size * np.array([-axis[1], axis[0]]), axis, 2 * size, -np.array([-axis[1], axis[0]]))
-
-
-def _draw_stops(ax, mechanism: Mechanism, size: float) -> None:
-    for stop in mechanism.stops:
-        normal = np.array(stop.normal)
-        _hatch(ax, np.array(stop.position), np.array([-normal[1], normal[0]]), size, -normal)
-
-
 def draw_mechanism(
     ax,
     mechanism: Mechanism,
@@ -227,11 +170,9 @@ def draw_mechanism(
         if name in shape.pivots:
             ax.plot(*(shape.pivots[name] * _MM), "o", mfc="white", mec=_FLEXURE, ms=5, zorder=6,
                     label="flexure pivots (PRBM)" if k == 0 else None)
-    for k, (name, p, q) in enumerate(shape.springs):
-        zig = _zigzag(p, q, 0.012 * size)
-        ax.plot(*(zig * _MM).T, color=_SPRING, lw=1.2, zorder=4, label="springs (objects)" if k == 0 else None)
-    _draw_ground(ax, mechanism, 0.06 * size)
-    _draw_stops(ax, mechanism, 0.06 * size)
+    canvas = MechanismCanvas(ax, mechanism, lambda ref: point_at(result, mechanism, str(ref), row, scale), size)
+    for connection in mechanism.connections:  # each draws itself (ground joints, springs, stops, ...)
+        connection.draw(canvas)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(axis_label("x", "mm"))
     ax.set_ylabel(axis_label("y", "mm"))

@@ -19,10 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..io.result import Result
-from ..mechanism.actuator import BendingActuator
+from ..mechanism.actuator import NAME, BendingActuator
 from ..mechanism import Bender, Flexure, Link, Mechanism
-from ..model.damping import damping_already_checked
 
 __all__ = ["BenderShape", "MechanismShape", "mechanism_shape", "actuator_as_mechanism"]
 
@@ -79,7 +77,8 @@ def result_column(result, name: str) -> np.ndarray:
         ) from None
 
 
-def _point_at(result, mechanism: Mechanism, ref: str, row: int, scale: float) -> np.ndarray:
+def point_at(result, mechanism: Mechanism, ref: str, row: int, scale: float) -> np.ndarray:
+    """Position [m] of point ``ref`` (``"comp.point"``) at ``row`` of ``result``, displacements times ``scale``."""
     component, point = ref.split(".")
     x = result_column(result, f"{ref}_x")[row]
     y = result_column(result, f"{ref}_y")[row]
@@ -160,7 +159,7 @@ def mechanism_shape(
         if isinstance(comp, Bender):
             shape.benders.append(_bender_shape(comp, result, row, scale, offset_scale))
         elif isinstance(comp, Link):
-            pts = {p: _point_at(result, mechanism, f"{comp.name}.{p}", row, scale) for p in comp.points}
+            pts = {p: point_at(result, mechanism, f"{comp.name}.{p}", row, scale) for p in comp.points}
             shape.link_points[comp.name] = pts
             shape.links[comp.name] = order_around_centroid(np.array(list(pts.values())))
         elif isinstance(comp, Flexure):
@@ -168,51 +167,52 @@ def mechanism_shape(
                 bent = _bender_shape(comp.as_bender(), result, row, scale, offset_scale)
                 shape.flexures[comp.name] = bent.passive
             else:
-                base = _point_at(result, mechanism, f"{comp.name}.base", row, scale)
-                tip = _point_at(result, mechanism, f"{comp.name}.tip", row, scale)
+                base = point_at(result, mechanism, f"{comp.name}.base", row, scale)
+                tip = point_at(result, mechanism, f"{comp.name}.tip", row, scale)
                 angle = comp.angle + scale * (result_column(result, f"{comp.name}.base_angle")[row] - comp.angle)
                 pivot = base + comp.segment_lengths[0] * np.array([math.cos(angle), math.sin(angle)])
                 shape.flexures[comp.name] = np.array([base, pivot, tip])
                 shape.pivots[comp.name] = pivot
     for spring in mechanism.springs:
-        p = _point_at(result, mechanism, str(spring.p), row, scale)
-        q = _point_at(result, mechanism, str(spring.q), row, scale)
+        p = point_at(result, mechanism, str(spring.p), row, scale)
+        q = point_at(result, mechanism, str(spring.q), row, scale)
         shape.springs.append((spring.name, p, q))
     return shape
 
 
 def actuator_as_mechanism(actuator, result, name: str = "actuator"):
-    """A :class:`~exudyn_atcm.BendingActuator` run as a one-bender mechanism, for drawing.
+    """A :class:`~exudyn_atcm.BendingActuator` run as its one-bender mechanism, for drawing.
 
-    Returns the equivalent description (a :class:`~exudyn_atcm.mechanism.Bender` clamped at
-    the origin along +x, active layer on its right, the same layers, cells and drive) and
-    the run's columns renamed to the mechanism convention (``tip_x`` -> ``{name}.tip_x``,
-    ``cell_angle_j`` -> ``{name}.cell_angle_j``, ``voltage`` -> ``{name}.voltage``), so that
-    :func:`plot_mechanism` and :func:`animate_mechanism` draw both layers, the cell joints and
-    the motors of a cantilever actuator too.
+    Returns :meth:`actuator.as_mechanism() <exudyn_atcm.BendingActuator.as_mechanism>` (the one
+    description every solve uses: the actuator's own cell kind, layers, cells and drive) and the run's
+    columns under that mechanism's names, :attr:`result.bender_columns <exudyn_atcm.Result.bender_columns>`
+    (``actuator.tip_x``, ``actuator.cell_angle_j``, ...), so that :func:`plot_mechanism` and
+    :func:`animate_mechanism` draw both layers, the cell joints (labelled by the cell kind) and the
+    motors of a cantilever actuator too.  Nothing is converted here.
 
     Parameters
     ----------
     actuator : BendingActuator
         The actuator the result was computed for.
     result : Result
-        A run of it (``time``, ``voltage``, ``tip_x``, ``tip_y``, ``cell_angle_1..N``).
+        A run of it by :func:`~exudyn_atcm.simulate`, :func:`~exudyn_atcm.solve_static` or
+        :func:`~exudyn_atcm.static_sweep` (a result read back from a file lacks the mechanism's columns:
+        draw it with :func:`exudyn_atcm.plots.result.plot_shapes`).
     name : str, optional
-        Component name used in the drawing.
+        Deprecated and ignored unless ``"actuator"``: the bender of an actuator is named ``"actuator"``.
+
+    Raises
+    ------
+    ValueError
+        For an ``actuator`` that is not a :class:`~exudyn_atcm.BendingActuator`, another ``name``, or a
+        result without the mechanism's columns.
     """
     if not isinstance(actuator, BendingActuator):
         raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
-    with damping_already_checked():  # a damping ratio was warned about where the actuator was made
-        bender = Bender(name, width=actuator.width, passive=actuator.passive, active=actuator.active,
-                        length=actuator.length, n_cells=actuator.n_cells, drive=actuator.drive,
-                        stiffness=actuator.stiffness, damping=actuator.damping)
-    mech = Mechanism(name).add(bender).ground(bender.base)
-    zeros = np.zeros(result.n_rows)
-    series = {"time": result_column(result, "time"), f"{name}.voltage": result_column(result, "voltage"),
-              f"{name}.base_x": zeros, f"{name}.base_y": zeros,
-              f"{name}.tip_x": result_column(result, "tip_x"), f"{name}.tip_y": result_column(result, "tip_y")}
-    for j in range(actuator.n_cells):
-        series[f"{name}.cell_angle_{j + 1}"] = result_column(result, f"cell_angle_{j + 1}")
-    units = {k: ("s" if k == "time" else "V" if k.endswith("voltage") else "rad" if "angle" in k else "m")
-             for k in series}
-    return mech, Result(series, units, parameters=result.parameters, info=result.info)
+    if name != NAME:
+        raise ValueError(f"name must be {NAME!r} (the bender of an actuator's one-bender mechanism), got {name!r}")
+    drawn = result.bender_columns
+    if f"{NAME}.base_x" not in drawn:
+        raise ValueError(f"the result has no column {NAME + '.base_x'!r} of the actuator's one-bender mechanism "
+                         "(a result read back from a file?); draw it with exudyn_atcm.plots.result.plot_shapes")
+    return actuator.as_mechanism(), drawn

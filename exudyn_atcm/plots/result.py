@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 
 from ..io.atomic import make_directory
 from .gif import save_gif
+from .mechanism_series import plot_mechanism_series
 from .style import new_figure
 from .target import figure_axes, finish, legacy_path
 from ..io.progress import report_task
@@ -197,15 +198,16 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
 
 
 def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
-    """Write ``time_series.png``, ``tip_vs_voltage.png`` and ``shapes.png`` to ``out_dir``.
+    """Write the standard plots of any result to ``out_dir``; returns the paths written.
 
-    Returns the paths written.
+    A lone actuator's result: ``time_series.png``, ``tip_vs_voltage.png`` and ``shapes.png``.  A
+    mechanism's result (columns ``{drive}.voltage``, ``{component}.tip_y``, ``{component}.{point}_x``):
+    :func:`~exudyn_atcm.plots.mechanism_series.plot_mechanism_series` (voltages and tips over time or
+    sweep point, each driven bender's loop, the recorded points' paths); to draw the mechanism itself,
+    :func:`exudyn_atcm.plots.mechanism.plot_mechanism` with its description.
     """
     if "voltage" not in result or "tip_y" not in result:
-        raise ValueError(
-            "plot_result draws the series of a BendingActuator run (voltage, tip_x, tip_y, ...); this result has "
-            f"{', '.join(list(result)[:6])}, ... - for a mechanism use exudyn_atcm.plots.mechanism.plot_mechanism"
-            "(mechanism, result, path) or plot_point_paths")
+        return plot_mechanism_series(result, out_dir, prefix)
     out_dir = os.fspath(out_dir)
     make_directory(out_dir, "plot directory")
     jobs = [

@@ -8,8 +8,10 @@ from ..errors import SolverError
 from ..model.strain_sources import InStepStrain, TableStrain
 from .run_checks import SimulationInterrupted
 from .run_setup import DEFAULT_STEP
+from .built_system import BuiltSystem
 from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
 from .step_error import StepError, step_error
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
-           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError"]
+           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
+           "BuiltSystem"]

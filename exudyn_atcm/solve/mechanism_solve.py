@@ -2,9 +2,12 @@
 
 :func:`exudyn_atcm.simulate`, :func:`exudyn_atcm.solve_static` and
 :func:`exudyn_atcm.eigenfrequencies` hand a mechanism to this module; :func:`static_sweep`
-is its own.  The hysteresis of every drive is evaluated in the solver step exactly as for a
-lone actuator (:class:`exudyn_atcm.model.strain_sources.InStepStrain`: trial from the committed memory
-in the pre-step hook, commit in the post-step hook of accepted steps only).
+is its own.  Each solve builds the system, or takes one already built (``built=``, from
+:class:`~exudyn_atcm.solve.built_system.BuiltSystem`, at the same call depth so that warnings
+point at the user's line either way).  Every solve trials, commits and records
+through one :class:`~exudyn_atcm.mbs.stepping.Stepping` (the same as :func:`exudyn_atcm.add_to`):
+the hysteresis of every drive is trialled from the committed memory in the pre-step hook and
+committed in the post-step hook of accepted steps only.
 
 The result columns are described in :mod:`exudyn_atcm.mbs.recording` and on the
 :doc:`/mechanisms` page of the documentation.
@@ -22,7 +25,8 @@ from ..mbs import builder as mb
 from ..mbs import linear
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
-from ..mbs.recording import RowLayout, Rows, cell_rotations, measurement_reader
+from ..mbs.recording import RowLayout, cell_rotations, measurement_reader
+from ..mbs.stepping import Stepping
 from ..mechanism.assembly import Mechanism
 from ..mechanism.points import MechanismError, closest
 from .mechanism_checks import check_drive_ranges, check_steps, feedback_controllers, warn_coarse_cells, warn_few_modes
@@ -31,24 +35,27 @@ from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
 from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
 from .long_runs import is_announced
-from .step_record import StepRecord, check_view
 from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from .static_stability import load_path_note, stability_probe, warn_unstable
 from ..errors import SolverError, annotate
 from .run_checks import is_interrupt
-from ..model.strain_sources import InStepStrain
 
 
 
 # ------------------------------------------------------------------------------ public solves
 
-def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int | None = None) -> Result:
-    """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`)."""
+def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int | None = None, *,
+                 built: mb.MechanismModel | None = None) -> Result:
+    """Static equilibrium of a mechanism at ``voltage`` with its loads (see :func:`exudyn_atcm.solve_static`).
+
+    ``built``: a model of ``mech`` already built and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
+    """
     if load_steps is not None:
         load_steps = positive_int("load_steps", load_steps)
-    warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build: it may be the dear part
-    model = mb.build(mech)
+    if built is None:
+        warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build
+    model = built if built is not None else mb.build(mech)
     volts = drive_voltages(mech, voltage)
     strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
     strains = source_values(model, strains_by_drive, "solve_static")
@@ -57,18 +64,20 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     probe = stability_probe(mech, model)
     what = describe_voltages(volts)
     method = equilibrium(mech, model, np.zeros_like(strains), strains, True, load_steps, what, probe)
-    rows = Rows(model)
-    rows.add(0.0, source_volts, strains)
-    warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
+    stepping = Stepping.static(model)
+    stepping.record_state(0.0, source_volts, strains)
+    rows = stepping.close()
+    _, _, row_strains, q, _ = stepping.layout.parts(rows)
+    warn_coarse_cells(mech, cell_rotations(model, q, row_strains))
     warn_few_modes(mech, model.truncation_errors())
     warn_unstable(describe(mech), [(f"load factor 1 (the loads and {what} in full)", probe.last)],
                   load_path_note(probe))
-    return rows.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto",
-                        "stability": probe.last.state})
+    return stepping.result({"solver": method, "load_steps": load_steps if load_steps is not None else "auto",
+                            "stability": probe.last.state})
 
 
-def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> Result:
-    """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`)."""
+def sweep_table(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]]) -> list[dict[str, float]]:
+    """The voltage [V] of every drive at every point of a :func:`static_sweep` (checked)."""
     drives = mech.drives
     if isinstance(voltages, Mapping):
         series = {}
@@ -83,24 +92,27 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
                              f"{ {n: len(v) for n, v in series.items()} }")
         n = lengths.pop()
         base = drive_voltages(mech, None)
-        table = [{**base, **{name: float(v[i]) for name, v in series.items()}} for i in range(n)]
-    else:
-        values = finite_array("voltages", voltages)
-        table = [{name: float(v) for name in drives} for v in values]
-    warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
-    model = mb.build(mech)
+        return [{**base, **{name: float(v[i]) for name, v in series.items()}} for i in range(n)]
+    values = finite_array("voltages", voltages)
+    return [{name: float(v) for name in drives} for v in values]
+
+
+def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
+                 built: mb.MechanismModel | None = None) -> Result:
+    """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`).
+
+    ``built``: a model of ``mech`` already built and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
+    """
+    table = sweep_table(mech, voltages)
+    if built is None:
+        warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
+    model = built if built is not None else mb.build(mech)
     source_table = np.array([source_values(model, per_drive, f"static_sweep point {i}")
                              for i, per_drive in enumerate(table)]).reshape(len(table), len(model.sources))
-    for drive in model.sources:
-        if drive.hysteresis is not None:
-            drive.hysteresis.reset()
+    stepping = Stepping.static(model)
     # each point is held for ever: an operator with creep or a rate lag gives its fully crept output
-    strain_table = np.array([[d.linear_strain(u) if d.hysteresis is None
-                              else float(getattr(d.hysteresis, "commit_held", d.hysteresis.commit)(u))
-                              for d, u in zip(model.sources, volts)] for volts in source_table])
-    strain_table = strain_table.reshape(source_table.shape)
+    strain_table = stepping.hold_path(source_table)
     check_drive_ranges(model, source_table, strain_table)
-    rows = Rows(model)
     previous = np.zeros(len(model.sources))
     methods = []
     truncation: dict[str, float] = {}
@@ -112,21 +124,24 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
         methods.append(equilibrium(mech, model, previous, strains, i == 0, None, where, probe))
         states.append((where, probe.last))
         runs.set_current_as_initial(model, zero_velocity=True)
-        rows.add(float(i), volts, strains)
+        stepping.record_state(float(i), volts, strains)
         previous = strains
         for name, error in model.truncation_errors().items():
             truncation[name] = max(error, truncation.get(name, 0.0))
-    warn_coarse_cells(mech, cell_rotations(model, np.array(rows.q), np.array(rows.strains)))
+    rows = stepping.close()
+    _, _, row_strains, q, _ = stepping.layout.parts(rows)
+    warn_coarse_cells(mech, cell_rotations(model, q, row_strains))
     warn_few_modes(mech, truncation)
     warn_unstable(describe(mech), states)
     unstable = [i for i, (_, s) in enumerate(states) if s.state != "stable"]
-    return rows.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table),
-                        "unstable_points": ",".join(map(str, unstable))}, base=("point", "-"))
+    return stepping.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table),
+                            "unstable_points": ",".join(map(str, unstable))}, base=("point", "-"))
 
 
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,
              progress: Callable[[float, float], None] | None = None, record_every: Any = None, *,
-             sources: Sequence[Any] | None = None, stroke_path: str = "prestep") -> Result:
+             sources: Sequence[Any] | None = None, stroke_path: str = "prestep",
+             built: mb.MechanismModel | None = None) -> Result:
     """Dynamic response of a mechanism to its drives' voltage programs (see :func:`exudyn_atcm.simulate`).
 
     The same checks as for an actuator (:mod:`exudyn_atcm.solve.run_checks`): the step against every
@@ -142,24 +157,42 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     distinct drive in the order of ``model.sources`` (default: an
     :class:`~exudyn_atcm.model.strain_sources.InStepStrain` each; a
     :class:`~exudyn_atcm.model.strain_sources.TableStrain` follows a precomputed table), and
-    ``stroke_path`` (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`).
+    ``stroke_path`` (:attr:`exudyn_atcm.cells.CellKind.stroke_paths`); ``built``: a model of ``mech``
+    already built (with its own stroke path) and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
     """
     t_end, grid, schedule = prepare_run(t_end, step, settings, progress, record_every)
     check_steps(mech, grid, t_end, schedule)
-    model = mb.build(mech, stroke_path=stroke_path)
+    model = built if built is not None else mb.build(mech, stroke_path=stroke_path)
     feedback = feedback_controllers(mech, model)
     observers = [(c, measurement_reader(model, column)) for c, column in feedback]
     for controller, _ in feedback:
         controller.reset()
-    if sources is None:
-        sources = [InStepStrain(drive) for drive in model.sources]
-    elif len(sources) != len(model.sources):
-        raise ValueError(f"sources: one strain source per drive ({len(model.sources)}), got {len(sources)}")
     where = describe(mech)
+    n_src = len(model.sources)
     # each source's drive(s), for the note on an error the user's program or controller raises
     labels = [f"drive {', '.join(repr(n) for n, j in model.drive_source.items() if j == k)} of {where}"
-              for k in range(len(sources))]
-    strains0 = np.zeros(len(sources))
+              for k in range(n_src)]
+    # extremes over every accepted step (the record may be thinned), for the range checks
+    extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
+    rotations: dict[str, float] = {}  # largest relative cell rotation per bender over every accepted step
+    layout = RowLayout(model)
+
+    def block_extremes(block: np.ndarray) -> None:
+        _, volts, strains, q, _ = layout.parts(block)
+        for name, value in cell_rotations(model, q, strains).items():
+            rotations[name] = max(value, rotations.get(name, 0.0))
+        np.minimum(extremes[0], volts.min(axis=0), out=extremes[0])
+        np.maximum(extremes[1], volts.max(axis=0), out=extremes[1])
+        np.minimum(extremes[2], strains.min(axis=0), out=extremes[2])
+        np.maximum(extremes[3], strains.max(axis=0), out=extremes[3])
+
+    def every_step_columns(block: np.ndarray) -> np.ndarray:
+        return layout.every_step_columns(block, snap_times(block[:, 0], grid.step))
+
+    stepping = Stepping(model, sources, labels=labels, system=where, keep=schedule.take, on_block=block_extremes,
+                        reduce=None if schedule.every_step else every_step_columns)
+    sources = stepping.sources
+    strains0 = np.zeros(n_src)
     for k, source in enumerate(sources):
         try:
             strains0[k] = source.trial(0.0)
@@ -176,7 +209,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             if is_interrupt(exc.__cause__ or exc):
                 raise SimulationInterrupted(0.0) from None
             raise
-        warn_unstable(describe(mech), [("the initial state at t = 0 (load factor 1: the loads in full)", probe.last)],
+        warn_unstable(where, [("the initial state at t = 0 (load factor 1: the loads in full)", probe.last)],
                       load_path_note(probe))
         runs.set_current_as_initial(model, zero_velocity=True)
     model.ramp_loads, model.load_factor = False, 1.0
@@ -184,102 +217,39 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     model.adjust_settings(sim_settings)
     solver_settings.apply_user_settings(sim_settings, settings)
     model.check_settings(sim_settings)
-    layout = RowLayout(model)
     clock = WallClock(progress, t_end) if progress is not None else None
-    n_src = len(sources)
-    # extremes over every accepted step (the record may be thinned), for the range checks
-    extremes = np.array([[np.inf] * n_src, [-np.inf] * n_src, [np.inf] * n_src, [-np.inf] * n_src])
-
-    rotations: dict[str, float] = {}  # largest relative cell rotation per bender over every accepted step
-
-    def block_extremes(block: np.ndarray) -> None:
-        _, volts, strains, q, _ = layout.parts(block)
-        for name, value in cell_rotations(model, q, strains).items():
-            rotations[name] = max(value, rotations.get(name, 0.0))
-        np.minimum(extremes[0], volts.min(axis=0), out=extremes[0])
-        np.maximum(extremes[1], volts.max(axis=0), out=extremes[1])
-        np.minimum(extremes[2], strains.min(axis=0), out=extremes[2])
-        np.maximum(extremes[3], strains.max(axis=0), out=extremes[3])
-
-    def every_step_columns(block: np.ndarray) -> np.ndarray:
-        return layout.every_step_columns(block, snap_times(block[:, 0], grid.step))
-
-    record = StepRecord(layout.width, schedule.take, on_block=block_extremes,
-                        reduce=None if schedule.every_step else every_step_columns)
-    read_forces = model.connector_reader() if layout.n_forces else None  # its plan made once
-    q_view = model.coordinates()  # Exudyn's coordinate vector stays in place during a run (checked after it)
-
-    trial = np.zeros(n_src)  # the attempted step's strains, written in place (the hot path)
-    indexed_sources = list(enumerate(sources))
-
-    def trial_strains(t: float) -> np.ndarray:
-        for k, source in indexed_sources:
-            trial[k] = source.trial(t)
-        return trial
-
-    if stroke_path == "user_function":  # the user functions ask the sources at their t
-        model.uf_strains = trial_strains
-
-    model.strains = trial  # the run's array: the pre-step writes it in place, the model reads it
-    write_strains = model.strain_writer()
-    only_trial = sources[0].trial if n_src == 1 else None
-
-    def pre_step(t: float) -> None:
-        # an error raised here (the user's program, controller or load function) is raised as it is
-        # after the solve (mbs.solver_runs.HookErrors); the note names the drive or the loads
-        model.time = t
-        k = 0
-        try:
-            if only_trial is not None:  # one drive (every actuator): no loop
-                trial[0] = only_trial(t)
-            else:
-                for k, source in indexed_sources:
-                    trial[k] = source.trial(t)
-            k = -1
-            write_strains(trial)
-        except Exception as exc:
-            annotate(exc, f"({labels[k]})" if k >= 0 else f"(writing the strains and loads of {where})")
-            raise
-
+    stepping.start()  # the record and its view of Exudyn's coordinates (they stay in place during a run)
+    if model.stroke_path == "user_function":  # the user functions ask the sources at their t
+        model.uf_strains = stepping.trial_strains
     strain_slice = slice(1 + n_src, 1 + 2 * n_src)
-    q_slice = slice(1 + 2 * n_src, 1 + 2 * n_src + layout.n_coordinates)
-    force_slice = slice(1 + 2 * n_src + layout.n_coordinates, None)
 
-    commits = [(source, 1 + k, 1 + n_src + k) for k, source in indexed_sources]  # (source, voltage, strain column)
+    def observe(t: float, row: np.ndarray) -> None:
+        t = snap_time(t, grid.step)  # observed times on the step grid, as recorded
+        for controller, read in observers:
+            try:
+                controller.observe(t, read(row[strain_slice].copy()))
+            except Exception as exc:  # the user's controller: its own error, naming it
+                annotate(exc, f"(raised by {type(controller).__name__}.observe at t = {t:.9g} s, the controller of "
+                              f"{where})")
+                raise
+        if clock is not None:
+            try:
+                clock(t)
+            except Exception as exc:
+                annotate(exc, f"(raised by the progress callback at t = {t:.9g} s)")
+                raise
 
-    def post_step(t: float) -> None:
-        row = record.begin(t)  # hot path: element writes into the preallocated block
-        for source, volt_column, strain_column in commits:
-            row[volt_column], row[strain_column] = source.commit(t)
-        row[q_slice] = q_view
-        if read_forces is not None:
-            row[force_slice] = read_forces()
-        record.end(t)
-        if observers or clock is not None:
-            t = snap_time(t, grid.step)  # observed times on the step grid, as recorded
-            for controller, read in observers:
-                try:
-                    controller.observe(t, read(row[strain_slice].copy()))
-                except Exception as exc:  # the user's controller: its own error, naming it
-                    annotate(exc, f"(raised by {type(controller).__name__}.observe at t = {t:.9g} s, the controller of "
-                                  f"{where})")
-                    raise
-            if clock is not None:
-                try:
-                    clock(t)
-                except Exception as exc:
-                    annotate(exc, f"(raised by the progress callback at t = {t:.9g} s)")
-                    raise
-
+    if observers or clock is not None:
+        stepping.after_commit.append(observe)
+    record = stepping.record
     stats, interrupted = integrate(
-        model, sim_settings, pre_step, post_step, what=describe(mech), step=grid.step,
+        model, sim_settings, stepping.pre_step, stepping.post_step, what=where, step=grid.step,
         last_time=lambda: snap_time(float(record.last[0]), grid.step) if record.last is not None else 0.0,
         advice="Try a smaller step, a slower voltage program, more cells, or check that the mechanism is not locked "
                "(mechanism.degrees_of_freedom()).")
     # every accepted step's row was written by the post-step hook (the guard stops passing steps
     # on after an interrupt), so the last row is the last accepted step: it closes the record
-    record.close()
-    check_view(q_view, model.coordinates())
+    rows = stepping.close()
     accepted = max(record.accepted - 1, 0)
     info = run_info(grid, accepted, schedule, stats,
                     hysteresis_evaluations=sum(getattr(s, "evaluations", 0) for s in sources))
@@ -290,10 +260,9 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     if record.accepted and n_src:
         check_drive_ranges(model, extremes[:2], extremes[2:])
     warn_coarse_cells(mech, rotations)
-    rows = record.rows()
     every = record.every_step()
     every_step = layout.every_step_result(every, info) if every is not None else None
-    result = layout.result(rows, snap_times(rows[:, 0], grid.step), info, every_step) if len(rows) else None
+    result = stepping.result(info, snap_times(rows[:, 0], grid.step), every_step) if len(rows) else None
     if interrupted:
         t_stop = float(result["time"][-1]) if result is not None else 0.0
         mark_partial(info, t_stop, accepted)

@@ -91,7 +91,9 @@ LONG_RUN_SECONDS = 60.0
 #: ``(a, b, c)``: a run of ``n`` cells and ``k`` steps takes about ``k * (a + b n + c n^2)``;
 #: each kind's own measured
 #: :attr:`~exudyn_atcm.cells.CellKind.cost_per_step` (``benchmarks/bench_run_cost.py``).
-COST_PER_STEP = {name: kind.cost_per_step for name, kind in CELL_KINDS.items() if kind.cost_per_step is not None}
+#: (``COST_PER_STEP`` is a module attribute read from the registry when asked.)
+_LIVE = {"COST_PER_STEP": lambda: {name: kind.cost_per_step for name, kind in CELL_KINDS.items()
+                                   if kind.cost_per_step is not None}}
 # ------------------------------------------------------------------------------ time grid
 
 @dataclass(frozen=True)
@@ -430,3 +432,10 @@ def warn_if_long(cell: str | CellKind, n_cells: int, n_steps: int, *, limit: flo
                   + (f"; {build_detail(*build)}" if build[0] > 0.1 * estimate or large else ""))
         warnings.warn(long_run_message(estimate, detail), RunCostWarning, stacklevel=stacklevel)
     return estimate
+
+
+def __getattr__(name: str):
+    # the registry's names, read when asked (kinds registered with exudyn_atcm.register_cell_kind included)
+    if name in _LIVE:
+        return _LIVE[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

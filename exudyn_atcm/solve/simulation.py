@@ -27,7 +27,8 @@ from ..mechanism import Mechanism
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
 from . import mechanism_solve
-from .as_mechanism import actuator_interrupts, actuator_mechanism, actuator_result
+from .as_mechanism import actuator_interrupts, actuator_result
+from .bender_checks import check_benders
 from .keywords import keyword_signature, legacy_positional
 from .run_setup import DEFAULT_STEP
 
@@ -46,13 +47,6 @@ def _check_actuator(actuator: Any) -> BendingActuator:
         raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
     return actuator
 
-
-def _check_force(tip_force: Any) -> tuple[float, float]:
-    try:
-        fx, fy = tip_force
-    except (TypeError, ValueError):
-        raise ValueError(f"tip_force must be a pair (Fx, Fy) of finite numbers [N], got {tip_force!r}") from None
-    return finite_float("tip_force[0]", fx), finite_float("tip_force[1]", fy)
 
 
 
@@ -79,6 +73,9 @@ def solve_static(
         operator, the voltage is reached by a monotone ramp from the operator's reset state.
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
     load_steps : int, optional
         Number of equal load steps in which strain and load are raised from zero together
         (each step is halved adaptively if Newton fails).  Default: about one step per
@@ -114,10 +111,9 @@ def solve_static(
 
         return mechanism_solve.solve_static(actuator, voltage, load_steps)
     actuator = _check_actuator(actuator)
-    force = _check_force(tip_force)
+    mech = actuator.as_mechanism(tip_force)
     volts = None if voltage is None else finite_float("voltage", voltage)
-    return actuator_result(actuator, mechanism_solve.solve_static(actuator_mechanism(actuator, force), volts,
-                                                                  load_steps))
+    return actuator_result(actuator, mechanism_solve.solve_static(mech, volts, load_steps))
 
 
 # ------------------------------------------------------------------------------ dynamic solve
@@ -156,6 +152,9 @@ def simulate(
         repeated, not recorded).
     tip_force : (float, float), optional
         Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates, constant in time.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
     settings : callable or dict, optional
         Adjusts the underlying ``exudyn.SimulationSettings`` after the package defaults are
         set: a callable receiving the settings object, or a dict of dotted names, e.g.
@@ -225,16 +224,18 @@ def simulate(
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
 
-        return mechanism_solve.simulate(actuator, t_end, step, settings, progress, record_every)
+        result = mechanism_solve.simulate(actuator, t_end, step, settings, progress, record_every)
+        check_benders(actuator, result, stacklevel=3)  # every bender's cell-kind checks; warnings at the caller
+        return result
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
     # the mechanism solve is called from here (and from run_actuator) directly: as many frames between the
     # caller and the run checks as for a mechanism, so their warnings point at the caller's line
+    mech = actuator.as_mechanism(tip_force)
     with actuator_interrupts(actuator):
-        result = mechanism_solve.simulate(actuator_mechanism(actuator, _check_force(tip_force)), t_end, step,
-                                          settings, progress, record_every)
-    return _finish_actuator_run(actuator, result, "prestep")
+        result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every)
+    return _finish_actuator_run(actuator, mech, result, "prestep")
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
@@ -254,19 +255,18 @@ def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke
             f"a drive with a controller needs the in-step strain source, got {type(source).__name__}: "
             "the voltage depends on the simulated response and cannot be tabulated beforehand"
         )
+    mech = actuator.as_mechanism(tip_force)
     with actuator_interrupts(actuator):
-        result = mechanism_solve.simulate(actuator_mechanism(actuator, _check_force(tip_force)), t_end, step,
-                                          settings, progress, record_every,
+        result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every,
                                           sources=None if source is None else [source], stroke_path=stroke_path)
-    return _finish_actuator_run(actuator, result, stroke_path)
+    return _finish_actuator_run(actuator, mech, result, stroke_path)
 
 
-def _finish_actuator_run(actuator: BendingActuator, result: Result, stroke_path: str) -> Result:
-    """The actuator's result of its one-bender mechanism's run, checked by its cell kind."""
+def _finish_actuator_run(actuator: BendingActuator, mech: Mechanism, result: Result, stroke_path: str) -> Result:
+    """The actuator's result of its one-bender mechanism's run, checked by its cell kind as any bender is."""
     result.info["stroke_path"] = stroke_path
-    out = actuator_result(actuator, result)
-    actuator.cell.check_run(out, actuator, stacklevel=4)  # the caller of simulate
-    return out
+    check_benders(mech, result, stacklevel=4)  # the caller of simulate
+    return actuator_result(actuator, result)
 
 
 # ------------------------------------------------------------------------------ quasi-static sweep
@@ -288,7 +288,10 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
         Voltages [V] of all drives at each point, or per drive (equal lengths; drives not
         named follow their program at t = 0 throughout).
     tip_force : (float, float), optional
-        Actuator only: dead tip load [N], constant along the sweep.
+        Dead tip load [N], constant along the sweep.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
 
     Returns
     -------
@@ -308,7 +311,7 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
         return mechanism_solve.static_sweep(system, voltages)
     if not isinstance(system, BendingActuator):
         raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {system!r}")
-    mech = actuator_mechanism(system, _check_force(tip_force))
+    mech = system.as_mechanism(tip_force)
     return actuator_result(system, mechanism_solve.static_sweep(mech, voltages))
 
 
@@ -341,7 +344,10 @@ def eigenfrequencies(
         operator the strain is the one reached by a monotone ramp from the operator's reset
         state, as in :func:`solve_static`.
     tip_force : (float, float), optional
-        Actuator only: dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+        Dead load ``(Fx, Fy)`` [N] at the tip, in global coordinates.
+        A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
+        one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
+        :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
 
     Returns
     -------
@@ -376,10 +382,9 @@ def eigenfrequencies(
         return mechanism_solve.eigenfrequencies(actuator, n, voltage)
     actuator = _check_actuator(actuator)
     n = positive_int("n", n)
-    force = _check_force(tip_force)
+    mech = actuator.as_mechanism(tip_force)
     volts = None if voltage is None else finite_float("voltage", voltage)
-    return mechanism_solve.eigenfrequencies(actuator_mechanism(actuator, force), n, volts,
-                                            loaded=force != (0.0, 0.0))
+    return mechanism_solve.eigenfrequencies(mech, n, volts, loaded=bool(mech.forces))
 
 
 #: Defaults of the public solves' keyword arguments in their old positional order (the positional

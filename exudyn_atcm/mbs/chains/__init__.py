@@ -12,7 +12,7 @@ cable elements), :mod:`.ritz` (assumed modes of the rotation field).  What the c
 are nodes share is in :mod:`exudyn_atcm.mbs.node_chain`.
 
 May import: Exudyn, :mod:`exudyn_atcm.cells`, :mod:`exudyn_atcm.mechanism`, :mod:`exudyn_atcm.theory`
-and the other modules of :mod:`exudyn_atcm.mbs` except the builder.
+and the other modules of :mod:`exudyn_atcm.mbs` except the builder; they write through the build context only (:mod:`exudyn_atcm.mbs.build_context`).
 """
 
 from __future__ import annotations

@@ -32,16 +32,18 @@ from exudyn import itemInterface as ii
 
 from ...cells import AncfCell
 from ...mechanism.bender import Bender
-from ..node_chain import beam_node_key, node_positions, register_element_chain
-from ..cells import add_mechanism_bender
+from ..node_chain import NodeEnds, beam_node_key, node_positions, register_element_chain
 from ..items import NOVIS
-from ..model import Body, MechanismModel
+from ..model import Body
+from ..realisation import register_realisation
 
-__all__ = ["add_ancf_chain", "clamp_slope_node"]
+__all__ = ["AncfChain", "add_ancf_chain", "clamp_slope_node"]
 
 
-def add_ancf_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
-    """Add the nodes and ANCF elements of ``bender``; returns the node keys (base first)."""
+def add_ancf_chain(ctx, bender: Bender) -> list[str]:
+    """Add the nodes and ANCF elements of ``bender`` through the build context ``ctx``; returns the node keys
+    (base first)."""
+    mbs = ctx.mbs
     lam = bender.laminate
     ei, ea, mu = lam.bending_stiffness, lam.axial_rigidity, lam.mass_per_length
     beta = bender.stiffness_damping_factor
@@ -52,8 +54,8 @@ def add_ancf_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
         nodes.append(mbs.AddNode(ii.NodePoint2DSlope1(
             referenceCoordinates=[float(pos[0]), float(pos[1]), math.cos(a), math.sin(a)], visualization=NOVIS)))
         keys.append(beam_node_key(bender, i))
-        model.bodies[keys[-1]] = Body(keys[-1], nodes[-1], -1, np.array([pos[0], pos[1], a], dtype=float),
-                                      node_only=True)
+        ctx.register_body(Body(keys[-1], nodes[-1], -1, np.array([pos[0], pos[1], a], dtype=float),
+                               node_only=True))
     items = []
     for j, lc in enumerate(lengths):
         item = mbs.AddObject(ii.ObjectANCFCable2D(
@@ -61,17 +63,17 @@ def add_ancf_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
             axialStiffness=ea, bendingDamping=beta * ei, axialDamping=beta * ea, referenceCurvature=0.0,
             useReducedOrderIntegration=True, visualization={'show': False, 'drawHeight': 0.,
                                                             'color': [-1., -1., -1., -1.]}))
-        model.springs.append((item, ei, "bendingDamping"))
+        ctx.add_spring(item, ei, "bendingDamping")
         items.append(item)
     for i, key in enumerate(keys):  # orientation at a node: the element ending there (the first for the base)
-        body = model.bodies[key]
+        body = ctx.body(key)
         body.item = items[max(i - 1, 0)]
         body.slope_at = float(lengths[i - 1]) if i > 0 else 0.0
     # the kind joins mechanisms as a cantilever only (AncfCell.end_refusal): an end welded to its group is
     # the base clamped to the ground
-    model.bodies[keys[0]].weld = lambda mbs, body, ground_coordinate, node=model.bodies[keys[0]]: \
+    ctx.body(keys[0]).weld = lambda mbs, body, ground_coordinate, node=ctx.body(keys[0]): \
         clamp_slope_node(mbs, node, ground_coordinate)
-    register_element_chain(model, bender, keys, items)
+    register_element_chain(ctx, bender, keys, items)
     return keys
 
 
@@ -96,6 +98,9 @@ def clamp_slope_node(mbs, node: Body, ground_coordinate: int) -> None:
                                                      visualization=NOVIS))
 
 
-@add_mechanism_bender.register
-def _ancf(cell: AncfCell, builder, bender: Bender) -> None:
-    add_ancf_chain(builder.mbs, builder.model, bender)
+@register_realisation(AncfCell)
+class AncfChain(NodeEnds):
+    """ANCF cable elements between nodes; the base clamped by its position and slope, the tip free."""
+
+    def add_cells(self, ctx) -> None:
+        add_ancf_chain(ctx, self.bender)

@@ -39,20 +39,24 @@ import numpy as np
 
 from ...cells import BeamCell
 from ...mechanism.bender import Bender
-from ..cells import add_mechanism_bender
 from ..items import NOVIS
-from ..model import Body, MechanismModel
-from ..node_chain import beam_node_key, node_positions, register_element_chain
+from ..model import Body
+from ..node_chain import NodeEnds, beam_node_key, node_positions, register_element_chain
+from ..realisation import register_realisation
+
+__all__ = ["BeamChain", "add_beam_chain"]
 
 _BEAM_COLOR = [0.2, 0.45, 0.8, 1.0]
 
 
-def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
-    """Add the nodes and beam elements of ``bender``; returns the node keys (base first).
+def add_beam_chain(ctx, bender: Bender) -> list[str]:
+    """Add the nodes and beam elements of ``bender`` through the build context ``ctx``; returns the node keys
+    (base first).
 
-    The nodes are registered in ``model.bodies`` (``node_only``); the actuation torques per
-    node and drive are given by :func:`actuation_torques`.
+    The nodes are registered as bodies (``node_only``); the actuation torques per node and drive are
+    given by :func:`~exudyn_atcm.mbs.node_chain.actuation_torques`.
     """
+    mbs = ctx.mbs
     lam = bender.laminate
     ei = lam.bending_stiffness
     ea = lam.axial_rigidity
@@ -66,26 +70,29 @@ def add_beam_chain(mbs, model: MechanismModel, bender: Bender) -> list[str]:
         node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[float(pos[0]), float(pos[1]), bender.angle],
                                               visualization=NOVIS))
         key = beam_node_key(bender, i)
-        model.bodies[key] = Body(key, node, -1, np.array([pos[0], pos[1], bender.angle], dtype=float),
-                                 node_only=True)
+        ctx.register_body(Body(key, node, -1, np.array([pos[0], pos[1], bender.angle], dtype=float),
+                               node_only=True))
         keys.append(key)
     items = []
     for j, lc in enumerate(lengths):
-        a, b = model.bodies[keys[j]], model.bodies[keys[j + 1]]
+        a, b = ctx.body(keys[j]), ctx.body(keys[j + 1])
         item = mbs.AddObject(ii.ObjectBeamGeometricallyExact2D(
             nodeNumbers=[a.node, b.node], length=float(lc), massPerLength=mu, crossSectionInertia=rho_i,
             bendingStiffness=ei, axialStiffness=ea, shearStiffness=ea,
             bendingDamping=beta * ei, axialDamping=beta * ea, shearDamping=beta * ea,
             referenceCurvature=0.0,
             visualization={'show': True, 'drawHeight': float(thick), 'color': _BEAM_COLOR}))
-        model.springs.append((item, ei, "bendingDamping"))
+        ctx.add_spring(item, ei, "bendingDamping")
         items.append(item)
     for i, key in enumerate(keys):  # a node's "body": the element ending there (the first for the base)
-        model.bodies[key].item = items[max(i - 1, 0)]
-    register_element_chain(model, bender, keys, items)
+        ctx.body(key).item = items[max(i - 1, 0)]
+    register_element_chain(ctx, bender, keys, items)
     return keys
 
 
-@add_mechanism_bender.register
-def _beam(cell: BeamCell, builder, bender: Bender) -> None:
-    add_beam_chain(builder.mbs, builder.model, bender)
+@register_realisation(BeamCell)
+class BeamChain(NodeEnds):
+    """Geometrically exact beam elements between nodes; the end nodes join the mechanism."""
+
+    def add_cells(self, ctx) -> None:
+        add_beam_chain(ctx, self.bender)

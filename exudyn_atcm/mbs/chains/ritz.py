@@ -25,6 +25,7 @@ are read from the coordinates (:func:`~exudyn_atcm.theory.ritz_beam.tip_position
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import exudyn as exu
 import numpy as np
@@ -34,11 +35,11 @@ from ...cells import RitzCell
 from ...mechanism.bender import Bender
 from ...mechanism.points import MechanismError
 from ...theory import ritz_beam
-from ..node_chain import beam_node_key
-from ..cells import add_mechanism_bender
+from ..node_chain import NodeEnds, beam_node_key
 from ..model import Body
+from ..realisation import register_realisation
 
-__all__ = ["add_ritz_bender", "MASS_UPDATE_ANGLE"]
+__all__ = ["RitzBender", "add_ritz_bender", "MASS_UPDATE_ANGLE"]
 
 #: Grid spacing [rad] of ``kappa L`` at which the mass matrix is re-evaluated.  The first
 #: bending frequency of the reference bender changes by 0.26 % between the straight state and
@@ -49,12 +50,13 @@ __all__ = ["add_ritz_bender", "MASS_UPDATE_ANGLE"]
 MASS_UPDATE_ANGLE = 0.01
 
 
-def add_ritz_bender(builder, bender: Bender) -> None:
-    """Add the assumed-modes model of ``bender`` through the mechanism ``builder``."""
+def add_ritz_bender(ctx, bender: Bender) -> tuple[Callable | None, Callable]:
+    """Add the assumed-modes model of ``bender`` through the build context ``ctx``; returns its strain writer
+    (``None`` without a drive) and its linearisation hook."""
     if len(bender.segments) != 1:
         raise MechanismError(f"bender {bender.name!r}: the ritz cell models one uniform segment, got "
                              f"{len(bender.segments)} segments; use cell='beam' for segmented benders")
-    mbs, model = builder.mbs, builder.model
+    mbs = ctx.mbs
     n, length = bender.n_cells, bender.length
     lam = bender.laminate
     ei, mu, rho_i = lam.bending_stiffness, lam.mass_per_length, lam.rotary_inertia_per_length
@@ -68,18 +70,18 @@ def add_ritz_bender(builder, bender: Bender) -> None:
     load = mbs.AddLoad(ii.LoadCoordinate(markerNumber=marker, load=0.0))
 
     # free curvature per unit strain of each source [1/m], signed by the active side
-    curvature = builder.zeros()
+    curvature = ctx.zeros()
     if bender.segments[0].drive is not None:
-        curvature[model.drive_source[bender.drive_name(0)]] = bender.curvature_sign * lam.curvature_per_strain
+        curvature[ctx.source(bender, 0)] = bender.curvature_sign * lam.curvature_per_strain
     angle, base = bender.angle, np.array(bender.base_position, dtype=float)
     c, s = math.cos(angle), math.sin(angle)
     segments = ritz_beam.segment_rotation_matrix(n, n)
 
     base_key, tip_key = beam_node_key(bender, 0), beam_node_key(bender, n)
     reference_tip = np.array([*bender.points["tip"], angle], dtype=float)
-    model.bodies[base_key] = Body(base_key, node, obj, np.array([base[0], base[1], angle]), node_only=True)
-    model.bodies[base_key].pose_function = lambda q, b=model.bodies[base_key]: np.tile(b.reference, (q.shape[0], 1))
-    model.bodies[base_key].weld = lambda mbs, body, ground_coordinate: None  # clamped by the modes themselves
+    base_body = ctx.register_body(Body(base_key, node, obj, np.array([base[0], base[1], angle]), node_only=True))
+    base_body.pose_function = lambda q, b=base_body: np.tile(b.reference, (q.shape[0], 1))
+    base_body.weld = lambda mbs, body, ground_coordinate: None  # clamped by the modes themselves
     tip = Body(tip_key, node, obj, reference_tip, node_only=True)
 
     def tip_pose(q: np.ndarray) -> np.ndarray:
@@ -88,7 +90,7 @@ def add_ritz_bender(builder, bender: Bender) -> None:
         return np.column_stack([base[0] + c * x - s * y, base[1] + s * x + c * y, angle + modes[:, 0]])
 
     tip.pose_function = tip_pose
-    model.bodies[tip_key] = tip
+    ctx.register_body(tip)
     keys = []
     for j in range(n):
         key = f"{bender.name}/segment{j + 1}"
@@ -96,9 +98,9 @@ def add_ritz_bender(builder, bender: Bender) -> None:
         seg.pose_function = (lambda q, row=segments[j]:
                              np.column_stack([np.full(q.shape[0], np.nan), np.full(q.shape[0], np.nan),
                                               angle + q[:, tip.ode2:tip.ode2 + n] @ row]))
-        model.bodies[key] = seg
+        ctx.register_body(seg)
         keys.append(key)
-    model.cells[bender.name] = keys
+    ctx.set_cells(bender, keys)
 
     cache = {0: M0}
     state = {"grid": 0}
@@ -125,16 +127,14 @@ def add_ritz_bender(builder, bender: Bender) -> None:
         mbs.SetObjectParameter(obj, "massMatrix", ritz_beam.mass_matrix(n, length, mu, rho_i, kappa))
         state["grid"] = None  # the next strains write a grid value again
 
-    if source is not None:  # without a drive the load stays 0 and the mass matrix M(0)
-        model.strain_writers.append(write_strains)
-    model.linearisation_hooks.append(linearise)
-    model.settings_adjusters.append(_ritz_settings)
-    model.varying_mass_benders.append(bender.name)
+    ctx.add_settings_adjuster(_ritz_settings)
+    ctx.mark_varying_mass(bender)
     # the static problem is linear, K q = Q: Exudyn's Newton iteration (numerical Jacobian) stops
     # at the default tolerance ~1e-9 rad off; 1e-13 rad of generalised moment reaches round-off
-    absolute = 1e-13 * ei / length
-    model.static_absolute_tolerance = min(absolute, model.static_absolute_tolerance or math.inf)
-    model.static_relative_tolerance = 1e-14
+    ctx.require_static_absolute_tolerance(1e-13 * ei / length)
+    ctx.set_static_relative_tolerance(1e-14)
+    # without a drive the load stays 0 and the mass matrix M(0)
+    return (write_strains if source is not None else None), linearise
 
 
 def _ritz_settings(settings) -> None:
@@ -142,6 +142,15 @@ def _ritz_settings(settings) -> None:
     settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
 
 
-@add_mechanism_bender.register
-def _ritz(cell: RitzCell, builder, bender: Bender) -> None:
-    add_ritz_bender(builder, bender)
+@register_realisation(RitzCell)
+class RitzBender(NodeEnds):
+    """Assumed modes of the whole bender; the base clamped by the modes, the tip free."""
+
+    def add_cells(self, ctx) -> None:
+        self._writer, self._hook = add_ritz_bender(ctx, self.bender)
+
+    def strain_writer(self) -> Callable | None:
+        return self._writer
+
+    def linearisation_hook(self) -> Callable | None:
+        return self._hook

@@ -52,6 +52,7 @@ compiled kernels and written into the items:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import exudyn as exu
 import numpy as np
@@ -60,13 +61,12 @@ from exudyn import itemInterface as ii
 from ...cells import RodCell
 from ...mechanism.bender import Bender
 from ...theory import rotation_rod
-from ..cells import add_mechanism_bender
-from ..hooks import add_post_newton
 from ..items import NOVIS
 from ..model import Body
-from ..node_chain import beam_node_key
+from ..node_chain import NodeEnds, beam_node_key
+from ..realisation import register_realisation
 
-__all__ = ["add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE", "INERTIA_TOLERANCE"]
+__all__ = ["RodBender", "add_rod_bender", "TIP_TOLERANCE", "STATIC_TIP_TOLERANCE", "INERTIA_TOLERANCE"]
 
 #: Largest distance [in units of the rod's length] of the tip node from the exact tip pose of
 #: the rod's coordinates that a solved state of a moving rod may keep (else the Newton solve is
@@ -89,11 +89,12 @@ NEWTON_POSITION_FACTOR = 0.25
 _START = exu.ConfigurationType.StartOfStep
 
 
-def add_rod_bender(builder, bender: Bender) -> None:
-    """Add the rod model of ``bender`` (its base and tip nodes and the tie) through the mechanism ``builder``."""
+def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
+    """Add the rod model of ``bender`` (its base and tip nodes and the tie) through the build context ``ctx``;
+    returns its strain writer and its linearisation hook."""
     from ...theory import rod_kernels  # noqa: PLC0415 - numba is imported (and the kernels compiled) for rods only
 
-    mbs, model = builder.mbs, builder.model
+    mbs, model = ctx.mbs, ctx.model
     n, length = bender.n_cells, bender.length
     size = 3 + n  # X, Y, Phi of the base node, then the modes
     lam = bender.laminate
@@ -112,10 +113,10 @@ def add_rod_bender(builder, bender: Bender) -> None:
     state = {"mass": mass0, "stiffened": False, "h": 0.0}
     # the mass matrix changes every step: in the package's own runs it is written as the item's
     # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, from
-    # model.varying_mass_benders); in a user's system (add_to), whose settings the package does not
+    # BuildContext.mark_varying_mass); in a user's system (add_to), whose settings the package does not
     # control, a mass matrix user function makes Exudyn treat it as varying in any solver (about
     # 10 us per call, several calls per step: a third of the rod four-bar's step)
-    by_parameter = builder.package_solves
+    by_parameter = ctx.package_solves
     varying_mass = {} if by_parameter else {"massMatrixUserFunction": lambda mbs_, t, item, q, q_t: state["mass"]}
 
     base_node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=base_reference.tolist(), visualization=NOVIS))
@@ -130,7 +131,7 @@ def add_rod_bender(builder, bender: Bender) -> None:
         if seg.drive is not None:
             marker = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=node, coordinate=first))
             actuation.append((mbs.AddLoad(ii.LoadCoordinate(markerNumber=marker, load=0.0)),
-                              model.drive_source[bender.drive_name(j)]))
+                              ctx.source(bender, j)))
     tip_reference = np.array([*bender.points["tip"], angle], dtype=float)
     tip_node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=tip_reference.tolist(), visualization=NOVIS))
     tie = mbs.AddObject(ii.ObjectConnectorCoordinateVector(
@@ -140,8 +141,8 @@ def add_rod_bender(builder, bender: Bender) -> None:
 
     base = Body(beam_node_key(bender, 0), base_node, obj, base_reference.copy(), node_only=True)
     tip = Body(beam_node_key(bender, n), tip_node, obj, tip_reference, node_only=True)
-    model.bodies[base.key] = base
-    model.bodies[tip.key] = tip
+    ctx.register_body(base)
+    ctx.register_body(tip)
     cells = shapes.cell_rotations()
     keys = []
     for j in range(n):
@@ -150,9 +151,9 @@ def add_rod_bender(builder, bender: Bender) -> None:
         seg.pose_function = (lambda q, row=cells[j], body=seg:
                              np.column_stack([np.full(q.shape[0], np.nan), np.full(q.shape[0], np.nan),
                                               angle + q[:, base.ode2 + 2] + q[:, body.ode2:body.ode2 + n] @ row]))
-        model.bodies[key] = seg
+        ctx.register_body(seg)
         keys.append(key)
-    model.cells[bender.name] = keys
+    ctx.set_cells(bender, keys)
     # ODE2 indices of the base's, the modes' and the tip's coordinates, read at first use (after Assemble;
     # a user's system after add_to is assembled later): nodes are numbered in the order they were added, so
     # these stay valid when items are added after them and the system is assembled again
@@ -296,19 +297,26 @@ def add_rod_bender(builder, bender: Bender) -> None:
         return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force,
                         follower_force(tip_reference[2] + coordinates[tip_start + 2]))
 
-    model.truncation_estimators[bender.name] = truncation
+    ctx.set_truncation_estimator(bender, truncation)
     if by_parameter:
-        model.varying_mass_benders.append(bender.name)  # the runs let Exudyn re-read it every step
-    model.springs.append((obj, K, "dampingMatrix"))  # the relaxation damps the modes at its factor times K
-    model.strain_writers.append(write_strains)
-    model.linearisation_hooks.append(linearise)
-    add_post_newton(mbs, check_tip)
+        ctx.mark_varying_mass(bender)  # the runs let Exudyn re-read it every step
+    ctx.add_spring(obj, K, "dampingMatrix")  # the relaxation damps the modes at its factor times K
+    ctx.add_post_newton(check_tip)
     # the rod's equations are moments of order EI/L per rad: Newton's default absolute
     # tolerance 1e-8 would leave ~1e-8 L / (EI/L) rad
-    absolute = 1e-12 * ei / length
-    model.static_absolute_tolerance = min(absolute, model.static_absolute_tolerance or math.inf)
+    ctx.require_static_absolute_tolerance(1e-12 * ei / length)
+    return write_strains, linearise
 
 
-@add_mechanism_bender.register
-def _rod(cell: RodCell, builder, bender: Bender) -> None:
-    add_rod_bender(builder, bender)
+@register_realisation(RodCell)
+class RodBender(NodeEnds):
+    """The geometrically exact rod in assumed modes between a base node and a tip node."""
+
+    def add_cells(self, ctx) -> None:
+        self._writer, self._hook = add_rod_bender(ctx, self.bender)
+
+    def strain_writer(self) -> Callable | None:
+        return self._writer
+
+    def linearisation_hook(self) -> Callable | None:
+        return self._hook

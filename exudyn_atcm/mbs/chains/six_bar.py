@@ -23,9 +23,11 @@ from exudyn import itemInterface as ii
 
 from ...cells import SixBarCell
 from ...mechanism.bender import Bender
-from ..cells import add_mechanism_bender
 from ..items import NOVIS, add_body, local_point, position_marker, rotation_marker
-from ..model import Body, MechanismModel
+from ..model import Body, EndReadout, MechanismModel
+from ..realisation import CellRealisation, EndMass, register_realisation
+
+__all__ = ["SixBarChain", "add_six_bar_chain", "six_bar_end_mass"]
 
 
 PASSIVE_COLOR = [0.2, 0.45, 0.8, 1.0]
@@ -52,11 +54,13 @@ def _interface(bender: Bender, lc: float) -> tuple[float, float]:
     return m_if, m_if * (s**2 + (lam.layer_offset + 0.5 * h) ** 2) / 12.0
 
 
-def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, tip: Body, ground_coordinate,
+def add_six_bar_chain(ctx, bender: Bender, base: Body, tip: Body,
                       damp: Callable[[Body, float, float, tuple[float, float]], None] | None = None) -> list:
-    """Add the cells of ``bender`` between the end bodies ``base`` and ``tip``; returns the passive bars' keys.
+    """Add the cells of ``bender`` between the end bodies ``base`` and ``tip`` through the build context
+    ``ctx`` (:class:`~exudyn_atcm.mbs.build_context.BuildContext`); returns the passive bars' keys.
 
-    Registers the motors in ``model.motor_offsets`` and the spring-dampers in ``model.springs``.
+    Registers the motors (:meth:`~exudyn_atcm.mbs.build_context.BuildContext.add_motor_offset`) and the
+    spring-dampers (:meth:`~exudyn_atcm.mbs.build_context.BuildContext.add_spring`).
     ``damp(body, mass, inertia, center)``, if given, is called for every body the chain adds
     (mass [kg], inertia about the centre [kg m²], centre in the body frame [m]): the
     mass-proportional damping of :mod:`exudyn_atcm.mbs.mass_damping`.
@@ -64,6 +68,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
     if damp is None:
         def damp(body, mass, inertia, center):
             return None
+    mbs, model, ground_coordinate = ctx.mbs, ctx.model, ctx.ground_coordinate
     lam = bender.laminate
     side = bender.curvature_sign
     e = lam.layer_offset
@@ -82,7 +87,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=list(positions), visualization=NOVIS))
         item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
             markerNumbers=list(rotations), stiffness=k, damping=beta * k, visualization=NOVIS))
-        model.springs.append((item, k, "damping"))
+        ctx.add_spring(item, k)
 
     def ends(body: Body, point: np.ndarray):
         """Markers of an end interface: lower (passive) and upper (active) points, rotation."""
@@ -102,7 +107,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
         key = f"{bender.name}/cell{j + 1}"
         bar = add_body(mbs, key, x0 + 0.5 * lc * d, angle, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0),
                        [exu.graphics.Brick(size=[lc, h1, 0.2 * lc], color=PASSIVE_COLOR)])
-        model.bodies[key] = bar
+        ctx.register_body(bar)
         damp(bar, m1, m1 * (lc**2 + h1**2) / 12.0, (0.0, 0.0))
         bars.append(key)
         ma = lam.active.mass_per_length(w) * lc * keep / 3.0
@@ -120,7 +125,7 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
             m_b, j_b = _interface(bender, float(lengths[j + 1]))
             nxt = add_body(mbs, f"{bender.name}/interface{j + 1}", x0 + lc * d, angle, 0.5 * (m_a + m_b),
                            0.5 * (j_a + j_b), (0.0, -side * 0.5 * e), [])
-            model.bodies[nxt.key] = nxt
+            ctx.register_body(nxt)
             damp(nxt, 0.5 * (m_a + m_b), 0.5 * (j_a + j_b), (0.0, -side * 0.5 * e))
             lower, upper_m, rot = (position_marker(mbs, nxt, (0.0, 0.0)), position_marker(mbs, nxt, upper),
                                    rotation_marker(mbs, nxt, ground_coordinate))
@@ -152,10 +157,10 @@ def add_six_bar_chain(mbs, model: MechanismModel, bender: Bender, base: Body, ti
             motor = mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[ground_coordinate, m_motor],
                                                                offset=0.0, visualization=NOVIS))
             if source is not None:
-                model.motor_offsets.append((motor, float(lc), source))
+                ctx.add_motor_offset(motor, float(lc), source)
         spring = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
             markerNumbers=[ground_coordinate, m_spring], stiffness=k1, damping=beta * k1, visualization=NOVIS))
-        model.springs.append((spring, k1, "damping"))
+        ctx.add_spring(spring, k1)
         prev_lower, prev_upper, prev_rot = lower, upper_m, rot
     return bars
 
@@ -167,12 +172,29 @@ def _motor_offset(model: MechanismModel, factor: float, source: int) -> Callable
     return offset
 
 
-@add_mechanism_bender.register
-def _six_bar(cell: SixBarCell, builder, bender: Bender) -> None:
-    """A six-bar chain between the bodies of the groups its two ends belong to."""
-    model = builder.model
-    ends = [model.bodies[builder.group_of[f"{bender.name}#{end}"]] for end in ("base", "tip")]
-    alpha = bender.mass_damping_factor
-    model.cells[bender.name] = add_six_bar_chain(
-        builder.mbs, model, bender, *ends, builder.gcoord,
-        damp=lambda body, mass, inertia, center: builder.dampers.add(body, alpha, mass, inertia, center))
+@register_realisation(SixBarCell)
+class SixBarChain(CellRealisation):
+    """A six-bar chain between the bodies of the groups its two ends belong to (real interface bodies)."""
+
+    ends_on_group_body = True
+
+    def add_cells(self, ctx) -> None:
+        bender = self.bender
+        ends = [ctx.group_body(bender, end) for end in ("base", "tip")]
+        alpha = bender.mass_damping_factor
+        ctx.set_cells(bender, add_six_bar_chain(
+            ctx, bender, *ends,
+            damp=lambda body, mass, inertia, center: ctx.add_mass_damping(body, alpha, mass, inertia, center)))
+
+    def connect_end(self, ctx, end: str) -> None:
+        """The chain ends on the group's body itself: nothing to join, the end turns with that body."""
+        ctx.set_end_readout(self.bender, end, EndReadout("body", body=ctx.group(self.bender, end).key))
+
+    def end_masses(self, end: str, carried: bool) -> list[EndMass]:
+        """Half the end interface, on the group's body wherever it sits."""
+        m, j, center, _ = six_bar_end_mass(self.bender, end)
+        return [(m, j, center)]
+
+    def interface_body_mass(self, end: str) -> tuple[float, float, tuple[float, float]]:
+        m, j, _, offset = six_bar_end_mass(self.bender, end)
+        return m, j, (0.0, -self.bender.curvature_sign * offset)

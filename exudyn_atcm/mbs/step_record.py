@@ -1,6 +1,6 @@
-"""Every accepted solver step, stored in preallocated blocks: the one recorder of both solve paths.
+"""Every accepted solver step, stored in preallocated blocks: the one recorder of every solve (simulate, the static solves, add_to).
 
-Internal API of the solve layer (documented for tests and benchmarks).  A run's post-step hook
+Internal API of the Exudyn layer (documented for tests and benchmarks; used through :class:`~exudyn_atcm.mbs.stepping.Stepping`).  A run's post-step hook
 writes one row of floats per accepted step (time first, then what the path needs to rebuild
 its result columns: voltages, strains, coordinates, forces) between :meth:`StepRecord.begin`
 and :meth:`StepRecord.end`.  The rows go into a preallocated block of
