@@ -88,7 +88,7 @@ deprecated_paths.install()
 
 
 def __getattr__(name: str):
-    """Old module paths (``exudyn_atcm.simulation``, ...) as attributes, with their warning."""
+    """Old module paths (:data:`exudyn_atcm.deprecated_paths.MOVED`) as attributes, with their warning."""
     if name in deprecated_paths.MOVED:
         import importlib  # noqa: PLC0415 - only for the deprecated paths
 

@@ -1,7 +1,9 @@
-"""Module paths that moved in 0.2 (the role folders), kept importable for one release (until 0.3).
+"""Module paths that moved, kept importable for one release.
 
-Importing an old path (``exudyn_atcm.simulation``, ``exudyn_atcm.beam_theory``, ...) returns the
-module at its new place and warns :class:`DeprecationWarning` naming the new path.  The one
+Importing an old path (``exudyn_atcm.solve.step_record``, moved in 0.3 to
+``exudyn_atcm.mbs.step_record``) returns the module at its new place and warns
+:class:`DeprecationWarning` naming the new path; the paths that moved in 0.2 (the role folders:
+``exudyn_atcm.simulation``, ``exudyn_atcm.beam_theory``, ...) were removed in 0.3.  The one
 exception is :mod:`exudyn_atcm.signals`, part of the top-level face, which stays importable
 under that name without a warning.
 """
@@ -18,45 +20,7 @@ from .errors import AtcmDeprecationWarning
 
 #: old module path -> new module path (both below ``exudyn_atcm``)
 MOVED = {
-    "_atomic": "io.atomic",
-    "_cli_errors": "casework.error_report",
-    "actuator": "mechanism.actuator",
-    "beam_theory": "theory",
-    "cases": "casework",
-    "cell_drawing": "plots.cells",
-    "control": "model.control",
-    "csv_io": "io",
-    "drive": "model.drive",
-    "feedforward": "model.feedforward",
-    "four_bar": "theory.four_bar",
-    "hysteresis_plots": "plots.hysteresis",
-    "identification_plots": "plots.identification",
-    "laminate": "model.laminate",
-    "materials": "model.materials",
-    "measurements": "io.measurements",
-    "mechanism_plots": "plots.mechanism",
-    "mechanism_run_checks": "solve.mechanism_checks",
-    "mechanism_shapes": "plots.mechanism_shapes",
-    "mbs.ancf_chain": "mbs.chains.ancf",
-    "mbs.beam_chain": "mbs.chains.beam",
-    "mbs.rigid_chain": "mbs.chains.rigid",
-    "mbs.ritz_bender": "mbs.chains.ritz",
-    "mbs.six_bar": "mbs.chains.six_bar",
-    "mechanism_solve": "solve.mechanism_solve",
-    "parameter_sets": "model.parameter_sets",
-    "plot_style": "plots.style",
-    "plotting": "plots.result",
-    "progress": "io.progress",
-    "recording": "model.recording",
-    "reference_record": "model.reference_record",
-    "regression": "casework",
-    "result": "io.result",
-    "ritz_beam": "theory.ritz_beam",
-    "run_checks": "solve.run_checks",
-    "run_setup": "solve.run_setup",
     "signals": "model.signals",
-    "simulation": "solve.simulation",
-    "strain_sources": "model.strain_sources",
     "solve.step_record": "mbs.step_record",
 }
 

@@ -290,19 +290,15 @@ def test_solves_take_the_system_first_and_the_rest_by_keyword():
             function.__name__, ["system"]), function.__name__
 
 
-def test_positional_calls_of_the_old_signatures_still_work_for_one_release_with_a_warning():
+def test_the_old_positional_calls_are_refused_after_their_release():
+    """0.2 kept the positional forms of 0.1 for one release with a warning; 0.3 takes keywords only."""
     act = actuator("rigid", voltage=800.0, n=4)
-    with pytest.warns(DeprecationWarning, match=r"solve_static\(\): pass voltage= by keyword"):
-        old = atcm.solve_static(act, 500.0)
-    assert old["tip_y"][0] == atcm.solve_static(act, voltage=500.0)["tip_y"][0]
-    with pytest.warns(DeprecationWarning, match=r"eigenfrequencies\(\): pass n= by keyword"):
-        f_old = atcm.eigenfrequencies(act, 2)
-    np.testing.assert_array_equal(f_old, atcm.eigenfrequencies(act, n=2))
-    with pytest.warns(DeprecationWarning, match=r"simulate\(\): pass step= by keyword"):
-        r_old = atcm.simulate(act, 0.002, 1e-4)
-    np.testing.assert_array_equal(r_old["tip_y"], atcm.simulate(act, 0.002, step=1e-4)["tip_y"])
-    with pytest.raises(TypeError, match="multiple values for argument 'step'"):
-        atcm.simulate(act, 0.002, 1e-4, step=2e-4)
+    with pytest.raises(TypeError, match="positional argument"):
+        atcm.solve_static(act, 500.0)
+    with pytest.raises(TypeError, match="positional argument"):
+        atcm.eigenfrequencies(act, 2)
+    with pytest.raises(TypeError, match="positional argument"):
+        atcm.simulate(act, 0.002, 1e-4)
 
 
 def test_warnings_of_a_solve_point_at_the_callers_line():

@@ -1,4 +1,4 @@
-"""Old module paths of modules that were split (issue 14, part 4) still give every public name they had.
+"""Old module paths: those of 0.2 are gone in 0.3, the faces keep every public name the old modules had.
 
 ``exudyn_atcm.cases``, ``exudyn_atcm.regression`` and ``exudyn_atcm.beam_theory`` were one module
 each before 0.9; they are now served by the faces ``exudyn_atcm.casework`` and ``exudyn_atcm.theory``.
@@ -51,18 +51,29 @@ PROBE = textwrap.dedent("""
 """)
 
 
-@pytest.mark.parametrize("old", sorted(OLD_NAMES))
-def test_old_path_gives_the_same_objects_and_warns(old):
-    names = OLD_NAMES[old]
-    proc = subprocess.run([sys.executable, "-c", PROBE, old, NEW_FACE[old], json.dumps(names)],
-                          capture_output=True, text=True, timeout=300)
+@pytest.mark.parametrize("old", sorted(OLD_NAMES) + ["simulation", "mbs.six_bar", "result", "drive"])
+def test_the_paths_that_moved_in_0_2_are_gone_in_0_3(old):
+    """Kept one release (0.2) with a warning; removed in 0.3 as announced (docs/changelog.rst)."""
+    proc = subprocess.run([sys.executable, "-c", f"import exudyn_atcm.{old}"], capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode != 0 and "ModuleNotFoundError" in proc.stderr, proc.stderr
+
+
+def test_a_path_moved_in_0_3_warns_and_gives_the_module():
+    proc = subprocess.run([sys.executable, "-c", PROBE, "solve.step_record", "exudyn_atcm.mbs.step_record",
+                           json.dumps(["StepRecord"])], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     found = json.loads(proc.stdout.strip().splitlines()[-1])
-    assert found["missing"] == [], f"exudyn_atcm.{old} lost {found['missing']}"
-    assert found["different"] == [], f"exudyn_atcm.{old} gives other objects for {found['different']}"
-    assert found["module"] == NEW_FACE[old]
-    assert len(found["warnings"]) == 1
-    assert found["warnings"][0].startswith(f"exudyn_atcm.{old} moved to {NEW_FACE[old]};")
+    assert found["missing"] == [] and found["different"] == [] and found["module"] == "exudyn_atcm.mbs.step_record"
+    assert found["warnings"] == ["exudyn_atcm.solve.step_record moved to exudyn_atcm.mbs.step_record; the old path "
+                                 "goes away in the next release (import from exudyn_atcm or "
+                                 "exudyn_atcm.mbs.step_record)"]
+
+
+def test_signals_stays_a_silent_path_of_the_face():
+    proc = subprocess.run([sys.executable, "-W", "error", "-c", "import exudyn_atcm.signals as s; print(s.Triangle)"],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0 and "Triangle" in proc.stdout, proc.stderr
 
 
 @pytest.mark.parametrize("old", sorted(OLD_NAMES))
@@ -72,21 +83,3 @@ def test_every_old_name_is_in_the_face_all(old):
 
     face = importlib.import_module(NEW_FACE[old])
     assert sorted(set(OLD_NAMES[old]) - set(face.__all__)) == []
-
-
-#: the cell kinds' Exudyn realisations moved into ``mbs/chains/`` (one file per kind, found by the folder)
-MOVED_REALISATIONS = {"six_bar": ("chains.six_bar", "add_six_bar_chain"), "beam_chain": ("chains.beam", "add_beam_chain"),
-                      "rigid_chain": ("chains.rigid", "add_rigid_chain"), "ancf_chain": ("chains.ancf", "add_ancf_chain"),
-                      "ritz_bender": ("chains.ritz", "add_ritz_bender")}
-
-
-@pytest.mark.parametrize("old", sorted(MOVED_REALISATIONS))
-def test_moved_realisation_paths_warn_and_give_the_module(old):
-    new, name = MOVED_REALISATIONS[old]
-    proc = subprocess.run([sys.executable, "-c", PROBE, f"mbs.{old}", f"exudyn_atcm.mbs.{new}", json.dumps([name])],
-                          capture_output=True, text=True, timeout=300)
-    assert proc.returncode == 0, proc.stderr
-    found = json.loads(proc.stdout.strip().splitlines()[-1])
-    assert found["missing"] == [] and found["different"] == [] and found["module"] == f"exudyn_atcm.mbs.{new}"
-    assert found["warnings"] == [f"exudyn_atcm.mbs.{old} moved to exudyn_atcm.mbs.{new}; the old path goes away in "
-                                 f"the next release (import from exudyn_atcm or exudyn_atcm.mbs.{new})"]

@@ -90,6 +90,10 @@ class Candidate:
         Its errors on both parts.
     failure : str
         Why the family could not be fitted (``""`` if it was).
+    notes : tuple of str
+        The warnings its fit issued (``"Category: message"``).  Only the chosen family's are
+        issued again by :func:`identify`; the others are kept here (a note about a model not
+        chosen is nothing the user has to act on).
     """
 
     family: str
@@ -103,6 +107,7 @@ class Candidate:
     model: Any = field(default=None, repr=False)
     report: FitReport | None = field(default=None, repr=False)
     failure: str = ""
+    notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-serialisable summary (without the model and the predicted series)."""
@@ -113,7 +118,7 @@ class Candidate:
                 "held_out_rms [% of range]": number(self.held_out_rms_percent),
                 "fit_rms [% of range]": number(self.fit_rms_percent), "parameters": self.parameters,
                 "fit_time [s]": number(self.fit_time), "invertible": self.invertible, "inverse": self.inverse,
-                "failure": self.failure}
+                "failure": self.failure, "notes": list(self.notes)}
 
 
 @dataclass
@@ -309,21 +314,26 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
     output_range = float(np.ptp(y_a))  # the whole record's: one reference for every family's % figures
     candidates = []
     failed = []
+    fit_warnings: dict[str, list] = {}
     for name in families:
         family = family_named(name)
         started = time.perf_counter()
-        try:
-            fitted = family.fit(request)
-        except ValueError as exc:
-            failed.append(Candidate(name, name, math.nan, math.nan, 0, time.perf_counter() - started,
-                                    family.invertible, family.inverse, failure=str(exc)))
-            continue
+        with warnings.catch_warnings(record=True) as caught:  # issued again below for the chosen family only
+            warnings.simplefilter("always")
+            try:
+                fitted = family.fit(request)
+            except ValueError as exc:
+                failed.append(Candidate(name, name, math.nan, math.nan, 0, time.perf_counter() - started,
+                                        family.invertible, family.inverse, failure=str(exc)))
+                continue
         report = fitted.report
         candidates.append(Candidate(
             name, fitted.label, 100.0 * report.model_errors["held_out"]["rms"] / output_range,
             100.0 * report.model_errors["fit"]["rms"] / output_range,
             int(fitted.parameters), time.perf_counter() - started, family.invertible, family.inverse,
-            model=fitted.model, report=report))
+            model=fitted.model, report=report,
+            notes=tuple(f"{w.category.__name__}: {w.message}" for w in caught)))
+        fit_warnings[name] = [(w.message, w.category) for w in caught]
     if not candidates:
         raise ValueError("identify: no family could be fitted to the record: "
                          + "; ".join(f"{c.family}: {c.failure}" for c in failed))
@@ -331,6 +341,8 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
     best = candidates[0].held_out_rms_percent
     within = [c for c in candidates if c.held_out_rms_percent <= (1.0 + simpler_margin) * best]
     chosen = min(within, key=lambda c: (c.parameters, c.held_out_rms_percent))
+    for message, category in fit_warnings[chosen.family]:
+        warnings.warn(f"identify ({chosen.label}, chosen): {message}", category, stacklevel=2)
     if failed:
         warnings.warn("identify: not fitted: " + "; ".join(f"{c.family} ({c.failure})" for c in failed),
                       SetupWarning, stacklevel=2)

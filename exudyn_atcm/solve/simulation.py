@@ -15,7 +15,6 @@ is solved as its one-bender mechanism (:mod:`exudyn_atcm.solve.as_mechanism`).
 
 from __future__ import annotations
 
-import inspect
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
@@ -29,7 +28,6 @@ from ..model.strain_sources import InStepStrain
 from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
-from .keywords import keyword_signature, legacy_positional
 from .run_setup import DEFAULT_STEP
 
 
@@ -51,10 +49,9 @@ def _check_actuator(actuator: Any) -> BendingActuator:
 
 
 # ------------------------------------------------------------------------------ static solve
-@keyword_signature
 def solve_static(
     system: BendingActuator | Mechanism,
-    *legacy: Any,
+    *,
     voltage: float | Mapping[str, float] | None = None,
     tip_force: tuple[float, float] = (0.0, 0.0),
     load_steps: int | None = None,
@@ -101,10 +98,6 @@ def solve_static(
     large tip forces the iteration then converges ever more slowly and can stall.  A warning
     is issued when one cell turns by more than 0.5 rad against its neighbour (coarse chain).
     """
-    if legacy:  # the positional signature of earlier releases, for one more release
-        given = dict(voltage=voltage, tip_force=tip_force, load_steps=load_steps)
-        voltage, tip_force, load_steps = legacy_positional("solve_static", legacy, given,
-                                                           _DEFAULTS["solve_static"]).values()
     actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
@@ -118,11 +111,10 @@ def solve_static(
 
 # ------------------------------------------------------------------------------ dynamic solve
 
-@keyword_signature
 def simulate(
     system: BendingActuator | Mechanism,
     t_end: float,
-    *legacy: Any,
+    *,
     step: float = DEFAULT_STEP,
     tip_force: tuple[float, float] = (0.0, 0.0),
     settings: Callable[[Any], None] | dict | None = None,
@@ -215,11 +207,6 @@ def simulate(
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     The step checks and their thresholds are described in :mod:`exudyn_atcm.solve.run_checks`.
     """
-    if legacy:  # the positional signature of earlier releases, for one more release
-        given = dict(step=step, tip_force=tip_force, settings=settings, progress=progress,
-                     record_every=record_every)
-        step, tip_force, settings, progress, record_every = legacy_positional(
-            "simulate", legacy, given, _DEFAULTS["simulate"]).values()
     actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
@@ -317,10 +304,9 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
 
 # ------------------------------------------------------------------------------ eigenfrequencies
 
-@keyword_signature
 def eigenfrequencies(
     system: BendingActuator | Mechanism,
-    *legacy: Any,
+    *,
     n: int = 3,
     voltage: float | None = None,
     tip_force: tuple[float, float] = (0.0, 0.0),
@@ -372,9 +358,6 @@ def eigenfrequencies(
     under a tip load, Exudyn's routine gives wrong frequencies (-67 % at 4 cells, +151 % at
     16 cells at 1500 V).  See :mod:`exudyn_atcm.mbs.eigen`.
     """
-    if legacy:  # the positional signature of earlier releases, for one more release
-        given = dict(n=n)
-        (n,) = legacy_positional("eigenfrequencies", legacy, given, _DEFAULTS["eigenfrequencies"]).values()
     actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
@@ -385,9 +368,3 @@ def eigenfrequencies(
     mech = actuator.as_mechanism(tip_force)
     volts = None if voltage is None else finite_float("voltage", voltage)
     return mechanism_solve.eigenfrequencies(mech, n, volts, loaded=bool(mech.forces))
-
-
-#: Defaults of the public solves' keyword arguments in their old positional order (the positional
-#: grace period maps extra positional arguments onto them in this order).
-_DEFAULTS = {f.__name__: {n: p.default for n, p in inspect.signature(f).parameters.items()}
-             for f in (solve_static, simulate, eigenfrequencies)}
