@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import exudyn_atcm as atcm
-from exudyn_atcm.hysteresis import identify
+from exudyn_atcm.hysteresis import IdentifyOptions, identify
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.strain_conversion import model_to_strain
 
@@ -73,5 +73,5 @@ def test_identify_keeps_the_notes_of_families_it_does_not_choose(tmp_path):
     assert any(n.startswith("AccuracyWarning: from_loop:") for n in equal_gain.notes), equal_gain.notes
     assert equal_gain.to_dict()["notes"] == list(equal_gain.notes)
     with pytest.warns(atcm.AccuracyWarning, match=r"identify \(equal_gain .*, chosen\): from_loop:"):
-        alone = identify(record, families=("equal_gain",), linear_margin=0.0)
+        alone = identify(record, families=("equal_gain",), options=IdentifyOptions(linear_margin=0.0))
     assert alone.chosen.family == "equal_gain"
