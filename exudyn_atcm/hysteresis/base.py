@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import abc
+import copy
 import math
 import numbers
 import warnings
@@ -226,3 +227,20 @@ class HysteresisOperator(SavableModel, abc.ABC):
             return np.array([commit(u) for u in inputs.tolist()], dtype=float)
         finally:
             self.restore(saved)
+
+
+def forward_model(model: Any, input_range: tuple[float, float] | None, reset: bool = True) -> Any:
+    """The inverse of an inverse: a copy of its forward ``model`` (at its reset state when ``reset``).
+
+    Raises
+    ------
+    ValueError
+        If ``input_range`` is given (the forward model takes any input).
+    """
+    if input_range is not None:
+        raise ValueError(f"input_range must be None for the inverse of an inverse (the forward model), got "
+                         f"{input_range!r}")
+    forward = copy.deepcopy(model)
+    if reset:
+        forward.reset()
+    return forward

@@ -14,7 +14,7 @@ from typing import Any
 
 from .._checks import finite_float
 from ..errors import OutOfReachWarning
-from .base import HysteresisOperator, check_input
+from .base import HysteresisOperator, check_input, forward_model
 
 __all__ = ["BisectionInverse", "default_input_range"]
 
@@ -154,12 +154,7 @@ class BisectionInverse(HysteresisOperator):
         ValueError
             If ``input_range`` is given (the forward model takes any input).
         """
-        if input_range is not None:
-            raise ValueError(f"input_range must be None for the inverse of an inverse (the forward model), got "
-                             f"{input_range!r}")
-        forward = copy.deepcopy(self.model)
-        forward.reset()
-        return forward
+        return forward_model(self.model, input_range)
 
     def evaluate(self, y: float) -> float:
         """Input that produces ``y`` from the committed memory (clipped silently: trial only)."""

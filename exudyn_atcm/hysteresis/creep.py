@@ -38,6 +38,7 @@ from scipy.optimize import nnls
 
 from .._checks import finite_array, same_length, sample_times
 from ..errors import AtcmDeprecationWarning
+from .base import forward_model
 from .inverse import inverse_operator
 from .model_files import SavableModel
 
@@ -251,10 +252,7 @@ class CreepHysteresisInverse(SavableModel):
         ValueError
             If ``input_range`` is given (the forward model takes any input).
         """
-        if input_range is not None:
-            raise ValueError(f"input_range must be None for the inverse of an inverse (the forward model), got "
-                             f"{input_range!r}")
-        return copy.deepcopy(self.model)
+        return forward_model(self.model, input_range, reset=False)
 
     def __repr__(self) -> str:
         return f"CreepHysteresisInverse({self.model!r})"

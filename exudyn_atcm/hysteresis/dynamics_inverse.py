@@ -27,7 +27,7 @@ import numpy as np
 
 from .._checks import finite_array, sample_times
 from ..errors import OutOfReachWarning
-from .base import HysteresisOperator, check_input
+from .base import HysteresisOperator, check_input, forward_model
 from .inverse import inverse_operator
 
 __all__ = ["DynamicsInverse"]
@@ -126,12 +126,7 @@ class DynamicsInverse(HysteresisOperator):
         ValueError
             If ``input_range`` is given (the forward model takes any input).
         """
-        if input_range is not None:
-            raise ValueError(f"input_range must be None for the inverse of an inverse (the forward model), got "
-                             f"{input_range!r}")
-        forward = copy.deepcopy(self.model)
-        forward.reset()
-        return forward
+        return forward_model(self.model, input_range)
 
     def __repr__(self) -> str:
         return f"DynamicsInverse({self.model!r})"
