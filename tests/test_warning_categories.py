@@ -47,7 +47,11 @@ def _warn_calls():
 def test_every_package_warning_has_a_package_category():
     calls = list(_warn_calls())
     assert len(calls) >= 35  # about 40 calls when this was written: the scan finds them
-    wrong = [(where, name) for where, name in calls if name not in CATEGORIES]
+    # identify issues the chosen family's fit warnings again with their own category (each checked where the fit
+    # warns): the one call whose category is a variable
+    passed_on = {"category"}
+    wrong = [(where, name) for where, name in calls
+             if name not in CATEGORIES and not (where.startswith("hysteresis/model_choice.py:") and name in passed_on)]
     assert not wrong, wrong
 
 
