@@ -12,7 +12,27 @@ from matplotlib.figure import Figure
 from .style import axis_label, display_scale
 from .target import figure_axes, finish, is_path, warn_path_form
 
-__all__ = ["plot_fit", "plot_fit_series", "plot_model_choice"]
+__all__ = ["plot_fit", "plot_fit_series", "plot_model_choice", "fitted_samples"]
+
+
+def fitted_samples(fit: Any, n: int) -> np.ndarray:
+    """Which of ``n`` samples a fit (a ``FitReport`` or a ``ModelChoice``) used: its ``fit_mask`` when it has one
+    (interleaved held-out cycles), else the samples before ``n_fit``."""
+    mask = getattr(fit, "fit_mask", None)
+    if mask is not None and np.size(mask) == n:
+        return np.asarray(mask, dtype=bool)
+    return np.arange(n) < int(fit.n_fit)
+
+
+def _only(values: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """``values`` with the samples outside ``keep`` as NaN (lines break between separate cycles)."""
+    return np.where(keep, values, np.nan)
+
+
+def _runs(keep: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) indices of each run of True in ``keep``."""
+    edges = np.diff(np.concatenate([[0], keep.astype(np.int8), [0]]))
+    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1))
 
 
 def plot_fit(
@@ -70,18 +90,18 @@ def plot_fit(
     y = np.asarray(y, dtype=float)
     p = np.asarray(report.predicted, dtype=float)
     linear = report.linear_model["a"] * u + report.linear_model["b"]
-    k = report.n_fit
+    fitted = fitted_samples(report, u.size)
     factor, unit = display_scale(y, output_unit)
 
     fig, axes = figure_axes(ax, 1, 2, width=9.0, height=4.0)
-    for axis, part, sl in ((axes[0], "fitted part", slice(0, k)), (axes[1], "held-out part", slice(k, None))):
-        if u[sl].size == 0:
+    for axis, part, keep in ((axes[0], "fitted part", fitted), (axes[1], "held-out part", ~fitted)):
+        if not keep.any():
             axis.set_visible(False)
             continue
-        axis.plot(u[sl], factor * y[sl], ".", markersize=2, color="0.6", label="measured")
-        axis.plot(u[sl], factor * p[sl], label="model", linewidth=1.0)
-        axis.plot(u[sl], factor * linear[sl], "--", label="best linear model", linewidth=1.0)
-        rms = report.model_errors["fit" if sl.start == 0 else "held_out"]["rms"]
+        axis.plot(u[keep], factor * y[keep], ".", markersize=2, color="0.6", label="measured")
+        axis.plot(_only(u, keep), factor * _only(p, keep), label="model", linewidth=1.0)
+        axis.plot(_only(u, keep), factor * _only(linear, keep), "--", label="best linear model", linewidth=1.0)
+        rms = report.model_errors["fit" if keep is fitted else "held_out"]["rms"]
         axis.set_title(f"{part}: model RMS {factor * rms:.3g} {unit}")
         axis.set_xlabel(axis_label(input_name, input_unit))
         axis.set_ylabel(axis_label(output_name, unit))
@@ -133,7 +153,7 @@ def plot_fit_series(
     y = np.asarray(y, dtype=float)
     p = np.asarray(report.predicted, dtype=float)
     linear = report.linear_model["a"] * u + report.linear_model["b"]
-    k = report.n_fit
+    held_out = ~fitted_samples(report, u.size)
     factor, unit = display_scale(y, output_unit)
 
     x = np.arange(u.size) if time is None else np.asarray(time, dtype=float)
@@ -150,11 +170,13 @@ def plot_fit_series(
     axes[2].set_ylabel(axis_label("error", unit))
     axes[2].set_xlabel(x_label)
     axes[2].legend(loc="upper left")
-    if k < u.size:
+    for i, (first, last) in enumerate(_runs(held_out)):  # the held-out samples shaded (interleaved cycles too)
         for a in axes:
-            a.axvline(x[k], color="black", linewidth=0.8, linestyle=":")
+            a.axvspan(x[first], x[last], color="0.9", zorder=0, label="held out" if i == 0 and a is axes[1] else None)
+    if held_out.any():
+        axes[1].legend(loc="upper left")
     if title:
-        axes[0].set_title(f"{title}: fitted | held out")
+        axes[0].set_title(f"{title}: held-out samples shaded")
     return finish(fig, path)
 
 
@@ -206,7 +228,7 @@ def plot_model_choice(
     fitted = [c for c in choice.candidates if not c.failure]
     u = np.asarray(choice.input, dtype=float)
     y = np.asarray(choice.output, dtype=float)
-    k = choice.n_fit
+    held_out = ~fitted_samples(choice, u.size)
     factor, unit = display_scale(y, choice.output_unit or "m")
     fig, axes = figure_axes(ax, 1, 2, width=11.0, height=4.2)
     ax = axes[0]
@@ -222,10 +244,11 @@ def plot_model_choice(
     ax.set_xlim(0.0, 1.25 * max(values))
     ax.set_title(f"chosen: {choice.chosen.label}", fontsize=9)
     ax = axes[1]
-    ax.plot(u[k:], factor * y[k:], ".", markersize=2, color="0.6", label="measured")
+    ax.plot(u[held_out], factor * y[held_out], ".", markersize=2, color="0.6", label="measured")
     shown = [choice.chosen] + [c for c in fitted if c is not choice.chosen][:2]
     for c in shown:
-        ax.plot(u[k:], factor * np.asarray(c.report.predicted)[k:], linewidth=1.0, label=c.label)
+        ax.plot(_only(u, held_out), factor * _only(np.asarray(c.report.predicted, dtype=float), held_out),
+                linewidth=1.0, label=c.label)
     ax.set_xlabel(axis_label(input_name, input_unit))
     ax.set_ylabel(axis_label(output_name, unit))
     ax.set_title("held-out part", fontsize=9)
