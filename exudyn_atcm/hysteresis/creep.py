@@ -34,7 +34,6 @@ import warnings
 from typing import Any, Callable
 
 import numpy as np
-from scipy.optimize import nnls
 
 from .._checks import finite_array, same_length, sample_times
 from ..errors import AtcmDeprecationWarning
@@ -127,6 +126,7 @@ class Creep(SavableModel):
             For records of different lengths, non-finite values, times that do not increase,
             ``n_lags < 1`` or a record too short for the default time constants.
         """
+        from scipy.optimize import nnls  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
         h_a = finite_array("h", h)
         y_a = finite_array("y", y)
         same_length(("h", "y"), (h_a, y_a))

@@ -18,7 +18,6 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 import numpy as np
-from scipy.optimize import least_squares, minimize_scalar, nnls
 
 from .._checks import finite_array, finite_float, positive_int
 from .creep import Creep
@@ -34,6 +33,7 @@ def _step_basis(t: np.ndarray, tau: np.ndarray) -> np.ndarray:
 
 def _step_solve(t: np.ndarray, y: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(Δ and b_k with sign(Δ) b_k >= 0, residual) for given time constants."""
+    from scipy.optimize import nnls  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     basis = _step_basis(t, tau)
     sign = 1.0 if float(np.mean(y)) >= 0.0 else -1.0
     x, _ = nnls(basis, sign * y)
@@ -85,6 +85,7 @@ def creep_from_step(t: Any, y: Any, *, y_before: float = 0.0, n_lags: int = 2, t
     identifiable from it (their lag is a jump or a straight line); the search keeps each
     ``τ`` between a tenth of the first sample spacing and ten times the record length.
     """
+    from scipy.optimize import least_squares  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     t_a = finite_array("t", t)
     y_a = finite_array("y", y) - finite_float("y_before", y_before)
     if y_a.size != t_a.size:
@@ -127,6 +128,7 @@ RELAXATION_RATIO = 0.3
 def _refuse_relaxation(t: np.ndarray, y: np.ndarray, tau_start: np.ndarray, fit_tau: bool, rms: float) -> None:
     """``ValueError`` with the reason and the signed fit when ``y`` relaxes after the step (see
     :func:`creep_from_step`): a creep law only adds to the step (``c_k >= 0``)."""
+    from scipy.optimize import least_squares  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     def signed(tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         basis = _step_basis(t, tau)
         x, *_ = np.linalg.lstsq(basis, y, rcond=None)
@@ -238,6 +240,7 @@ def fit_rate_lag(records: Any, n_plays: int, *, creep: Creep | None = None,
     over ``log T`` is a bounded scalar minimisation (Brent): it finds the minimum of a cost that
     has one minimum over the range, which is the case for records whose rates span the lag.
     """
+    from scipy.optimize import minimize_scalar, nnls  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     recs = _check_records(records)
     n = positive_int("n_plays", n_plays)
     if n < 2:

@@ -16,7 +16,6 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 import numpy as np
-from scipy.signal import lfilter
 
 from .._checks import finite_array
 from .dynamics import LagSum
@@ -67,6 +66,7 @@ def lagged_columns(columns: np.ndarray, t: np.ndarray, lags: LagSum, rest: np.nd
     numpy.ndarray
         Same shape as ``columns``.
     """
+    from scipy.signal import lfilter  # noqa: PLC0415 - lazy: scipy.signal is slow to import
     columns = np.asarray(columns, dtype=float)
     out = lags.d * columns
     if lags.tau.size == 0 or columns.shape[0] == 0:

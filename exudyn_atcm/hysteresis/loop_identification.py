@@ -12,7 +12,6 @@ import warnings
 from typing import Any
 
 import numpy as np
-from scipy.optimize import isotonic_regression
 
 from .._checks import finite_array, positive_int, same_length
 from ..physical_bounds import check_element_count
@@ -25,6 +24,7 @@ from ..errors import AccuracyWarning
 
 def isotonic(values: np.ndarray) -> np.ndarray:
     """Least-squares non-decreasing fit of ``values`` (``scipy.optimize.isotonic_regression``)."""
+    from scipy.optimize import isotonic_regression  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     return isotonic_regression(np.asarray(values, dtype=float)).x
 
 

@@ -37,7 +37,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import scipy.linalg
 
 try:  # optional: limits BLAS threads (see the module docstring)
     from threadpoolctl import threadpool_limits
@@ -75,6 +74,7 @@ class NNLSInfo:
 
 
 def _solve_free(gram: np.ndarray, rhs: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    import scipy.linalg  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
     block = gram[np.ix_(idx, idx)]
     try:
         factor = scipy.linalg.cho_factor(block, lower=False, check_finite=False)

@@ -40,7 +40,6 @@ import time
 from typing import Any
 
 import numpy as np
-from scipy.optimize import nnls
 
 from ..physical_bounds import check_element_count
 from .base import quantity_from_unit
@@ -66,6 +65,7 @@ def play_states(v: np.ndarray, radii: np.ndarray) -> np.ndarray:
 
 def _solve(v: np.ndarray, plays: np.ndarray, y: np.ndarray, rows: np.ndarray, span: float) -> tuple:
     """``p0 >= p0_min``, weights ``>= 0`` and the offset by NNLS on ``rows``; returns them and the RMS."""
+    from scipy.optimize import nnls  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     design = np.column_stack([v, plays])[rows]
     target = y[rows]
     scale = float(np.ptp(target)) or 1.0

@@ -29,7 +29,6 @@ import math
 from typing import Any
 
 import numpy as np
-import scipy.sparse
 
 from .nnls import nnls_gram
 
@@ -45,6 +44,7 @@ PRIOR_STRENGTHS = (1e-3, 1e-2, 1e-1, 1.0, 10.0)
 
 def along_lines_matrix(index: np.ndarray, n_levels: int) -> Any:
     """Sparse differences between grid cells ``(i, j)`` and ``(i + 1, j + 1)`` (same ``α − β``)."""
+    import scipy.sparse  # noqa: PLC0415 - lazy: scipy.sparse is slow to import
     position = -np.ones((n_levels, n_levels), dtype=int)
     position[index[:, 0], index[:, 1]] = np.arange(index.shape[0])
     ok = index[:, 0] + 1 < n_levels

@@ -32,7 +32,6 @@ import time
 from typing import Any
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from .._checks import finite_float, positive_float
 from ..physical_bounds import check_element_count
@@ -180,6 +179,7 @@ def _series(creep: Creep | None, T: float) -> LagSum:
 
 def _search(problem: _Problem, creep: Creep | None, strength: float, low: float, high: float) -> tuple[float, list]:
     """``T`` minimising the squared residuals: the best of a log grid, refined by a bounded Brent search."""
+    from scipy.optimize import minimize_scalar  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     grid = np.geomspace(low, high, SEARCH_POINTS)
     costs = [problem.cost(_series(creep, float(T)), strength) for T in grid]
     table = [{"T": float(T), "cost": c} for T, c in zip(grid, costs)]

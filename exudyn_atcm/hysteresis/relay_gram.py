@@ -11,7 +11,6 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import scipy.sparse
 
 from .nnls import nnls_gram
 from .staircase import StaircasePreisach
@@ -74,6 +73,7 @@ def refined_relays(u_lo: float, u_hi: float, n_levels: int, weights: np.ndarray,
 
 def smoothness_matrix(index: np.ndarray, n_levels: int) -> Any:
     """First differences between neighbouring grid cells (along alpha and along beta), sparse."""
+    import scipy.sparse  # noqa: PLC0415 - lazy: scipy.sparse is slow to import
     position = -np.ones((n_levels, n_levels), dtype=int)
     position[index[:, 0], index[:, 1]] = np.arange(index.shape[0])
     first, second = [], []
@@ -215,6 +215,7 @@ def chunked_gram(rows: Any, n_r: int, y: np.ndarray, start: int, stop: int, chun
 
 def nnls_normal(gram: np.ndarray, rhs: np.ndarray, regulariser: Any) -> np.ndarray:
     """``argmin_{w >= 0} w^T (G + R) w - 2 b^T w`` by block principal pivoting (:mod:`.nnls`)."""
+    import scipy.sparse  # noqa: PLC0415 - lazy: scipy.sparse is slow to import
     matrix = gram + (regulariser.toarray() if scipy.sparse.issparse(regulariser) else regulariser)
     ridge = 1e-10 * max(float(np.trace(matrix)) / matrix.shape[0], 1e-300)
     matrix[np.diag_indices_from(matrix)] += ridge

@@ -39,8 +39,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import scipy.io
-from scipy.io.matlab import matfile_version
 
 from .matlab_hdf5 import load_hdf5
 from .record_columns import Columns
@@ -70,6 +68,8 @@ def is_matlab_file(path: Path) -> bool:
 
 def _load(path: Path) -> dict:
     """The file's variables as dicts (structs), lists (struct arrays, cells), arrays and strings."""
+    import scipy.io  # noqa: PLC0415 - lazy: scipy.io is slow to import
+    from scipy.io.matlab import matfile_version  # noqa: PLC0415 - lazy: scipy.io is slow to import
     try:
         major, _ = matfile_version(str(path))
     except Exception as exc:  # scipy raises its own MatReadError or ValueError for files it does not know

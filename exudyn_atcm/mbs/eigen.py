@@ -44,7 +44,6 @@ import warnings
 
 import exudyn as exu
 import numpy as np
-from scipy.linalg import eigh, svd
 
 from ..errors import AccuracyWarning
 from .tangent import TangentPlan, static_settings
@@ -116,6 +115,7 @@ def constrained_eigenfrequencies(mbs, n: int, *, relative_step: float = 1e-7,
     ``-(d C_q^T / dq) lambda``, which Exudyn's ``ComputeODE2Eigenvalues`` leaves out (see the
     module docstring for the cause and its size).
     """
+    from scipy.linalg import eigh, svd  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n must be an integer >= 1, got {n!r}")
     ts = tangent_system(mbs, relative_step)

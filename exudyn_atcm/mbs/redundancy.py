@@ -30,7 +30,6 @@ from contextlib import contextmanager
 
 import exudyn as exu
 import numpy as np
-from scipy.linalg import svd
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
@@ -90,6 +89,7 @@ def dependent_constraints(model: MechanismModel) -> tuple[int, int, list[str]]:
     """``(redundant, equations, labels)``: the number of dependent constraint equations of the built ``model``,
     the number of constraint equations, and the labels (joints, ``"the cells of bender 'b'"``) of the
     constraints that take part, in building order."""
+    from scipy.linalg import svd  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
     mbs = model.mbs
     cq = constraint_jacobian(mbs)
     m = cq.shape[0]

@@ -40,7 +40,6 @@ from typing import Callable
 
 import exudyn as exu
 import numpy as np
-from scipy.linalg import LinAlgError, cho_factor, eig, eigh, qr
 
 from .model import MechanismModel
 from .tangent import TangentPlan
@@ -93,6 +92,7 @@ class Stability:
 def null_space(cq: np.ndarray, n: int, tolerance: float = 1e-9) -> np.ndarray:
     """Orthonormal basis (n x r) of the null space of the constraint Jacobian ``cq`` (m x n), by pivoted QR;
     rows of ``cq`` whose pivot falls below ``tolerance`` times the largest count as dependent."""
+    from scipy.linalg import qr  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
     if cq.shape[0] == 0:
         return np.eye(n)
     q, r, _ = qr(cq.T, mode="full", pivoting=True)
@@ -128,6 +128,7 @@ class StabilityProbe:
     """
 
     def __init__(self, model: MechanismModel, fallback_scale: float) -> None:
+        from scipy.linalg import LinAlgError, cho_factor  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         self.model = model
         self.plan = TangentPlan(model.mbs)
         self.use_mass = True
@@ -164,6 +165,7 @@ class StabilityProbe:
 
     def _lowest(self, kr: np.ndarray, mr: np.ndarray) -> tuple[float, np.ndarray]:
         """The lowest eigenvalue [1/s^2] and its mode in the ODE2 coordinates (``inf`` without free directions)."""
+        from scipy.linalg import eigh  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         if kr.shape[0] == 0:
             return math.inf, np.zeros(self._basis.shape[0])
         w2, vecs = eigh(kr, mr, subset_by_index=[0, 0])
@@ -172,6 +174,7 @@ class StabilityProbe:
     def _lowest_divergence(self, mr: np.ndarray) -> tuple[float, np.ndarray]:
         """The lowest real eigenvalue [1/s^2] of the unsymmetrised ``N^T K_T N v = omega^2 N^T M N v`` (a
         follower load's tangent is not symmetric) and its mode; ``inf`` when every eigenvalue is complex."""
+        from scipy.linalg import eig  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         kr = self._kr
         with _one_blas_thread():
             values, vecs = eig(kr, mr)
@@ -188,6 +191,7 @@ class StabilityProbe:
         return self.last
 
     def _check(self) -> Stability:
+        from scipy.linalg import LinAlgError, cho_factor  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         kr, mr = self._reduced()
         if kr.shape[0] == 0:
             return Stability("stable")
@@ -221,6 +225,7 @@ class StabilityProbe:
         column that stays straight, approximate where the path bends before it buckles).
         ``nan`` when there is none.
         """
+        from scipy.linalg import eig  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         basis = self._basis
         k0 = basis.T @ self._k_reference @ basis
         k0 = 0.5 * (k0 + k0.T)
