@@ -17,13 +17,15 @@ from __future__ import annotations
 import os
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
 
 from ..io.atomic import write_atomic
 from ..io.progress import count_task
+
+if TYPE_CHECKING:  # annotations only: matplotlib is imported where a figure is made
+    from matplotlib.figure import Figure
 
 __all__ = ["STYLE", "new_figure", "axis_label", "display_scale", "save_figure"]
 
@@ -61,6 +63,8 @@ def new_figure(
         Share the x axis between the axes.
     """
     import matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: PLC0415 - lazy: matplotlib is slow to import
+    from matplotlib.figure import Figure  # noqa: PLC0415 - lazy: matplotlib is slow to import
 
     with matplotlib.rc_context(STYLE):
         fig = Figure(figsize=(width, height if height is not None else 2.6 * n_rows + 0.6), layout="constrained")
