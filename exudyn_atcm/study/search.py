@@ -13,7 +13,6 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
-from scipy import optimize as so
 
 from .problem import Problem
 
@@ -22,6 +21,7 @@ __all__ = ["differential_evolution", "polish", "local_search", "simplex", "small
 
 def local_search(problem: Problem, method: str, start: np.ndarray, xatol: float, fatol: float, maxiter: int):
     """Nelder-Mead (from a simplex of 10 % of each range) or L-BFGS-B (finite differences) from ``start``."""
+    from scipy import optimize as so  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     n = start.size
     if method == "nelder-mead":
         first = simplex(start)
@@ -53,6 +53,7 @@ def differential_evolution(problem: Problem, kinds: Sequence[str], seed, maxiter
     constraints: ``vectorized=True``, so that the objective and every
     :class:`~scipy.optimize.NonlinearConstraint` receive the whole population at once.
     """
+    from scipy import optimize as so  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     lows, highs = problem.lows.copy(), problem.highs.copy()
     de_bounds = [(0.0, 1.0) if k == "float" else (lo, hi) for k, lo, hi in zip(kinds, lows, highs)]
     integrality = [k == "int" for k in kinds] if "int" in kinds else None
@@ -133,6 +134,7 @@ def absolute_fatol(problem: Problem, vertices: np.ndarray, fatol: float, free=No
 
 def polish(problem: Problem, best_u: np.ndarray, kinds: Sequence[str], xatol: float, fatol: float, maxiter: int):
     """Nelder-Mead on the float variables from ``best_u`` (integers fixed)."""
+    from scipy import optimize as so  # noqa: PLC0415 - lazy: scipy.optimize is slow to import
     free = np.array([k == "float" for k in kinds])
 
     def func(v):

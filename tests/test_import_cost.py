@@ -1,0 +1,65 @@
+"""Start-up cost, checked by structure (issue 31, part 4), never by a clock.
+
+``import exudyn_atcm`` and ``exudyn-atcm --help`` must not load the slow optional layers: scipy (its
+``signal``/``stats`` alone took ~1 s), matplotlib (~0.4 s), which are imported where a fit, a MATLAB
+file or a figure needs them.  Each check runs a fresh interpreter, since this test process has long
+imported them all.  The timings themselves are in ``benchmarks/bench_import.py``.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+#: Modules that a plain ``import exudyn_atcm`` must not load (all of scipy, matplotlib).
+HEAVY = ("scipy", "scipy.linalg", "scipy.optimize", "scipy.signal", "scipy.stats", "scipy.io", "scipy.sparse",
+         "scipy.integrate", "matplotlib", "matplotlib.figure", "matplotlib.pyplot")
+
+
+def _loaded_after(code: str) -> set[str]:
+    """Names of ``HEAVY`` in ``sys.modules`` of a fresh interpreter after running ``code``."""
+    probe = f"{code}\nimport json, sys\nprint(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))"
+    out = subprocess.run([sys.executable, "-c", probe], check=True, capture_output=True, text=True)
+    return set(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
+def test_import_package_loads_no_scipy_nor_matplotlib():
+    assert _loaded_after("import exudyn_atcm") == set()
+
+
+def test_cli_help_loads_no_scipy_nor_matplotlib():
+    code = ("import contextlib, io, sys\nsys.argv = ['exudyn-atcm', '--help']\n"
+            "from exudyn_atcm.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            "    try:\n        main()\n    except SystemExit as exc:\n        assert exc.code in (0, None), exc.code")
+    assert _loaded_after(code) == set()
+
+
+def test_probe_sees_heavy_modules_when_they_are_loaded():
+    # the probe itself can fail: a fit module that needs scipy.optimize, and a figure, load them
+    code = ("import numpy as np\nfrom exudyn_atcm.hysteresis.loop_identification import isotonic\n"
+            "isotonic(np.array([1.0, 0.0]))\nfrom exudyn_atcm.plots import new_figure\nnew_figure()")
+    loaded = _loaded_after(code)
+    assert {"scipy.optimize", "matplotlib.figure"} <= loaded
+
+
+@pytest.mark.parametrize("module", ["exudyn_atcm", "exudyn_atcm.plots", "exudyn_atcm.hysteresis", "exudyn_atcm.io"])
+def test_public_names_still_resolve(module):
+    # every name in __all__ still resolves from the package face, lazily loaded ones included
+    code = (f"import importlib\nm = importlib.import_module({module!r})\n"
+            "missing = [n for n in m.__all__ if not hasattr(m, n)]\nassert not missing, missing\n"
+            f"exec('from {module} import ' + ', '.join(m.__all__))")
+    subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True)
+
+
+def test_lazy_plots_name_is_the_submodules_object():
+    import exudyn_atcm.plots as plots
+    from exudyn_atcm.plots import result, style
+
+    assert plots.new_figure is style.new_figure
+    assert plots.plot_actuator_time_series is result.plot_time_series
+    with pytest.raises(AttributeError, match="no attribute 'not_a_plot'"):
+        _ = plots.not_a_plot
