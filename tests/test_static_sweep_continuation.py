@@ -102,3 +102,15 @@ def test_a_failed_continuation_step_falls_back_to_its_own_equilibrium(monkeypatc
 def test_unknown_method_is_refused():
     with pytest.raises(ValueError, match=r"method: expected one of 'continuation', 'points', got 'newton'"):
         atcm.static_sweep(lone(paper_drive()), [0.0, 100.0], method="newton")
+
+
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_a_bending_actuator_sweep_takes_the_method(cell):
+    act = atcm.BendingActuator(4, 0.087 / 4, 28e-3, atcm.Layer(0.2e-3, 70e9, 1550.0),
+                               atcm.Layer(0.3e-3, 30.336e9, 5440.0), paper_drive(), cell=cell)
+    points = atcm.static_sweep(act, CYCLE, tip_force=(0.0, -0.01), method="points")
+    cont = atcm.static_sweep(act, CYCLE, tip_force=(0.0, -0.01))
+    assert cont.info["sweep_method"] == "continuation" and points.info["sweep_method"] == "points"
+    # the same equilibria to the Newton tolerance (see above): 1e-9 m is 1e-8 of the length
+    for c in ("tip_x", "tip_y"):
+        np.testing.assert_allclose(cont[c], points[c], rtol=0.0, atol=1e-9, err_msg=c)
