@@ -160,6 +160,7 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     info = {"solver": "static sweep", "sweep_method": method, "methods": ",".join(sorted(set(methods))),
             "points": len(table), "unstable_points": ",".join(map(str, unstable))}
     if method == "continuation":
+        info["continued_points"] = len(table) - 1 - len(fallbacks)
         info["fallback_points"] = " | ".join(fallbacks)
     return stepping.result(info, base=("point", "-"))
 

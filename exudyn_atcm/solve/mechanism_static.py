@@ -153,13 +153,15 @@ def continuation_step(mech: Mechanism, model: mb.MechanismModel, start: np.ndarr
                       probe: StabilityProbe | None = None) -> tuple[str, str]:
     """A static sweep's point as one load step continued from the last equilibrium; returns (method, note).
 
+    ``method`` is ``"static"`` (Exudyn's static solver) when the step succeeds, with an empty ``note``.
+
     The model is in the previous point's equilibrium with the strains ``start``; the strains move
     to ``end`` in one load step of Exudyn's static solver (its adaptive stepping halves the step
     when the Newton iteration fails), with the loads kept and the same Newton tolerances as
     :func:`equilibrium`, so that the point reaches the same equilibrium at a fraction of the cost.
     When that step fails, or ends on an unstable equilibrium (``probe``), the state is put back
     and the point is solved by :func:`equilibrium` as a point-by-point sweep solves it; the
-    method is then that of :func:`equilibrium` and ``note`` says why (empty when continued).
+    method is then that of :func:`equilibrium` and ``note`` says why.
     """
     restore = snapshot(model)
     model.load_factor = 1.0
@@ -172,7 +174,7 @@ def continuation_step(mech: Mechanism, model: mb.MechanismModel, start: np.ndarr
         note = f"the continuation step failed at load factor {exc.time:.3g} ({exc})"
     else:
         if probe is None or probe.check().state != "unstable":
-            return "continuation", ""
+            return "static", ""
         note = "the continuation step ended on an unstable equilibrium"
     restore()
     return equilibrium(mech, model, start, end, False, None, what, probe), note
