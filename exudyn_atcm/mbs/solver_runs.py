@@ -96,10 +96,12 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
     """Solve statically; the strain follows the load factor ``f`` in [0, 1] via ``strain_at_factor``."""
     mbs = model.mbs
     errors = HookErrors("Exudyn's static solver")
+    last_factor = [math.nan]  # the factor whose strains the model holds
 
     def pre(mbs_, t):
         try:
-            model.set_strain(strain_at_factor(min(max(t, 0.0), 1.0)))
+            last_factor[0] = min(max(t, 0.0), 1.0)
+            model.set_strain(strain_at_factor(last_factor[0]))
         except Exception as exc:
             errors.keep(exc, "pre-step", f"load factor {t:.6g}")
             raise
@@ -129,8 +131,10 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
     if not ok:
         errors.raise_first()
         raise ExudynFailure("static Newton iteration did not converge", _solver_time(solver))
-    # the static solver ends at load factor 1: make sure the final strain is exact
-    model.set_strain(strain_at_factor(1.0))
+    # the static solver ends at load factor 1: make sure the final strain is exact (written again
+    # only when the last step's pre-step hook did not write exactly it)
+    if last_factor[0] != 1.0:
+        model.set_strain(strain_at_factor(1.0))
 
 
 def _solver_time(solver) -> float:

@@ -35,7 +35,8 @@ from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
 from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
 from .long_runs import is_announced
-from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
+from .mechanism_static import (VoltageSpec, continuation_step, describe, describe_voltages, drive_voltages, equilibrium,
+                               source_values)
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from .static_stability import load_path_note, stability_probe, warn_unstable
 from ..errors import SolverError, annotate
@@ -97,12 +98,27 @@ def sweep_table(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequen
     return [{name: float(v) for name in drives} for v in values]
 
 
+SWEEP_METHODS = ("continuation", "points")
+
+
+def check_sweep_method(method: str) -> str:
+    """``method`` of :func:`static_sweep`, checked."""
+    if method not in SWEEP_METHODS:
+        raise ValueError(f"method: expected one of {', '.join(map(repr, SWEEP_METHODS))}, got {method!r}")
+    return method
+
+
 def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
-                 built: mb.MechanismModel | None = None) -> Result:
+                 built: mb.MechanismModel | None = None, method: str = "continuation") -> Result:
     """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`).
 
     ``built``: a model of ``mech`` already built and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
+    ``method``: ``"continuation"`` (each point after the first one load step from the last
+    equilibrium, :func:`~exudyn_atcm.solve.mechanism_static.continuation_step`, falling back to
+    ``"points"`` for a point where that fails) or ``"points"`` (each point its own equilibrium in
+    load steps, :func:`~exudyn_atcm.solve.mechanism_static.equilibrium`).
     """
+    check_sweep_method(method)
     table = sweep_table(mech, voltages)
     if built is None:
         warn_if_large(mech, "static_sweep", equilibria=len(table), quiet=is_announced(), stacklevel=5)  # before the build
@@ -118,10 +134,17 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     truncation: dict[str, float] = {}
     probe = stability_probe(mech, model)
     states = []
+    fallbacks: list[str] = []
     for i, per_drive in enumerate(table):
         volts, strains = source_table[i], strain_table[i]
         where = f"sweep point {i} ({describe_voltages(per_drive)})"
-        methods.append(equilibrium(mech, model, previous, strains, i == 0, None, where, probe))
+        if i == 0 or method == "points":
+            methods.append(equilibrium(mech, model, previous, strains, i == 0, None, where, probe))
+        else:
+            used, note = continuation_step(mech, model, previous, strains, where, probe)
+            methods.append(used)
+            if note:
+                fallbacks.append(f"{i}: {note}; solved as its own equilibrium ({used})")
         states.append((where, probe.last))
         runs.set_current_as_initial(model, zero_velocity=True)
         stepping.record_state(float(i), volts, strains)
@@ -134,8 +157,12 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     warn_few_modes(mech, truncation)
     warn_unstable(describe(mech), states)
     unstable = [i for i, (_, s) in enumerate(states) if s.state != "stable"]
-    return stepping.result({"solver": "static sweep", "methods": ",".join(sorted(set(methods))), "points": len(table),
-                            "unstable_points": ",".join(map(str, unstable))}, base=("point", "-"))
+    info = {"solver": "static sweep", "sweep_method": method, "methods": ",".join(sorted(set(methods))),
+            "points": len(table), "unstable_points": ",".join(map(str, unstable))}
+    if method == "continuation":
+        info["continued_points"] = len(table) - 1 - len(fallbacks)
+        info["fallback_points"] = " | ".join(fallbacks)
+    return stepping.result(info, base=("point", "-"))
 
 
 def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings: Any = None,

@@ -259,7 +259,7 @@ def _finish_actuator_run(actuator: BendingActuator, mech: Mechanism, result: Res
 # ------------------------------------------------------------------------------ quasi-static sweep
 
 def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] | Mapping[str, Sequence[float]], *,
-                 tip_force: tuple[float, float] = (0.0, 0.0)) -> Result:
+                 tip_force: tuple[float, float] = (0.0, 0.0), method: str = "continuation") -> Result:
     """Quasi-static path over a voltage sequence, following the hysteresis.
 
     Each point continues from the previous equilibrium and the previous hysteresis memory
@@ -279,6 +279,14 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
         A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
         one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
         :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
+    method : {"continuation", "points"}, optional
+        ``"continuation"`` (default): the system is built once and every point after the first is
+        one static load step from the previous equilibrium (halved by the solver where its Newton
+        iteration fails), with the Newton tolerances of a single solve; a point where that step
+        fails or ends unstable is solved as its own equilibrium, as ``"points"`` does, and
+        ``result.info["fallback_points"]`` says which and why.  ``"points"``: every point is its
+        own static solve in load steps from the previous equilibrium (the sweep before the
+        continuation; slower, the same equilibria within the solver tolerance).
 
     Returns
     -------
@@ -295,11 +303,11 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
     """
     if isinstance(system, Mechanism):
         _mechanism_only(tip_force)
-        return mechanism_solve.static_sweep(system, voltages)
+        return mechanism_solve.static_sweep(system, voltages, method=method)
     if not isinstance(system, BendingActuator):
         raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {system!r}")
     mech = system.as_mechanism(tip_force)
-    return actuator_result(system, mechanism_solve.static_sweep(mech, voltages))
+    return actuator_result(system, mechanism_solve.static_sweep(mech, voltages, method=method))
 
 
 # ------------------------------------------------------------------------------ eigenfrequencies
@@ -334,6 +342,14 @@ def eigenfrequencies(
         A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
         one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
         :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
+    method : {"continuation", "points"}, optional
+        ``"continuation"`` (default): the system is built once and every point after the first is
+        one static load step from the previous equilibrium (halved by the solver where its Newton
+        iteration fails), with the Newton tolerances of a single solve; a point where that step
+        fails or ends unstable is solved as its own equilibrium, as ``"points"`` does, and
+        ``result.info["fallback_points"]`` says which and why.  ``"points"``: every point is its
+        own static solve in load steps from the previous equilibrium (the sweep before the
+        continuation; slower, the same equilibria within the solver tolerance).
 
     Returns
     -------

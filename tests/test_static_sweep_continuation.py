@@ -1,0 +1,117 @@
+"""Issue 31, part 2: a static sweep as one continuation.
+
+``static_sweep(..., method="continuation")`` (the default) solves every point after the first as one
+static load step from the previous equilibrium; ``method="points"`` solves each point as its own
+equilibrium in load steps (the sweep before the continuation).  References: the per-point path
+computed in the same test (both are Newton solutions of the same equilibrium equations with the same
+tolerances, so they agree to the solver tolerance), a plain play operator applied offline to the
+voltages (the hysteresis memory across reversals), and a forced failure of every continuation step.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import exudyn_atcm as atcm
+from exudyn_atcm.mbs import solver_runs
+from exudyn_atcm.mbs.stability import StabilityProbe
+from exudyn_atcm.solve import mechanism_static
+
+from test_one_stepping import CountingPlay, four_bar, lone, offline_play, paper_drive
+
+#: A voltage cycle with three reversals (750 V, -200 V, 600 V): the Preisach memory matters.
+CYCLE = np.concatenate([np.linspace(0.0, 750.0, 8), np.linspace(750.0, -200.0, 9)[1:],
+                        np.linspace(-200.0, 600.0, 8)[1:], np.linspace(600.0, 0.0, 6)[1:]])
+
+MECHANISMS = {
+    "four_bar_rigid": lambda drive: four_bar(drive),
+    "lone_rigid": lambda drive: lone(drive),
+    "lone_rod": lambda drive: lone(drive, cell="rod"),
+}
+
+
+def position_columns(r) -> list[str]:
+    return [c for c in r.names if r.unit(c) == "m"]
+
+
+@pytest.mark.parametrize("case", sorted(MECHANISMS))
+def test_continuation_equals_the_point_by_point_sweep(case):
+    make = MECHANISMS[case]
+    points = atcm.static_sweep(make(paper_drive()), CYCLE, method="points")
+    cont = atcm.static_sweep(make(paper_drive()), CYCLE)
+    assert cont.info["sweep_method"] == "continuation"
+    assert cont.info["fallback_points"] == ""  # every point after the first was continued
+    assert cont.info["continued_points"] == len(CYCLE) - 1 and cont.info["methods"] == "static"
+    assert points.names == cont.names and cont.n_rows == len(CYCLE)
+    # the hysteresis is the same function of the voltage history either way: strains identical
+    strain = [c for c in cont.names if c.endswith(".strain")]
+    for c in strain:
+        np.testing.assert_array_equal(cont[c], points[c])
+    # Both solve the same equilibrium equations to the same Newton tolerances (absolute ~1e-12 EI/L):
+    # positions agree far below 1e-9 m (measured: 1e-12 m or less); 1e-9 m is 1e-8 of the size.
+    for c in position_columns(cont):
+        np.testing.assert_allclose(cont[c], points[c], rtol=0.0, atol=1e-9, err_msg=c)
+    assert cont.info["unstable_points"] == points.info["unstable_points"] == ""
+
+
+def test_continuation_keeps_the_hysteresis_memory_across_reversals():
+    play = CountingPlay(k=5e-7, r=200.0)
+    r = atcm.static_sweep(lone(atcm.PiezoDrive(0.0, hysteresis=play)), CYCLE)
+    expected = [5e-7 * x for x in offline_play(CYCLE, 200.0)]
+    np.testing.assert_allclose(r["b.strain"], expected, rtol=1e-15, atol=0.0)
+
+
+def test_stability_is_checked_at_every_point(monkeypatch):
+    checks = []
+    original = StabilityProbe.check
+
+    def counting(self):
+        checks.append(1)
+        return original(self)
+
+    monkeypatch.setattr(StabilityProbe, "check", counting)
+    atcm.static_sweep(lone(paper_drive()), CYCLE)
+    assert len(checks) >= len(CYCLE)
+
+
+def test_a_failed_continuation_step_falls_back_to_its_own_equilibrium(monkeypatch):
+    original = solver_runs.run_static
+
+    def failing(model, settings, strain_at_factor):
+        st = settings.staticSolver
+        moving = not np.array_equal(model.path_from, model.path_to)
+        if st.numberOfLoadSteps == 1 and not st.useLoadFactor and moving:  # the continuation step only
+            raise solver_runs.ExudynFailure("static Newton iteration did not converge", 0.5)
+        return original(model, settings, strain_at_factor)
+
+    reference = atcm.static_sweep(lone(paper_drive()), CYCLE, method="points")
+    monkeypatch.setattr(mechanism_static.runs, "run_static", failing)
+    r = atcm.static_sweep(lone(paper_drive()), CYCLE)
+    notes = r.info["fallback_points"].split(" | ")
+    # the stand-in fails a step that moves the strains (a point whose strain stays, as just after a
+    # reversal on the operator's flat branch, is a zero step and continues)
+    moved = [i for i in range(1, len(CYCLE)) if r["b.strain"][i] != r["b.strain"][i - 1]]
+    assert len(moved) >= 10
+    assert [int(n.split(":")[0]) for n in notes] == moved
+    assert r.info["continued_points"] == len(CYCLE) - 1 - len(moved)
+    assert "continuation step failed at load factor 0.5" in notes[0] and "own equilibrium" in notes[0]
+    for c in position_columns(r):
+        np.testing.assert_allclose(r[c], reference[c], rtol=0.0, atol=1e-12, err_msg=c)
+
+
+def test_unknown_method_is_refused():
+    with pytest.raises(ValueError, match=r"method: expected one of 'continuation', 'points', got 'newton'"):
+        atcm.static_sweep(lone(paper_drive()), [0.0, 100.0], method="newton")
+
+
+@pytest.mark.parametrize("cell", ["rigid", "six-bar"])
+def test_a_bending_actuator_sweep_takes_the_method(cell):
+    act = atcm.BendingActuator(4, 0.087 / 4, 28e-3, atcm.Layer(0.2e-3, 70e9, 1550.0),
+                               atcm.Layer(0.3e-3, 30.336e9, 5440.0), paper_drive(), cell=cell)
+    points = atcm.static_sweep(act, CYCLE, tip_force=(0.0, -0.01), method="points")
+    cont = atcm.static_sweep(act, CYCLE, tip_force=(0.0, -0.01))
+    assert cont.info["sweep_method"] == "continuation" and points.info["sweep_method"] == "points"
+    # the same equilibria to the Newton tolerance (see above): 1e-9 m is 1e-8 of the length
+    for c in ("tip_x", "tip_y"):
+        np.testing.assert_allclose(cont[c], points[c], rtol=0.0, atol=1e-9, err_msg=c)
