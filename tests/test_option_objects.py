@@ -115,3 +115,33 @@ def test_identify_takes_its_fit_settings_as_one_object_and_the_flat_ones_warn():
         old = identify(u, y, families=("prandtl_ishlinskii",), n_plays=6)
     assert new.chosen.parameters == old.chosen.parameters == 6 + 1  # n_plays reached the fit both ways
     np.testing.assert_array_equal(new.chosen.report.predicted, old.chosen.report.predicted)
+
+
+def test_fit_plots_take_their_axis_labels_as_one_object_and_the_flat_ones_warn():
+    # the labels are drawn as "quantity [unit]" (axis_label); an output in micro-strain is not rescaled from "-"
+    import matplotlib
+    matplotlib.use("Agg")
+    from types import SimpleNamespace
+
+    from exudyn_atcm.plots import AxisLabels, plot_fit, plot_fit_series
+
+    u = np.concatenate([np.linspace(0.0, 100.0, 40), np.linspace(100.0, 0.0, 40)])
+    y = 1e-3 * u
+    report = SimpleNamespace(predicted=y, n_fit=40, linear_model={"a": 1e-3, "b": 0.0},
+                             model_errors={"fit": {"rms": 0.0}, "held_out": {"rms": 0.0}})
+    labels = AxisLabels(input_name="field", input_unit="V/m", output_name="strain", output_unit="-")
+    assert len(inspect.signature(plot_fit_series).parameters) <= 10
+    new = plot_fit_series(report, u, y, labels=labels)
+    with pytest.warns(AtcmDeprecationWarning, match=r"plot_fit_series\(\): pass input_name, input_unit, output_name, "
+                                                    r"output_unit into labels=AxisLabels"):
+        old = plot_fit_series(report, u, y, input_name="field", input_unit="V/m", output_name="strain",
+                              output_unit="-")
+    for fig in (new, old):
+        assert [a.get_ylabel() for a in fig.axes[:2]] == ["field [V/m]", "strain [-]"]
+    loops = plot_fit(report, u, y, labels=labels)
+    assert (loops.axes[0].get_xlabel(), loops.axes[0].get_ylabel()) == ("field [V/m]", "strain [-]")
+    assert plot_fit_series(report, u, y).axes[0].get_ylabel() == "voltage [V]"  # the defaults unchanged
+    with pytest.raises(TypeError, match=r"plot_fit\(\): output_unit given both as keywords and in labels="):
+        plot_fit(report, u, y, labels=labels, output_unit="m")
+    with pytest.raises(TypeError, match=r"AxisLabels.output_unit must be a str, got 1"):
+        AxisLabels(output_unit=1)

@@ -25,11 +25,11 @@ from .mechanism import (
 )
 from .result import animate_actuator, chain_shape, plot_result, plot_shapes, plot_tip_vs_voltage
 from .result import plot_time_series as plot_actuator_time_series
-from .style import COLORS, STYLE, axis_label, display_scale, new_figure, save_figure
+from .style import COLORS, STYLE, AxisLabels, axis_label, display_scale, new_figure, save_figure
 
 __all__ = [
     # style
-    "STYLE", "COLORS", "new_figure", "axis_label", "display_scale", "save_figure",
+    "STYLE", "COLORS", "AxisLabels", "new_figure", "axis_label", "display_scale", "save_figure",
     # curves and hysteresis loops
     "Curve", "plot_loops", "plot_time_series", "plot_relays", "plot_fit", "plot_fit_series", "plot_model_choice",
     # results of the lone actuator
