@@ -87,18 +87,25 @@ def _wide_functions() -> dict[str, int]:
     return found
 
 
-def test_the_remaining_wide_signatures_are_the_listed_ones():
-    # issue 30's goal is none; these are left (the report lists them): the Bender/Flexure descriptions
-    # (part 1 owns them), two internal helpers (make_report, equilibrium_with_fallback), the optimiser's
-    # internal Problem and plot_fit_series (four axis-label keywords); a new wide function fails here
-    assert set(_wide_functions()) <= {
-        "exudyn_atcm.hysteresis.fit_report.make_report",
-        "exudyn_atcm.solve.static_fallback.equilibrium_with_fallback",
-        "exudyn_atcm.mechanism.bender.Bender",
-        "exudyn_atcm.mechanism.flexure.Flexure",
-        "exudyn_atcm.plots.identification.plot_fit_series",
-        "exudyn_atcm.study.problem.Problem",
-    }
+#: The public signatures left over 10 parameters, each with the reason it stays (issue 30's goal is none).
+JUSTIFIED_WIDE = {
+    # a part's description: every parameter keyword-only and a physical property of the part (like a dataclass's
+    # fields); the one grouping that exists (laminate = width, passive, active, stiffness) leaves 11 and would
+    # make every one of the ~120 Bender calls change or warn
+    "exudyn_atcm.mechanism.bender.Bender": 14,
+    # the same: a strip's geometry, material and hinge model; grouping thickness/youngs_modulus/density into a
+    # Layer (10) changes the unit-slip warnings' names and all 17 calls, left for the next release
+    "exudyn_atcm.mechanism.flexure.Flexure": 12,
+    # the report every fit (and an outside hysteresis family, test_family_registry) builds: six positional
+    # data arguments and six keyword-only ones, all with defaults; narrowing it changes six fitters' calls
+    "exudyn_atcm.hysteresis.fit_report.make_report": 12,
+}
+
+
+def test_no_other_public_signature_has_more_than_ten_parameters():
+    # study.problem.Problem (15) and solve.static_fallback.equilibrium_with_fallback (13) left __all__ (internal),
+    # plot_fit_series (11) takes AxisLabels; a new wide public function, or a listed one grown wider, fails here
+    assert _wide_functions() == JUSTIFIED_WIDE
 
 
 def test_identify_takes_its_fit_settings_as_one_object_and_the_flat_ones_warn():
