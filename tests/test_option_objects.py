@@ -93,9 +93,6 @@ JUSTIFIED_WIDE = {
     # fields); the one grouping that exists (laminate = width, passive, active, stiffness) leaves 11 and would
     # make every one of the ~120 Bender calls change or warn
     "exudyn_atcm.mechanism.bender.Bender": 14,
-    # the same: a strip's geometry, material and hinge model; grouping thickness/youngs_modulus/density into a
-    # Layer (10) changes the unit-slip warnings' names and all 17 calls, left for the next release
-    "exudyn_atcm.mechanism.flexure.Flexure": 12,
     # the report every fit (and an outside hysteresis family, test_family_registry) builds: six positional
     # data arguments and six keyword-only ones, all with defaults; narrowing it changes six fitters' calls
     "exudyn_atcm.hysteresis.fit_report.make_report": 12,
@@ -104,7 +101,7 @@ JUSTIFIED_WIDE = {
 
 def test_no_other_public_signature_has_more_than_ten_parameters():
     # study.problem.Problem (15) and solve.static_fallback.equilibrium_with_fallback (13) left __all__ (internal),
-    # plot_fit_series (11) takes AxisLabels; a new wide public function, or a listed one grown wider, fails here
+    # plot_fit_series (11) takes AxisLabels, Flexure (12) a Layer; a new wide public function, or a listed one grown wider, fails here
     assert _wide_functions() == JUSTIFIED_WIDE
 
 
@@ -152,3 +149,24 @@ def test_fit_plots_take_their_axis_labels_as_one_object_and_the_flat_ones_warn()
         plot_fit(report, u, y, labels=labels, output_unit="m")
     with pytest.raises(TypeError, match=r"AxisLabels.output_unit must be a str, got 1"):
         AxisLabels(output_unit=1)
+
+
+def test_flexure_takes_its_material_as_a_layer_and_the_flat_keywords_warn():
+    # Howell's pseudo-rigid-body spring K = gamma k_theta E I / L with I = b h^3 / 12 (closed form)
+    from exudyn_atcm import Flexure, Layer
+
+    geometry = dict(base=(0.0, 0.0), tip=(0.02, 0.0), width=5e-3, gamma=0.5, k_theta=2.0)
+    new = Flexure("f", layer=Layer(0.2e-3, 70e9, 1550.0), **geometry)
+    with pytest.warns(AtcmDeprecationWarning, match=r"Flexure\(\): pass thickness, youngs_modulus, density into "
+                                                    r"layer=Layer"):
+        old = Flexure("f", thickness=0.2e-3, youngs_modulus=70e9, density=1550.0, **geometry)
+    expected = 0.5 * 2.0 * 70e9 * 5e-3 * 0.2e-3**3 / 12.0 / 0.02
+    assert new.torsion_stiffness == pytest.approx(expected, rel=1e-14)
+    assert old.torsion_stiffness == new.torsion_stiffness and old.layer == new.layer == Layer(0.2e-3, 70e9, 1550.0)
+    assert len(inspect.signature(Flexure).parameters) == 10
+    with pytest.raises(ValueError, match=r"flexure 'f': give layer=Layer\(thickness, youngs_modulus, density\)"):
+        Flexure("f", **geometry)
+    with pytest.raises(ValueError, match=r"need all three of thickness, youngs_modulus, density \(missing \['density'\]\)"):
+        Flexure("f", thickness=0.2e-3, youngs_modulus=70e9, **geometry)
+    with pytest.raises(ValueError, match=r"layer must be an exudyn_atcm Layer, got 0.0002"):
+        Flexure("f", layer=0.2e-3, **geometry)
