@@ -80,8 +80,8 @@ def build_mechanism(p: Parameters, strain_law, voltage=0.0) -> Mechanism:
                    drive=PiezoDrive(voltage, hysteresis=strain_law), angle=math.pi / 2, active_side="left", cell=p.cell)
 
     def flexure(name, base, tip):  # Howell's small-length flexural pivot: pivot mid-way, K = EI/l
-        return Flexure(name, base=base, tip=tip, width=10e-3, thickness=p.flexure_thickness,
-                       youngs_modulus=70e9, density=1550.0, gamma=0.5, k_theta=2.0)
+        return Flexure(name, base=base, tip=tip, width=10e-3, layer=Layer(p.flexure_thickness, 70e9, 1550.0),
+                       gamma=0.5, k_theta=2.0)
 
     hinge_b = flexure("hinge_B", (0.0, L), (0.0, L + lf))
     coupler = Link.from_outline("coupler", {"B": (0.0, L + lf), "C": (b, L + lf), "P": (u, L + lf + v)},

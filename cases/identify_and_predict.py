@@ -49,7 +49,7 @@ from exudyn_atcm.hysteresis import (
     save_model,
 )
 from exudyn_atcm.model import REFERENCE
-from exudyn_atcm.plots import plot_fit, plot_fit_series, plot_model_choice
+from exudyn_atcm.plots import AxisLabels, plot_fit, plot_fit_series, plot_model_choice
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "preisach_record.csv"
 
@@ -155,7 +155,7 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     report.predicted = r["predicted"]
     report.n_fit = n_fit
     files = [out_dir / f"{output.case}_loop.png", out_dir / f"{output.case}_time.png"]
-    labels = {"output_unit": r.unit("measured"), "title": f"Preisach fit, {p.n_levels} levels"}
+    labels = {"labels": AxisLabels(output_unit=r.unit("measured")), "title": f"Preisach fit, {p.n_levels} levels"}
     plot_fit(report, r["voltage"], r["measured"], path=files[0], **labels)
     plot_fit_series(report, r["voltage"], r["measured"], time=r["time"], path=files[1], **labels)
     if "model_choice" in output.notes:  # the ranked table of hysteresis.identify as a figure

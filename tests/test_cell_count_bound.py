@@ -53,8 +53,7 @@ def no_build(monkeypatch):
     lambda n: bender(n),
     lambda n: Bender("b", width=10e-3, passive=CFC, active=MFC, segments=[Segment(0.03, n)], cell="rigid"),
     lambda n: BendingActuator(n, 0.03 / n, 10e-3, CFC, MFC, PiezoDrive(0.0), cell="six-bar"),
-    lambda n: Flexure("f", base=(0.0, 0.0), tip=(0.03, 0.0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9,
-                      density=1550.0, model="cells", n_cells=n),
+    lambda n: Flexure("f", base=(0.0, 0.0), tip=(0.03, 0.0), width=5e-3, layer=Layer(0.2e-3, 70e9, 1550.0), model="cells", n_cells=n),
 ])
 def test_more_cells_than_the_bound_are_refused_where_they_are_given(make):
     with pytest.raises(ValueError, match=r"n_cells = 10000000 is more than 100000 cells"):

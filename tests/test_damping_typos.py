@@ -32,8 +32,7 @@ def actuator(damping):
 
 
 def flexure(damping):
-    return Flexure("f", base=(0.0, 0.0), tip=(0.03, 0.0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9,
-                   density=1550.0, model="cells", damping=damping)
+    return Flexure("f", base=(0.0, 0.0), tip=(0.03, 0.0), width=5e-3, layer=Layer(0.2e-3, 70e9, 1550.0), model="cells", damping=damping)
 
 
 @pytest.mark.parametrize("make, owner", [(bender, "bender 'b'"), (actuator, "BendingActuator"),

@@ -124,8 +124,7 @@ def test_mass_damping_of_a_flexure_segment_welded_to_a_link_is_the_segments_own(
     link's end after a released force shows delta(zeta), zeta = c / (2 sqrt(K J_p)): measured
     within 3e-5 (step 1e-5 s, 1/600 of a period); damping the link too would give 21x the decrement."""
     alpha = 1000.0
-    f = Flexure("f", base=(0.0, 0.0), tip=(0.02, 0.0), width=10e-3, thickness=0.3e-3, youngs_modulus=70e9,
-                density=1550.0, damping=RayleighDamping(alpha=alpha))
+    f = Flexure("f", base=(0.0, 0.0), tip=(0.02, 0.0), width=10e-3, layer=Layer(0.3e-3, 70e9, 1550.0), damping=RayleighDamping(alpha=alpha))
     link = Link("lever", {"A": (0.02, 0.0), "E": (0.04, 0.0)}, mass=2e-4, inertia=1e-8)
     m = Mechanism().add(f, link).ground(f.base).weld(f.tip, link.point("A")).force(
         "lever.E", lambda t: (0.0, -0.01) if t < 1e-3 else (0.0, 0.0))
@@ -207,8 +206,7 @@ def test_material_damping_is_the_laminates_and_independent_of_length():
         assert (b.mass_damping_factor, b.stiffness_damping_factor) == (1.0, 2e-4)
         act = BendingActuator(3, length / 3, W, CFC, MFC, PiezoDrive(0.0), cell="rigid", damping=d)
         assert act.rayleigh_damping is d
-    f = Flexure("f", base=(0.0, 0.0), tip=(0.02, 0.0), width=W, thickness=0.2e-3, youngs_modulus=70e9,
-                density=1550.0, damping=d)
+    f = Flexure("f", base=(0.0, 0.0), tip=(0.02, 0.0), width=W, layer=Layer(0.2e-3, 70e9, 1550.0), damping=d)
     assert f.stiffness_damping_factor == 2e-4 and f.as_bender().rayleigh_damping is d
 
 

@@ -156,7 +156,7 @@ def test_component_arguments_are_checked():
     with pytest.raises(MechanismError, match="reserved for the ground"):
         Mechanism().add(Link("ground", {"A": (0, 0)}, mass=1.0, inertia=1.0))
     with pytest.raises(ValueError, match="gamma must be in"):
-        Flexure("f", base=(0, 0), tip=(0.01, 0), width=1e-3, thickness=1e-4, youngs_modulus=1e9, density=1e3,
+        Flexure("f", base=(0, 0), tip=(0.01, 0), width=1e-3, layer=Layer(1e-4, 1e9, 1e3),
                 gamma=1.5)
     with pytest.raises(MechanismError, match="torques act on links"):
         Mechanism().add(crank()).torque("crank", 1e-3)
@@ -203,14 +203,12 @@ def test_link_from_outline_rectangle():
 
 
 def test_prbm_flexure_numbers():
-    f = Flexure("hinge", base=(0.0, 0.0), tip=(0.0, 0.01), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9,
-                density=1550.0)
+    f = Flexure("hinge", base=(0.0, 0.0), tip=(0.0, 0.01), width=5e-3, layer=Layer(0.2e-3, 70e9, 1550.0))
     ei = 70e9 * 5e-3 * 0.2e-3**3 / 12.0
     assert f.torsion_stiffness == pytest.approx(0.8517 * 2.65 * ei / 0.01, rel=1e-14)
     # pivot at gamma L from the tip
     assert f.pivot == pytest.approx((0.0, 0.01 * (1 - 0.8517)), abs=1e-15)
-    small = Flexure("p", base=(0, 0), tip=(0.01, 0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9,
-                    density=1550.0, gamma=0.5, k_theta=2.0)
+    small = Flexure("p", base=(0, 0), tip=(0.01, 0), width=5e-3, layer=Layer(0.2e-3, 70e9, 1550.0), gamma=0.5, k_theta=2.0)
     assert small.torsion_stiffness == pytest.approx(ei / 0.01, rel=1e-14)
 
 

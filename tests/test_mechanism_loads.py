@@ -113,8 +113,7 @@ def test_time_dependent_force_acts_at_the_step_time():
 
 def test_prbm_flexure_tip_under_end_moment_turns_by_m_over_k():
     """Howell's PRBM: the tip segment turns about the characteristic pivot by M/K."""
-    fx = Flexure("hinge", base=(0.0, 0.0), tip=(0.02, 0.0), width=5e-3, thickness=0.1e-3, youngs_modulus=70e9,
-                 density=1550.0)
+    fx = Flexure("hinge", base=(0.0, 0.0), tip=(0.02, 0.0), width=5e-3, layer=Layer(0.1e-3, 70e9, 1550.0))
     lever = Link("lever", {"A": (0.02, 0.0), "B": (0.03, 0.0)}, mass=1e-4, inertia=1e-8)
     m = Mechanism().add(fx, lever).ground(fx.base).weld(fx.tip, "lever.A").torque("lever", 1e-4)
     r = solve_static(m)
@@ -129,7 +128,7 @@ def test_prbm_flexure_tip_under_end_moment_turns_by_m_over_k():
 
 
 def test_cells_flexure_equals_a_passive_bender():
-    kw = dict(base=(0.0, 0.0), tip=(0.0, 0.02), width=5e-3, thickness=0.1e-3, youngs_modulus=70e9, density=1550.0)
+    kw = dict(base=(0.0, 0.0), tip=(0.0, 0.02), width=5e-3, layer=Layer(0.1e-3, 70e9, 1550.0))
     fx = Flexure("hinge", model="cells", n_cells=6, **kw)
     b = Bender("hinge", width=5e-3, passive=Layer(0.1e-3, 70e9, 1550.0), length=0.02, n_cells=6, angle=math.pi / 2, cell="rigid")
     r1 = solve_static(Mechanism().add(fx).ground(fx.base).force(fx.tip, (1e-3, 0.0)))

@@ -27,8 +27,7 @@ def _mechanism() -> Mechanism:
     crank = Bender("crank", width=1e-2, passive=CFC, active=MFC, length=L, n_cells=N,
                    drive=PiezoDrive(500.0), angle=math.pi / 2, cell="rigid")
     coupler = Link("coupler", {"A": (0.0, L), "B": (0.04, L), "P": (0.02, 0.05)}, mass=1e-3, inertia=1e-7)
-    hinge = Flexure("hinge", base=(0.04, L), tip=(0.04, 0.0), width=5e-3, thickness=0.2e-3,
-                    youngs_modulus=70e9, density=1550.0, gamma=0.5, k_theta=2.0)
+    hinge = Flexure("hinge", base=(0.04, L), tip=(0.04, 0.0), width=5e-3, layer=Layer(0.2e-3, 70e9, 1550.0), gamma=0.5, k_theta=2.0)
     mech = Mechanism("test").add(crank, coupler, hinge)
     mech.ground(crank.base).weld(crank.tip, coupler.point("A")).weld(coupler.point("B"), hinge.base)
     mech.ground(hinge.tip).spring(coupler.point("P"), crank.base, 10.0)
@@ -166,8 +165,7 @@ def test_real_run_with_every_component_kind_is_drawn(tmp_path):
     bender = Bender("b", width=1e-2, passive=CFC, active=MFC, length=0.04, n_cells=6, drive=PiezoDrive(0.0),
                     angle=0.3, active_side="left", cell="rigid")
     tip = bender.points["tip"]
-    strip = Flexure("f", base=tip, tip=(tip[0] + 0.01, tip[1]), width=5e-3, thickness=0.1e-3, youngs_modulus=70e9,
-                    density=1550.0, model="cells", n_cells=3)
+    strip = Flexure("f", base=tip, tip=(tip[0] + 0.01, tip[1]), width=5e-3, layer=Layer(0.1e-3, 70e9, 1550.0), model="cells", n_cells=3)
     slide = Link("slide", {"A": (tip[0] + 0.01, tip[1]), "B": (tip[0] + 0.02, tip[1])}, mass=1e-3, inertia=1e-8)
     mech = Mechanism("kinds").add(bender, strip, slide).ground(bender.base).weld(bender.tip, strip.base)
     mech.weld(strip.tip, slide.point("A")).ground(slide.point("B"), joint="slider", axis=(1.0, 0.0))

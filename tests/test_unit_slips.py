@@ -28,7 +28,7 @@ def test_plausible_si_geometry_is_quiet():
         _bender(base=(0.01, -0.02), angle=-0.5 * np.pi)
         BendingActuator(3, 29e-3, 28e-3, PASSIVE, ACTIVE, PiezoDrive(1500.0), cell="six-bar")
         Link("L", {"A": (0.087, 0.0), "B": (0.1, 0.0)}, mass=1e-3, inertia=1e-7)
-        Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5e-3, thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
+        Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5e-3, layer=Layer(0.2e-3, 70e9, 1550.0))
 
 
 @pytest.mark.parametrize(
@@ -42,10 +42,10 @@ def test_plausible_si_geometry_is_quiet():
         (lambda: _bender(base=(0.0, 20.0)), "bender 'b': base y = 20.0 m"),
         (lambda: BendingActuator(3, 29.0, 28e-3, PASSIVE, ACTIVE, PiezoDrive(1500.0), cell="six-bar"), "BendingActuator: cell_length = 29.0 m"),
         (lambda: Link("L", {"A": (87.0, 0.0), "B": (100.0, 0.0)}, mass=1e-3, inertia=1e-7), "link 'L': point A x = 87.0 m"),
-        (lambda: Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5e-3, thickness=0.2, youngs_modulus=70e9,
-                         density=1550.0), "flexure 'f': thickness = 0.2 m is outside the plausible range 1e-05 ... 0.01 m"),
-        (lambda: Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5.0, thickness=0.2e-3, youngs_modulus=70e9,
-                         density=1550.0), "flexure 'f': width = 5.0 m"),
+        (lambda: Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5e-3, layer=Layer(0.2, 70e9, 1550.0)),
+         "Layer thickness = 0.2 m is outside the plausible range 1e-05 ... 0.01 m"),  # the layer says it now
+        (lambda: Flexure("f", base=(0.0, 0.0), tip=(0.01, 0.0), width=5.0, layer=Layer(0.2e-3, 70e9, 1550.0)),
+         "flexure 'f': width = 5.0 m"),
     ],
 )
 def test_unit_slips_warn(make, message):

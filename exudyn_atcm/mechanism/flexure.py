@@ -3,20 +3,18 @@
 from __future__ import annotations
 
 import math
-import warnings
 from typing import Any
 
 import numpy as np
 
-from .._checks import positive_float, positive_int, warn_implausible
+from .._checks import hide_keywords, options_from_keywords, positive_float, positive_int, warn_implausible
 from ..model.laminate import Laminate
-from ..model.materials import PLAUSIBLE_RANGES, Layer
+from ..model.materials import Layer
 from ..model.damping import RayleighDamping, check_damping, damping_already_checked
 from .bender import DEFAULT_DAMPING_RATIO, Bender
 from .link import point_pair
 from .damped import MaterialDamped
 from .points import MechanismError, PointRef, check_name, unknown_point
-from ..errors import InputRangeWarning
 from ..physical_bounds import check_cell_count
 
 FLEXURE_MODELS = ("prbm", "cells")
@@ -31,12 +29,13 @@ class Flexure(MaterialDamped):
         Component name.
     base, tip : (float, float)
         End points in the reference pose [m] (the strip is straight there).
-    width, thickness : float
-        Cross-section [m], > 0.
-    youngs_modulus : float
-        [Pa], > 0.
-    density : float
-        [kg/m³], > 0.
+    width : float
+        Width of the strip [m], > 0.
+    layer : Layer
+        The strip's material and thickness (``thickness`` [m], ``youngs_modulus`` [Pa],
+        ``density`` [kg/m³]), as a bender's ``passive`` layer.  The earlier flat keywords
+        ``thickness``, ``youngs_modulus``, ``density`` still work for one release (with an
+        :class:`~exudyn_atcm.AtcmDeprecationWarning`).
     model : {"prbm", "cells"}, optional
         ``"prbm"`` (default): Howell's pseudo-rigid-body model for a fixed-guided/cantilever
         flexure: two rigid segments joined by a pin at the characteristic pivot, at the
@@ -61,17 +60,28 @@ class Flexure(MaterialDamped):
         ratio of 1 or more (a percentage?) gives an :class:`~exudyn_atcm.errors.InputRangeWarning`.
     """
 
+    @hide_keywords
     def __init__(self, name: str, *, base: tuple[float, float], tip: tuple[float, float], width: float,
-                 thickness: float, youngs_modulus: float, density: float, model: str = "prbm", n_cells: int = 4,
+                 layer: Layer | None = None, model: str = "prbm", n_cells: int = 4,
                  gamma: float = 0.8517, k_theta: float = 2.65,
-                 damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO) -> None:
+                 damping: float | RayleighDamping = DEFAULT_DAMPING_RATIO, **flat: float) -> None:
         self.name = check_name("Flexure name", name)
         self.base_position = point_pair("base", base)
         self.tip_position = point_pair("tip", tip)
         self.width = positive_float("width", width)
-        self.thickness = positive_float("thickness", thickness)
-        self.youngs_modulus = positive_float("youngs_modulus", youngs_modulus)
-        self.density = positive_float("density", density)
+        if layer is None and not flat:
+            raise ValueError(f"flexure {name!r}: give layer=Layer(thickness, youngs_modulus, density) [m, Pa, kg/m³]")
+        if flat:  # the earlier Flexure(..., thickness=, youngs_modulus=, density=)
+            missing = [k for k in ("thickness", "youngs_modulus", "density") if k not in flat]
+            if missing and layer is None and all(k in ("thickness", "youngs_modulus", "density") for k in flat):
+                raise ValueError(f"flexure {name!r}: the earlier flat keywords need all three of thickness, "
+                                 f"youngs_modulus, density (missing {missing}); better give layer=Layer(...)")
+            (layer,) = options_from_keywords("Flexure", flat, layer=(Layer, layer))
+        elif not isinstance(layer, Layer):
+            raise ValueError(f"layer must be an exudyn_atcm Layer, got {layer!r}")
+        self.thickness = layer.thickness
+        self.youngs_modulus = layer.youngs_modulus
+        self.density = layer.density
         if not isinstance(model, str) or model not in FLEXURE_MODELS:
             raise ValueError(f"model must be one of {FLEXURE_MODELS}, got {model!r}")
         self.model = model
@@ -90,12 +100,7 @@ class Flexure(MaterialDamped):
         for pname, xy in (("base", self.base_position), ("tip", self.tip_position)):
             for axis, value in zip("xy", xy):
                 warn_implausible(f"{pname} {axis}", value, "position", owner)
-        for pname in ("thickness", "youngs_modulus", "density"):
-            low, high, unit, mistake = PLAUSIBLE_RANGES[pname]
-            value = getattr(self, pname)
-            if not low <= value <= high:
-                warnings.warn(f"{owner}: {pname} = {value!r} {unit} is outside the plausible range {low:g} ... "
-                              f"{high:g} {unit}; is it {mistake}? All values are SI units", InputRangeWarning, stacklevel=2)
+        # thickness, modulus and density: the Layer checked their plausible ranges (InputRangeWarning) when made
 
     @property
     def length(self) -> float:
@@ -206,6 +211,6 @@ class Flexure(MaterialDamped):
 
     def __repr__(self) -> str:
         return (f"Flexure({self.name!r}, base={self.base_position!r}, tip={self.tip_position!r}, width={self.width!r}, "
-                f"thickness={self.thickness!r}, youngs_modulus={self.youngs_modulus!r}, density={self.density!r}, "
+                f"layer={self.layer!r}, "
                 f"model={self.model!r}, n_cells={self.n_cells!r}, gamma={self.gamma!r}, k_theta={self.k_theta!r}, "
                 f"damping={self.damping!r})")

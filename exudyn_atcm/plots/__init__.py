@@ -45,6 +45,7 @@ _LAZY = {
     'plot_actuator_time_series': ('result', 'plot_time_series'),
     'COLORS': ('style', 'COLORS'),
     'STYLE': ('style', 'STYLE'),
+    'AxisLabels': ('style', 'AxisLabels'),
     'axis_label': ('style', 'axis_label'),
     'display_scale': ('style', 'display_scale'),
     'new_figure': ('style', 'new_figure'),
@@ -69,11 +70,11 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from .result import animate_actuator, chain_shape, plot_result, plot_shapes, plot_tip_vs_voltage
     from .result import plot_time_series as plot_actuator_time_series
-    from .style import COLORS, STYLE, axis_label, display_scale, new_figure, save_figure
+    from .style import COLORS, STYLE, AxisLabels, axis_label, display_scale, new_figure, save_figure
 
 __all__ = [
     # style
-    "STYLE", "COLORS", "new_figure", "axis_label", "display_scale", "save_figure",
+    "STYLE", "COLORS", "AxisLabels", "new_figure", "axis_label", "display_scale", "save_figure",
     # curves and hysteresis loops
     "Curve", "plot_loops", "plot_time_series", "plot_relays", "plot_fit", "plot_fit_series", "plot_model_choice",
     # results of the lone actuator

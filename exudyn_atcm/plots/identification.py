@@ -9,7 +9,8 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from .style import axis_label, display_scale
+from .._checks import hide_keywords, options_from_keywords
+from .style import AxisLabels, axis_label, display_scale
 from .target import figure_axes, finish, is_path, warn_path_form
 
 __all__ = ["plot_fit", "plot_fit_series", "plot_model_choice", "fitted_samples"]
@@ -35,6 +36,7 @@ def _runs(keep: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1))
 
 
+@hide_keywords
 def plot_fit(
     report: Any,
     u: Any,
@@ -42,11 +44,9 @@ def plot_fit(
     *legacy: Any,
     ax: Any = None,
     path: str | os.PathLike | None = None,
-    input_name: str = "voltage",
-    input_unit: str = "V",
-    output_name: str = "displacement",
-    output_unit: str = "m",
+    labels: AxisLabels | None = None,
     title: str = "",
+    **flat: str,
 ) -> Figure:
     """Measured against predicted output as input-output loops: the fitted and the held-out part.
 
@@ -60,8 +60,10 @@ def plot_fit(
         Draw into these panels instead of a new figure.
     path : str or os.PathLike, optional
         Also write the figure as a PNG file (atomically).
-    input_name, input_unit, output_name, output_unit : str
-        Axis quantities and SI units.
+    labels : AxisLabels, optional
+        Input and output quantities with their SI units (default voltage [V] and displacement [m]).
+        The earlier flat keywords ``input_name``, ``input_unit``, ``output_name``, ``output_unit``
+        still work for one release (with an :class:`~exudyn_atcm.AtcmDeprecationWarning`).
     title : str
         Figure title.
 
@@ -73,16 +75,15 @@ def plot_fit(
         works for one release (with an :class:`~exudyn_atcm.AtcmDeprecationWarning`) and returns the
         two paths.
     """
-    labels = dict(input_name=input_name, input_unit=input_unit, output_name=output_name, output_unit=output_unit,
-                  title=title)
+    (labels,) = options_from_keywords("plot_fit", flat, labels=(AxisLabels, labels))
     if is_path(report):  # the earlier plot_fit(loop_path, series_path, report, u, y, time=None, ...)
         if path is not None or ax is not None or not 2 <= len(legacy) <= 3:
             raise TypeError("plot_fit(loop_path, series_path, report, u, y[, time]) is the earlier form; "
                             "now plot_fit(report, u, y, *, ax=None, path=None)")
         warn_path_form("plot_fit")
         loop_path, series_path, report, u, y, time = report, u, y, legacy[0], legacy[1], (*legacy[2:], None)[0]
-        plot_fit(report, u, y, path=loop_path, **labels)
-        plot_fit_series(report, u, y, time=time, path=series_path, **labels)
+        plot_fit(report, u, y, path=loop_path, labels=labels, title=title)
+        plot_fit_series(report, u, y, time=time, path=series_path, labels=labels, title=title)
         return [Path(loop_path), Path(series_path)]
     if legacy:
         raise TypeError(f"plot_fit() got {len(legacy)} extra positional arguments (ax=, path=, ... are keywords)")
@@ -91,7 +92,7 @@ def plot_fit(
     p = np.asarray(report.predicted, dtype=float)
     linear = report.linear_model["a"] * u + report.linear_model["b"]
     fitted = fitted_samples(report, u.size)
-    factor, unit = display_scale(y, output_unit)
+    factor, unit = display_scale(y, labels.output_unit)
 
     fig, axes = figure_axes(ax, 1, 2, width=9.0, height=4.0)
     for axis, part, keep in ((axes[0], "fitted part", fitted), (axes[1], "held-out part", ~fitted)):
@@ -103,14 +104,15 @@ def plot_fit(
         axis.plot(_only(u, keep), factor * _only(linear, keep), "--", label="best linear model", linewidth=1.0)
         rms = report.model_errors["fit" if keep is fitted else "held_out"]["rms"]
         axis.set_title(f"{part}: model RMS {factor * rms:.3g} {unit}")
-        axis.set_xlabel(axis_label(input_name, input_unit))
-        axis.set_ylabel(axis_label(output_name, unit))
+        axis.set_xlabel(axis_label(labels.input_name, labels.input_unit))
+        axis.set_ylabel(axis_label(labels.output_name, unit))
         axis.legend(loc="upper left")
     if title:
         fig.suptitle(title)
     return finish(fig, path)
 
 
+@hide_keywords
 def plot_fit_series(
     report: Any,
     u: Any,
@@ -119,11 +121,9 @@ def plot_fit_series(
     time: Any = None,
     ax: Any = None,
     path: str | os.PathLike | None = None,
-    input_name: str = "voltage",
-    input_unit: str = "V",
-    output_name: str = "displacement",
-    output_unit: str = "m",
+    labels: AxisLabels | None = None,
     title: str = "",
+    **flat: str,
 ) -> Figure:
     """Measured against predicted output over time, with the model's and the linear model's error.
 
@@ -139,8 +139,10 @@ def plot_fit_series(
         Draw into these panels instead of a new figure.
     path : str or os.PathLike, optional
         Also write the figure as a PNG file (atomically).
-    input_name, input_unit, output_name, output_unit : str
-        Axis quantities and SI units.
+    labels : AxisLabels, optional
+        Input and output quantities with their SI units (default voltage [V] and displacement [m]).
+        The earlier flat keywords ``input_name``, ``input_unit``, ``output_name``, ``output_unit``
+        still work for one release (with an :class:`~exudyn_atcm.AtcmDeprecationWarning`).
     title : str
         Figure title prefix.
 
@@ -149,21 +151,22 @@ def plot_fit_series(
     matplotlib.figure.Figure
         The figure drawn on.
     """
+    (labels,) = options_from_keywords("plot_fit_series", flat, labels=(AxisLabels, labels))
     u = np.asarray(u, dtype=float)
     y = np.asarray(y, dtype=float)
     p = np.asarray(report.predicted, dtype=float)
     linear = report.linear_model["a"] * u + report.linear_model["b"]
     held_out = ~fitted_samples(report, u.size)
-    factor, unit = display_scale(y, output_unit)
+    factor, unit = display_scale(y, labels.output_unit)
 
     x = np.arange(u.size) if time is None else np.asarray(time, dtype=float)
     x_label = axis_label("sample", "-") if time is None else axis_label("time", "s")
     fig, axes = figure_axes(ax, 3, 1, width=8.0, height=7.0, sharex=True)
     axes[0].plot(x, u)
-    axes[0].set_ylabel(axis_label(input_name, input_unit))
+    axes[0].set_ylabel(axis_label(labels.input_name, labels.input_unit))
     axes[1].plot(x, factor * y, ".", markersize=2, color="0.6", label="measured")
     axes[1].plot(x, factor * p, label="model", linewidth=1.0)
-    axes[1].set_ylabel(axis_label(output_name, unit))
+    axes[1].set_ylabel(axis_label(labels.output_name, unit))
     axes[1].legend(loc="upper left")
     axes[2].plot(x, factor * (p - y), label="model - measured", linewidth=0.8)
     axes[2].plot(x, factor * (linear - y), label="linear - measured", linewidth=0.8, alpha=0.7)

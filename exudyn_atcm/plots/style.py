@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -27,7 +28,7 @@ from ..io.progress import count_task
 if TYPE_CHECKING:  # annotations only: matplotlib is imported where a figure is made
     from matplotlib.figure import Figure
 
-__all__ = ["STYLE", "new_figure", "axis_label", "display_scale", "save_figure"]
+__all__ = ["STYLE", "AxisLabels", "new_figure", "axis_label", "display_scale", "save_figure"]
 
 #: rcParams applied to every figure of the package.
 STYLE: dict[str, object] = {
@@ -74,6 +75,31 @@ def new_figure(
             ax.set_prop_cycle(color=COLORS)
             ax.grid(True, alpha=0.3)
     return fig, list(axes.flat)
+
+
+@dataclass(frozen=True)
+class AxisLabels:
+    """The input and output quantities of an input-output plot, each with its SI unit.
+
+    Parameters
+    ----------
+    input_name, input_unit : str
+        The input quantity and its unit (default ``voltage [V]``).
+    output_name, output_unit : str
+        The output quantity and its unit (default ``displacement [m]``); an output shown on a
+        scaled unit (``µm``) is scaled from this one.
+    """
+
+    input_name: str = "voltage"
+    input_unit: str = "V"
+    output_name: str = "displacement"
+    output_unit: str = "m"
+
+    def __post_init__(self) -> None:
+        for name in ("input_name", "input_unit", "output_name", "output_unit"):
+            value = getattr(self, name)
+            if not isinstance(value, str):
+                raise TypeError(f"AxisLabels.{name} must be a str, got {value!r}")
 
 
 def axis_label(quantity: str, unit: str) -> str:

@@ -27,7 +27,8 @@ from ..errors import SolverError
 from ..mbs import solver_runs as runs
 from .interrupts import SimulationInterrupted, is_interrupt
 
-__all__ = ["equilibrium_with_fallback"]
+# equilibrium_with_fallback is the static solves' internal helper (13 parameters), not public API
+__all__: list[str] = []
 
 
 def equilibrium_with_fallback(model, *, static: Callable[[], None], relaxation: Callable[[], None],

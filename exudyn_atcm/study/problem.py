@@ -27,7 +27,8 @@ from .sweep import run_study
 from .options import RunOptions
 from .table import Column
 
-__all__ = ["Problem", "Objective", "check_objective", "check_constraints",
+# Problem is the optimiser's internal (built by optimize, 15 parameters), not public API
+__all__ = ["Objective", "check_objective", "check_constraints",
            "history_columns", "objective_label"]
 
 #: A key scalar's name, or ``objective(scalars, values) -> float``.
