@@ -342,14 +342,6 @@ def eigenfrequencies(
         A :class:`~exudyn_atcm.BendingActuator` only, and a shorthand: the force on the tip of its
         one-bender mechanism (``solve(actuator.as_mechanism(tip_force))`` gives the same numbers; a
         :class:`~exudyn_atcm.Mechanism` takes its loads from ``mechanism.force``).
-    method : {"continuation", "points"}, optional
-        ``"continuation"`` (default): the system is built once and every point after the first is
-        one static load step from the previous equilibrium (halved by the solver where its Newton
-        iteration fails), with the Newton tolerances of a single solve; a point where that step
-        fails or ends unstable is solved as its own equilibrium, as ``"points"`` does, and
-        ``result.info["fallback_points"]`` says which and why.  ``"points"``: every point is its
-        own static solve in load steps from the previous equilibrium (the sweep before the
-        continuation; slower, the same equilibria within the solver tolerance).
 
     Returns
     -------
