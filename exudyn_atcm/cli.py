@@ -29,10 +29,15 @@ import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
+# `--help` must not import numpy, Exudyn or the solve layers: the parser is built from light modules
+# (case_table, command_options), and the faces `casework` and `study` load a name (`_cases.load_case`,
+# `_study.command`) only when a command uses it (PEP 562, exudyn_atcm.lazy_names).
 from . import casework as _cases
-from .casework import step_check
+from . import study as _study
+from .casework.case_table import TABLE_FORMATS
 from .casework.error_report import report_error as _error
 from .casework.termination import StopSignal, stop_signals_as_interrupt
+from .study.command_options import add_optimize_parser, add_sweep_parser
 
 __all__ = ["main", "build_parser"]
 
@@ -61,7 +66,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub_common = _common(argparse.SUPPRESS)
     listing = sub.add_parser("list", help="list the cases with description and parameters", parents=[sub_common])
-    listing.add_argument("--table", choices=_cases.TABLE_FORMATS, default=None,
+    listing.add_argument("--table", choices=TABLE_FORMATS, default=None,
                          help="print the case table instead (md: the README's, rst: the docs'), from the case files")
     run = sub.add_parser("run", help="run a case (a name or a path to a case file)", parents=[sub_common])
     run.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
@@ -84,22 +89,14 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--reason", default=None, metavar="TEXT", help="why the references change (recorded)")
     bench.add_argument("--no-plots", action="store_true", help="skip the channel-against-reference plots")
     bench.add_argument("--only", nargs="+", default=None, metavar="ID", help="run only these benchmark ids (e.g. to update one reference)")
-    _add_study_commands(sub, sub_common)
+    add_sweep_parser(sub, [sub_common])  # options of sweep and optimize: exudyn_atcm.study.command_options
+    add_optimize_parser(sub, [sub_common])
     return parser
 
 
-def _add_study_commands(sub, sub_common: argparse.ArgumentParser) -> None:
-    """The ``sweep`` and ``optimize`` subcommands (options in :mod:`exudyn_atcm.study.command`)."""
-    from .study.command import add_optimize_parser, add_sweep_parser
-
-    add_sweep_parser(sub, [sub_common])
-    add_optimize_parser(sub, [sub_common])
-
-
 def _study_command(args: argparse.Namespace) -> int:
-    from .study.command import optimize_command, sweep_command
-
-    return sweep_command(args) if args.command == "sweep" else optimize_command(args)
+    command = _study.command  # exudyn_atcm.study.command, imported here on first use
+    return command.sweep_command(args) if args.command == "sweep" else command.optimize_command(args)
 
 
 def _list(cases_dir: str | None, table: str | None = None) -> int:
@@ -209,6 +206,7 @@ def _dispatch(args: argparse.Namespace, debug: bool) -> int:
 def _step_error(args: argparse.Namespace, debug: bool) -> int:
     try:
         case = _cases.load_case(args.case, args.cases_dir)
+        step_check = _cases.step_check  # exudyn_atcm.casework.step_check, imported here on first use
         step, rows = step_check.case_step_error(case, args.set, check_order=not args.no_order_check)
     except _cases.CaseError as exc:
         return _error(exc, debug, 2)

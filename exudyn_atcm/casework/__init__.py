@@ -23,15 +23,59 @@ needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
 May import everything below it; :mod:`exudyn_atcm.study` and the command line build on it.
 """
 
-from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_report
-from .case_table import TABLE_FORMATS, case_table
-from .declarations import check_benchmark
-from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, follows_convention, list_cases,
-                        load_case, load_cases)
-from .metrics import MetricRow
-from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
-from .parameters import CaseError, CellChoices, Parameter, Parameters, closest
-from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
+from typing import TYPE_CHECKING
+
+from ..lazy_names import lazy_face
+
+# The names load on first use (PEP 562, exudyn_atcm.lazy_names): name -> (module, attribute), read as
+# `from module import attribute`.  To add a public name: one line here, the name in __all__ and the same
+# import under TYPE_CHECKING (tests/test_lazy_names.py checks that the three agree).
+_LAZY = {
+    "Case": (".case", "Case"),
+    "PlotFunction": (".case", "PlotFunction"),
+    "RunFunction": (".case", "RunFunction"),
+    "add_run_options": (".case", "add_run_options"),
+    "run_and_report": (".case", "run_and_report"),
+    "TABLE_FORMATS": (".case_table", "TABLE_FORMATS"),
+    "case_table": (".case_table", "case_table"),
+    "check_benchmark": (".declarations", "check_benchmark"),
+    "CASE_MARKERS": (".discovery", "CASE_MARKERS"),
+    "ENV_CASES": (".discovery", "ENV_CASES"),
+    "case_dirs": (".discovery", "case_dirs"),
+    "case_files": (".discovery", "case_files"),
+    "find_case": (".discovery", "find_case"),
+    "follows_convention": (".discovery", "follows_convention"),
+    "list_cases": (".discovery", "list_cases"),
+    "load_case": (".discovery", "load_case"),
+    "load_cases": (".discovery", "load_cases"),
+    "MetricRow": (".metrics", "MetricRow"),
+    "CaseOutput": (".outputs", "CaseOutput"),
+    "PlannedRun": (".outputs", "PlannedRun"),
+    "RunContext": (".outputs", "RunContext"),
+    "RunPlan": (".outputs", "RunPlan"),
+    "versions": (".outputs", "versions"),
+    "CaseError": (".parameters", "CaseError"),
+    "CellChoices": (".parameters", "CellChoices"),
+    "Parameter": (".parameters", "Parameter"),
+    "Parameters": (".parameters", "Parameters"),
+    "closest": (".parameters", "closest"),
+    "ENV_SUITE": (".regression", "ENV_SUITE"),
+    "SuiteReport": (".regression", "SuiteReport"),
+    "default_suite_dir": (".regression", "default_suite_dir"),
+    "load_suite": (".regression", "load_suite"),
+    "run_suite": (".regression", "run_suite"),
+}
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_report
+    from .case_table import TABLE_FORMATS, case_table
+    from .declarations import check_benchmark
+    from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, follows_convention, list_cases,
+                            load_case, load_cases)
+    from .metrics import MetricRow
+    from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
+    from .parameters import CaseError, CellChoices, Parameter, Parameters, closest
+    from .regression import ENV_SUITE, SuiteReport, default_suite_dir, load_suite, run_suite
 
 __all__ = [
     "Case",
@@ -68,3 +112,5 @@ __all__ = [
     "run_suite",
     "ENV_SUITE",
 ]
+
+__getattr__, __dir__ = lazy_face(__name__, _LAZY, submodules=True)

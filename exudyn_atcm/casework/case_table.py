@@ -9,8 +9,10 @@ checks that both files hold exactly the table of the shipped cases.  Rows are so
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from .case import Case
+if TYPE_CHECKING:  # annotations only: the command line imports TABLE_FORMATS without the case machinery
+    from .case import Case
 
 __all__ = ["TABLE_FORMATS", "table_rows", "case_table"]
 

@@ -4,14 +4,40 @@
 May import the description layers and :mod:`exudyn_atcm.mbs`; never plotting.
 """
 
-from ..errors import SolverError
-from ..model.strain_sources import InStepStrain, TableStrain
-from .run_checks import SimulationInterrupted
-from .run_setup import DEFAULT_STEP
-from .built_system import BuiltSystem
-from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
-from .step_error import StepError, step_error
+from typing import TYPE_CHECKING
+
+from ..lazy_names import lazy_face
+
+# The names load on first use (PEP 562, exudyn_atcm.lazy_names): name -> (module, attribute), read as
+# `from module import attribute`.  To add a public name: one line here, the name in __all__ and the same
+# import under TYPE_CHECKING (tests/test_lazy_names.py checks that the three agree).
+_LAZY = {
+    "SolverError": ("..errors", "SolverError"),
+    "InStepStrain": ("..model.strain_sources", "InStepStrain"),
+    "TableStrain": ("..model.strain_sources", "TableStrain"),
+    "SimulationInterrupted": (".run_checks", "SimulationInterrupted"),
+    "DEFAULT_STEP": (".run_setup", "DEFAULT_STEP"),
+    "BuiltSystem": (".built_system", "BuiltSystem"),
+    "eigenfrequencies": (".simulation", "eigenfrequencies"),
+    "run_actuator": (".simulation", "run_actuator"),
+    "simulate": (".simulation", "simulate"),
+    "solve_static": (".simulation", "solve_static"),
+    "static_sweep": (".simulation", "static_sweep"),
+    "StepError": (".step_error", "StepError"),
+    "step_error": (".step_error", "step_error"),
+}
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from ..errors import SolverError
+    from ..model.strain_sources import InStepStrain, TableStrain
+    from .run_checks import SimulationInterrupted
+    from .run_setup import DEFAULT_STEP
+    from .built_system import BuiltSystem
+    from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
+    from .step_error import StepError, step_error
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
            "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
            "BuiltSystem"]
+
+__getattr__, __dir__ = lazy_face(__name__, _LAZY, submodules=True)

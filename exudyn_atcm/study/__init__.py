@@ -9,14 +9,49 @@
 See :doc:`/studies`.
 """
 
-from .design import GridError, explicit_points, full_grid, parse_grid_spec, sample_points
-from .engines import DaskEngine, ProcessEngine, SerialEngine, make_engine
-from .store import RunStore, run_key
-from .optimize import METHODS, OptimizationResult, optimize
-from .options import OptimizeOptions, RunOptions
-from .stops import ObjectiveNotFiniteError
-from .sweep import StudyResult, run_study, study_points, sweep
-from .table import StudyTable, column, unit_of
+from typing import TYPE_CHECKING
+
+from ..lazy_names import lazy_face
+
+# The names load on first use (PEP 562, exudyn_atcm.lazy_names): name -> (module, attribute), read as
+# `from module import attribute`.  To add a public name: one line here, the name in __all__ and the same
+# import under TYPE_CHECKING (tests/test_lazy_names.py checks that the three agree).
+_LAZY = {
+    "GridError": (".design", "GridError"),
+    "explicit_points": (".design", "explicit_points"),
+    "full_grid": (".design", "full_grid"),
+    "parse_grid_spec": (".design", "parse_grid_spec"),
+    "sample_points": (".design", "sample_points"),
+    "DaskEngine": (".engines", "DaskEngine"),
+    "ProcessEngine": (".engines", "ProcessEngine"),
+    "SerialEngine": (".engines", "SerialEngine"),
+    "make_engine": (".engines", "make_engine"),
+    "RunStore": (".store", "RunStore"),
+    "run_key": (".store", "run_key"),
+    "METHODS": (".optimize", "METHODS"),
+    "OptimizationResult": (".optimize", "OptimizationResult"),
+    "optimize": (".optimize", "optimize"),
+    "OptimizeOptions": (".options", "OptimizeOptions"),
+    "RunOptions": (".options", "RunOptions"),
+    "ObjectiveNotFiniteError": (".stops", "ObjectiveNotFiniteError"),
+    "StudyResult": (".sweep", "StudyResult"),
+    "run_study": (".sweep", "run_study"),
+    "study_points": (".sweep", "study_points"),
+    "sweep": (".sweep", "sweep"),
+    "StudyTable": (".table", "StudyTable"),
+    "column": (".table", "column"),
+    "unit_of": (".table", "unit_of"),
+}
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from .design import GridError, explicit_points, full_grid, parse_grid_spec, sample_points
+    from .engines import DaskEngine, ProcessEngine, SerialEngine, make_engine
+    from .store import RunStore, run_key
+    from .optimize import METHODS, OptimizationResult, optimize
+    from .options import OptimizeOptions, RunOptions
+    from .stops import ObjectiveNotFiniteError
+    from .sweep import StudyResult, run_study, study_points, sweep
+    from .table import StudyTable, column, unit_of
 
 __all__ = [
     "sweep",
@@ -44,3 +79,5 @@ __all__ = [
     "column",
     "unit_of",
 ]
+
+__getattr__, __dir__ = lazy_face(__name__, _LAZY, submodules=True)

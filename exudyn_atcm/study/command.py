@@ -36,6 +36,7 @@ from ..casework.error_report import report_error as _error
 from ..casework import CaseError, load_case
 from ..casework.termination import StopSignal, stop_signals_as_interrupt
 from .budget import describe_evaluations
+from .command_options import add_optimize_parser, add_sweep_parser
 from .lock import StudyLockedError
 from .options import OptimizeOptions, RunOptions
 from .stops import ObjectiveNotFiniteError
@@ -89,15 +90,6 @@ class RunProgressBar:
             self._drawn = False
 
 
-def _add_run_options(parser: argparse.ArgumentParser, out_default: str, scheduler_note: str = "") -> None:
-    """The options shared by ``sweep`` and ``optimize``: --set, --workers, --scheduler, --out, --store."""
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="fix a parameter for every run (repeatable)")
-    parser.add_argument("--workers", type=int, default=None, metavar="N", help="worker processes (default: one per core; 1 = in this process)")
-    parser.add_argument("--scheduler", default=None, metavar="ADDRESS", help=f"Dask scheduler, e.g. tcp://HOST:8786{scheduler_note}")
-    parser.add_argument("--out", default=out_default, metavar="DIR", help=f"output directory (default: ./{out_default})")
-    parser.add_argument("--store", default=None, metavar="DIR", help="run store (default: DIR/runs of --out)")
-
-
 def _check_engine_options(args: argparse.Namespace, debug: bool) -> int | None:
     """Exit status 2 (with the error line) if --workers/--scheduler are invalid, else None."""
     if args.workers is not None and args.workers < 1:
@@ -126,29 +118,6 @@ def resume_note(case_name: str, exc: BaseException, argv: Sequence[str] | None) 
         return f"{case_name}: sweep stopped before any run was stored; {command} starts it again"
     return (f"{case_name}: sweep stopped with {exc.stored_runs} of {exc.distinct_runs} runs stored in {store}; "
             f"to resume (stored runs are not repeated): {command}")
-
-
-def add_sweep_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
-    """Add the ``sweep`` subcommand to ``sub``; returns its parser."""
-    sweep = sub.add_parser(
-        "sweep",
-        help="run a case over a grid or samples of its parameters (parallel, resumable)",
-        parents=parents,
-        description="Run CASE over a full grid (--grid) or Latin-hypercube samples (--samples) of its "
-        "parameters; writes DIR/<case>_sweep.csv, a JSON summary, plots, and stores every finished "
-        "run in DIR/runs so that running the same command again resumes.",
-    )
-    sweep.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
-    sweep.add_argument("--grid", action="append", default=[], metavar="SPEC",
-                       help="NAME=START:STOP:N (N values), NAME=START:STOP (integers; a range with --samples) or NAME=A,B,C (repeatable)")
-    sweep.add_argument("--samples", type=int, default=None, metavar="N",
-                       help="draw N points in the START:STOP ranges of --grid (crossed with the lists)")
-    sweep.add_argument("--sampling", choices=("lhs", "random"), default="lhs", help="sampler of --samples (default: lhs)")
-    sweep.add_argument("--seed", type=int, default=0, help="seed of the sampler (default 0)")
-    _add_run_options(sweep, "out/sweep", scheduler_note=" (needs the [distributed] extra)")
-    sweep.add_argument("--retry-failed", action="store_true", help="run again the points whose stored run failed")
-    sweep.add_argument("--no-plot", action="store_true", help="do not write the plots")
-    return sweep
 
 
 def sweep_command(args: argparse.Namespace) -> int:
@@ -220,36 +189,6 @@ def sweep_command(args: argparse.Namespace) -> int:
     print(f"  table: {result.csv_path}")
     print(f"  wrote {len(files)} files to {args.out}")
     return 1 if result.failed else 0
-
-
-def add_optimize_parser(sub: argparse._SubParsersAction, parents: list[argparse.ArgumentParser]) -> argparse.ArgumentParser:
-    """Add the ``optimize`` subcommand to ``sub``; returns its parser."""
-    from .optimize import METHODS
-
-    opt = sub.add_parser(
-        "optimize",
-        help="find the parameters of a case that minimise or maximise a key scalar (scipy.optimize)",
-        parents=parents,
-        description="Optimise CASE over the parameters given with --bound; every evaluation is a stored run "
-        "(DIR/runs), so running the same command again replays them and continues.  Writes the history "
-        "(DIR/<case>_optimize_history.csv), a JSON summary and the best design's full run (DIR/best).",
-    )
-    opt.add_argument("case", metavar="CASE", help="case name (see `list`) or path to a case file")
-    opt.add_argument("--objective", required=True, metavar="NAME", help="key scalar to minimise (or maximise)")
-    opt.add_argument("--maximize", action="store_true", help="maximise the objective")
-    opt.add_argument("--bound", action="append", default=[], metavar="NAME=LOW:HIGH", help="a design variable and its range (repeatable)")
-    opt.add_argument("--constraint", action="append", default=[], metavar="NAME>=VALUE",
-                     help="limit on a key scalar, NAME>=VALUE or NAME<=VALUE (repeatable; quote it in the shell)")
-    opt.add_argument("--method", choices=METHODS, default="differential_evolution", help="optimiser (default: differential_evolution)")
-    opt.add_argument("--maxiter", type=int, default=100, metavar="N", help="generations (differential evolution; default 100)")
-    opt.add_argument("--popsize", type=int, default=15, metavar="N", help="population size per variable (default 15)")
-    opt.add_argument("--seed", type=int, default=0, help="seed of differential evolution (default 0)")
-    opt.add_argument("--max-evaluations", type=int, default=None, metavar="N",
-                     help="stop after N evaluations of the objective, polish included (default: the method's own bound, "
-                          "announced before the start)")
-    _add_run_options(opt, "out/optimize")
-    opt.add_argument("--no-plot", action="store_true", help="do not write the best run's plots")
-    return opt
 
 
 def _parse_constraint(text: str) -> tuple[str, tuple[float | None, float | None]]:

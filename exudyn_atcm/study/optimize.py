@@ -34,16 +34,13 @@ from .budget import RunBudget, evaluation_bounds, max_runs
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
 from .lock import TableLock
-from .options import OptimizeOptions, RunOptions
+from .options import METHODS, OptimizeOptions, RunOptions
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
 from .stops import ObjectiveNotFiniteError, SearchStopped
 from .store import RunStore
 from .table import to_table, write_table_csv
 
 __all__ = ["optimize", "OptimizationResult", "METHODS"]
-
-#: Methods of :func:`optimize`.
-METHODS = ("differential_evolution", "nelder-mead", "l-bfgs-b")
 
 
 @dataclass

@@ -18,7 +18,10 @@ import os
 from dataclasses import dataclass
 from typing import Any, Callable
 
-__all__ = ["RunOptions", "OptimizeOptions"]
+__all__ = ["RunOptions", "OptimizeOptions", "METHODS"]
+
+#: Methods of :func:`~exudyn_atcm.study.optimize`.
+METHODS = ("differential_evolution", "nelder-mead", "l-bfgs-b")
 
 
 @dataclass(frozen=True)
