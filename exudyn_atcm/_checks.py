@@ -19,8 +19,20 @@ def _short(value: Any) -> str:
     return text if len(text) <= 80 else text[:77] + "..."
 
 
+def _not_a_number(value: Any) -> bool:
+    """True for what ``float()`` would accept but is not a number: text (``"5"``, ``b"5"``) and booleans."""
+    return isinstance(value, (str, bytes, bytearray, bool, np.bool_))
+
+
 def finite_float(name: str, value: Any) -> float:
-    """Return ``value`` as a float; raise ``ValueError`` unless it is a finite real number."""
+    """Return ``value`` as a float; raise ``ValueError`` unless it is a finite real number.
+
+    Text (``"5"``) and booleans are refused although ``float()`` would take them: a number read from a
+    file or typed on a command line is converted where it is read, with its own message.
+    """
+    if _not_a_number(value):
+        raise ValueError(f"{name} must be a finite real number, got {_short(value)} "
+                         f"({type(value).__name__}; pass a float)")
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -51,7 +63,7 @@ def finite_array(name: str, value: Any, *, min_length: int = 1) -> np.ndarray:
     """Return ``value`` as a 1-D float array of finite numbers with at least ``min_length`` entries."""
     try:
         raw = np.asarray(value)
-        if raw.dtype.kind not in "biuf" and raw.size:
+        if raw.dtype.kind not in "iuf" and raw.size:  # text, booleans, objects: not numbers
             raise TypeError
         array = raw.astype(float)
     except (TypeError, ValueError):
