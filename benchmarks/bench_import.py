@@ -78,7 +78,10 @@ def extract_revision(ref: str, into: str) -> str:
     with open(path, "wb") as handle:
         handle.write(archive)
     with tarfile.open(path) as tar:
-        tar.extractall(into, filter="data")
+        if hasattr(tarfile, "data_filter"):  # Python >= 3.10.12 / 3.11.4
+            tar.extractall(into, filter="data")
+        else:  # our own git archive of exudyn_atcm/ only
+            tar.extractall(into)
     return into
 
 

@@ -15,10 +15,12 @@ and its subclasses, see :mod:`exudyn_atcm.errors`) and the submodules
 else lives in its module (``exudyn_atcm.study``, ``exudyn_atcm.plots.mechanism``,
 ``exudyn_atcm.model.feedforward``, ...): see the API reference.
 
-Start-up: ``import exudyn_atcm`` imports only the errors; every other top-level name is imported on first use
-(PEP 562, :mod:`exudyn_atcm.lazy_names`), so Exudyn, numpy and scipy load when a name that needs them is used.
-To add a public name, add one line ``"name": (".module", "name"),`` (read: ``from .module import name``) to ``_LAZY`` below, the name to ``__all__``
-and the same import under ``TYPE_CHECKING``; ``tests/test_lazy_names.py`` checks that the three agree.
+Start-up: ``import exudyn_atcm`` imports only the errors; every other top-level name is imported on first
+use (PEP 562, :mod:`exudyn_atcm.lazy_names`), so Exudyn, numpy and scipy load when a name that needs them is
+used.  To add a public name: one line ``"name": (".module", "name"),`` in ``_LAZY`` below (read:
+``from .module import name``), the name in ``__all__`` and the same import under ``TYPE_CHECKING``;
+``tests/test_lazy_names.py`` checks that the three agree.  Never an eager ``from .module import name`` here:
+it would load that module's imports (numpy, Exudyn) at ``import exudyn_atcm``.
 """
 
 from typing import TYPE_CHECKING

@@ -3,11 +3,11 @@
 A face (a package's ``__init__``) lists its names in a table ``name -> (module, attribute)``: ``module`` is
 the module that defines the name, written relative to the face as in its import statement (``".materials"``,
 ``"..errors"``) and ``attribute`` the name there (``None``: the module itself).  The entry
-``"Layer": (".model.materials", "Layer")`` reads as ``from .model.materials import Layer``.  :func:`lazy_face` turns the table into the
-face's module-level ``__getattr__`` and ``__dir__``: the first ``face.name`` (or ``from face import name``,
-``from face import *``, Sphinx autodoc, ``hasattr``) imports the submodule and stores the value on the face,
-so later uses are plain attribute look-ups and return the very same object.  ``__all__`` stays an explicit
-list in the face.
+``"Layer": (".model.materials", "Layer")`` reads as ``from .model.materials import Layer``.
+:func:`lazy_face` turns the table into the face's module-level ``__getattr__`` and ``__dir__``: the first
+``face.name`` (or ``from face import name``, ``from face import *``, Sphinx autodoc, ``hasattr``) imports the
+module and stores the value on the face, so later uses are plain attribute look-ups and return the very same
+object.  ``__all__`` stays an explicit list in the face.
 
 The table holds no import statements, so it creates no import edge and no cycle; the import happens when
 a name is first used, never at ``import exudyn_atcm``.  Exudyn (about 0.2 s), numpy, scipy, h5py and
