@@ -34,6 +34,7 @@ from .solve import SimulationInterrupted
 from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .solve import BuiltSystem
+from .solve import LinearModel, Modes, linearise, modes
 from .mbs import add_to
 from .cells import register_cell_kind
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
@@ -61,6 +62,10 @@ __all__ = [
     "register_cell_kind",
     "eigenfrequencies",
     "step_error",
+    "modes",
+    "Modes",
+    "linearise",
+    "LinearModel",
     "Result",
     "SolverError",
     "SimulationInterrupted",

@@ -11,7 +11,11 @@ from .run_setup import DEFAULT_STEP
 from .built_system import BuiltSystem
 from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
 from .step_error import StepError, step_error
+from .linear_state import NoEquilibriumError
+from .linearise import linearise
+from .modes import Modes, modes
+from .state_space import LinearModel
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
            "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
-           "BuiltSystem"]
+           "BuiltSystem", "modes", "Modes", "linearise", "LinearModel", "NoEquilibriumError"]
