@@ -168,3 +168,16 @@ def test_no_equilibrium_is_refused():
     mech = atcm.Mechanism("free").add(link).ground("arm.O", joint="pin").force("arm.P", (0.0, 1.0))
     with pytest.raises(ValueError, match="no static equilibrium"):
         atcm.linearise(mech, inputs=["arm.P_Fy"], outputs=["arm.P_y"])
+
+
+def test_plot_bode_draws_the_frequency_response(tmp_path):
+    from exudyn_atcm.plots import plot_bode
+
+    lin = atcm.linearise(sdof(), inputs=["arm.P_Fy"], outputs=["arm.P_y", "arm.angle"])
+    f = np.array([1.0, 10.0, 100.0])
+    fig = plot_bode(lin, outputs=["arm.P_y"], frequencies_hz=f, path=tmp_path / "bode.png")
+    gain_ax, phase_ax = fig.axes
+    np.testing.assert_allclose(gain_ax.lines[0].get_ydata(), np.abs(lin.frequency_response(f)[:, 0, 0]))
+    assert phase_ax.get_xlabel() == "frequency [Hz]" and (tmp_path / "bode.png").stat().st_size > 0
+    with pytest.raises(ValueError, match="outputs must name the model's outputs"):
+        plot_bode(lin, outputs=["arm.Q_y"])

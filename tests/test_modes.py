@@ -155,3 +155,17 @@ def test_modes_refuses_bad_input():
     m = atcm.modes(mech, 2)
     with pytest.raises(MechanismError, match="'b.tipp'.*b.tip"):
         m.shape("b.tipp")
+
+
+def test_plot_modes_draws_one_panel_per_mode(tmp_path):
+    from exudyn_atcm.plots import plot_modes
+
+    _, mech = cantilever(n_cells=6)
+    m = atcm.modes(mech, 2)
+    fig = plot_modes(m, path=tmp_path / "modes.png")
+    axes = fig.axes
+    assert len(axes) == 2 and (tmp_path / "modes.png").stat().st_size > 0
+    assert axes[0].get_xlabel() == "x [m]" and axes[0].get_ylabel() == "y [m]"
+    # the drawn tip of mode 1 is the equilibrium tip moved by 0.1 of the size in the shape's direction
+    moved = axes[0].lines[1].get_ydata()[-1]
+    assert moved == pytest.approx(m.positions[m.points.index("b.tip"), 1] + 0.1 * 0.03 * 1.0, rel=1e-6)
