@@ -39,7 +39,7 @@ from .model import MechanismModel
 from .recording import make_result
 from .tangent import static_settings
 
-__all__ = ["LinearMatrices", "linear_matrices", "null_space", "strain_forces", "output_columns",
+__all__ = ["LinearMatrices", "linear_matrices", "null_space", "damping_matrix", "strain_forces", "output_columns",
            "output_jacobian", "point_jacobians"]
 
 #: units of the result columns a linear model may output (point coordinates and angles)
