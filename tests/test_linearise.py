@@ -181,3 +181,17 @@ def test_plot_bode_draws_the_frequency_response(tmp_path):
     assert phase_ax.get_xlabel() == "frequency [Hz]" and (tmp_path / "bode.png").stat().st_size > 0
     with pytest.raises(ValueError, match="outputs must name the model's outputs"):
         plot_bode(lin, outputs=["arm.Q_y"])
+
+
+def test_built_system_gives_the_same_models():
+    """One build, linearised and analysed at two voltages, equals the one-off functions."""
+    mech = lever(0.0)
+    built = atcm.BuiltSystem(mech)
+    for v in (500.0, 200.0):
+        a = built.linearise(voltage=v, outputs=["lever.E_y"])
+        b = atcm.linearise(mech, voltage=v, outputs=["lever.E_y"])
+        np.testing.assert_allclose(a.dc_gain(), b.dc_gain(), rtol=1e-9)
+        np.testing.assert_allclose(a.natural_frequencies, b.natural_frequencies, rtol=1e-9)
+        np.testing.assert_allclose(built.eigenfrequencies(2, voltage=v), atcm.eigenfrequencies(mech, n=2, voltage=v),
+                                   rtol=1e-9)
+    assert built.builds == 1

@@ -17,13 +17,15 @@ import numpy as np
 
 from ..mbs import builder as mb
 from ..mbs import linear_model as lm
+from ..mechanism.build_cost import warn_if_large
 from ..model.drive_gain import check_branch, drive_gain
 from ..suggestions import close_names
 from .linear_state import as_mechanism, equilibrium_state
+from .long_runs import is_announced
 from .mechanism_static import VoltageSpec, drive_voltages
 from .state_space import LinearModel
 
-__all__ = ["linearise", "FORCE_SUFFIXES"]
+__all__ = ["linearise", "linearise_model", "FORCE_SUFFIXES"]
 
 #: an input ``"<point>_Fx"`` / ``"<point>_Fy"`` is a dead force [N] at the point in x / y
 FORCE_SUFFIXES = ("_Fx", "_Fy")
@@ -116,13 +118,22 @@ def linearise(system: Any, *, voltage: VoltageSpec = None, inputs: Sequence[str]
     ``tests/test_linearise.py`` against a closed-form single degree of freedom, differences of the nonlinear
     model, sine simulations and Exudyn's ``ComputeLinearizedSystem``.
     """
-    branch = check_branch(branch)
     mech = as_mechanism(system, "linearise")
+    check_branch(branch)
+    warn_if_large(mech, "linearise", equilibria=1, eigen=True, quiet=is_announced(), stacklevel=4)
+    return linearise_model(mech, mb.build(mech), voltage=voltage, inputs=inputs, outputs=outputs, branch=branch,
+                           voltage_step=voltage_step)
+
+
+def linearise_model(mech: Any, model: Any, *, voltage: VoltageSpec, inputs: Sequence[str] | None,
+                    outputs: Sequence[str], branch: str, voltage_step: float) -> LinearModel:
+    """:func:`linearise` of ``mech`` on its built ``model`` (in its built state; a
+    :class:`~exudyn_atcm.BuiltSystem`'s)."""
+    branch = check_branch(branch)
     outputs = _names("outputs", outputs)
     inputs = list(mech.drives) if inputs is None else _names("inputs", inputs)
     if not inputs:
         raise ValueError(f"inputs: mechanism {mech.name!r} has no drives; name point forces ('<point>_Fy') as inputs")
-    model = mb.build(mech)
     kinds = _check_inputs(mech, model, inputs)
     volts = drive_voltages(mech, voltage)
     gains = {name: drive_gain(mech.drives[name], volts[name], branch, voltage_step=voltage_step, name=name)
