@@ -28,10 +28,10 @@ def sdof(k=2.0, c=1e-3, mass=0.01, inertia=1e-5, length=0.05):
     return atcm.Mechanism("sdof").add(link).ground("arm.O", joint="pin", stiffness=k, damping=c)
 
 
-def lever(program, pivot_damping=4e-6, cell="rod", n_cells=3):
+def lever(program, pivot_damping=4e-6, cell="rod", n_cells=3, hysteresis=None):
     """A bender driving a 6:1 lever through a short coupler (a closed loop: its joints carry forces when bent)."""
     b = atcm.Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=n_cells,
-                    drive=atcm.PiezoDrive(program), cell=cell)
+                    drive=atcm.PiezoDrive(program, hysteresis=hysteresis), cell=cell)
     cp = atcm.Link("coupler", {"A": (0.03, 0.0), "B": (0.03, 0.005)}, mass=2e-5, inertia=1e-10)
     lev = atcm.Link("lever", {"B": (0.03, 0.005), "O": (0.035, 0.005), "E": (0.065, 0.005)}, mass=2e-4, inertia=2e-8)
     m = atcm.Mechanism("lev").add(b, cp, lev).ground(b.base)
@@ -195,3 +195,39 @@ def test_built_system_gives_the_same_models():
         np.testing.assert_allclose(built.eigenfrequencies(2, voltage=v), atcm.eigenfrequencies(mech, n=2, voltage=v),
                                    rtol=1e-9)
     assert built.builds == 1
+
+
+def test_hysteretic_drive_is_linearised_on_its_branch():
+    """A Prandtl-Ishlinskii drive: the equilibrium is the one at the branch's strain, and the input is scaled by
+    the branch's slope.  Reference: the linear drive (d33 / t_IDE) at the voltage giving the same strain, whose
+    model per unit strain must be the same."""
+    op = PrandtlIshlinskii([0.0, 100.0, 300.0, 600.0], [1e-7, 2e-7, 3e-7, 4e-7], 5e-7)
+    mech = lever(0.0, hysteresis=op)
+    linear = atcm.PiezoDrive(0.0)
+    per_volt = linear.d33 / linear.electrode_spacing
+    for branch in ("ascending", "descending"):
+        lin = atcm.linearise(mech, voltage=200.0, outputs=["lever.E_y"], branch=branch)
+        gain = drive_gain(mech.drives["b"], 200.0, branch)
+        assert lin.gains["b"] == pytest.approx(gain.gain) and lin.strains["b"] == pytest.approx(gain.strain)
+        ref = atcm.linearise(lever(0.0), voltage=gain.strain / per_volt, outputs=["lever.E_y"])
+        np.testing.assert_allclose(lin.dc_gain() / gain.gain, ref.dc_gain() / per_volt, rtol=1e-6)
+        assert lin.operating_point["lever.E_y"] == pytest.approx(ref.operating_point["lever.E_y"], abs=1e-12)
+
+
+def test_six_bar_drive_input_is_refused():
+    bender = atcm.Bender("b", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=2,
+                         drive=atcm.PiezoDrive(0.0), cell="six-bar")
+    mech = atcm.Mechanism("cant").add(bender).ground(bender.base)
+    with pytest.raises(ValueError, match="prescribed motion"):
+        atcm.linearise(mech, voltage=0.0, outputs=["b.tip_y"])
+
+
+def test_actuator_is_linearised_as_its_mechanism():
+    actuator = atcm.BendingActuator(n_cells=4, cell_length=0.0075, width=10e-3, passive=CFC, active=MFC,
+                                    drive=atcm.PiezoDrive(0.0), cell="rigid")
+    lin = atcm.linearise(actuator, voltage=0.0, outputs=["actuator.tip_y"])
+    lam = actuator.bender.laminate
+    # quasi-static tip deflection per volt of the rigid chain's arc, kappa L^2/2 (small strain), to the chain's error
+    per_volt = lam.curvature_per_strain * 0.03**2 / 2 * lin.gains["actuator"]
+    assert lin.dc_gain()[0, 0] == pytest.approx(per_volt, rel=2e-2)
+    np.testing.assert_allclose(atcm.modes(actuator, 2).frequencies, atcm.eigenfrequencies(actuator, n=2), rtol=1e-12)
