@@ -59,7 +59,8 @@ class Modes:
         ``modal_forces / (modal_masses * omega^2)`` [-], shape (n, n_drives): the static amplitude of
         each mode per unit strain of each drive.  ``participation[j, k] * shapes[j]`` [m] is mode
         ``j``'s share of the static displacement a unit strain of drive ``k`` gives; summed over all
-        modes it is the whole static displacement per unit strain (the modal expansion).
+        modes it is the whole static displacement per unit strain (the modal expansion).  Infinite for a mode
+        without stiffness (a mechanism that can move freely has no static amplitude in it).
     coordinates : numpy.ndarray
         The mode vectors in the system's coordinates, scaled as :attr:`shapes`, shape (n_coordinates, n).
     state : str
