@@ -97,7 +97,7 @@ def equilibrium_state(mech: Mechanism, what: str, *, voltage: VoltageSpec = None
         model.scale_loads(0.0)
         model.set_strains(eps)
         return LinearState(mech, model, {k: 0.0 for k in volts}, eps, "the undeformed reference pose")
-    text = describe_voltages(volts) if volts else "no drives"
+    text = describe_voltages(volts) if volts else "no drive voltage (the loads alone)"
     check_drive_ranges(model, source_values(model, volts, what), eps)
     try:
         equilibrium(mech, model, np.zeros_like(eps), eps, True, None, text, stability_probe(mech, model))
