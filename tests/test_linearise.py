@@ -67,19 +67,20 @@ def test_single_dof_closed_form():
 
 
 def test_dc_gain_matches_differences_of_nonlinear_statics():
-    """About a bent state of a closed loop (joints carrying forces): the static gain of the linear model equals
-    central differences of the nonlinear static solution (+-10 V), to the differences' own error (~1e-5)."""
-    lin = atcm.linearise(lever(500.0), voltage=500.0, outputs=["lever.E_y", "lever.angle", "b.tip_y"])
+    """About a bent state of a closed loop under a load (joints carrying forces): the static gain of the linear
+    model equals central differences of the nonlinear static solution (+-10 V), to the differences' own error
+    (~1e-5)."""
+    lin = atcm.linearise(lever(500.0, load=0.1), voltage=500.0, outputs=["lever.E_y", "lever.angle", "b.tip_y"])
     dc = lin.dc_gain()[:, 0]
-    lo, hi = (atcm.solve_static(lever(v)) for v in (490.0, 510.0))
+    lo, hi = (atcm.solve_static(lever(v, load=0.1)) for v in (490.0, 510.0))
     fd = np.array([(hi[o][-1] - lo[o][-1]) / 20.0 for o in lin.outputs])
     np.testing.assert_allclose(dc, fd, rtol=1e-4)
-    assert lin.operating_point["lever.E_y"] == pytest.approx(atcm.solve_static(lever(500.0))["lever.E_y"][-1],
-                                                             abs=1e-12)
+    static = atcm.solve_static(lever(500.0, load=0.1))
+    assert lin.operating_point["lever.E_y"] == pytest.approx(static["lever.E_y"][-1], abs=1e-12)
     # |pole| of the damped model vs the undamped eigenfrequencies: equal for proportional damping; the pivot
     # damper is not proportional, which moves |pole| by the order of the damping ratio squared (~1e-4 here)
-    np.testing.assert_allclose(lin.natural_frequencies[:2], atcm.eigenfrequencies(lever(500.0), n=2, voltage=500.0),
-                               rtol=5e-4)
+    undamped = atcm.eigenfrequencies(lever(500.0, load=0.1), n=2, voltage=500.0)
+    np.testing.assert_allclose(lin.natural_frequencies[:2], undamped, rtol=5e-4)
 
 
 def _sine_gain(result, output, y0, f, amplitude, window):
@@ -96,8 +97,8 @@ def test_sine_simulations_match_frequency_response():
     gain and phase of the lever's end within 1 % (phase within 0.01 rad) of the linear model from half the first
     resonance (93 Hz) to 1.5 times the second (1.36 kHz).  The load makes the joints carry forces: without their
     geometric stiffness (Exudyn's own linearisation) the first frequency is 3 % lower, which at 1.2 times the
-    resonance changes the gain by ~9 % (single-mode estimate), so the check tells the two apart.  Accuracy: the step 1e-5 s resolves
-    2 kHz by 50 steps per period (period error of the integrator ~(w h)^2/12 < 1e-3), the sine's relative size
+    resonance changes the gain by ~9 % (single-mode estimate), so the check tells the two apart.  Accuracy: the
+    step 1e-5 s resolves 2 kHz by 50 steps per period (period error of the integrator ~(w h)^2/12 < 1e-3), the sine's relative size
     5/500 keeps the geometric nonlinearity near 1e-3, and 0.15 s of run lets the first mode's transient (damping
     ratio ~0.1 from the pivot damper, time constant ~17 ms) decay by e^-6 before the fitted window of the last
     whole periods."""

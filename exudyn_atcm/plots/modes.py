@@ -22,7 +22,8 @@ def _components(points: tuple[str, ...]) -> dict[str, list[int]]:
     out = {}
     for comp, idx in groups.items():
         names = [points[i].split(".", 1)[1] for i in idx]
-        cells = sorted((i for i, n in zip(idx, names) if n.startswith("cell_")), key=lambda i: int(points[i].rsplit("_", 1)[1]))
+        cells = sorted((i for i, n in zip(idx, names) if n.startswith("cell_")),
+                       key=lambda i: int(points[i].rsplit("_", 1)[1]))
         if cells:
             base = [i for i, n in zip(idx, names) if n == "base"]
             tip = [i for i, n in zip(idx, names) if n == "tip"]
