@@ -257,3 +257,16 @@ def test_actuator_is_linearised_as_its_mechanism():
     per_volt = lam.curvature_per_strain * 0.03**2 / 2 * lin.gains["actuator"]
     assert lin.dc_gain()[0, 0] == pytest.approx(per_volt, rel=2e-2)
     np.testing.assert_allclose(atcm.modes(actuator, 2).frequencies, atcm.eigenfrequencies(actuator, n=2), rtol=1e-12)
+
+
+def test_loads_argument_equals_the_loaded_mechanism():
+    """``loads={point: (Fx, Fy)}`` linearises about the equilibrium under the extra dead forces, as the mechanism
+    carrying them would be; the mechanism itself is not changed."""
+    mech = lever(500.0)
+    a = atcm.linearise(mech, voltage=500.0, loads={"lever.E": (0.0, -0.1)}, outputs=["lever.E_y"])
+    b = atcm.linearise(lever(500.0, load=0.1), voltage=500.0, outputs=["lever.E_y"])
+    np.testing.assert_allclose(a.A, b.A, rtol=1e-9, atol=1e-9 * np.abs(b.A).max())
+    np.testing.assert_allclose(a.dc_gain(), b.dc_gain(), rtol=1e-9)
+    assert not mech.forces
+    with pytest.raises(ValueError, match=r"loads: 'lever.F' is not a named point.*'lever.E'"):
+        atcm.linearise(mech, voltage=500.0, loads={"lever.F": (0.0, -0.1)}, outputs=["lever.E_y"])

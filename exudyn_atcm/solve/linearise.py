@@ -10,7 +10,8 @@ through its strain, scaled by the hysteresis operator's local slope on the chose
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import copy
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -69,8 +70,9 @@ def _check_inputs(mech: Any, model: Any, inputs: list[str]) -> list[tuple[str, s
     return out
 
 
-def linearise(system: Any, *, voltage: VoltageSpec = None, inputs: Sequence[str] | None = None,
-              outputs: Sequence[str], branch: str = "ascending", voltage_step: float = 1.0) -> LinearModel:
+def linearise(system: Any, *, voltage: VoltageSpec = None, loads: Mapping[str, Any] | None = None,
+              inputs: Sequence[str] | None = None, outputs: Sequence[str], branch: str = "ascending",
+              voltage_step: float = 1.0) -> LinearModel:
     """A linear state-space model of a mechanism or actuator about its static equilibrium.
 
     Parameters
@@ -80,6 +82,9 @@ def linearise(system: Any, *, voltage: VoltageSpec = None, inputs: Sequence[str]
     voltage : float or mapping, optional
         Drive voltages [V] of the equilibrium (a number for every drive or ``{drive: volts}``; default:
         each drive's program at ``t = 0``).  The mechanism's loads act, as in :func:`exudyn_atcm.solve_static`.
+    loads : mapping, optional
+        Further dead forces ``{point: (Fx, Fy)}`` [N] at named points acting at the equilibrium, besides the
+        mechanism's own loads (the mechanism itself is not changed: a copy carries them).
     inputs : list of str, optional
         Drive names (input: the drive's voltage [V] about its operating value) and point forces
         ``"<point>_Fx"``, ``"<point>_Fy"`` (a dead force [N] at a named point, e.g. ``"lever.end_Fy"``).
@@ -120,6 +125,16 @@ def linearise(system: Any, *, voltage: VoltageSpec = None, inputs: Sequence[str]
     """
     mech = as_mechanism(system, "linearise")
     check_branch(branch)
+    if loads is not None:
+        if not isinstance(loads, Mapping):
+            raise ValueError(f"loads must be a mapping {{point: (Fx, Fy)}} [N], got {loads!r}")
+        mech = copy.deepcopy(mech)
+        points = [f"{c.name}.{p}" for c in mech.components.values() for p in c.points]
+        for point, force in loads.items():
+            if point not in points:
+                raise ValueError(f"loads: {point!r} is not a named point of mechanism {mech.name!r}"
+                                 f"{_suggest(str(point), points)}")
+            mech.force(point, force)
     warn_if_large(mech, "linearise", equilibria=1, eigen=True, quiet=is_announced(), stacklevel=4)
     return linearise_model(mech, mb.build(mech), voltage=voltage, inputs=inputs, outputs=outputs, branch=branch,
                            voltage_step=voltage_step)
