@@ -169,3 +169,17 @@ def test_plot_modes_draws_one_panel_per_mode(tmp_path):
     # the drawn tip of mode 1 is the equilibrium tip moved by 0.1 of the size in the shape's direction
     moved = axes[0].lines[1].get_ydata()[-1]
     assert moved == pytest.approx(m.positions[m.points.index("b.tip"), 1] + 0.1 * 0.03 * 1.0, rel=1e-6)
+
+
+def test_loaded_modes_match_eigenfrequencies_under_the_loads():
+    """``loaded=True`` without voltage: about the equilibrium under the loads at zero strain, as
+    eigenfrequencies of an actuator with a tip force (the tension stiffens the rigid cells' joints: geometric
+    stiffness)."""
+    actuator = atcm.BendingActuator(n_cells=6, cell_length=0.005, width=10e-3, passive=CFC, active=MFC,
+                                    drive=atcm.PiezoDrive(0.0), cell="rigid")
+    mech = actuator.as_mechanism((0.5, 0.0))
+    m = atcm.modes(mech, 2, loaded=True)
+    np.testing.assert_allclose(m.frequencies, atcm.eigenfrequencies(actuator, n=2, tip_force=(0.5, 0.0)), rtol=1e-12)
+    np.testing.assert_allclose(atcm.BuiltSystem(mech).modes(2, loaded=True).frequencies, m.frequencies, rtol=1e-12)
+    unloaded = atcm.modes(mech, 2)
+    assert m.frequencies[0] > 1.01 * unloaded.frequencies[0]  # the tension stiffens the first mode

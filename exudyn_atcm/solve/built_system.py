@@ -24,9 +24,8 @@ from ..mechanism.build_cost import warn_if_large
 from .long_runs import is_announced
 from . import mechanism_solve
 from .bender_checks import check_benders
-from .linear_state import equilibrium_state
 from .linearise import linearise_model
-from .modes import Modes, modes_of_state
+from .modes import Modes, modes_of_state, modes_state
 from .run_setup import DEFAULT_STEP
 from .state_space import LinearModel
 
@@ -114,11 +113,7 @@ class BuiltSystem:
     def modes(self, n: int = 3, *, voltage: float | Mapping[str, float] | None = None, loaded: bool = False) -> Modes:
         """The ``n`` lowest modes about the static equilibrium at ``voltage``; as :func:`exudyn_atcm.modes`."""
         n = positive_int("n", n)
-        if not isinstance(loaded, bool):
-            raise ValueError(f"loaded must be True or False, got {loaded!r}")
-        state = equilibrium_state(self.mechanism, "modes", voltage=voltage, deformed=voltage is not None or loaded,
-                                  model=self._fresh())
-        return modes_of_state(state, n)
+        return modes_of_state(modes_state(self.mechanism, voltage, loaded, model=self._fresh()), n)
 
     def eigenfrequencies(self, n: int = 3, *, voltage: float | Mapping[str, float] | None = None,
                          loaded: bool = False) -> np.ndarray:

@@ -23,7 +23,7 @@ from ..mechanism.points import MechanismError, closest
 from .linear_state import as_mechanism, equilibrium_state
 from .mechanism_static import VoltageSpec
 
-__all__ = ["Modes", "modes", "modes_of_state"]
+__all__ = ["Modes", "modes", "modes_of_state", "modes_state"]
 
 
 @dataclass(frozen=True)
@@ -133,11 +133,19 @@ def modes(system: Any, n: int = 3, *, voltage: VoltageSpec = None, loaded: bool 
     Euler-Bernoulli cantilever and a rigid four-bar with a torsional spring.
     """
     n = positive_int("n", n)
+    mech = as_mechanism(system, "modes")
+    return modes_of_state(modes_state(mech, voltage, loaded), n)
+
+
+def modes_state(mech: Any, voltage: VoltageSpec, loaded: bool, model: Any = None) -> Any:
+    """The state :func:`modes` analyses: the equilibrium at ``voltage``; with ``voltage=None`` and ``loaded``
+    the one under the loads at zero strain (as :func:`exudyn_atcm.eigenfrequencies`); else the reference pose."""
     if not isinstance(loaded, bool):
         raise ValueError(f"loaded must be True or False, got {loaded!r}")
-    mech = as_mechanism(system, "modes")
-    state = equilibrium_state(mech, "modes", voltage=voltage, deformed=voltage is not None or loaded)
-    return modes_of_state(state, n)
+    if voltage is None and loaded:
+        zero = {name: 0.0 for name in mech.drives}
+        return equilibrium_state(mech, "modes", voltage=zero, strains=zero, model=model)
+    return equilibrium_state(mech, "modes", voltage=voltage, deformed=voltage is not None, model=model)
 
 
 def modes_of_state(state: Any, n: int) -> Modes:
