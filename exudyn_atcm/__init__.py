@@ -63,6 +63,10 @@ _LAZY = {
     "static_sweep": (".solve", "static_sweep"),
     "step_error": (".solve", "step_error"),
     "BuiltSystem": (".solve", "BuiltSystem"),
+    "LinearModel": (".solve", "LinearModel"),
+    "Modes": (".solve", "Modes"),
+    "linearise": (".solve", "linearise"),
+    "modes": (".solve", "modes"),
     "add_to": (".mbs", "add_to"),
     "register_cell_kind": (".cells", "register_cell_kind"),
 }
@@ -85,6 +89,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .solve import SolverError, eigenfrequencies, simulate, solve_static
     from .solve import static_sweep, step_error
     from .solve import BuiltSystem
+    from .solve import LinearModel, Modes, linearise, modes
     from .mbs import add_to
     from .cells import register_cell_kind
 
@@ -110,6 +115,10 @@ __all__ = [
     "register_cell_kind",
     "eigenfrequencies",
     "step_error",
+    "modes",
+    "Modes",
+    "linearise",
+    "LinearModel",
     "Result",
     "SolverError",
     "SimulationInterrupted",

@@ -43,6 +43,8 @@ _LAZY = {
     'plot_shapes': ('result', 'plot_shapes'),
     'plot_tip_vs_voltage': ('result', 'plot_tip_vs_voltage'),
     'plot_actuator_time_series': ('result', 'plot_time_series'),
+    'plot_modes': ('modes', 'plot_modes'),
+    'plot_bode': ('bode', 'plot_bode'),
     'COLORS': ('style', 'COLORS'),
     'STYLE': ('style', 'STYLE'),
     'AxisLabels': ('style', 'AxisLabels'),
@@ -70,6 +72,8 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from .result import animate_actuator, chain_shape, plot_result, plot_shapes, plot_tip_vs_voltage
     from .result import plot_time_series as plot_actuator_time_series
+    from .modes import plot_modes
+    from .bode import plot_bode
     from .style import COLORS, STYLE, AxisLabels, axis_label, display_scale, new_figure, save_figure
 
 __all__ = [
@@ -83,6 +87,8 @@ __all__ = [
     # mechanisms
     "draw_mechanism", "plot_mechanism", "animate_mechanism", "plot_point_paths", "mechanism_shape", "MechanismShape",
     "BenderShape", "actuator_as_mechanism",
+    # modes and linear models
+    "plot_modes", "plot_bode",
     # cell drawings
     "cell_figure", "save_cell_drawing", "draw_six_bar_cell", "draw_rigid_chain", "paper_actuator", "height_exaggeration",
 ]

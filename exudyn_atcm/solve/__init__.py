@@ -25,6 +25,11 @@ _LAZY = {
     "static_sweep": (".simulation", "static_sweep"),
     "StepError": (".step_error", "StepError"),
     "step_error": (".step_error", "step_error"),
+    "NoEquilibriumError": (".linear_state", "NoEquilibriumError"),
+    "linearise": (".linearise", "linearise"),
+    "Modes": (".modes", "Modes"),
+    "modes": (".modes", "modes"),
+    "LinearModel": (".state_space", "LinearModel"),
 }
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
@@ -35,9 +40,13 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .built_system import BuiltSystem
     from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
     from .step_error import StepError, step_error
+    from .linear_state import NoEquilibriumError
+    from .linearise import linearise
+    from .modes import Modes, modes
+    from .state_space import LinearModel
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
            "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
-           "BuiltSystem"]
+           "BuiltSystem", "modes", "Modes", "linearise", "LinearModel", "NoEquilibriumError"]
 
 __getattr__, __dir__ = lazy_face(__name__, _LAZY, submodules=True)

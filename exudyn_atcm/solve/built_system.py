@@ -13,6 +13,9 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable
 
+import numpy as np
+
+from .._checks import positive_int
 from ..io.result import Result
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
@@ -21,7 +24,10 @@ from ..mechanism.build_cost import warn_if_large
 from .long_runs import is_announced
 from . import mechanism_solve
 from .bender_checks import check_benders
+from .linearise import linearise_model
+from .modes import Modes, modes_of_state, modes_state
 from .run_setup import DEFAULT_STEP
+from .state_space import LinearModel
 
 __all__ = ["BuiltSystem"]
 
@@ -103,6 +109,23 @@ class BuiltSystem:
                                           stroke_path=self.stroke_path, built=self._fresh())
         check_benders(self.mechanism, result, stacklevel=3)  # every bender's cell-kind checks, at the caller's line
         return result
+
+    def modes(self, n: int = 3, *, voltage: float | Mapping[str, float] | None = None, loaded: bool = False) -> Modes:
+        """The ``n`` lowest modes about the static equilibrium at ``voltage``; as :func:`exudyn_atcm.modes`."""
+        n = positive_int("n", n)
+        return modes_of_state(modes_state(self.mechanism, voltage, loaded, model=self._fresh()), n)
+
+    def eigenfrequencies(self, n: int = 3, *, voltage: float | Mapping[str, float] | None = None,
+                         loaded: bool = False) -> np.ndarray:
+        """The ``n`` lowest eigenfrequencies [Hz] (the frequencies of :meth:`modes`; as
+        :func:`exudyn_atcm.eigenfrequencies` for a mechanism)."""
+        return self.modes(n, voltage=voltage, loaded=loaded).frequencies
+
+    def linearise(self, *, voltage: float | Mapping[str, float] | None = None, inputs: Sequence[str] | None = None,
+                  outputs: Sequence[str], branch: str = "ascending", voltage_step: float = 1.0) -> LinearModel:
+        """A state-space model about the static equilibrium at ``voltage``; as :func:`exudyn_atcm.linearise`."""
+        return linearise_model(self.mechanism, self._fresh(), voltage=voltage, inputs=inputs, outputs=outputs,
+                               branch=branch, voltage_step=voltage_step)
 
     def __repr__(self) -> str:
         return f"BuiltSystem({self.mechanism.name!r}, builds={self.builds})"
