@@ -5,7 +5,7 @@
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
-``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``, ``BuiltSystem`` to solve one
+``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``mechanism_feedforward`` (a voltage program for a mechanism output), ``add_to``, ``BuiltSystem`` to solve one
 build many times), results and files
 (``Result``, ``read_csv``, ``read_record``, ``preprocess``), displacement to strain (``record_to_strain``,
 ``model_to_strain``), closed loop (``PIDController``), the errors
@@ -34,6 +34,7 @@ from .solve import SimulationInterrupted
 from .solve import SolverError, eigenfrequencies, simulate, solve_static
 from .solve import static_sweep, step_error
 from .solve import BuiltSystem
+from .solve import mechanism_feedforward
 from .mbs import add_to
 from .cells import register_cell_kind
 from .errors import (AccuracyWarning, AtcmDeprecationWarning, AtcmWarning, InputRangeWarning, OutOfReachWarning,
@@ -61,6 +62,7 @@ __all__ = [
     "register_cell_kind",
     "eigenfrequencies",
     "step_error",
+    "mechanism_feedforward",
     "Result",
     "SolverError",
     "SimulationInterrupted",

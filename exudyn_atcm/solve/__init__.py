@@ -1,5 +1,5 @@
 """From a description to a result: ``simulate``, ``solve_static``, ``static_sweep``,
-``eigenfrequencies``, ``step_error``, the run checks and the set-up every time integration shares.
+``eigenfrequencies``, ``step_error``, ``mechanism_feedforward``, the run checks and the set-up every time integration shares.
 
 May import the description layers and :mod:`exudyn_atcm.mbs`; never plotting.
 """
@@ -11,7 +11,9 @@ from .run_setup import DEFAULT_STEP
 from .built_system import BuiltSystem
 from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
 from .step_error import StepError, step_error
+from .feedforward_mechanism import FeedforwardReport, mechanism_feedforward
+from .output_map import OutputMap
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
            "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
-           "BuiltSystem"]
+           "BuiltSystem", "mechanism_feedforward", "FeedforwardReport", "OutputMap"]

@@ -126,14 +126,18 @@ class OutputMap:
         # segments whose outputs meet the wanted range and that do not move with the overall direction
         bad = np.flatnonzero((seg_hi >= low) & (seg_lo <= high) & (np.sign(steps) != direction))
         if direction == 0 or bad.size:
-            k0, k1 = (bad[0], bad[-1] + 1) if bad.size else (0, len(steps))
+            sign = np.sign(steps)
+            # the turning point nearest to the segments that move against the overall direction
+            turns = [k for k in range(1, len(steps)) if sign[k] != sign[k - 1]]
+            k = min(turns, key=lambda j: int(np.min(np.abs(bad - j)))) if turns and bad.size else 0
+            k0, k1 = max(k - 1, 0), min(k + 1, len(self.strains) - 1)
             raise ValueError(
                 f"{what}: the quasi-static map from the free strain to {self.output} is not monotone over the wanted "
-                f"range {low:.6g} ... {high:.6g}: {self.output} turns back between free strain "
-                f"{self.strains[k0]:.4g} and {self.strains[k1]:.4g} (voltage {self.voltages[k0]:g} ... "
-                f"{self.voltages[k1]:g} V, {self.output} {self.values[k0]:.6g} ... {self.values[k1]:.6g}), so a wanted "
-                f"value there has two strains; choose an output that moves one way with the drive, or restrict "
-                f"voltage_range to one side")
+                f"range {low:.6g} ... {high:.6g}: {self.output} turns back near free strain {self.strains[k]:.4g} "
+                f"(between free strain {self.strains[k0]:.4g} and {self.strains[k1]:.4g} (voltage "
+                f"{self.voltages[k0]:g} ... {self.voltages[k1]:g} V), at {self.output} = {self.values[k]:.6g}), so a "
+                f"wanted value there has two strains; choose an output that moves one way with the drive, or "
+                f"restrict voltage_range to one side")
 
 
 def output_map(mech: Mechanism, output: str, drive: str, voltages: tuple[float, float], points: int = 41) -> OutputMap:
