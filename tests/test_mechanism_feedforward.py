@@ -23,10 +23,13 @@ from scipy import signal as sps
 
 import exudyn_atcm as atcm
 from exudyn_atcm import theory
+from exudyn_atcm.casework import load_case
 from exudyn_atcm.hysteresis.creep import Creep
 from exudyn_atcm.hysteresis.dynamics import WithDynamics
 from exudyn_atcm.model import paper_strain_preisach
 from exudyn_atcm.model.prefilter import invert_mode, shape, shaper_impulses, smooth
+
+from _cli_helpers import CASES
 
 CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
 MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
@@ -201,3 +204,15 @@ def test_creep_of_the_drive_is_compensated_with_the_time():
     assert errors["plain"] > 100.0 * errors["creep"]
     # the static map is the fully crept one: reachable up to (1 + 0.13) x the creep-free strain's output
     assert report.reachable[1] > 1.1 * 0.0284
+
+
+def test_control_case_tracks_within_10_um_and_its_pid_is_stable():
+    out = load_case(CASES / "control_lever.py").run()
+    s = {k: (v[0] if isinstance(v, tuple) else v) for k, v in out.scalars.items()}
+    assert s["rms_error_compensated"] <= 10e-6 and s["rms_error_pid_feedforward"] <= 10e-6
+    assert s["rms_error_naive"] > 20.0 * s["rms_error_compensated"]
+    assert s["map_error_polygon"] < 1e-9  # rigid chain on the free arc plus the lever: exact but for the solver
+    # the PID on the one-mode model: the closed loop's characteristic cubic has all roots in the left half-plane
+    w, zeta, k0 = 2.0 * math.pi * s["first_frequency"], s["damping_ratio"], s["static_gain"]
+    cubic = [1.0, 2.0 * zeta * w + k0 * w * w * s["kd"], w * w * (1.0 + k0 * s["kp"]), k0 * w * w * s["ki"]]
+    assert np.all(np.roots(cubic).real < 0.0)
