@@ -19,7 +19,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
 
 from ..hysteresis.bisection import default_input_range
 from ..mechanism.assembly import Mechanism
@@ -28,6 +27,13 @@ from ..suggestions import close_names
 from .mechanism_solve import static_sweep
 
 __all__ = ["OutputMap", "output_map", "drive_name", "voltage_limits"]
+
+
+def pchip(x: np.ndarray, y: np.ndarray, extrapolate: bool = False):
+    """scipy's monotone cubic (PCHIP) interpolant of ``y(x)``, ``x`` increasing."""
+    from scipy.interpolate import PchipInterpolator  # noqa: PLC0415 - lazy: scipy is slow to import
+
+    return PchipInterpolator(x, y, extrapolate=extrapolate)
 
 
 def drive_name(mech: Mechanism, drive: str | None) -> str:
@@ -103,13 +109,12 @@ class OutputMap:
 
     def value(self, strain: Any) -> np.ndarray:
         """Output at rest for the free strain(s) (piecewise-cubic monotone interpolation)."""
-        return PchipInterpolator(self.strains, self.values, extrapolate=False)(np.asarray(strain, dtype=float))
+        return pchip(self.strains, self.values)(np.asarray(strain, dtype=float))
 
     def strain(self, value: Any) -> np.ndarray:
         """Free strain(s) [-] that give the output(s) at rest (the map must be monotone: :meth:`check`)."""
         order = np.argsort(self.values)
-        return PchipInterpolator(self.values[order], self.strains[order], extrapolate=False)(
-            np.asarray(value, dtype=float))
+        return pchip(self.values[order], self.strains[order])(np.asarray(value, dtype=float))
 
     def check(self, low: float, high: float, what: str = "wanted") -> None:
         """Refuse outputs in ``[low, high]`` beyond the reachable range, or where the map turns back."""
@@ -172,5 +177,5 @@ def output_map(mech: Mechanism, output: str, drive: str, voltages: tuple[float, 
     s, v, u = strain[keep], value[keep], volts[keep]
     unique = np.concatenate([[True], np.diff(s) > 0.0])  # a saturated operator repeats its strain
     s, v, u = s[unique], v[unique], u[unique]
-    fit = PchipInterpolator(s, v, extrapolate=True)(strain[mid])
+    fit = pchip(s, v, extrapolate=True)(strain[mid])
     return OutputMap(output, u, s, v, strain[mid], value[mid], float(np.max(np.abs(fit - value[mid]))))
