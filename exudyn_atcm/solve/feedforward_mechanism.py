@@ -235,7 +235,10 @@ def mechanism_feedforward(
     name = drive_name(mechanism, drive)
     pdrive = mechanism.drives[name]
     limits = voltage_limits(pdrive, voltage_range)
-    omap = output_map(mechanism, output, name, limits, positive_int("map_points", map_points))
+    points = positive_int("map_points", map_points)
+    if points < 4:
+        raise ValueError(f"map_points must be >= 4 (points of the quasi-static map), got {map_points!r}")
+    omap = output_map(mechanism, output, name, limits, points)
     low, high = float(y.min()), float(y.max())
     omap.check(low, high)
     grid, wanted_grid = uniform_grid(t, y, dt)
