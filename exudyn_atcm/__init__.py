@@ -5,7 +5,7 @@
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
-``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``add_to``, ``BuiltSystem`` to solve one
+``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``mechanism_feedforward`` (a voltage program for a mechanism output), ``add_to``, ``BuiltSystem`` to solve one
 build many times), results and files
 (``Result``, ``read_csv``, ``read_record``, ``preprocess``), displacement to strain (``record_to_strain``,
 ``model_to_strain``), closed loop (``PIDController``), the errors
@@ -67,6 +67,7 @@ _LAZY = {
     "Modes": (".solve", "Modes"),
     "linearise": (".solve", "linearise"),
     "modes": (".solve", "modes"),
+    "mechanism_feedforward": (".solve", "mechanism_feedforward"),
     "add_to": (".mbs", "add_to"),
     "register_cell_kind": (".cells", "register_cell_kind"),
 }
@@ -90,6 +91,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .solve import static_sweep, step_error
     from .solve import BuiltSystem
     from .solve import LinearModel, Modes, linearise, modes
+    from .solve import mechanism_feedforward
     from .mbs import add_to
     from .cells import register_cell_kind
 
@@ -116,6 +118,7 @@ __all__ = [
     "eigenfrequencies",
     "step_error",
     "modes",
+    "mechanism_feedforward",
     "Modes",
     "linearise",
     "LinearModel",

@@ -1,5 +1,5 @@
 """From a description to a result: ``simulate``, ``solve_static``, ``static_sweep``,
-``eigenfrequencies``, ``step_error``, the run checks and the set-up every time integration shares.
+``eigenfrequencies``, ``step_error``, ``mechanism_feedforward``, the run checks and the set-up every time integration shares.
 
 May import the description layers and :mod:`exudyn_atcm.mbs`; never plotting.
 """
@@ -30,6 +30,9 @@ _LAZY = {
     "Modes": (".modes", "Modes"),
     "modes": (".modes", "modes"),
     "LinearModel": (".state_space", "LinearModel"),
+    "FeedforwardReport": (".feedforward_mechanism", "FeedforwardReport"),
+    "mechanism_feedforward": (".feedforward_mechanism", "mechanism_feedforward"),
+    "OutputMap": (".output_map", "OutputMap"),
 }
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
@@ -44,9 +47,12 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .linearise import linearise
     from .modes import Modes, modes
     from .state_space import LinearModel
+    from .feedforward_mechanism import FeedforwardReport, mechanism_feedforward
+    from .output_map import OutputMap
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
            "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
-           "BuiltSystem", "modes", "Modes", "linearise", "LinearModel", "NoEquilibriumError"]
+           "BuiltSystem", "modes", "Modes", "linearise", "LinearModel", "NoEquilibriumError",
+           "mechanism_feedforward", "FeedforwardReport", "OutputMap"]
 
 __getattr__, __dir__ = lazy_face(__name__, _LAZY, submodules=True)
