@@ -1,0 +1,258 @@
+"""Runs with a stated accuracy: ``simulate(system, t_end, accuracy=1e-3)`` chooses the step.
+
+``accuracy`` is the largest error of the recorded positions (every result column in metres)
+relative to their travel (the largest range among those columns), against the time-converged
+solution of the same model.  The step is chosen from what is known before the run, then the
+run's own error is measured:
+
+1. **Prediction** (:func:`predict_steps`, cheap: milliseconds).  The mechanism's lowest
+   eigenfrequency about its start state (:func:`~exudyn_atcm.eigenfrequencies`; the
+   clamped-free estimate of its benders if that fails), the damping ratio of its laminate parts
+   at that frequency, and every drive's free strain over the run (the voltage program through
+   its hysteresis operator: the Preisach slope jumps at every reversal) drive a one-mode
+   stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`), integrated exactly and by
+   the run's generalized-alpha at a ladder of steps.  The chosen step is the coarsest of the
+   ladder whose stand-in error is :data:`AIM` of the target, and at most the shortest drive
+   feature / :data:`STEPS_PER_FEATURE` (so that the probe at twice the step still resolves the
+   program without a warning).
+2. **Check** (one probe run at twice the step, half the cost of the run): Richardson's estimate
+   of the run's error, ``|x_h - x_2h| / (2^p - 1)`` with ``p`` the integration order of the
+   system's cells (:attr:`~exudyn_atcm.cells.CellKind.time_order`), relative to the travel.
+3. **Refinement**, once: if the estimate misses the target, the step is divided by the
+   integer ``m`` the estimate asks for and the run repeated; the run at the former step is then
+   the probe (``|x_{h/m} - x_h| / (m^p - 1)``).  If that misses too, an
+   :class:`~exudyn_atcm.AccuracyWarning` says so with the estimate.
+
+``result.info["step_choice"]`` says what was chosen and why; ``info["accuracy"]`` holds the
+numbers.  A step coarser than a tenth of the lowest mode's period is taken when the stand-in
+says the drive hardly excites the mode (a slow sine) and the probe confirms it; the run's
+coarse-mode warning is then left out, as the measured error replaces that rule of thumb.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import AccuracyWarning
+from ..io.result import Result
+from ..mechanism import Mechanism
+from ..mechanism.damped import MaterialDamped
+from . import mechanism_solve
+from .mechanism_checks import lowest_first_frequency
+from .run_checks import program_feature
+from .step_surrogate import exact_response, alpha_response, unit_strain
+
+__all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "StepPrediction", "predict_steps",
+           "position_error", "accurate_run"]
+
+#: Order of the time integration of a system without cells (generalized-alpha; as in :mod:`~exudyn_atcm.solve.step_error`).
+NOMINAL_ORDER = 2.0
+#: Allowed ``accuracy`` [-]: above 10 % of the travel an "error" is no longer small against the motion
+#: (the Richardson estimate assumes the run near convergence); below 1e-6 the differences between runs
+#: reach the Newton tolerance (absolute 1e-8 m against millimetre travels), so no step can be verified.
+ACCURACY_RANGE = (1e-6, 0.1)
+#: The prediction aims the stand-in's error at this share of the target (room for the modes it leaves out).
+AIM = 0.5
+#: Fewest steps per shortest drive feature of the chosen step (the probe at twice the step keeps the 20 of
+#: :data:`~exudyn_atcm.solve.run_checks.COMFORTABLE_STEPS_PER_FEATURE`).
+STEPS_PER_FEATURE = 40
+#: Fewest steps of a run with a stated accuracy.
+MIN_STEPS = 20
+#: Ladder of step counts: each rung this factor above the last.
+LADDER = 2.0 ** 0.25
+#: The stand-in's fine reference samples the lowest period this many times (and the shortest feature).
+REFERENCE_SAMPLES = 400
+#: Largest sample count of the stand-in's reference (memory and time stay at milliseconds).
+MAX_REFERENCE_SAMPLES = 2_000_000
+# the run's warning about a step coarse for the lowest mode, replaced by the measured error
+_COARSE_MODE = r"step = .* resolves the first bending mode"
+
+
+def check_accuracy(accuracy: Any) -> float:
+    """``accuracy`` as a float in :data:`ACCURACY_RANGE`, or a ``ValueError`` naming it."""
+    low, high = ACCURACY_RANGE
+    if isinstance(accuracy, bool) or not isinstance(accuracy, (int, float, np.integer, np.floating)):
+        raise ValueError(f"accuracy must be a finite number in [{low:g}, {high:g}] (a relative error of the "
+                         f"recorded positions, e.g. 1e-3 of the travel), got {accuracy!r}")
+    value = float(accuracy)
+    if not (math.isfinite(value) and low <= value <= high):
+        raise ValueError(f"accuracy must be a finite number in [{low:g}, {high:g}] (a relative error of the "
+                         f"recorded positions, e.g. 1e-3 of the travel), got {accuracy!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class StepPrediction:
+    """What the prediction used and chose: ``n_steps`` steps over ``t_end`` [s], and why."""
+
+    n_steps: int
+    t_end: float
+    frequency: float
+    frequency_source: str
+    damping_ratio: float
+    feature: float
+    predicted: float
+    order: float
+    reason: str
+
+    @property
+    def step(self) -> float:
+        """The step [s]."""
+        return self.t_end / self.n_steps
+
+
+def _lowest_frequency(mech: Mechanism) -> tuple[float, str]:
+    """Lowest eigenfrequency [Hz] about the start voltages, or the clamped-free estimate, and its source."""
+    volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # a linearisation for the step only; the run says what matters
+            f = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
+                                                 loaded=bool(mech.forces))
+        if f.size and f[0] > 0.0 and math.isfinite(f[0]):
+            return float(f[0]), "the lowest eigenfrequency about the start state"
+    except Exception:  # noqa: BLE001 - any failure: the cheaper estimate below
+        pass
+    f, which = lowest_first_frequency(mech)
+    return f, which
+
+
+def _damping_ratio(mech: Mechanism, omega: float) -> float:
+    """Smallest damping ratio of the mechanism's laminate parts at ``omega`` [rad/s] (0 without any)."""
+    ratios = []
+    for comp in mech.components.values():
+        if isinstance(comp, MaterialDamped):
+            r = comp.rayleigh_damping
+            ratios.append(r.alpha / (2.0 * omega) + r.beta * omega / 2.0)
+    return max(min(ratios), 0.0) if ratios else 0.0
+
+
+def _shortest_feature(mech: Mechanism, t_end: float) -> float:
+    """Shortest feature [s] of the drives' programs before ``t_end`` (``inf`` without one)."""
+    features = [program_feature(d.voltage, t_end) for d in mech.drives.values()]
+    return min([f[0] for f in features if f is not None], default=math.inf)
+
+
+def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPrediction:
+    """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s] (see module notes)."""
+    frequency, source = _lowest_frequency(mech)
+    order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
+    feature = _shortest_feature(mech, t_end)
+    n_min = max(MIN_STEPS, math.ceil(t_end * STEPS_PER_FEATURE / feature) if math.isfinite(feature) else MIN_STEPS)
+    n_min += n_min % 2  # even: the probe at twice the step lands on the same grid
+    if not (frequency > 0.0 and math.isfinite(frequency)):
+        return StepPrediction(n_min, t_end, frequency, source, 0.0, feature, math.nan, order,
+                              "no mode to resolve: the drive's features decide")
+    omega = 2.0 * math.pi * frequency
+    zeta = _damping_ratio(mech, omega)
+    n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(t_end * REFERENCE_SAMPLES * frequency),
+                                           math.ceil(t_end * REFERENCE_SAMPLES / feature) if math.isfinite(feature)
+                                           else 0, 4 * n_min))
+    fine_t = np.linspace(0.0, t_end, n_ref + 1)
+    strains = [s for s in (unit_strain(d, fine_t) for d in _distinct_drives(mech)) if s is not None]
+    if not strains:
+        n = max(n_min, 2 * math.ceil(t_end * frequency * 10.0))
+        return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
+                              "the drive's strain is not known before the run (a controller): ten steps per period")
+    exact = [exact_response(s, t_end / n_ref, omega, zeta) for s in strains]
+    n, predicted, rungs = n_min, math.inf, 0
+    while True:
+        t = np.linspace(0.0, t_end, n + 1)
+        predicted = max(float(np.max(np.abs(alpha_response(np.interp(t, fine_t, s), t_end / n, omega, zeta)
+                                            - np.interp(t, fine_t, x)))) for s, x in zip(strains, exact))
+        if predicted <= AIM * accuracy or 4 * n > n_ref or rungs > 80:
+            break
+        rungs += 1
+        n = max(n + 2, 2 * math.ceil(n * LADDER / 2.0))
+    reason = (f"one-mode stand-in ({frequency:.4g} Hz, damping ratio {zeta:.3g}) driven by the drives' free strain "
+              f"misses {predicted:.2g} of its travel at this step")
+    return StepPrediction(n, t_end, frequency, source, zeta, feature, predicted, order, reason)
+
+
+def _distinct_drives(mech: Mechanism) -> list[Any]:
+    """Each PiezoDrive once (segments share one)."""
+    seen: dict[int, Any] = {}
+    for drive in mech.drives.values():
+        seen.setdefault(id(drive), drive)
+    return list(seen.values())
+
+
+def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:
+    """Largest difference of the position columns [m] between two runs at the coarse grid's common instants,
+    relative to the largest range of those columns in ``fine`` (0 when none moves)."""
+    names = [n for n in fine.names if n != "time" and fine.unit(n) == "m"]
+    travel = max((float(np.ptp(fine[n])) for n in names), default=0.0)
+    if not names or not travel > 0.0:
+        return 0.0
+    keys = []
+    for run in (fine, coarse):
+        t = np.asarray(run["time"], dtype=float)
+        k = np.rint(t / coarse_step)
+        on = np.abs(t - k * coarse_step) <= 1e-6 * coarse_step
+        keys.append((k[on].astype(np.int64), np.flatnonzero(on)))
+    common = np.intersect1d(keys[0][0], keys[1][0])
+    if common.size < 2:
+        return math.inf
+    rows = [r[np.searchsorted(k, common)] for k, r in keys]
+    diff = max(float(np.max(np.abs(np.asarray(fine[n])[rows[0]] - np.asarray(coarse[n])[rows[1]]))) for n in names)
+    return diff / travel
+
+
+Runner = Callable[[float, Any], Result]
+
+
+def _stage(progress: Any, label: str, share: float, weight: float, detail: str) -> Any:
+    """A progress callback for one run of the choice: the display's ``stage`` when it has one, else ``None``."""
+    stage = getattr(progress, "stage", None)
+    if not callable(stage):
+        return None
+    return lambda t, t_end: stage(label, share + weight * t / t_end, detail)
+
+
+def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, progress: Any = None,
+                 stacklevel: int = 3) -> Result:
+    """Run ``run(step, progress)`` at the step :func:`predict_steps` chooses for ``accuracy``, checked by a probe.
+
+    ``mech`` is the mechanism run (a lone actuator's one-bender mechanism); ``progress`` the
+    user's: a display with ``stage(label, share, detail)`` is told every run of the choice and
+    the step chosen, a plain ``progress(t, t_end)`` sees the final run only.
+    """
+    prediction = predict_steps(mech, t_end, accuracy)
+    n, p = prediction.n_steps, prediction.order
+    h = t_end / n
+    chose = (f"step {h:.4g} s ({n} steps) for {accuracy:g} of the travel: {prediction.reason}"
+             f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s; order {p:g}")
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=_COARSE_MODE, category=AccuracyWarning)
+        probe = run(2.0 * h, _stage(progress, "accuracy probe", 0.0, 1.0 / 3.0, f"step {2 * h:.3g} s"))
+        result = run(h, _stage(progress, "accuracy run", 1.0 / 3.0, 2.0 / 3.0, chose) or progress)
+        estimate = position_error(result, probe, 2.0 * h) / (2.0 ** p - 1.0)
+        checks = [f"probe at {2 * h:.4g} s: estimated error {estimate:.2g} (Richardson, order {p:g})"]
+        refined = False
+        if estimate > accuracy:
+            m = max(2, math.ceil((estimate / (AIM * accuracy)) ** (1.0 / p)))
+            coarse, coarse_h = result, h
+            h = coarse_h / m
+            result = run(h, _stage(progress, "accuracy refinement", 1.0, 0.0, f"step {h:.3g} s") or progress)
+            estimate = position_error(result, coarse, coarse_h) / (m ** p - 1.0)
+            checks.append(f"missed {accuracy:g}: refined once to {h:.4g} s ({m * n} steps), estimated error "
+                          f"{estimate:.2g} against the run at {coarse_h:.4g} s")
+            refined = True
+    line = chose + "; " + "; ".join(checks)
+    result.info["step_choice"] = line
+    result.info["accuracy"] = {"target": accuracy, "estimated_error": estimate, "step [s]": h,
+                               "predicted_error": prediction.predicted, "refined": refined,
+                               "lowest_frequency [Hz]": prediction.frequency, "damping_ratio": prediction.damping_ratio}
+    stage = getattr(progress, "stage", None)
+    if callable(stage):
+        stage("accuracy run", 1.0, line)
+    if estimate > accuracy:
+        warnings.warn(f"simulate(accuracy={accuracy:g}): the run's estimated error {estimate:.2g} of the travel still "
+                      f"misses the target after one refinement ({line}). Give a smaller step yourself "
+                      f"(step=...) or check with exudyn_atcm.step_error", AccuracyWarning, stacklevel=stacklevel)
+    return result

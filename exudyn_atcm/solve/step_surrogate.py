@@ -1,0 +1,158 @@
+"""A one-mode stand-in of a run that predicts its time-step error before the run: :func:`surrogate_errors`.
+
+The step of a mechanism run is decided by the ringing of its lowest mode: every corner of the
+drive (a voltage step, a ramp's start and end, and at every reversal the Preisach operator's
+jump from the steep to the flat branch, however smooth the voltage) starts a lightly damped
+vibration, and the integrator's period error (about ``(ω h)²/12`` per period) shifts its phase
+while it rings.  The stand-in is the lowest mode alone, driven quasi-statically by the
+drive's free strain scaled to a unit travel:
+
+    x'' + ω² x = ω² s(t),   s = (ε(t) - ε(0)) / (max ε - min ε),
+
+with ``ε(t)`` the drive's voltage program passed through its hysteresis operator offline
+(:func:`unit_strain`).  Its exact solution for ``s`` linear between fine samples is a sum of
+free vibrations started at every slope change (:func:`exact_response`); the run's integrator
+(generalized-alpha, spectral radius 0.8, as the solver settings use) applied to the same
+equation at a step ``h`` (:func:`alpha_response`) differs from it by about what the run at ``h``
+misses of its travel.  Undamped, so it overstates a damped mechanism's error (the probe run
+of :mod:`exudyn_atcm.solve.step_choice` measures the real one); a mode the drive hardly excites (a
+slow sine, whose strain has no slope jump at its reversals) gives a small error at coarse
+steps that do not resolve the mode at all, as the run does.
+
+No Exudyn import; numpy and ``scipy.signal.lfilter`` only.
+"""
+
+from __future__ import annotations
+
+import copy
+import inspect
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+from scipy.signal import lfilter
+
+__all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "surrogate_errors"]
+
+#: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
+SPECTRAL_RADIUS = 0.8
+
+
+def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
+    """The drive's free strain at ``times`` [s] from its reset state, scaled to ``s(0) = 0`` and unit range.
+
+    The voltage program is sampled at ``times`` and passed through a copy of the hysteresis
+    operator (the drive's own memory is not touched; range warnings are left to the run).
+    ``None`` for a drive set by a controller (its voltage depends on the run) or whose strain
+    does not change.
+    """
+    if getattr(drive, "controller", None) is not None:
+        return None
+    volts = np.array([drive.voltage_at(float(t)) for t in times])
+    operator = drive.hysteresis
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the run itself says what is out of range
+        if operator is None:
+            strain = np.array([drive.linear_strain(u) for u in volts])
+        else:
+            operator = copy.deepcopy(operator)
+            takes_time = "t" in inspect.signature(operator.apply).parameters
+            strain = np.asarray(operator.apply(volts, times) if takes_time else operator.apply(volts), dtype=float)
+    span = float(np.ptp(strain))
+    if not span > 0.0 or not math.isfinite(span):
+        return None
+    return (strain - strain[0]) / span
+
+
+def exact_response(s: np.ndarray, dt: float, omega: float, zeta: float = 0.0) -> np.ndarray:
+    """Exact ``x`` of ``x'' + 2ζω x' + ω² x = ω² s`` at the samples of ``s`` (spacing ``dt`` [s]), ``s`` linear between.
+
+    Starts at rest in equilibrium (``s(0) = 0``, ``x = x' = 0``).  Between samples ``y = x - s``
+    is the constant lag ``-2ζ s'/ω`` plus a free damped vibration ``w = Re(c e^{λt})``,
+    ``λ = -ζω + iω_d``; at every slope change ``Δs'`` the lag jumps and ``w`` takes the jump
+    (``Δw = 2ζΔs'/ω``, ``Δw' = -Δs'``, ``x`` and ``x'`` continuous).  The free part is one
+    complex first-order filter of the kicks.
+    """
+    slopes = np.diff(s) / dt
+    slopes = np.r_[slopes, slopes[-1:] if slopes.size else 0.0]  # the slope after each sample
+    kicks = np.diff(np.r_[0.0, slopes])
+    kicks[-1] = 0.0
+    damped = omega * math.sqrt(max(1.0 - zeta * zeta, 1e-12))
+    lam = complex(-zeta * omega, damped)
+    dw = 2.0 * zeta * kicks / omega
+    dc = dw - 1j * (-kicks + zeta * omega * dw) / damped
+    c = lfilter([1.0], [1.0, -np.exp(lam * dt)], dc)
+    return s - 2.0 * zeta * slopes / omega + c.real
+
+
+def _alpha_constants(rho: float) -> tuple[float, float, float, float]:
+    """``α_m, α_f, γ, β`` of generalized-alpha (Chung and Hulbert, 1993) for spectral radius ``rho``."""
+    alpha_m = (2.0 * rho - 1.0) / (rho + 1.0)
+    alpha_f = rho / (rho + 1.0)
+    gamma = 0.5 - alpha_m + alpha_f
+    return alpha_m, alpha_f, gamma, 0.25 * (gamma + 0.5) ** 2
+
+
+def alpha_response(s: np.ndarray, h: float, omega: float, zeta: float = 0.0,
+                   rho: float = SPECTRAL_RADIUS) -> np.ndarray:
+    """``x`` of ``x'' + 2ζω x' + ω² x = ω² s`` at steps ``h`` [s] by generalized-alpha (``s`` at the steps, ``s[0] = 0``).
+
+    The Arnold-Brüls form Exudyn integrates with (the algorithmic acceleration ``a`` apart from
+    the acceleration ``x''``), started at rest in equilibrium (all zero, as ``s(0) = 0``).  The
+    recurrence of the state ``(x, v, a, f)`` is linear, so it runs as one filter of the input
+    (``scipy.signal.lfilter``).
+    """
+    am, af, gamma, beta = _alpha_constants(rho)
+    w2, c = omega * omega, 2.0 * zeta * omega
+    # x'' = f - w2 x - c v; (1-am) a1 + am a0 = (1-af) x''1 + af x''0, x1 = x0 + h v0 + h^2 ((0.5-beta) a0 + beta a1),
+    # v1 = v0 + h ((1-gamma) a0 + gamma a1) give a1 = row . (x0, v0, a0, f0) + f1 / d
+    q = af / (1.0 - af)
+    d = (1.0 - am) / (1.0 - af) + w2 * h * h * beta + c * h * gamma
+    row = np.array([-w2 * (1.0 + q), -w2 * h - c * (1.0 + q), -w2 * h * h * (0.5 - beta) - c * h * (1.0 - gamma)
+                    - am / (1.0 - af), q]) / d
+    transition = np.zeros((4, 4))
+    transition[0] = [1.0, h, h * h * (0.5 - beta), 0.0] + h * h * beta * row
+    transition[1] = [0.0, 1.0, h * (1.0 - gamma), 0.0] + h * gamma * row
+    transition[2] = row
+    drive = np.array([h * h * beta / d, h * gamma / d, 1.0 / d, 1.0])  # the input f_{n+1}; the last row keeps it
+    out = np.zeros(len(s))
+    out[1:] = _first_component(transition, drive, w2 * np.asarray(s[1:], dtype=float))
+    return out
+
+
+def _first_component(a: np.ndarray, b: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """First component of ``z_{n+1} = A z_n + b u_n`` (``z_0 = 0``) at ``n = 1..len(u)``, as one filter.
+
+    The transfer function ``e_0 (zI - A)^-1 b``: denominator the characteristic polynomial,
+    numerator from the Faddeev-LeVerrier matrices of ``adj(zI - A)``.
+    """
+    den = np.real(np.poly(a))
+    size = a.shape[0]
+    mats = [np.eye(size)]
+    for k in range(1, size):
+        mats.append(a @ mats[-1] + den[k] * np.eye(size))
+    num = np.array([0.0] + [float(m[0] @ b) for m in mats])
+    return lfilter(num, den, np.r_[u, 0.0])[1:]  # output k is z_k: one input later
+
+
+def surrogate_errors(drive_strains: list[tuple[np.ndarray, float]], t_end: float, omega: float,
+                     steps: list[int]) -> list[float]:
+    """The stand-in's largest error [-] (of its unit travel) at ``t_end / n`` for every ``n`` in ``steps``.
+
+    ``drive_strains``: per drive, its :func:`unit_strain` at a fine spacing and that spacing [s]
+    (the exact response is taken there and interpolated at the steps); the worst drive counts.
+    """
+    out = []
+    for n in steps:
+        h = t_end / n
+        worst = 0.0
+        for s_fine, dt in drive_strains:
+            fine_t = np.arange(s_fine.size) * dt
+            exact = exact_response(s_fine, dt, omega)
+            t = np.linspace(0.0, t_end, n + 1)
+            s = np.interp(t, fine_t, s_fine)
+            x = alpha_response(s, h, omega)
+            worst = max(worst, float(np.max(np.abs(x - np.interp(t, fine_t, exact)))))
+        out.append(worst)
+    return out
