@@ -57,7 +57,7 @@ NOMINAL_ORDER = 2.0
 #: reach the Newton tolerance (absolute 1e-8 m against millimetre travels), so no step can be verified.
 ACCURACY_RANGE = (1e-6, 0.1)
 #: The prediction aims the stand-in's error at this share of the target (room for the modes it leaves out).
-AIM = 0.5
+AIM = 0.8
 #: Fewest steps per shortest drive feature of the chosen step (the probe at twice the step keeps the 20 of
 #: :data:`~exudyn_atcm.solve.run_checks.COMFORTABLE_STEPS_PER_FEATURE`).
 STEPS_PER_FEATURE = 40
