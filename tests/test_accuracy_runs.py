@@ -139,3 +139,15 @@ def test_the_stand_in_exact_response_solves_the_ode():
     sol = solve_ivp(lambda tt, y: [y[1], omega ** 2 * (np.interp(tt, t, s) - y[0]) - 2 * zeta * omega * y[1]],
                     (0.0, t[-1]), [0.0, 0.0], t_eval=t, rtol=1e-10, atol=1e-12, max_step=dt / 2)
     assert np.max(np.abs(x - sol.y[0])) < 1e-6  # solve_ivp's tolerance; the travel is 1
+
+
+def test_a_built_system_runs_with_a_stated_accuracy():
+    mech = lone(Triangle(500.0, 500.0, 0.04)).as_mechanism()
+    built = atcm.BuiltSystem(mech)
+    run = built.simulate(0.04, accuracy=1e-3)
+    reference = atcm.simulate(mech, 0.04, step=run.info["step [s]"] / 8)
+    assert relative_error(run, reference) <= 1e-3 and "probe at" in run.info["step_choice"]
+    assert built.builds == 1  # the probe and the run reuse the build
+    with pytest.raises(ValueError, match="give step or accuracy, not both"):
+        built.simulate(0.04, step=1e-4, accuracy=1e-3)
+    assert built.simulate(0.01).info["step [s]"] == 1e-4

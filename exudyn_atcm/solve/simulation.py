@@ -29,7 +29,7 @@ from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
 from .run_setup import DEFAULT_STEP
-from .step_choice import accurate_run, check_accuracy
+from .step_choice import accurate_run, check_accuracy, check_step_or_accuracy
 
 
 # ------------------------------------------------------------------------------ argument checks
@@ -223,10 +223,7 @@ def simulate(
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     The step checks and their thresholds are described in :mod:`exudyn_atcm.solve.run_checks`.
     """
-    if accuracy is not None:
-        if step is not None:
-            raise ValueError(f"give step or accuracy, not both: accuracy={accuracy!r} chooses the step itself "
-                             f"(got step={step!r}); leave step out, or give accuracy=None to run at that step")
+    if check_step_or_accuracy(step, accuracy) is not None:
         return _accurate(system, t_end, accuracy, tip_force, settings, progress, record_every)
     step = DEFAULT_STEP if step is None else step
     actuator = system

@@ -44,10 +44,10 @@ from ..mechanism import Mechanism
 from ..mechanism.damped import MaterialDamped
 from . import mechanism_solve
 from .mechanism_checks import lowest_first_frequency
-from .run_checks import program_feature
-from .step_surrogate import exact_response, alpha_response, unit_strain
+from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
+from .step_surrogate import surrogate_error, unit_strain
 
-__all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "StepPrediction", "predict_steps",
+__all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "check_step_or_accuracy", "StepPrediction", "predict_steps",
            "position_error", "accurate_run"]
 
 #: Order of the time integration of a system without cells (generalized-alpha; as in :mod:`~exudyn_atcm.solve.step_error`).
@@ -58,14 +58,21 @@ NOMINAL_ORDER = 2.0
 ACCURACY_RANGE = (1e-6, 0.1)
 #: The prediction aims the stand-in's error at this share of the target (room for the modes it leaves out).
 AIM = 0.8
-#: Fewest steps per shortest drive feature of the chosen step (the probe at twice the step keeps the 20 of
+#: Fewest steps per shortest drive feature of the chosen step (warning-free:
 #: :data:`~exudyn_atcm.solve.run_checks.COMFORTABLE_STEPS_PER_FEATURE`).
-STEPS_PER_FEATURE = 40
+STEPS_PER_FEATURE = COMFORTABLE_STEPS_PER_FEATURE
+#: Fewest steps per shortest drive feature of the probe (its own warnings are not shown: it is a measurement).
+PROBE_STEPS_PER_FEATURE = 10
+#: The probe is coarser than twice the step (3 or 4 times: cheaper) only where the stand-in's error falls as
+#: ``h^p`` between them within this share.
+ASYMPTOTIC_SLACK = 0.25
+#: The ladder stops at this many steps per period of the lowest mode (the stand-in's error then ~1e-6).
+MAX_STEPS_PER_PERIOD = 2000
 #: Fewest steps of a run with a stated accuracy.
 MIN_STEPS = 20
 #: Ladder of step counts: each rung this factor above the last.
 LADDER = 2.0 ** 0.25
-#: The stand-in's fine reference samples the lowest period this many times (and the shortest feature).
+#: The stand-in's strain is sampled this many times per shortest feature (and half as often per lowest period).
 REFERENCE_SAMPLES = 400
 #: Largest sample count of the stand-in's reference (memory and time stay at milliseconds).
 MAX_REFERENCE_SAMPLES = 2_000_000
@@ -86,6 +93,16 @@ def check_accuracy(accuracy: Any) -> float:
     return value
 
 
+def check_step_or_accuracy(step: Any, accuracy: Any) -> float | None:
+    """``accuracy`` checked (:func:`check_accuracy`), or ``None``; refuses ``step`` and ``accuracy`` together."""
+    if accuracy is None:
+        return None
+    if step is not None:
+        raise ValueError(f"give step or accuracy, not both: accuracy={accuracy!r} chooses the step itself "
+                         f"(got step={step!r}); leave step out, or give accuracy=None to run at that step")
+    return check_accuracy(accuracy)
+
+
 @dataclass(frozen=True)
 class StepPrediction:
     """What the prediction used and chose: ``n_steps`` steps over ``t_end`` [s], and why."""
@@ -99,6 +116,7 @@ class StepPrediction:
     predicted: float
     order: float
     reason: str
+    probe_factor: int = 2
 
     @property
     def step(self) -> float:
@@ -139,39 +157,47 @@ def _shortest_feature(mech: Mechanism, t_end: float) -> float:
 
 
 def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPrediction:
-    """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s] (see module notes)."""
+    """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s], and the probe's
+    step factor (see module notes)."""
     frequency, source = _lowest_frequency(mech)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
     feature = _shortest_feature(mech, t_end)
-    n_min = max(MIN_STEPS, math.ceil(t_end * STEPS_PER_FEATURE / feature) if math.isfinite(feature) else MIN_STEPS)
-    n_min += n_min % 2  # even: the probe at twice the step lands on the same grid
+    per_feature = t_end / feature if math.isfinite(feature) else 0.0
+    n_min = max(MIN_STEPS, math.ceil(per_feature * STEPS_PER_FEATURE - 1e-9))
     if not (frequency > 0.0 and math.isfinite(frequency)):
-        return StepPrediction(n_min, t_end, frequency, source, 0.0, feature, math.nan, order,
-                              "no mode to resolve: the drive's features decide")
+        n = n_min + n_min % 2
+        return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
+                              "no mode to resolve: the drive's features decide", 2)
     omega = 2.0 * math.pi * frequency
     zeta = _damping_ratio(mech, omega)
-    n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(t_end * REFERENCE_SAMPLES * frequency),
-                                           math.ceil(t_end * REFERENCE_SAMPLES / feature) if math.isfinite(feature)
-                                           else 0, 4 * n_min))
-    fine_t = np.linspace(0.0, t_end, n_ref + 1)
-    strains = [s for s in (unit_strain(d, fine_t) for d in _distinct_drives(mech)) if s is not None]
+    n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min,
+                                           math.ceil(t_end * frequency * REFERENCE_SAMPLES / 2)))
+    dt = t_end / n_ref
+    strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in _distinct_drives(mech)) if s is not None]
     if not strains:
-        n = max(n_min, 2 * math.ceil(t_end * frequency * 10.0))
-        return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
-                              "the drive's strain is not known before the run (a controller): ten steps per period")
-    exact = [exact_response(s, t_end / n_ref, omega, zeta) for s in strains]
-    n, predicted, rungs = n_min, math.inf, 0
-    while True:
-        t = np.linspace(0.0, t_end, n + 1)
-        predicted = max(float(np.max(np.abs(alpha_response(np.interp(t, fine_t, s), t_end / n, omega, zeta)
-                                            - np.interp(t, fine_t, x)))) for s, x in zip(strains, exact))
-        if predicted <= AIM * accuracy or 4 * n > n_ref or rungs > 80:
+        n = max(n_min, math.ceil(t_end * frequency * 20.0))
+        return StepPrediction(n + n % 2, t_end, frequency, source, zeta, feature, math.nan, order,
+                              "the drive's strain is not known before the run (a controller): 20 steps per period", 2)
+    n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
+    n = n_min
+    predicted = surrogate_error(strains, dt, t_end, n, omega, zeta)
+    while predicted > AIM * accuracy and n < n_max:
+        n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
+        predicted = surrogate_error(strains, dt, t_end, n, omega, zeta)
+    n_probe_min = max(MIN_STEPS // 2, math.ceil(per_feature * PROBE_STEPS_PER_FEATURE - 1e-9))
+    factor, n_used = 2, n + n % 2
+    for r in (4, 3):  # a coarser probe is cheaper, if the stand-in's error still falls as h^p down to the step
+        n_r = r * math.ceil(n / r)
+        if n_r // r < n_probe_min:
+            continue
+        fine, coarse = surrogate_error(strains, dt, t_end, n_r, omega, zeta), surrogate_error(
+            strains, dt, t_end, n_r // r, omega, zeta)
+        if fine > 1e-3 * accuracy and abs(coarse / fine / r ** order - 1.0) <= ASYMPTOTIC_SLACK:
+            factor, n_used = r, n_r
             break
-        rungs += 1
-        n = max(n + 2, 2 * math.ceil(n * LADDER / 2.0))
     reason = (f"one-mode stand-in ({frequency:.4g} Hz, damping ratio {zeta:.3g}) driven by the drives' free strain "
               f"misses {predicted:.2g} of its travel at this step")
-    return StepPrediction(n, t_end, frequency, source, zeta, feature, predicted, order, reason)
+    return StepPrediction(n_used, t_end, frequency, source, zeta, feature, predicted, order, reason, factor)
 
 
 def _distinct_drives(mech: Mechanism) -> list[Any]:
@@ -223,16 +249,19 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     the step chosen, a plain ``progress(t, t_end)`` sees the final run only.
     """
     prediction = predict_steps(mech, t_end, accuracy)
-    n, p = prediction.n_steps, prediction.order
+    n, p, r = prediction.n_steps, prediction.order, prediction.probe_factor
     h = t_end / n
     chose = (f"step {h:.4g} s ({n} steps) for {accuracy:g} of the travel: {prediction.reason}"
              f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s; order {p:g}")
+    share = 1.0 / (r + 1.0)  # the probe's part of the work
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=_COARSE_MODE, category=AccuracyWarning)
-        probe = run(2.0 * h, _stage(progress, "accuracy probe", 0.0, 1.0 / 3.0, f"step {2 * h:.3g} s"))
-        result = run(h, _stage(progress, "accuracy run", 1.0 / 3.0, 2.0 / 3.0, chose) or progress)
-        estimate = position_error(result, probe, 2.0 * h) / (2.0 ** p - 1.0)
-        checks = [f"probe at {2 * h:.4g} s: estimated error {estimate:.2g} (Richardson, order {p:g})"]
+        with warnings.catch_warnings(record=True):  # a measurement: its warnings are the run's, shown with it
+            warnings.simplefilter("always")
+            probe = run(r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"))
+        result = run(h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress)
+        estimate = position_error(result, probe, r * h) / (r ** p - 1.0)
+        checks = [f"probe at {r * h:.4g} s: estimated error {estimate:.2g} (Richardson, order {p:g})"]
         refined = False
         if estimate > accuracy:
             m = max(2, math.ceil((estimate / (AIM * accuracy)) ** (1.0 / p)))
@@ -246,7 +275,7 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     line = chose + "; " + "; ".join(checks)
     result.info["step_choice"] = line
     result.info["accuracy"] = {"target": accuracy, "estimated_error": estimate, "step [s]": h,
-                               "predicted_error": prediction.predicted, "refined": refined,
+                               "predicted_error": prediction.predicted, "refined": refined, "probe_step [s]": r * prediction.step,
                                "lowest_frequency [Hz]": prediction.frequency, "damping_ratio": prediction.damping_ratio}
     stage = getattr(progress, "stage", None)
     if callable(stage):

@@ -33,7 +33,9 @@ from typing import Any
 import numpy as np
 from scipy.signal import lfilter
 
-__all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "surrogate_errors"]
+from ..model.signals import Signal
+
+__all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "surrogate_error"]
 
 #: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
 SPECTRAL_RADIUS = 0.8
@@ -49,7 +51,11 @@ def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
     """
     if getattr(drive, "controller", None) is not None:
         return None
-    volts = np.array([drive.voltage_at(float(t)) for t in times])
+    program = drive.voltage
+    if isinstance(program, Signal):
+        volts = np.asarray(program(times), dtype=float)  # the package's programs take arrays
+    else:
+        volts = np.array([drive.voltage_at(float(t)) for t in times])
     operator = drive.hysteresis
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the run itself says what is out of range
@@ -65,14 +71,16 @@ def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
     return (strain - strain[0]) / span
 
 
-def exact_response(s: np.ndarray, dt: float, omega: float, zeta: float = 0.0) -> np.ndarray:
-    """Exact ``x`` of ``x'' + 2ζω x' + ω² x = ω² s`` at the samples of ``s`` (spacing ``dt`` [s]), ``s`` linear between.
+def exact_response(s: np.ndarray, dt: float, omega: float, zeta: float = 0.0,
+                   times: np.ndarray | None = None) -> np.ndarray:
+    """Exact ``x`` of ``x'' + 2ζω x' + ω² x = ω² s``, ``s`` sampled at spacing ``dt`` [s] and linear between.
 
-    Starts at rest in equilibrium (``s(0) = 0``, ``x = x' = 0``).  Between samples ``y = x - s``
-    is the constant lag ``-2ζ s'/ω`` plus a free damped vibration ``w = Re(c e^{λt})``,
-    ``λ = -ζω + iω_d``; at every slope change ``Δs'`` the lag jumps and ``w`` takes the jump
-    (``Δw = 2ζΔs'/ω``, ``Δw' = -Δs'``, ``x`` and ``x'`` continuous).  The free part is one
-    complex first-order filter of the kicks.
+    At the samples, or at ``times`` [s] (anywhere in the sampled span: the solution between
+    samples is exact too).  Starts at rest in equilibrium (``s(0) = 0``, ``x = x' = 0``).  Between
+    samples ``y = x - s`` is the constant lag ``-2ζ s'/ω`` plus a free damped vibration
+    ``w = Re(c e^{λ(t - t_k)})``, ``λ = -ζω + iω_d``; at every slope change ``Δs'`` the lag jumps
+    and ``w`` takes the jump (``Δw = 2ζΔs'/ω``, ``Δw' = -Δs'``, ``x`` and ``x'`` continuous).  The
+    amplitudes ``c_k`` are one complex first-order filter of the kicks.
     """
     slopes = np.diff(s) / dt
     slopes = np.r_[slopes, slopes[-1:] if slopes.size else 0.0]  # the slope after each sample
@@ -83,7 +91,12 @@ def exact_response(s: np.ndarray, dt: float, omega: float, zeta: float = 0.0) ->
     dw = 2.0 * zeta * kicks / omega
     dc = dw - 1j * (-kicks + zeta * omega * dw) / damped
     c = lfilter([1.0], [1.0, -np.exp(lam * dt)], dc)
-    return s - 2.0 * zeta * slopes / omega + c.real
+    if times is None:
+        return s - 2.0 * zeta * slopes / omega + c.real
+    t = np.asarray(times, dtype=float)
+    k = np.clip(np.floor(t / dt + 1e-9).astype(np.int64), 0, s.size - 1)
+    tau = t - k * dt
+    return s[k] + slopes[k] * tau - 2.0 * zeta * slopes[k] / omega + (c[k] * np.exp(lam * tau)).real
 
 
 def _alpha_constants(rho: float) -> tuple[float, float, float, float]:
@@ -136,23 +149,16 @@ def _first_component(a: np.ndarray, b: np.ndarray, u: np.ndarray) -> np.ndarray:
     return lfilter(num, den, np.r_[u, 0.0])[1:]  # output k is z_k: one input later
 
 
-def surrogate_errors(drive_strains: list[tuple[np.ndarray, float]], t_end: float, omega: float,
-                     steps: list[int]) -> list[float]:
-    """The stand-in's largest error [-] (of its unit travel) at ``t_end / n`` for every ``n`` in ``steps``.
+def surrogate_error(strains: list[np.ndarray], dt: float, t_end: float, n: int, omega: float, zeta: float) -> float:
+    """The stand-in's largest error [-] (of its unit travel) at the step ``t_end / n`` [s], the worst drive's.
 
-    ``drive_strains``: per drive, its :func:`unit_strain` at a fine spacing and that spacing [s]
-    (the exact response is taken there and interpolated at the steps); the worst drive counts.
+    ``strains``: per drive, its :func:`unit_strain` at the spacing ``dt`` [s] over ``t_end``; the
+    stand-in integrates it sampled at the steps, the exact response is taken at the steps.
     """
-    out = []
-    for n in steps:
-        h = t_end / n
-        worst = 0.0
-        for s_fine, dt in drive_strains:
-            fine_t = np.arange(s_fine.size) * dt
-            exact = exact_response(s_fine, dt, omega)
-            t = np.linspace(0.0, t_end, n + 1)
-            s = np.interp(t, fine_t, s_fine)
-            x = alpha_response(s, h, omega)
-            worst = max(worst, float(np.max(np.abs(x - np.interp(t, fine_t, exact)))))
-        out.append(worst)
-    return out
+    t = np.linspace(0.0, t_end, n + 1)
+    worst = 0.0
+    for s_fine in strains:
+        fine_t = np.arange(s_fine.size) * dt
+        x = alpha_response(np.interp(t, fine_t, s_fine), t_end / n, omega, zeta)
+        worst = max(worst, float(np.max(np.abs(x - exact_response(s_fine, dt, omega, zeta, t)))))
+    return worst
