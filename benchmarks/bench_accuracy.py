@@ -7,8 +7,9 @@ paper actuator as a 3-mode rod) and drive (triangle, sine, step program), one pe
 * ``simulate(..., accuracy=target)``: the step it chose, its error against a time-converged
   reference (a run at a quarter of the finest step searched, or of the chosen step if finer), and
   its CPU time, the prediction and the probe runs included;
-* a search over steps ``t_end / n`` (``n`` on a ladder of ratio 2^(1/4)): the coarsest step whose
-  run meets the target against the same reference, and its CPU time (one run);
+* a search over steps ``t_end / n`` (``n`` on a ladder of ratio 2^(1/4), at least 20 steps per shortest
+  feature of the drive, as ``accuracy=`` keeps: no warning about the program's resolution): the
+  coarsest step whose run meets the target against the same reference, and its CPU time (one run);
 * the ratio of the two CPU times (goal: at most 1.5).
 
 CPU times (``time.process_time``), best of ``--repeats``, measured side by side in one process
@@ -102,15 +103,14 @@ def case(system, drive, build, program, t_end, target, repeats):
     c_acc, chosen = cpu(lambda: atcm.simulate(build(program), t_end, accuracy=target), repeats)
     h_chosen = chosen.info["step [s]"]
     ladder = sorted({2 * math.ceil(20 * 2.0 ** (k / 4) / 2) for k in range(0, 80)})
-    ladder = [n for n in ladder if n <= 4 * t_end / h_chosen + 1]
+    # warning-free for the program (at least 20 steps per shortest feature, as accuracy= keeps), up to 4x the chosen count
+    feature = program.shortest_feature(t_end)[0]
+    ladder = [n for n in ladder if 20 * t_end / feature - 1e-9 <= n <= 4 * t_end / h_chosen + 1]
     reference = atcm.simulate(build(program), t_end, step=min(h_chosen, t_end / ladder[-1]) / 4)
     err_chosen = rel_error(chosen, reference)
     cheapest = None
     for n in ladder:  # coarse to fine: the first that meets the target is the cheapest
-        try:
-            r = atcm.simulate(build(program), t_end, step=t_end / n)
-        except ValueError:  # too coarse for the program
-            continue
+        r = atcm.simulate(build(program), t_end, step=t_end / n)
         if rel_error(r, reference) <= target:
             c_min, _ = cpu(lambda: atcm.simulate(build(program), t_end, step=t_end / n), repeats)
             cheapest = (t_end / n, c_min, rel_error(r, reference))

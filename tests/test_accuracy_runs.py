@@ -8,6 +8,7 @@ for the one-mode stand-in's exact response.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -18,8 +19,10 @@ import exudyn_atcm as atcm
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
-from exudyn_atcm.model.signals import Sine, Triangle
-from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, position_error
+from exudyn_atcm.errors import AccuracyWarning
+from exudyn_atcm.model.signals import Sine, Steps, Triangle
+from exudyn_atcm.solve import step_choice
+from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
 from exudyn_atcm.solve.step_surrogate import _alpha_constants, alpha_response, exact_response
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)
@@ -151,3 +154,40 @@ def test_a_built_system_runs_with_a_stated_accuracy():
     with pytest.raises(ValueError, match="give step or accuracy, not both"):
         built.simulate(0.04, step=1e-4, accuracy=1e-3)
     assert built.simulate(0.01).info["step [s]"] == 1e-4
+
+
+def test_a_missed_target_is_refined_once_and_then_met(monkeypatch):
+    # the prediction replaced by a step 8x too coarse (40 steps where the stand-in asks for about 340):
+    # the probe's estimate misses 1e-3, the step is refined once, and the refined run meets the target
+    # against a fine reference
+    predict = step_choice.predict_steps
+    monkeypatch.setattr(step_choice, "predict_steps",
+                        lambda mech, t_end, acc: dataclasses.replace(predict(mech, t_end, acc), n_steps=40))
+    run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
+    assert run.info["accuracy"]["refined"] is True and "refined once" in run.info["step_choice"]
+    assert run.info["step [s]"] < 0.04 / 40
+    reference = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"] / 8)
+    assert relative_error(run, reference) <= 1e-3
+
+
+def test_a_target_still_missed_after_the_refinement_warns(monkeypatch):
+    # the check's verdict stood in for: every comparison says 10 % of the travel
+    monkeypatch.setattr(step_choice, "position_error", lambda fine, coarse, step: 0.1)
+    with pytest.warns(AccuracyWarning, match=r"accuracy=0\.001.*still misses the target after one refinement"):
+        run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
+    assert run.info["accuracy"]["refined"] is True
+
+
+@pytest.mark.parametrize("program, t_end, unit", [
+    (Triangle(0.0, 1.0, 0.5), 0.5, 2),                      # the peak at 0.25 s
+    (Triangle(0.0, 1.0, 0.3), 1.0, 20),                     # peaks at 0.15, 0.3, ... = k * 3/20 of the run
+    (Steps([0.0, 0.05, 0.15], [0.0, 1.0, 0.0]), 0.2, 4),    # switches at 1/4 and 3/4 of the run
+    (Sine(0.0, 1.0, 0.4, -math.pi / 2), 1.0, 5),            # extrema at 0.2, 0.4, ... s
+])
+def test_the_grid_holds_every_corner_of_the_program(program, t_end, unit):
+    mech = lone(program).as_mechanism()
+    assert grid_unit(mech, t_end) == unit
+    n = step_choice.predict_steps(mech, t_end, 1e-3).n_steps
+    corners = program_corners(program, t_end)
+    for h in (t_end / n, 2 * t_end / n):  # the run's grid and the probe's
+        assert np.allclose(corners / h, np.round(corners / h), atol=1e-9)
