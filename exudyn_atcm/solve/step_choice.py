@@ -49,7 +49,7 @@ from ..model.signals import Sine, Steps, Triangle
 from . import mechanism_solve
 from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
-from .step_surrogate import surrogate_error, unit_strain
+from .step_surrogate import StandIn, unit_strain
 
 __all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "check_step_or_accuracy", "StepPrediction", "predict_steps",
            "position_error", "accurate_run"]
@@ -80,8 +80,9 @@ MAX_STEPS_PER_PERIOD = 2000
 MIN_STEPS = 20
 #: Ladder of step counts: each rung this factor above the last.
 LADDER = 2.0 ** 0.25
-#: The stand-in's strain is sampled this many times per shortest feature (and half as often per lowest period).
-REFERENCE_SAMPLES = 400
+#: The stand-in's strain is sampled this many times per shortest feature (at least 16 times per chosen step at the
+#: fewest steps; the stand-in's exact response is exact between samples, so they need only follow the strain).
+REFERENCE_SAMPLES = 200
 #: Largest sample count of the stand-in's reference (memory and time stay at milliseconds).
 MAX_REFERENCE_SAMPLES = 2_000_000
 # the run's warning about a step coarse for the lowest mode, replaced by the measured error
@@ -218,8 +219,9 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPredict
                               "no mode to resolve: the drive's features decide", 2)
     omega = 2.0 * math.pi * frequency
     zeta = _damping_ratio(mech, omega)
-    n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min,
-                                           math.ceil(t_end * frequency * REFERENCE_SAMPLES / 2)))
+    unit = grid_unit(mech, t_end)  # the strain's corners on its samples too
+    n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min))
+    n_ref = unit * math.ceil(n_ref / unit)
     dt = t_end / n_ref
     strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in _distinct_drives(mech)) if s is not None]
     if not strains:
@@ -227,14 +229,15 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPredict
         return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
                               "the drive's strain is not known before the run (a controller): 20 steps per period", 2)
     n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
+    stand_in = StandIn(strains, dt, t_end, omega, zeta)
     n = n_min
-    predicted = surrogate_error(strains, dt, t_end, n, omega, zeta)
+    predicted = stand_in.error(n)
     while predicted > AIM * accuracy and n < n_max:
         n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
-        predicted = surrogate_error(strains, dt, t_end, n, omega, zeta)
+        predicted = stand_in.error(n)
     factor = 2
     n_used = _on_corners(mech, t_end, n, factor)
-    predicted = surrogate_error(strains, dt, t_end, n_used, omega, zeta)
+    predicted = stand_in.error(n_used)
     reason = (f"one-mode stand-in ({frequency:.4g} Hz, damping ratio {zeta:.3g}) driven by the drives' free strain "
               f"misses {predicted:.2g} of its travel at this step")
     return StepPrediction(n_used, t_end, frequency, source, zeta, feature, predicted, order, reason, factor)

@@ -1,4 +1,4 @@
-"""A one-mode stand-in of a run that predicts its time-step error before the run: :func:`surrogate_errors`.
+"""A one-mode stand-in of a run that predicts its time-step error before the run: :class:`StandIn`.
 
 The step of a mechanism run is decided by the ringing of its lowest mode: every corner of the
 drive (a voltage step, a ramp's start and end, and at every reversal the Preisach operator's
@@ -35,7 +35,7 @@ from scipy.signal import lfilter
 
 from ..model.signals import Signal
 
-__all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "surrogate_error"]
+__all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "ExactResponse", "StandIn"]
 
 #: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
 SPECTRAL_RADIUS = 0.8
@@ -80,23 +80,32 @@ def exact_response(s: np.ndarray, dt: float, omega: float, zeta: float = 0.0,
     samples ``y = x - s`` is the constant lag ``-2ζ s'/ω`` plus a free damped vibration
     ``w = Re(c e^{λ(t - t_k)})``, ``λ = -ζω + iω_d``; at every slope change ``Δs'`` the lag jumps
     and ``w`` takes the jump (``Δw = 2ζΔs'/ω``, ``Δw' = -Δs'``, ``x`` and ``x'`` continuous).  The
-    amplitudes ``c_k`` are one complex first-order filter of the kicks.
+    amplitudes ``c_k`` are one complex first-order filter of the kicks (:class:`ExactResponse`).
     """
-    slopes = np.diff(s) / dt
-    slopes = np.r_[slopes, slopes[-1:] if slopes.size else 0.0]  # the slope after each sample
-    kicks = np.diff(np.r_[0.0, slopes])
-    kicks[-1] = 0.0
-    damped = omega * math.sqrt(max(1.0 - zeta * zeta, 1e-12))
-    lam = complex(-zeta * omega, damped)
-    dw = 2.0 * zeta * kicks / omega
-    dc = dw - 1j * (-kicks + zeta * omega * dw) / damped
-    c = lfilter([1.0], [1.0, -np.exp(lam * dt)], dc)
-    if times is None:
-        return s - 2.0 * zeta * slopes / omega + c.real
-    t = np.asarray(times, dtype=float)
-    k = np.clip(np.floor(t / dt + 1e-9).astype(np.int64), 0, s.size - 1)
-    tau = t - k * dt
-    return s[k] + slopes[k] * tau - 2.0 * zeta * slopes[k] / omega + (c[k] * np.exp(lam * tau)).real
+    exact = ExactResponse(s, dt, omega, zeta)
+    return exact(np.arange(s.size) * dt if times is None else times)
+
+
+class ExactResponse:
+    """:func:`exact_response` with its amplitudes computed once, evaluated at any times [s] (``__call__``)."""
+
+    def __init__(self, s: np.ndarray, dt: float, omega: float, zeta: float = 0.0) -> None:
+        slopes = np.diff(s) / dt
+        self.slopes = np.r_[slopes, slopes[-1:] if slopes.size else 0.0]  # the slope after each sample
+        kicks = np.diff(np.r_[0.0, self.slopes])
+        kicks[-1] = 0.0
+        damped = omega * math.sqrt(max(1.0 - zeta * zeta, 1e-12))
+        self.lam = complex(-zeta * omega, damped)
+        dw = 2.0 * zeta * kicks / omega
+        self.c = lfilter([1.0], [1.0, -np.exp(self.lam * dt)], dw - 1j * (-kicks + zeta * omega * dw) / damped)
+        self.s, self.dt, self.lag = np.asarray(s, dtype=float), dt, 2.0 * zeta / omega
+
+    def __call__(self, times: np.ndarray) -> np.ndarray:
+        t = np.asarray(times, dtype=float)
+        k = np.clip(np.floor(t / self.dt + 1e-9).astype(np.int64), 0, self.s.size - 1)
+        tau = t - k * self.dt
+        slope = self.slopes[k]
+        return self.s[k] + slope * (tau - self.lag) + (self.c[k] * np.exp(self.lam * tau)).real
 
 
 def _alpha_constants(rho: float) -> tuple[float, float, float, float]:
@@ -149,16 +158,20 @@ def _first_component(a: np.ndarray, b: np.ndarray, u: np.ndarray) -> np.ndarray:
     return lfilter(num, den, np.r_[u, 0.0])[1:]  # output k is z_k: one input later
 
 
-def surrogate_error(strains: list[np.ndarray], dt: float, t_end: float, n: int, omega: float, zeta: float) -> float:
-    """The stand-in's largest error [-] (of its unit travel) at the step ``t_end / n`` [s], the worst drive's.
+class StandIn:
+    """The one-mode stand-in of a run: the drives' unit strains (:func:`unit_strain`, spacing ``dt`` [s] over
+    ``t_end`` [s]), the mode's ``omega`` [rad/s] and damping ratio ``zeta``; :meth:`error` at a step count."""
 
-    ``strains``: per drive, its :func:`unit_strain` at the spacing ``dt`` [s] over ``t_end``; the
-    stand-in integrates it sampled at the steps, the exact response is taken at the steps.
-    """
-    t = np.linspace(0.0, t_end, n + 1)
-    worst = 0.0
-    for s_fine in strains:
-        fine_t = np.arange(s_fine.size) * dt
-        x = alpha_response(np.interp(t, fine_t, s_fine), t_end / n, omega, zeta)
-        worst = max(worst, float(np.max(np.abs(x - exact_response(s_fine, dt, omega, zeta, t)))))
-    return worst
+    def __init__(self, strains: list[np.ndarray], dt: float, t_end: float, omega: float, zeta: float) -> None:
+        self.strains, self.dt, self.t_end, self.omega, self.zeta = strains, dt, t_end, omega, zeta
+        self.exact = [ExactResponse(s, dt, omega, zeta) for s in strains]
+
+    def error(self, n: int) -> float:
+        """Largest error [-] (of the unit travel) of the stand-in at the step ``t_end / n``, the worst drive's."""
+        t = np.linspace(0.0, self.t_end, n + 1)
+        worst = 0.0
+        for s_fine, exact in zip(self.strains, self.exact):
+            s = np.interp(t, np.arange(s_fine.size) * self.dt, s_fine)
+            x = alpha_response(s, self.t_end / n, self.omega, self.zeta)
+            worst = max(worst, float(np.max(np.abs(x - exact(t)))))
+        return worst
