@@ -19,7 +19,7 @@ import exudyn_atcm as atcm
 from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
-from exudyn_atcm.errors import AccuracyWarning
+from exudyn_atcm.errors import AccuracyWarning, InputRangeWarning
 from exudyn_atcm.model.signals import Sine, Steps, Triangle
 from exudyn_atcm.solve import step_choice
 from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
@@ -194,3 +194,12 @@ def test_the_grid_holds_every_corner_of_the_program(program, t_end, unit):
     corners = program_corners(program, t_end)
     for h in (t_end / n, 2 * t_end / n):  # the run's grid and the probe's
         assert np.allclose(corners / h, np.round(corners / h), atol=1e-9)
+
+
+def test_the_runs_warnings_point_at_the_callers_line_and_the_probes_are_not_shown():
+    # 2500 V peaks exceed the MFC's rating (1500 V): the run warns once, at this file's line; the probe's
+    # identical warning is not shown a second time
+    with pytest.warns(InputRangeWarning, match="rated range") as record:
+        atcm.simulate(lone(Triangle(1000.0, 1500.0, 0.04)), 0.04, accuracy=1e-3)
+    rating = [w for w in record if "rated range" in str(w.message)]
+    assert len(rating) == 1 and rating[0].filename == __file__

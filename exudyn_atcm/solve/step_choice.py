@@ -34,6 +34,7 @@ coarse-mode warning is then left out, as the measured error replaces that rule o
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from fractions import Fraction
 from dataclasses import dataclass
@@ -284,6 +285,14 @@ def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:
 Runner = Callable[[float, Any], Result]
 
 
+def _quiet(run: Runner, step: float, progress: Any) -> tuple[Result, list[warnings.WarningMessage]]:
+    """``run(step, progress)`` with its warnings caught (every one, in order), for the caller to re-issue or drop."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = run(step, progress)
+    return result, caught
+
+
 def _stage(progress: Any, label: str, share: float, weight: float, detail: str) -> Any:
     """A progress callback for one run of the choice: the display's ``stage`` when it has one, else ``None``."""
     stage = getattr(progress, "stage", None)
@@ -307,24 +316,24 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     chose = (f"step {h:.4g} s ({n} steps) for {accuracy:g} of the travel: {prediction.reason}"
              f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s")
     share = 1.0 / (r + 1.0)  # the probe's part of the work
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", message=_COARSE_MODE, category=AccuracyWarning)
-        with warnings.catch_warnings(record=True):  # a measurement: its warnings are the run's, shown with it
-            warnings.simplefilter("always")
-            probe = run(r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"))
-        result = run(h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress)
-        estimate = position_error(result, probe, r * h) / (r ** p - 1.0)
-        checks = [f"probe at {r * h:.4g} s: estimated error {estimate:.2g} (Richardson, assuming order {p:g} of the cells' {prediction.order:g})"]
-        refined = False
-        if estimate > accuracy:
-            m = max(2, math.ceil((estimate / (AIM * accuracy)) ** (1.0 / p)))
-            coarse, coarse_h = result, h
-            h = coarse_h / m
-            result = run(h, _stage(progress, "accuracy refinement", 1.0, 0.0, f"step {h:.3g} s") or progress)
-            estimate = position_error(result, coarse, coarse_h) / (m ** p - 1.0)
-            checks.append(f"missed {accuracy:g}: refined once to {h:.4g} s ({m * n} steps), estimated error "
-                          f"{estimate:.2g} against the run at {coarse_h:.4g} s")
-            refined = True
+    probe, _ = _quiet(run, r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"))
+    result, caught = _quiet(run, h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress)
+    estimate = position_error(result, probe, r * h) / (r ** p - 1.0)
+    checks = [f"probe at {r * h:.4g} s: estimated error {estimate:.2g} (Richardson, assuming order {p:g} of the "
+              f"cells' {prediction.order:g})"]
+    refined = False
+    if estimate > accuracy:
+        m = max(2, math.ceil((estimate / (AIM * accuracy)) ** (1.0 / p)))
+        coarse, coarse_h = result, h
+        h = coarse_h / m
+        result, caught = _quiet(run, h, _stage(progress, "accuracy refinement", 1.0, 0.0, f"step {h:.3g} s") or progress)
+        estimate = position_error(result, coarse, coarse_h) / (m ** p - 1.0)
+        checks.append(f"missed {accuracy:g}: refined once to {h:.4g} s ({m * n} steps), estimated error "
+                      f"{estimate:.2g} against the run at {coarse_h:.4g} s")
+        refined = True
+    for w in caught:  # the result's own warnings, at the caller's line (the coarse-mode rule replaced by the check)
+        if not (issubclass(w.category, AccuracyWarning) and re.match(_COARSE_MODE, str(w.message))):
+            warnings.warn(w.message, w.category, stacklevel=stacklevel)
     line = chose + "; " + "; ".join(checks)
     result.info["step_choice"] = line
     result.info["accuracy"] = {"target": accuracy, "estimated_error": estimate, "step [s]": h,
