@@ -165,7 +165,7 @@ def test_a_missed_target_is_refined_once_and_then_met(monkeypatch):
     # against a fine reference
     predict = step_choice.predict_steps
     monkeypatch.setattr(step_choice, "predict_steps",
-                        lambda mech, t_end, acc: dataclasses.replace(predict(mech, t_end, acc), n_steps=40))
+                        lambda mech, t_end, acc, grid=1: dataclasses.replace(predict(mech, t_end, acc, grid), n_steps=40))
     run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
     assert run.info["accuracy"]["refined"] is True and "refined once" in run.info["step_choice"]
     assert run.info["step [s]"] < 0.04 / 40
@@ -203,3 +203,10 @@ def test_the_runs_warnings_point_at_the_callers_line_and_the_probes_are_not_show
         atcm.simulate(lone(Triangle(1000.0, 1500.0, 0.04)), 0.04, accuracy=1e-3)
     rating = [w for w in record if "rated range" in str(w.message)]
     assert len(rating) == 1 and rating[0].filename == __file__
+
+
+def test_a_recording_interval_is_kept_and_the_check_uses_the_instants_recorded():
+    run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3, record_every=2e-3)
+    assert np.allclose(np.diff(run["time"]), 2e-3)  # every 2 ms, as asked: the chosen step divides it
+    reference = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"] / 8)
+    assert relative_error(run, reference) <= 1e-3 and run.info["accuracy"]["estimated_error"] <= 1e-3

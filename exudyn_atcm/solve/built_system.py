@@ -111,7 +111,7 @@ class BuiltSystem:
                                                   stroke_path=self.stroke_path, built=self._fresh())
                 check_benders(self.mechanism, result, stacklevel=5)
                 return result
-            return accurate_run(run, self.mechanism, t_end, float(accuracy), progress)
+            return accurate_run(run, self.mechanism, t_end, float(accuracy), progress, record_every=record_every)
         step = DEFAULT_STEP if step is None else step
         result = mechanism_solve.simulate(self.mechanism, t_end, step, settings, progress, record_every,
                                           stroke_path=self.stroke_path, built=self._fresh())

@@ -267,7 +267,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
             with actuator_interrupts(actuator):
                 result = mechanism_solve.simulate(mech, t_end, h, settings, prog, record_every)
             return _finish_actuator_run(actuator, mech, result, "prestep")
-    return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4)
+    return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every)
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",

@@ -206,16 +206,17 @@ def grid_unit(mech: Mechanism, t_end: float) -> int:
     return unit
 
 
-def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPrediction:
+def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1) -> StepPrediction:
     """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s], and the probe's
-    step factor (see module notes)."""
+    step factor (see module notes).  ``grid``: the step count must be a multiple of it too (a recording
+    interval of ``t_end / grid``, evenly spaced records)."""
     frequency, source = _lowest_frequency(mech)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
     feature = _shortest_feature(mech, t_end)
     per_feature = t_end / feature if math.isfinite(feature) else 0.0
     n_min = max(MIN_STEPS, math.ceil(per_feature * STEPS_PER_FEATURE - 1e-9))
     if not (frequency > 0.0 and math.isfinite(frequency)):
-        n = _on_corners(mech, t_end, n_min, 2)
+        n = _on_corners(mech, t_end, n_min, 2, grid)
         return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
                               "no mode to resolve: the drive's features decide", 2)
     omega = 2.0 * math.pi * frequency
@@ -226,7 +227,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPredict
     dt = t_end / n_ref
     strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in _distinct_drives(mech)) if s is not None]
     if not strains:
-        n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), 2)
+        n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), 2, grid)
         return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
                               "the drive's strain is not known before the run (a controller): 20 steps per period", 2)
     n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
@@ -237,19 +238,22 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float) -> StepPredict
         n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
         predicted = stand_in.error(n)
     factor = 2
-    n_used = _on_corners(mech, t_end, n, factor)
+    n_used = _on_corners(mech, t_end, n, factor, grid)
     predicted = stand_in.error(n_used)
     reason = (f"one-mode stand-in ({frequency:.4g} Hz, damping ratio {zeta:.3g}) driven by the drives' free strain "
               f"misses {predicted:.2g} of its travel at this step")
     return StepPrediction(n_used, t_end, frequency, source, zeta, feature, predicted, order, reason, factor)
 
 
-def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int) -> int:
-    """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners."""
+def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int, grid: int = 1) -> int:
+    """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners (and
+    that is a multiple of ``grid``)."""
     unit = grid_unit(mech, t_end)
     unit = unit * factor // math.gcd(unit, factor)
     if unit > n:  # a grid finer than the run needs for the corners alone: only the probe's factor
         unit = factor
+    if grid > 1 and grid <= n:
+        unit = unit * grid // math.gcd(unit, grid)
     return unit * math.ceil(n / unit)
 
 
@@ -285,6 +289,15 @@ def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:
 Runner = Callable[[float, Any], Result]
 
 
+def _record_grid(record_every: Any, t_end: float) -> int:
+    """Step-count multiple for a recording interval in seconds that divides ``t_end`` (1 otherwise)."""
+    if isinstance(record_every, float) and record_every > 0.0 and math.isfinite(record_every):
+        k = t_end / record_every
+        if abs(k - round(k)) <= 1e-9 * k and round(k) <= MAX_GRID_UNIT:
+            return max(1, int(round(k)))
+    return 1
+
+
 def _quiet(run: Runner, step: float, progress: Any) -> tuple[Result, list[warnings.WarningMessage]]:
     """``run(step, progress)`` with its warnings caught (every one, in order), for the caller to re-issue or drop."""
     with warnings.catch_warnings(record=True) as caught:
@@ -302,14 +315,15 @@ def _stage(progress: Any, label: str, share: float, weight: float, detail: str) 
 
 
 def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, progress: Any = None,
-                 stacklevel: int = 3) -> Result:
+                 stacklevel: int = 3, record_every: Any = None) -> Result:
     """Run ``run(step, progress)`` at the step :func:`predict_steps` chooses for ``accuracy``, checked by a probe.
 
     ``mech`` is the mechanism run (a lone actuator's one-bender mechanism); ``progress`` the
     user's: a display with ``stage(label, share, detail)`` is told every run of the choice and
-    the step chosen, a plain ``progress(t, t_end)`` sees the final run only.
+    the step chosen, a plain ``progress(t, t_end)`` sees the final run only.  ``record_every``: the
+    run's recording interval; one in seconds that divides ``t_end`` is kept a multiple of the step.
     """
-    prediction = predict_steps(mech, t_end, accuracy)
+    prediction = predict_steps(mech, t_end, accuracy, _record_grid(record_every, t_end))
     n, r = prediction.n_steps, prediction.probe_factor
     p = prediction.order - CHECK_ORDER_SLACK
     h = t_end / n
