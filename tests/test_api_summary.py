@@ -64,4 +64,4 @@ def test_a_function_row_carries_its_parameters():
     row = text[text.index("   * - ``simulate``"):].split("   * - ")[1]
     for name in params:
         assert name in row, name
-    assert "*, step=0.0001" in row  # the keyword-only marker and a default as repr gives it
+    assert "*, step=None" in row  # the keyword-only marker and a default as repr gives it

@@ -15,7 +15,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import positive_int
+from .._checks import positive_float, positive_int
 from ..io.result import Result
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
@@ -28,6 +28,7 @@ from .linearise import linearise_model
 from .modes import Modes, modes_of_state, modes_state
 from .run_setup import DEFAULT_STEP
 from .state_space import LinearModel
+from .step_choice import accurate_run, check_step_or_accuracy
 
 __all__ = ["BuiltSystem"]
 
@@ -101,10 +102,22 @@ class BuiltSystem:
         """Quasi-static path over a voltage sequence [V]; as :func:`exudyn_atcm.static_sweep` for a mechanism."""
         return mechanism_solve.static_sweep(self.mechanism, voltages, built=self._fresh())
 
-    def simulate(self, t_end: float, *, step: float = DEFAULT_STEP, settings: Any = None,
-                 progress: Callable[[float, float], None] | None = None, record_every: Any = None) -> Result:
-        """Dynamic response over ``t_end`` [s] with time step ``step`` [s]; as :func:`exudyn_atcm.simulate`
-        for a mechanism (the same checks, warnings, ``record_every``, progress and Ctrl-C)."""
+    def simulate(self, t_end: float, *, step: float | None = None, settings: Any = None,
+                 progress: Callable[[float, float], None] | None = None, record_every: Any = None,
+                 accuracy: float | None = None) -> Result:
+        """Dynamic response over ``t_end`` [s] with time step ``step`` [s] (default 1e-4), or the step chosen for
+        ``accuracy`` [-]; as :func:`exudyn_atcm.simulate` for a mechanism (the same checks, warnings,
+        ``record_every``, progress and Ctrl-C; the probe runs of ``accuracy`` reuse this build)."""
+        if check_step_or_accuracy(step, accuracy) is not None:
+            t_end = positive_float("t_end", t_end)
+
+            def run(h: float, prog: Any) -> Result:
+                result = mechanism_solve.simulate(self.mechanism, t_end, h, settings, prog, record_every,
+                                                  stroke_path=self.stroke_path, built=self._fresh())
+                check_benders(self.mechanism, result, stacklevel=5)
+                return result
+            return accurate_run(run, self.mechanism, t_end, float(accuracy), progress, record_every=record_every)
+        step = DEFAULT_STEP if step is None else step
         result = mechanism_solve.simulate(self.mechanism, t_end, step, settings, progress, record_every,
                                           stroke_path=self.stroke_path, built=self._fresh())
         check_benders(self.mechanism, result, stacklevel=3)  # every bender's cell-kind checks, at the caller's line

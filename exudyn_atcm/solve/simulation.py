@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import finite_float, positive_int
+from .._checks import finite_float, positive_float, positive_int
 from ..mechanism.actuator import BendingActuator
 from ..mechanism import Mechanism
 from ..io.result import Result
@@ -29,6 +29,7 @@ from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
 from .run_setup import DEFAULT_STEP
+from .step_choice import accurate_run, check_accuracy, check_step_or_accuracy
 
 
 # ------------------------------------------------------------------------------ argument checks
@@ -115,11 +116,12 @@ def simulate(
     system: BendingActuator | Mechanism,
     t_end: float,
     *,
-    step: float = DEFAULT_STEP,
+    step: float | None = None,
     tip_force: tuple[float, float] = (0.0, 0.0),
     settings: Callable[[Any], None] | dict | None = None,
     progress: Callable[[float, float], None] | None = None,
     record_every: int | float | None = None,
+    accuracy: float | None = None,
 ) -> Result:
     """Dynamic response of the actuator to its voltage program (generalized-alpha).
 
@@ -137,7 +139,8 @@ def simulate(
     t_end : float
         End time [s], > 0.
     step : float, optional
-        Time step [s], > 0 and <= ``t_end``; default 1e-4.  A step that does not divide
+        Time step [s], > 0 and <= ``t_end``; default (``None``) 1e-4, or the step ``accuracy``
+        chooses.  A step that does not divide
         ``t_end`` is replaced by ``t_end / ceil(t_end / step)`` with a warning, and the step
         used is recorded (``info["step [s]"]``; the request in ``info["step_requested [s]"]``).
         Exudyn halves it temporarily when a step's Newton iteration fails (those steps are
@@ -161,6 +164,16 @@ def simulate(
         step; a ``float`` an interval in seconds (a multiple of the step gives evenly spaced
         records).  The first and the last instant are always
         recorded.  The solution is the same; only memory and output shrink.
+    accuracy : float, optional
+        Wanted largest error of the recorded positions (the columns in metres) relative to
+        their travel [-], in [1e-6, 0.1], e.g. ``1e-3``: the step is chosen for it instead of
+        given (not together with ``step``).  The lowest eigenfrequency about the start state,
+        the damping and the drives' strain (corners, and the hysteresis' slope jumps at every
+        reversal) predict the step through a one-mode stand-in; one probe run at twice the step
+        measures the run's error (Richardson), and a missed target refines the step once
+        (:mod:`exudyn_atcm.solve.step_choice`).  ``result.info["step_choice"]`` says what was
+        chosen and why, ``info["accuracy"]`` the numbers; a display with ``stage`` (the command
+        line's progress bar) shows it.
 
     Returns
     -------
@@ -181,7 +194,8 @@ def simulate(
     Raises
     ------
     ValueError
-        For non-positive or non-finite ``t_end``/``step``, a bad ``tip_force``, ``settings``
+        For ``step`` and ``accuracy`` together, an ``accuracy`` outside [1e-6, 0.1],
+        non-positive or non-finite ``t_end``/``step``, a bad ``tip_force``, ``settings``
         or ``record_every``, or a step too coarse for the voltage program (fewer than
         :data:`~exudyn_atcm.solve.run_checks.MIN_STEPS_PER_FEATURE` steps across its shortest
         ramp, half period or dwell).
@@ -200,6 +214,8 @@ def simulate(
         the hysteresis operator's input range or the MFC's rating, a non-zero program that
         peaks below 0.2 % of the rating (3 V: written in kV?), a program whose shortest
         feature lasts more than 100 runs (a period in ms?), implausible strains.
+    AccuracyWarning
+        With ``accuracy``: when the run's estimated error still misses it after one refinement.
 
     Notes
     -----
@@ -207,6 +223,9 @@ def simulate(
     tolerance 1e-8 (SI units), sparse linear solver, adaptive step reduction on Newton failure.
     The step checks and their thresholds are described in :mod:`exudyn_atcm.solve.run_checks`.
     """
+    if check_step_or_accuracy(step, accuracy) is not None:
+        return _accurate(system, t_end, accuracy, tip_force, settings, progress, record_every)
+    step = DEFAULT_STEP if step is None else step
     actuator = system
     if isinstance(actuator, Mechanism):
         _mechanism_only(tip_force)
@@ -223,6 +242,32 @@ def simulate(
     with actuator_interrupts(actuator):
         result = mechanism_solve.simulate(mech, t_end, step, settings, progress, record_every)
     return _finish_actuator_run(actuator, mech, result, "prestep")
+
+
+def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: Any, progress: Any,
+              record_every: Any) -> Result:
+    """:func:`simulate` with ``accuracy``: the step chosen by :func:`~exudyn_atcm.solve.step_choice.accurate_run`."""
+    accuracy = check_accuracy(accuracy)
+    t_end = positive_float("t_end", t_end)
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+    if isinstance(system, Mechanism):
+        _mechanism_only(tip_force)
+        mech = system
+
+        def run(h: float, prog: Any) -> Result:
+            result = mechanism_solve.simulate(system, t_end, h, settings, prog, record_every)
+            check_benders(system, result, stacklevel=5)
+            return result
+    else:
+        actuator = _check_actuator(system)
+        mech = actuator.as_mechanism(tip_force)
+
+        def run(h: float, prog: Any) -> Result:
+            with actuator_interrupts(actuator):
+                result = mechanism_solve.simulate(mech, t_end, h, settings, prog, record_every)
+            return _finish_actuator_run(actuator, mech, result, "prestep")
+    return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every)
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",

@@ -1,0 +1,162 @@
+"""Runs with a stated accuracy (issue 31, part 1): ``simulate(system, t_end, accuracy=...)`` against a search.
+
+For each system (the README four-bar with a 3-mode rod crank, the micro gripper of
+``cases/micro_gripper.py`` with 4-mode rod benders and the paper's Preisach operator, the lone
+paper actuator as a 3-mode rod) and drive (triangle, sine, step program), one period:
+
+* ``simulate(..., accuracy=target)``: the step it chose, its error against a time-converged
+  reference (a run at a quarter of the finest step searched, or of the chosen step if finer), and
+  its CPU time, the prediction and the probe runs included;
+* a search over steps ``t_end / n`` (``n`` on a ladder of ratio 2^(1/4), at least 20 steps per shortest
+  feature of the drive, as ``accuracy=`` keeps: no warning about the program's resolution): the
+  coarsest step whose run meets the target against the same reference, and its CPU time (one run);
+* the ratio of the two CPU times (goal: at most 1.5), and ``run alone``: the ratio for the run at the
+  chosen step without the prediction and the probe (what the choice of the step itself costs).
+
+CPU times (``time.process_time``), best of ``--repeats``, measured side by side in one process
+(the machine is shared; compare within a run only).  ``--quick``: the lone actuator and the
+four-bar's triangle only, one repeat.  Writes JSON to ``benchmarks/results/`` (git-ignored).
+
+Usage: ``python benchmarks/bench_accuracy.py [--quick] [--repeats 2]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import math
+import os
+import platform
+import sys
+import time
+import warnings
+
+import numpy as np
+
+import exudyn_atcm as atcm
+from exudyn_atcm.casework import Parameters
+from exudyn_atcm.io.atomic import write_text
+from exudyn_atcm.model import Sine, Steps, Triangle
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "cases"))
+import micro_gripper  # noqa: E402
+
+CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
+MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
+
+
+def four_bar(program) -> atcm.Mechanism:
+    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3,
+                        drive=atcm.PiezoDrive(program), angle=math.pi / 2, cell="rod")
+    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
+    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
+    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
+    m.ground(crank.base)
+    m.pin(crank.tip, coupler.point("A"))
+    m.pin("coupler.B", "rocker.B")
+    m.ground("rocker.O", joint="pin")
+    return m
+
+
+def gripper(program) -> atcm.Mechanism:
+    values = {p.name: p.default for p in micro_gripper.PARAMETERS}
+    values.update(n_cells=4, cell="rod")
+    return micro_gripper.build_mechanism(Parameters(micro_gripper.PARAMETERS, values), 200.0, program)
+
+
+def lone(program) -> atcm.BendingActuator:
+    return atcm.BendingActuator(3, 29e-3, 28e-3, CFC, MFC, atcm.PiezoDrive(program), cell="rod")
+
+
+#: (system, drive, builder, program, t_end [s], target)
+CASES = [
+    ("lone actuator", "triangle", lone, Triangle(500.0, 500.0, 0.1), 0.1, 1e-3),
+    ("lone actuator", "sine", lone, Sine(500.0, 500.0, 0.1, -math.pi / 2), 0.1, 1e-3),
+    ("lone actuator", "steps", lone, Steps([0.0, 0.02, 0.06], [0.0, 1000.0, 0.0]), 0.1, 1e-2),
+    ("four-bar", "triangle", four_bar, Triangle(750.0, 750.0, 0.5), 0.5, 1e-3),
+    ("four-bar", "sine", four_bar, Sine(750.0, 750.0, 0.5, -math.pi / 2), 0.5, 1e-3),
+    ("four-bar", "steps", four_bar, Steps([0.0, 0.05, 0.15], [0.0, 1500.0, 0.0]), 0.2, 1e-2),
+    ("gripper", "triangle", gripper, Triangle(500.0, 1000.0, 0.5), 0.5, 1e-3),
+    ("gripper", "sine", gripper, Sine(500.0, 1000.0, 0.5, -math.pi / 2), 0.5, 1e-3),
+    ("gripper", "steps", gripper, Steps([0.0, 0.05, 0.15], [-500.0, 1500.0, -500.0]), 0.2, 1e-2),
+]
+QUICK = [("lone actuator", "triangle"), ("lone actuator", "sine"), ("four-bar", "triangle")]
+
+
+def cpu(fn, repeats: int):
+    best, out = math.inf, None
+    for _ in range(repeats):
+        t0 = time.process_time()
+        out = fn()
+        best = min(best, time.process_time() - t0)
+    return best, out
+
+
+def rel_error(run, reference) -> float:
+    cols = [c for c in run.names if run.unit(c) == "m"]
+    travel = max(float(np.ptp(reference[c])) for c in cols)
+    return max(float(np.max(np.abs(np.asarray(run[c]) - np.interp(run["time"], reference["time"], reference[c]))))
+               for c in cols) / travel
+
+
+def case(system, drive, build, program, t_end, target, repeats):
+    c_acc, chosen = cpu(lambda: atcm.simulate(build(program), t_end, accuracy=target), repeats)
+    h_chosen = chosen.info["step [s]"]
+    c_run, _ = cpu(lambda: atcm.simulate(build(program), t_end, step=h_chosen), repeats)  # the chosen run alone
+    ladder = sorted({2 * math.ceil(20 * 2.0 ** (k / 4) / 2) for k in range(0, 80)})
+    # warning-free for the program (at least 20 steps per shortest feature, as accuracy= keeps), up to 4x the chosen count
+    feature = program.shortest_feature(t_end)[0]
+    ladder = [n for n in ladder if 20 * t_end / feature - 1e-9 <= n <= 4 * t_end / h_chosen + 1]
+    reference = atcm.simulate(build(program), t_end, step=min(h_chosen, t_end / ladder[-1]) / 4)
+    err_chosen = rel_error(chosen, reference)
+    cheapest = None
+    for n in ladder:  # coarse to fine: the first that meets the target is the cheapest
+        r = atcm.simulate(build(program), t_end, step=t_end / n)
+        if rel_error(r, reference) <= target:
+            c_min, _ = cpu(lambda: atcm.simulate(build(program), t_end, step=t_end / n), repeats)
+            cheapest = (t_end / n, c_min, rel_error(r, reference))
+            break
+    row = {"system": system, "drive": drive, "target": target, "t_end [s]": t_end, "chosen step [s]": h_chosen,
+           "achieved error": err_chosen, "cpu [s]": c_acc, "run alone cpu [s]": c_run, "refined": chosen.info["accuracy"]["refined"],
+           "estimated error": chosen.info["accuracy"]["estimated_error"], "step_choice": chosen.info["step_choice"]}
+    if cheapest:
+        row.update({"cheapest step [s]": cheapest[0], "cheapest cpu [s]": cheapest[1],
+                    "cheapest error": cheapest[2], "ratio": c_acc / cheapest[1],
+                    "run alone ratio": c_run / cheapest[1]})
+    return row
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
+    args = parser.parse_args()
+    warnings.simplefilter("ignore")  # the steps searched below the comfortable resolution warn; the table says it
+    repeats = 1 if args.quick else args.repeats
+    atcm.eigenfrequencies(lone(Triangle(0, 1, 1)), n=1)  # the first linearisation's start-up, outside the timings
+    rows = []
+    head = (f"{'system':>13} | {'drive':>8} | {'target':>6} | {'chosen h':>9} | {'error':>8} | {'cpu':>7} | "
+            f"{'cheapest h':>10} | {'its cpu':>7} | {'ratio':>5} | {'run alone':>9}")
+    print(head)
+    print("-" * len(head))
+    for system, drive, build, program, t_end, target in CASES:
+        if args.quick and (system, drive) not in QUICK:
+            continue
+        r = case(system, drive, build, program, t_end, target, repeats)
+        rows.append(r)
+        print(f"{system:>13} | {drive:>8} | {target:>6.0e} | {r['chosen step [s]']:>9.3g} | "
+              f"{r['achieved error']:>8.2e} | {r['cpu [s]']:>7.3f} | {r.get('cheapest step [s]', math.nan):>10.3g} | "
+              f"{r.get('cheapest cpu [s]', math.nan):>7.3f} | {r.get('ratio', math.nan):>5.2f} | "
+              f"{r.get('run alone ratio', math.nan):>9.2f}", flush=True)
+    os.makedirs(args.out, exist_ok=True)
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    path = os.path.join(args.out, f"bench_accuracy_{stamp}.json")
+    write_text(path, json.dumps({"machine": platform.platform(), "quick": args.quick, "repeats": repeats,
+                                 "rows": rows}, indent=2))
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,363 @@
+"""Runs with a stated accuracy: ``simulate(system, t_end, accuracy=1e-3)`` chooses the step.
+
+``accuracy`` is the largest error of the recorded positions (every result column in metres)
+relative to their travel (the largest range among those columns), against the time-converged
+solution of the same model.  The step is chosen from what is known before the run, then the
+run's own error is measured:
+
+1. **Prediction** (:func:`predict_steps`, cheap: milliseconds).  The mechanism's lowest
+   eigenfrequency about its start state (:func:`~exudyn_atcm.eigenfrequencies`; the
+   clamped-free estimate of its benders if that fails), the damping ratio of its laminate parts
+   at that frequency, and every drive's free strain over the run (the voltage program through
+   its hysteresis operator: the Preisach slope jumps at every reversal) drive a one-mode
+   stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`), integrated exactly and by
+   the run's generalized-alpha at a ladder of steps (ratio 2^(1/4)).  The chosen step is the
+   coarsest of the ladder whose stand-in error is :data:`AIM` of the target, with at least
+   :data:`STEPS_PER_FEATURE` steps per shortest drive feature, rounded so that the run's grid and
+   the probe's hold every corner of the drives' programs (:func:`grid_unit`: a corner between
+   steps is a first-order error no probe can estimate).
+2. **Check** (one probe run at twice the step, half the cost of the run, its warnings not
+   shown): Richardson's estimate of the run's error relative to the travel,
+   ``|x_h - x_2h| / (2^q - 1)`` with ``q = p - 0.5`` (:data:`CHECK_ORDER_SLACK`), ``p`` the
+   integration order of the system's cells (:attr:`~exudyn_atcm.cells.CellKind.time_order`).
+3. **Refinement**, once: if the estimate misses the target, the step is divided by the
+   integer ``m`` the estimate asks for and the run repeated; the run at the former step is then
+   the probe (``|x_{h/m} - x_h| / (m^q - 1)``).  If that misses too, an
+   :class:`~exudyn_atcm.AccuracyWarning` says so with the estimate.
+
+``result.info["step_choice"]`` says what was chosen and why; ``info["accuracy"]`` holds the
+numbers.  A step coarser than a tenth of the lowest mode's period is taken when the stand-in
+says the drive hardly excites the mode (a slow sine) and the probe confirms it; the run's
+coarse-mode warning is then left out, as the measured error replaces that rule of thumb.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from fractions import Fraction
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import AccuracyWarning
+from ..io.result import Result
+from ..mechanism import Mechanism
+from ..mechanism.damped import MaterialDamped
+from ..model.signals import Sine, Steps, Triangle
+from . import mechanism_solve
+from .mechanism_checks import lowest_first_frequency
+from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
+from .step_surrogate import StandIn, unit_strain
+
+__all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "check_step_or_accuracy", "StepPrediction", "predict_steps",
+           "position_error", "accurate_run"]
+
+#: Order of the time integration of a system without cells (generalized-alpha; as in :mod:`~exudyn_atcm.solve.step_error`).
+NOMINAL_ORDER = 2.0
+#: Allowed ``accuracy`` [-]: above 10 % of the travel an "error" is no longer small against the motion
+#: (the Richardson estimate assumes the run near convergence); below 1e-6 the differences between runs
+#: reach the Newton tolerance (absolute 1e-8 m against millimetre travels), so no step can be verified.
+ACCURACY_RANGE = (1e-6, 0.1)
+#: The prediction aims the stand-in's error at this share of the target (room for the modes it leaves out and
+#: for the check's cautious order, :data:`CHECK_ORDER_SLACK`).
+AIM = 0.6
+#: Fewest steps per shortest drive feature of the chosen step (warning-free:
+#: :data:`~exudyn_atcm.solve.run_checks.COMFORTABLE_STEPS_PER_FEATURE`).
+STEPS_PER_FEATURE = COMFORTABLE_STEPS_PER_FEATURE
+#: The check assumes the error falls as ``h^(p - CHECK_ORDER_SLACK)`` between the probe and the run, not ``h^p``:
+#: one probe cannot measure the order, and where the probe's step damps a higher mode numerically (the
+#: gripper's, the four-bar's under a step program) the differences fall more slowly than ``h^p`` and
+#: ``h^p`` would underestimate the error 1.5-2.3 times (``benchmarks/bench_accuracy.py``).  The same slack as
+#: :data:`~exudyn_atcm.solve.step_error.ORDER_SLACK`.
+CHECK_ORDER_SLACK = 0.5
+#: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`).
+MAX_GRID_UNIT = 10_000
+#: The ladder stops at this many steps per period of the lowest mode (the stand-in's error then ~1e-6).
+MAX_STEPS_PER_PERIOD = 2000
+#: Fewest steps of a run with a stated accuracy.
+MIN_STEPS = 20
+#: Ladder of step counts: each rung this factor above the last.
+LADDER = 2.0 ** 0.25
+#: The stand-in's strain is sampled this many times per shortest feature (at least 16 times per chosen step at the
+#: fewest steps; the stand-in's exact response is exact between samples, so they need only follow the strain).
+REFERENCE_SAMPLES = 200
+#: Largest sample count of the stand-in's reference (memory and time stay at milliseconds).
+MAX_REFERENCE_SAMPLES = 2_000_000
+# the run's warning about a step coarse for the lowest mode, replaced by the measured error
+_COARSE_MODE = r"step = .* resolves the first bending mode"
+
+
+def check_accuracy(accuracy: Any) -> float:
+    """``accuracy`` as a float in :data:`ACCURACY_RANGE`, or a ``ValueError`` naming it."""
+    low, high = ACCURACY_RANGE
+    if isinstance(accuracy, bool) or not isinstance(accuracy, (int, float, np.integer, np.floating)):
+        raise ValueError(f"accuracy must be a finite number in [{low:g}, {high:g}] (a relative error of the "
+                         f"recorded positions, e.g. 1e-3 of the travel), got {accuracy!r}")
+    value = float(accuracy)
+    if not (math.isfinite(value) and low <= value <= high):
+        raise ValueError(f"accuracy must be a finite number in [{low:g}, {high:g}] (a relative error of the "
+                         f"recorded positions, e.g. 1e-3 of the travel), got {accuracy!r}")
+    return value
+
+
+def check_step_or_accuracy(step: Any, accuracy: Any) -> float | None:
+    """``accuracy`` checked (:func:`check_accuracy`), or ``None``; refuses ``step`` and ``accuracy`` together."""
+    if accuracy is None:
+        return None
+    if step is not None:
+        raise ValueError(f"give step or accuracy, not both: accuracy={accuracy!r} chooses the step itself "
+                         f"(got step={step!r}); leave step out, or give accuracy=None to run at that step")
+    return check_accuracy(accuracy)
+
+
+@dataclass(frozen=True)
+class StepPrediction:
+    """What the prediction used and chose: ``n_steps`` steps over ``t_end`` [s], and why."""
+
+    n_steps: int
+    t_end: float
+    frequency: float
+    frequency_source: str
+    damping_ratio: float
+    feature: float
+    predicted: float
+    order: float
+    reason: str
+    probe_factor: int = 2
+
+    @property
+    def step(self) -> float:
+        """The step [s]."""
+        return self.t_end / self.n_steps
+
+
+def _lowest_frequency(mech: Mechanism) -> tuple[float, str]:
+    """Lowest eigenfrequency [Hz] about the start voltages, or the clamped-free estimate, and its source."""
+    volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # a linearisation for the step only; the run says what matters
+            f = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
+                                                 loaded=bool(mech.forces))
+        if f.size and f[0] > 0.0 and math.isfinite(f[0]):
+            return float(f[0]), "the lowest eigenfrequency about the start state"
+    except Exception:  # noqa: BLE001 - any failure: the cheaper estimate below
+        pass
+    f, which = lowest_first_frequency(mech)
+    return f, which
+
+
+def _damping_ratio(mech: Mechanism, omega: float) -> float:
+    """Smallest damping ratio of the mechanism's laminate parts at ``omega`` [rad/s] (0 without any)."""
+    ratios = []
+    for comp in mech.components.values():
+        if isinstance(comp, MaterialDamped):
+            r = comp.rayleigh_damping
+            ratios.append(r.alpha / (2.0 * omega) + r.beta * omega / 2.0)
+    return max(min(ratios), 0.0) if ratios else 0.0
+
+
+def _shortest_feature(mech: Mechanism, t_end: float) -> float:
+    """Shortest feature [s] of the drives' programs before ``t_end`` (``inf`` without one)."""
+    features = [program_feature(d.voltage, t_end) for d in mech.drives.values()]
+    return min([f[0] for f in features if f is not None], default=math.inf)
+
+
+def program_corners(program: Any, t_end: float) -> np.ndarray | None:
+    """Times [s] in ``(0, t_end)`` where the program's slope jumps or it reverses: the triangle's peaks, the
+    sine's extrema, the step program's switches, a piecewise-linear program's corners; ``None`` for others."""
+    if isinstance(program, Steps):
+        change = np.flatnonzero(np.diff(program.values) != 0.0) + 1
+        times = program.times[change]
+    elif callable(getattr(program, "corner_times", None)):
+        times = np.asarray(program.corner_times(t_end), dtype=float)
+    elif isinstance(program, Triangle):
+        times = 0.5 * program.period * np.arange(1, math.floor(2.0 * t_end / program.period) + 1)
+    elif isinstance(program, Sine):
+        first = ((0.5 * math.pi - program.phase) / (2.0 * math.pi)) % 0.5 * program.period
+        times = first + 0.5 * program.period * np.arange(0, math.floor(2.0 * t_end / program.period) + 1)
+    else:
+        return None
+    return times[(times > 0.0) & (times < t_end)]
+
+
+def grid_unit(mech: Mechanism, t_end: float) -> int:
+    """Smallest step count putting every drive's corners (:func:`program_corners`) on the grid ``t_end / n``.
+
+    A corner between two steps is sampled up to a step late, a first-order error that a probe at
+    another step cannot estimate (and a hysteresis reversal off by a share of a step).  1 when a
+    program's corners are unknown or need more than :data:`MAX_GRID_UNIT` steps.
+    """
+    unit = 1
+    for drive in _distinct_drives(mech):
+        corners = program_corners(drive.voltage, t_end)
+        if corners is None:
+            continue
+        for c in corners:
+            fraction = Fraction(float(c / t_end)).limit_denominator(MAX_GRID_UNIT)
+            if abs(float(fraction) - c / t_end) > 1e-9:
+                return 1
+            unit = unit * fraction.denominator // math.gcd(unit, fraction.denominator)
+            if unit > MAX_GRID_UNIT:
+                return 1
+    return unit
+
+
+def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1) -> StepPrediction:
+    """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s], and the probe's
+    step factor (see module notes).  ``grid``: the step count must be a multiple of it too (a recording
+    interval of ``t_end / grid``, evenly spaced records)."""
+    frequency, source = _lowest_frequency(mech)
+    order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
+    feature = _shortest_feature(mech, t_end)
+    per_feature = t_end / feature if math.isfinite(feature) else 0.0
+    n_min = max(MIN_STEPS, math.ceil(per_feature * STEPS_PER_FEATURE - 1e-9))
+    if not (frequency > 0.0 and math.isfinite(frequency)):
+        n = _on_corners(mech, t_end, n_min, 2, grid)
+        return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
+                              "no mode to resolve: the drive's features decide", 2)
+    omega = 2.0 * math.pi * frequency
+    zeta = _damping_ratio(mech, omega)
+    unit = grid_unit(mech, t_end)  # the strain's corners on its samples too
+    n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min))
+    n_ref = unit * math.ceil(n_ref / unit)
+    dt = t_end / n_ref
+    strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in _distinct_drives(mech)) if s is not None]
+    if not strains:
+        n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), 2, grid)
+        return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
+                              "the drive's strain is not known before the run (a controller): 20 steps per period", 2)
+    n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
+    stand_in = StandIn(strains, dt, t_end, omega, zeta)
+    n = n_min
+    predicted = stand_in.error(n)
+    while predicted > AIM * accuracy and n < n_max:
+        n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
+        predicted = stand_in.error(n)
+    factor = 2
+    n_used = _on_corners(mech, t_end, n, factor, grid)
+    predicted = stand_in.error(n_used)
+    reason = (f"one-mode stand-in ({frequency:.4g} Hz, damping ratio {zeta:.3g}) driven by the drives' free strain "
+              f"misses {predicted:.2g} of its travel at this step")
+    return StepPrediction(n_used, t_end, frequency, source, zeta, feature, predicted, order, reason, factor)
+
+
+def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int, grid: int = 1) -> int:
+    """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners (and
+    that is a multiple of ``grid``)."""
+    unit = grid_unit(mech, t_end)
+    unit = unit * factor // math.gcd(unit, factor)
+    if unit > n:  # a grid finer than the run needs for the corners alone: only the probe's factor
+        unit = factor
+    if grid > 1 and grid <= n:
+        unit = unit * grid // math.gcd(unit, grid)
+    return unit * math.ceil(n / unit)
+
+
+def _distinct_drives(mech: Mechanism) -> list[Any]:
+    """Each PiezoDrive once (segments share one)."""
+    seen: dict[int, Any] = {}
+    for drive in mech.drives.values():
+        seen.setdefault(id(drive), drive)
+    return list(seen.values())
+
+
+def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:
+    """Largest difference of the position columns [m] between two runs at the coarse grid's common instants,
+    relative to the largest range of those columns in ``fine`` (0 when none moves)."""
+    names = [n for n in fine.names if n != "time" and fine.unit(n) == "m"]
+    travel = max((float(np.ptp(fine[n])) for n in names), default=0.0)
+    if not names or not travel > 0.0:
+        return 0.0
+    keys = []
+    for run in (fine, coarse):
+        t = np.asarray(run["time"], dtype=float)
+        k = np.rint(t / coarse_step)
+        on = np.abs(t - k * coarse_step) <= 1e-6 * coarse_step
+        keys.append((k[on].astype(np.int64), np.flatnonzero(on)))
+    common = np.intersect1d(keys[0][0], keys[1][0])
+    if common.size < 2:
+        return math.inf
+    rows = [r[np.searchsorted(k, common)] for k, r in keys]
+    diff = max(float(np.max(np.abs(np.asarray(fine[n])[rows[0]] - np.asarray(coarse[n])[rows[1]]))) for n in names)
+    return diff / travel
+
+
+Runner = Callable[[float, Any], Result]
+
+
+def _record_grid(record_every: Any, t_end: float) -> int:
+    """Step-count multiple for a recording interval in seconds that divides ``t_end`` (1 otherwise)."""
+    if isinstance(record_every, float) and record_every > 0.0 and math.isfinite(record_every):
+        k = t_end / record_every
+        if abs(k - round(k)) <= 1e-9 * k and round(k) <= MAX_GRID_UNIT:
+            return max(1, int(round(k)))
+    return 1
+
+
+def _quiet(run: Runner, step: float, progress: Any) -> tuple[Result, list[warnings.WarningMessage]]:
+    """``run(step, progress)`` with its warnings caught (every one, in order), for the caller to re-issue or drop."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = run(step, progress)
+    return result, caught
+
+
+def _stage(progress: Any, label: str, share: float, weight: float, detail: str) -> Any:
+    """A progress callback for one run of the choice: the display's ``stage`` when it has one, else ``None``."""
+    stage = getattr(progress, "stage", None)
+    if not callable(stage):
+        return None
+    return lambda t, t_end: stage(label, share + weight * t / t_end, detail)
+
+
+def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, progress: Any = None,
+                 stacklevel: int = 3, record_every: Any = None) -> Result:
+    """Run ``run(step, progress)`` at the step :func:`predict_steps` chooses for ``accuracy``, checked by a probe.
+
+    ``mech`` is the mechanism run (a lone actuator's one-bender mechanism); ``progress`` the
+    user's: a display with ``stage(label, share, detail)`` is told every run of the choice and
+    the step chosen, a plain ``progress(t, t_end)`` sees the final run only.  ``record_every``: the
+    run's recording interval; one in seconds that divides ``t_end`` is kept a multiple of the step.
+    """
+    prediction = predict_steps(mech, t_end, accuracy, _record_grid(record_every, t_end))
+    n, r = prediction.n_steps, prediction.probe_factor
+    p = prediction.order - CHECK_ORDER_SLACK
+    h = t_end / n
+    chose = (f"step {h:.4g} s ({n} steps) for {accuracy:g} of the travel: {prediction.reason}"
+             f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s")
+    share = 1.0 / (r + 1.0)  # the probe's part of the work
+    probe, _ = _quiet(run, r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"))
+    result, caught = _quiet(run, h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress)
+    estimate = position_error(result, probe, r * h) / (r ** p - 1.0)
+    checks = [f"probe at {r * h:.4g} s: estimated error {estimate:.2g} (Richardson, assuming order {p:g} of the "
+              f"cells' {prediction.order:g})"]
+    refined = False
+    if estimate > accuracy:
+        m = max(2, math.ceil((estimate / (AIM * accuracy)) ** (1.0 / p)))
+        coarse, coarse_h = result, h
+        h = coarse_h / m
+        result, caught = _quiet(run, h, _stage(progress, "accuracy refinement", 1.0, 0.0, f"step {h:.3g} s") or progress)
+        estimate = position_error(result, coarse, coarse_h) / (m ** p - 1.0)
+        checks.append(f"missed {accuracy:g}: refined once to {h:.4g} s ({m * n} steps), estimated error "
+                      f"{estimate:.2g} against the run at {coarse_h:.4g} s")
+        refined = True
+    for w in caught:  # the result's own warnings, at the caller's line (the coarse-mode rule replaced by the check)
+        if not (issubclass(w.category, AccuracyWarning) and re.match(_COARSE_MODE, str(w.message))):
+            warnings.warn(w.message, w.category, stacklevel=stacklevel)
+    line = chose + "; " + "; ".join(checks)
+    result.info["step_choice"] = line
+    result.info["accuracy"] = {"target": accuracy, "estimated_error": estimate, "step [s]": h,
+                               "predicted_error": prediction.predicted, "refined": refined, "probe_step [s]": r * prediction.step,
+                               "lowest_frequency [Hz]": prediction.frequency, "damping_ratio": prediction.damping_ratio}
+    stage = getattr(progress, "stage", None)
+    if callable(stage):
+        stage("accuracy run", 1.0, line)
+    if estimate > accuracy:
+        warnings.warn(f"simulate(accuracy={accuracy:g}): the run's estimated error {estimate:.2g} of the travel still "
+                      f"misses the target after one refinement ({line}). Give a smaller step yourself "
+                      f"(step=...) or check with exudyn_atcm.step_error", AccuracyWarning, stacklevel=stacklevel)
+    return result
