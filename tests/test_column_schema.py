@@ -130,3 +130,10 @@ def test_old_names_must_name_series_of_the_result():
         Result(series, units, old_names={"tip_y": "b.tip_x"})
     with pytest.raises(ValueError, match="old_names must map names that are not series"):
         Result(series, units, old_names={"time": "b.tip_y"})
+
+
+def test_step_error_takes_an_old_column_name_for_one_release():
+    with pytest.warns(AtcmDeprecationWarning, match=r"columns: series 'tip_y' is now named 'actuator.tip_y'") as caught:
+        report = atcm.step_error(_actuator(), 0.01, step=1e-3, check_order=False, columns=["tip_y"])
+    assert caught[0].filename == __file__
+    assert report.summary == ["actuator.tip_y"]
