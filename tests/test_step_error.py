@@ -136,7 +136,7 @@ def test_lone_actuator_with_a_tip_force_and_without_the_order_check():
     assert math.isnan(report.columns["actuator.tip_y"].order)  # no third run
     assert report.extrapolated is None  # two runs: nothing to check the order of an extrapolation against
     assert report.finest.info["step [s]"] == pytest.approx(5e-4)
-    assert report.worst().name == "tip_y"
+    assert report.worst().name == "actuator.tip_y"
 
 
 @pytest.mark.parametrize("kwargs, match", [
