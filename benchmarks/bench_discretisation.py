@@ -215,7 +215,7 @@ def measure(name: str, n: int, repeats: int = REPEATS) -> dict:
             wall = min(wall, time.perf_counter() - start)
     else:
         r = run_actuator(act_small, PERIOD, STEP, (0.0, 0.0), None)
-        times, angles = r["time"], r["tip_angle"]
+        times, angles = r["time"], r["actuator.tip_angle"]
         builder_f1 = eigenfrequencies(act_small, n=1)[0]
         bent_f1 = eigenfrequencies(act_small, n=1, voltage=BENT_VOLTAGE)[0]
         wall = math.inf

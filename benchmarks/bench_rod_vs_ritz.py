@@ -67,7 +67,7 @@ def references() -> dict:
 
 def accuracy(cell: str, n: int, ref: dict) -> dict:
     a = actuator(cell, n)
-    tip = float(atcm.solve_static(a, voltage=VOLTAGE)["tip_angle"][-1])
+    tip = float(atcm.solve_static(a, voltage=VOLTAGE)["actuator.tip_angle"][-1])
     f1 = float(atcm.eigenfrequencies(a, n=1)[0])
     fb = float(atcm.eigenfrequencies(a, n=1, voltage=VOLTAGE)[0])
     errors = {"tip angle": abs(tip / ref["tip angle [rad]"] - 1.0), "f1": abs(f1 / ref["f1 [Hz]"] - 1.0),

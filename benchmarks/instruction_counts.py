@@ -54,7 +54,8 @@ cfc, mfc = atcm.Layer(0.2e-3, 70e9, 1550.0), atcm.Layer(0.3e-3, 30.336e9, 5440.0
 drive = atcm.PiezoDrive(atcm.signals.Triangle(500.0, 1000.0, 0.5), hysteresis=paper_strain_preisach())
 actuator = atcm.BendingActuator(n, 0.087 / n, 28e-3, cfc, mfc, drive, cell=cell)
 result = atcm.simulate(actuator, t_sim, step=1e-4)
-print("tip_y", repr(float(result["tip_y"][-1])))
+tip_y = result["actuator.tip_y"] if "actuator.tip_y" in result else result["tip_y"]  # before 0.3.0: "tip_y"
+print("tip_y", repr(float(tip_y[-1])))
 """
 
 

@@ -93,7 +93,7 @@ def _actuator(p: Parameters, voltage: float) -> BendingActuator:
 
 
 def _tip_y(actuator: BendingActuator, force: float) -> float:
-    return float(solve_static(actuator, tip_force=(0.0, -force))["tip_y"][-1])
+    return float(solve_static(actuator, tip_force=(0.0, -force))["actuator.tip_y"][-1])
 
 
 def _blocked_force(actuator: BendingActuator, free: float, compliance: float) -> tuple[float, int]:
@@ -117,11 +117,11 @@ def evaluate(p: Parameters) -> dict[str, tuple[float, str]]:
     compliance = -_tip_y(probe, unit_force) / unit_force
     if p.kinematics == "linear":
         small = _actuator(p, _LINEAR_SCALE * p.voltage)
-        free = float(solve_static(small)["tip_y"][-1]) / _LINEAR_SCALE
+        free = float(solve_static(small)["actuator.tip_y"][-1]) / _LINEAR_SCALE
         force, solves = free / compliance, 0
     else:
         full = _actuator(p, p.voltage)
-        free = float(solve_static(full)["tip_y"][-1])
+        free = float(solve_static(full)["actuator.tip_y"][-1])
         force, solves = _blocked_force(full, free, compliance)
     f1 = float(eigenfrequencies(probe, n=1)[0])
     e1, h1, e2, h2, b = p.passive_modulus, p.passive_thickness, p.active_modulus, p.active_thickness, p.width

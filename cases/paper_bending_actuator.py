@@ -88,7 +88,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     result = simulate(build(p), p.cycles * p.period, step=p.step, progress=ctx.progress,
                       record_every=p.record_every if p.record_every > 0.0 else None)
     every = result.every_step  # every accepted step: the scalars do not depend on record_every
-    t, y = every["time"], every["tip_y"]
+    t, y = every["time"], every["actuator.tip_y"]
     start = (p.cycles - 1) * p.period
     last = t >= start - 1e-12
     scalars = {
@@ -96,8 +96,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         "tip_y_min_last_cycle": (float(y[last].min()), "m"),
         "tip_y_500V_rising": (float(np.interp(start + 0.25 * p.period, t, y)), "m"),
         "tip_y_500V_falling": (float(np.interp(start + 0.75 * p.period, t, y)), "m"),
-        "stroke_max": (float(every["stroke"].max()), "m"),
-        "stroke_min": (float(every["stroke"].min()), "m"),
+        "stroke_max": (float(every["actuator.stroke"].max()), "m"),
+        "stroke_min": (float(every["actuator.stroke"].min()), "m"),
     }
     notes = {"rejected_steps": int(result.info["rejected_steps"])}
     change = last_cycle_change(t, y, p.period, p.cycles)
@@ -148,8 +148,8 @@ def paper_comparison(result, period: float, cycles: int) -> list[tuple[str, floa
     The simulated stroke is rescaled to a 29 mm cell (free strain x 29 mm), the length the
     paper's numbers refer to.  Returns ``(label, voltage [V], paper [m], simulated [m])``.
     """
-    t, u = result["time"], result["voltage"]
-    stroke = result["strain"] * PAPER_LOOP["cell_length [m]"]
+    t, u = result["time"], result["actuator.voltage"]
+    stroke = result["actuator.strain"] * PAPER_LOOP["cell_length [m]"]
     start = (cycles - 1) * period
     rising = (t >= start - 1e-12) & (t <= start + 0.5 * period + 1e-12)
     falling = (t >= start + 0.5 * period - 1e-12) & (t <= start + period + 1e-12)
@@ -172,7 +172,7 @@ def plot_stroke_vs_voltage(result, p: Parameters, path: Path) -> Path:
     t = result["time"]
     last = t >= (p.cycles - 1) * p.period - 1e-12
     fig, (ax,) = new_figure(1, 1, width=7, height=5)
-    ax.plot(result["voltage"][last], result["strain"][last] * PAPER_LOOP["cell_length [m]"] * 1e6,
+    ax.plot(result["actuator.voltage"][last], result["actuator.strain"][last] * PAPER_LOOP["cell_length [m]"] * 1e6,
             label=f"simulated, last cycle ({p.exponents} exponents)")
     rows = paper_comparison(result.every_step, p.period, p.cycles)
     ax.plot([r[1] for r in rows], [r[2] * 1e6 for r in rows], "ks", ms=7, mfc="none", mew=1.5,
@@ -208,7 +208,7 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
         title = f"Fig. 12 actuator, {p.n_cells} assumed modes (ritz; drawn as {p.n_cells} segments)"
     else:
         title = f"Fig. 12 actuator, {p.n_cells} {p.cell} cells"
-    row = int(np.argmax(np.abs(output.result["tip_y"])))
+    row = int(np.argmax(np.abs(output.result["actuator.tip_y"])))
     plot_mechanism(mechanism, drawn, path=files[2], row=row, trace=("actuator.tip",),
                    title=f"{title}, largest tip deflection")
     files.append(plot_stroke_vs_voltage(output.result, p, Path(out_dir) / f"{output.case}_stroke_vs_paper.png"))
@@ -228,11 +228,11 @@ BENCHMARKS = [
         "quick": True,
         "parameters": {"period": 1.0, "cycles": 3, "cell": "six-bar", "n_cells": 3, "exponents": "exact", "step": 1e-4, "record_every": 1e-3},
         "channels": {
-            "voltage": {"rms": 1e-9, "max": 1e-9},
-            "strain": {"rms": 1e-15, "max": 1e-14},
-            "stroke": {"rms": 1e-12, "max": 1e-11},
-            "tip_y": {"rms": 1e-8, "max": 5e-8},
-            "tip_x": {"rms": 1e-8, "max": 5e-8}
+            "actuator.voltage": {"rms": 1e-9, "max": 1e-9},
+            "actuator.strain": {"rms": 1e-15, "max": 1e-14},
+            "actuator.stroke": {"rms": 1e-12, "max": 1e-11},
+            "actuator.tip_y": {"rms": 1e-8, "max": 5e-8},
+            "actuator.tip_x": {"rms": 1e-8, "max": 5e-8}
         },
         "scalars": [
             {"scalar": "stroke_max", "analytic": 40e-6, "abs": 1e-11, "source": "paper Sect. 3: 40 µm at 1500 V (the loop's x_max)"},

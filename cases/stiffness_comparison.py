@@ -82,9 +82,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
                                    stiffness=model)
             r = solve_static(act)
             steps += 1
-            tip_x.append(r["tip_x"][0])
-            tip_y.append(r["tip_y"][0])
-            angle.append(r["tip_angle"][0])
+            tip_x.append(r["actuator.tip_x"][0])
+            tip_y.append(r["actuator.tip_y"][0])
+            angle.append(r["actuator.tip_angle"][0])
             kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, theory.piezo_strain(float(u)))
             ax, ay = theory.arc_point(kappa, length)
             arc_x.append(float(ax))
@@ -97,7 +97,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         kappa = curvature_fn[model](p.E1, p.h1, p.E2, p.h2, p.width, theory.piezo_strain(p.voltage))
         unloaded = BendingActuator(p.n_cells, p.cell_length, p.width, passive, active, PiezoDrive(0.0), cell=p.cell, stiffness=model)
         loaded = solve_static(unloaded, voltage=0.0, tip_force=(0.0, p.tip_force))
-        compliance = float(loaded["tip_y"][0]) / p.tip_force
+        compliance = float(loaded["actuator.tip_y"][0]) / p.tip_force
         factor = {
             "rigid": lambda: theory.rigid_chain_compliance_factor(p.n_cells),
             "six-bar": lambda: theory.six_bar_chain_compliance_factor(p.n_cells, unloaded.spring_share),
@@ -128,8 +128,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     bent = solve_static(unloaded, voltage=0.0, tip_force=(0.0, elastica_force))
     steps += 1
     scalars["elastica_force"] = (elastica_force, "N")
-    scalars["elastica_y_over_L"] = (float(bent["tip_y"][0]) / length, "-")
-    scalars["elastica_1_minus_x_over_L"] = (1.0 - float(bent["tip_x"][0]) / length, "-")
+    scalars["elastica_y_over_L"] = (float(bent["actuator.tip_y"][0]) / length, "-")
+    scalars["elastica_1_minus_x_over_L"] = (1.0 - float(bent["actuator.tip_x"][0]) / length, "-")
     scalars["EI_ratio_paper_to_composite"] = (ei["paper"] / ei["composite"], "-")
     scalars["curvature_ratio_paper_to_composite"] = (
         scalars["curvature_theory_paper"][0] / scalars["curvature_theory_composite"][0],

@@ -174,9 +174,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     for name, r in results.items():
         if r.n_rows != t.size or not np.allclose(r["time"], t):
             raise RuntimeError(f"run {name!r} recorded other time steps than run 'linear' (step size reduced)")
-        error = r["tip_y"] - target
-        series[f"tip_{name}"] = r["tip_y"]
-        series[f"voltage_{name}"] = r["voltage"]
+        error = r["actuator.tip_y"] - target
+        series[f"tip_{name}"] = r["actuator.tip_y"]
+        series[f"voltage_{name}"] = r["actuator.voltage"]
         units[f"tip_{name}"] = "m"
         units[f"voltage_{name}"] = "V"
         scalars[f"rms_error_{name}"] = (float(np.sqrt(np.mean(error[after] ** 2))), "m")

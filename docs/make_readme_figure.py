@@ -32,7 +32,7 @@ def main() -> Path:
     left.set_xlabel("voltage U [V]")
     left.set_ylabel("stroke of a 29 mm cell [µm]")
     left.set_title("Preisach loop (paper, Fig. 6) and a minor loop")
-    right.plot(result["voltage"][last], result["tip_y"][last] * 1e3)
+    right.plot(result["actuator.voltage"][last], result["actuator.tip_y"][last] * 1e3)
     right.set_xlabel("voltage U [V]")
     right.set_ylabel("tip deflection y [mm]")
     right.set_title("Bending actuator, hysteresis in the solver step")

@@ -72,8 +72,8 @@ def check_in_step_hysteresis_equals_offline_replay(cell, settings):
     with coarse_step_expected():
         r = simulate(fast_triangle_actuator(cell, H), 0.1, step=2e-3, settings=settings)
     assert r.info["rejected_steps"] > 0
-    np.testing.assert_allclose(r["strain"], H.apply(r["voltage"]), rtol=0, atol=1e-15)
-    assert np.ptp(r["strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
+    np.testing.assert_allclose(r["actuator.strain"], H.apply(r["actuator.voltage"]), rtol=0, atol=1e-15)
+    assert np.ptp(r["actuator.strain"]) > 0.9 * (1.3793e-3 + 1.3793e-4)
     return r
 
 
@@ -87,7 +87,7 @@ def check_run_starts_in_static_equilibrium(cell, n_cells, force=(0.0, -0.2)):
     r = simulate(act, 40 * 1e-4, step=1e-4, tip_force=force)
     s = solve_static(act, tip_force=force)
     assert r.n_rows == 41
-    for name, atol in (("tip_x", 1e-8), ("tip_y", 1e-8), ("tip_angle", 1e-7)):
+    for name, atol in (("actuator.tip_x", 1e-8), ("actuator.tip_y", 1e-8), ("actuator.tip_angle", 1e-7)):
         np.testing.assert_allclose(r[name], s[name][0], rtol=0, atol=atol)
     return r, s
 
@@ -102,5 +102,5 @@ def check_end_torque_equals_prestep_path(cell, rel_atol):
     a = run_actuator(fast_triangle_actuator(cell, H1), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="prestep")
     b = run_actuator(fast_triangle_actuator(cell, H2), 0.05, 1e-4, (0.0, 0.0), None, stroke_path="offsets")
     assert a.n_rows == b.n_rows == 501
-    for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_1", "cell_angle_3"):
+    for name in ("actuator.tip_x", "actuator.tip_y", "actuator.tip_angle", "actuator.cell_angle_1", "actuator.cell_angle_3"):
         np.testing.assert_allclose(a[name], b[name], rtol=0, atol=rel_atol * np.max(np.abs(b[name])))

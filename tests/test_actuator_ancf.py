@@ -45,11 +45,11 @@ def test_free_actuation_follows_the_arc(geometry, n_cells):
     r = solve_static(act)
     kappa = composite_kappa(g, bt.piezo_strain(voltage))
     rel = 1.2e-2 * (kappa * act.cell_length) ** 4 + 1e-9
-    assert r["tip_angle"][0] == pytest.approx(kappa * g.length, rel=rel)
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * g.length, rel=rel)
     x, y = bt.arc_point(kappa, g.length)
-    assert r["tip_x"][0] == pytest.approx(float(x), abs=rel * g.length)
-    assert r["tip_y"][0] == pytest.approx(float(y), abs=rel * g.length)
-    angles = np.array([r[f"cell_angle_{j + 1}"][0] for j in range(n_cells)])
+    assert r["actuator.tip_x"][0] == pytest.approx(float(x), abs=rel * g.length)
+    assert r["actuator.tip_y"][0] == pytest.approx(float(y), abs=rel * g.length)
+    angles = np.array([r[f"actuator.cell_angle_{j + 1}"][0] for j in range(n_cells)])
     np.testing.assert_allclose(angles, (np.arange(n_cells) + 0.5) * kappa * act.cell_length, rtol=rel)
 
 
@@ -73,8 +73,8 @@ def test_small_tip_force_compliance_is_the_beams(geometry, n_cells):
     c0 = bt.tip_compliance(EI, g.length)
     F = 1e-3 * g.length / c0
     r = solve_static(act, tip_force=(0.0, F))
-    assert r["tip_y"][0] / F == pytest.approx(c0, rel=1e-3 / n_cells**4 + 1e-5)
-    assert r["tip_angle"][0] == pytest.approx(F * g.length**2 / (2 * EI), rel=1e-3 / n_cells**4 + 1e-5)
+    assert r["actuator.tip_y"][0] / F == pytest.approx(c0, rel=1e-3 / n_cells**4 + 1e-5)
+    assert r["actuator.tip_angle"][0] == pytest.approx(F * g.length**2 / (2 * EI), rel=1e-3 / n_cells**4 + 1e-5)
 
 
 @pytest.mark.parametrize("alpha", [1.0, 2.0, 5.0])
@@ -87,8 +87,8 @@ def test_large_tip_force_matches_elastica(alpha):
     # at large rotations per element the cubic element converges only from ~0.2 rad per element
     # on (alpha = 5: errors 1.2e-3 / 4.8e-5 / 9e-6 at 8 / 16 / 32 elements, measured): 16
     # elements, tolerance 1e-4 plus the table's rounding (5 digits)
-    assert r["tip_y"][0] / g.length == pytest.approx(y_ref, abs=1.1e-4)
-    assert 1 - r["tip_x"][0] / g.length == pytest.approx(dx_ref, abs=1.1e-4)
+    assert r["actuator.tip_y"][0] / g.length == pytest.approx(y_ref, abs=1.1e-4)
+    assert 1 - r["actuator.tip_x"][0] / g.length == pytest.approx(dx_ref, abs=1.1e-4)
 
 
 def test_first_eigenfrequency_converges_from_above_at_fourth_order():
@@ -109,13 +109,13 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
     H2 = paper_strain_preisach()
     with coarse_step_expected():
         r2 = simulate(fast_triangle_actuator("ancf", LeakyOperator(H2)), 0.1, step=2e-3, settings=REJECTING)
-    assert np.max(np.abs(r2["strain"] - H2.apply(r2["voltage"]))) > 1e-6
+    assert np.max(np.abs(r2["actuator.strain"] - H2.apply(r2["actuator.voltage"]))) > 1e-6
 
 
 @pytest.mark.parametrize("n_cells", [1, 32])
 def test_run_starts_in_static_equilibrium(n_cells):
     r, _ = check_run_starts_in_static_equilibrium("ancf", n_cells)
-    assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
+    assert [c for c in r if c.startswith("actuator.cell_angle_")] == [f"actuator.cell_angle_{j + 1}" for j in range(n_cells)]
 
 
 def test_bent_state_f1_converges_to_the_linear_elements_value_and_locks_when_coarse():

@@ -171,7 +171,7 @@ def test_settings_callable_and_dict_reach_exudyn():
     assert seen["tol"] == 1e-8  # the package default was in place when the callable ran
     assert r.n_rows == 21
     r2 = simulate(ref_a(cell="rigid"), 2e-3, step=1e-4, settings={"timeIntegration.newton.absoluteTolerance": 1e-9})
-    np.testing.assert_allclose(r2["tip_y"], r["tip_y"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(r2["actuator.tip_y"], r["actuator.tip_y"], rtol=0, atol=1e-15)
 
 
 # ----------------------------------------------------------------------------- solver failures

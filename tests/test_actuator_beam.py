@@ -45,12 +45,12 @@ def test_free_actuation_tip_angle_is_kappa_L_and_nodes_on_the_chain_polygon(geom
     act = g.actuator(PiezoDrive(voltage), cell="beam")
     r = solve_static(act)
     kappa = composite_kappa(g, bt.piezo_strain(voltage))
-    assert r["tip_angle"][0] == pytest.approx(kappa * g.length, rel=1e-9)
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * g.length, rel=1e-9)
     px, py = bt.chain_polygon(kappa, g.length, g.n_cells)
     # Newton tolerance 1e-8 N on axial stiffness ~1e5-1e6 N: chord lengths exact to ~1e-13 m
-    assert r["tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * g.length)
-    assert r["tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * g.length)
-    angles = np.array([r[f"cell_angle_{j + 1}"][0] for j in range(g.n_cells)])
+    assert r["actuator.tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * g.length)
+    assert r["actuator.tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * g.length)
+    angles = np.array([r[f"actuator.cell_angle_{j + 1}"][0] for j in range(g.n_cells)])
     np.testing.assert_allclose(angles, (np.arange(g.n_cells) + 0.5) * kappa * act.cell_length, rtol=1e-9)
 
 
@@ -77,9 +77,9 @@ def test_small_tip_force_compliance_with_element_factor(geometry, n_cells):
     r = solve_static(act, tip_force=(0.0, F))
     ga = (g.E1 * g.h1 + g.E2 * g.h2) * g.width
     expected = c0 * (1 - 1 / (4 * n_cells**2)) + g.length / ga
-    assert r["tip_y"][0] / F == pytest.approx(expected, rel=1e-5)
+    assert r["actuator.tip_y"][0] / F == pytest.approx(expected, rel=1e-5)
     # the tip rotation is exact at the nodes: F L^2 / 2EI
-    assert r["tip_angle"][0] == pytest.approx(F * g.length**2 / (2 * EI), rel=1e-5)
+    assert r["actuator.tip_angle"][0] == pytest.approx(F * g.length**2 / (2 * EI), rel=1e-5)
 
 
 @pytest.mark.parametrize("alpha", [1.0, 2.0, 5.0])
@@ -91,8 +91,8 @@ def test_large_tip_force_matches_elastica(alpha):
     for n in (8, 16):
         act = g.actuator(PiezoDrive(0.0), n_cells=n, cell="beam")
         r = solve_static(act, tip_force=(0.0, alpha * EI / g.length**2))
-        err_y = r["tip_y"][0] / g.length - y_ref
-        err_x = (1 - r["tip_x"][0] / g.length) - dx_ref
+        err_y = r["actuator.tip_y"][0] / g.length - y_ref
+        err_x = (1 - r["actuator.tip_x"][0] / g.length) - dx_ref
         # O(1/N^2) like the small-deflection factor 1/(4N^2): bound 0.5/N^2 plus the table's
         # rounding (5 digits)
         assert abs(err_y) <= 0.5 / n**2 + 1e-5
@@ -137,13 +137,13 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
     H2 = paper_strain_preisach()
     with coarse_step_expected():
         r2 = simulate(fast_triangle_actuator("beam", LeakyOperator(H2)), 0.1, step=2e-3, settings=REJECTING)
-    assert np.max(np.abs(r2["strain"] - H2.apply(r2["voltage"]))) > 1e-6
+    assert np.max(np.abs(r2["actuator.strain"] - H2.apply(r2["actuator.voltage"]))) > 1e-6
 
 
 @pytest.mark.parametrize("n_cells", [1, 64])
 def test_run_starts_in_static_equilibrium(n_cells):
     r, _ = check_run_starts_in_static_equilibrium("beam", n_cells)
-    assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
+    assert [c for c in r if c.startswith("actuator.cell_angle_")] == [f"actuator.cell_angle_{j + 1}" for j in range(n_cells)]
 
 
 def test_beam_and_rigid_chain_agree_in_a_slow_dynamic_run():
@@ -155,6 +155,6 @@ def test_beam_and_rigid_chain_agree_in_a_slow_dynamic_run():
     for cell in ("beam", "rigid"):
         act = REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, 0.5)), n_cells=16, cell=cell)
         runs[cell] = simulate(act, 0.5, step=5e-4)
-    y_b, y_r = runs["beam"]["tip_y"], runs["rigid"]["tip_y"]
+    y_b, y_r = runs["beam"]["actuator.tip_y"], runs["rigid"]["actuator.tip_y"]
     assert y_b.shape == y_r.shape
     assert np.max(np.abs(y_b - y_r)) < 0.01 * np.ptp(y_r)

@@ -41,7 +41,7 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps(cell):
     # is the offline replay, and the run covered the whole loop, so the comparison is not trivial
     r = check_in_step_hysteresis_equals_offline_replay(cell, REJECTING[cell])
     assert np.diff(r["time"]).min() < 2e-3 * 0.75
-    np.testing.assert_allclose(r["stroke"], r["strain"] * REF_A.cell_length, rtol=1e-15)
+    np.testing.assert_allclose(r["actuator.stroke"], r["actuator.strain"] * REF_A.cell_length, rtol=1e-15)
 
 
 @pytest.mark.parametrize("cell", CELLS)
@@ -52,7 +52,7 @@ def test_committing_inside_trials_would_be_caught(cell):
     with coarse_step_expected():
         r = simulate(fast_triangle_actuator(cell, LeakyOperator(H)), 0.1, step=2e-3, settings=REJECTING[cell])
     assert r.info["rejected_steps"] > 0
-    assert np.max(np.abs(r["strain"] - H.apply(r["voltage"]))) > 1e-6
+    assert np.max(np.abs(r["actuator.strain"] - H.apply(r["actuator.voltage"]))) > 1e-6
 
 
 @pytest.mark.parametrize("cell, path_a, path_b", [("six-bar", "prestep", "user_function"),
@@ -68,7 +68,7 @@ def test_prestep_path_equals_user_function_path(cell, path_a, path_b):
         b = run_actuator(fast_triangle_actuator(cell, H2), 0.1, 2e-3, (0.0, 0.0), REJECTING[cell], stroke_path=path_b)
     assert a.info["rejected_steps"] > 0
     assert a.n_rows == b.n_rows
-    for name in ("time", "voltage", "strain", "tip_x", "tip_y", "tip_angle"):
+    for name in ("time", "actuator.voltage", "actuator.strain", "actuator.tip_x", "actuator.tip_y", "actuator.tip_angle"):
         np.testing.assert_allclose(a[name], b[name], rtol=0, atol=1e-12 * max(1.0, np.max(np.abs(a[name]))))
 
 
@@ -92,8 +92,8 @@ def test_every_accepted_step_is_recorded(cell):
     assert r.n_rows == 201
     np.testing.assert_allclose(r["time"], np.linspace(0.0, 0.05, 201), rtol=0, atol=1e-12)
     # no hysteresis: Eq. 3
-    np.testing.assert_allclose(r["strain"], 460e-12 * r["voltage"] / 0.5e-3, rtol=1e-14)
-    np.testing.assert_allclose(r["voltage"], 3000.0 * r["time"], rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(r["actuator.strain"], 460e-12 * r["actuator.voltage"] / 0.5e-3, rtol=1e-14)
+    np.testing.assert_allclose(r["actuator.voltage"], 3000.0 * r["time"], rtol=1e-12, atol=1e-9)
 
 
 # ----------------------------------------------------------------------------- part 3
@@ -108,7 +108,7 @@ def test_run_starts_in_static_equilibrium_for_1_to_64_cells(cell, n_cells):
     # and the equilibrium is the one of beam theory within the chain factors (linear superposition:
     # actuation arc plus the tip-force deflection of a cantilever, 2.4 mm: a few-% effect)
     kappa = bt.free_curvature(REF_A.E1, REF_A.h1, REF_A.E2, REF_A.h2, REF_A.width, bt.piezo_strain(1500.0))
-    assert s["tip_angle"][0] < kappa * REF_A.length
+    assert s["actuator.tip_angle"][0] < kappa * REF_A.length
 
 
 @pytest.mark.parametrize("cell", CELLS)
@@ -129,9 +129,9 @@ def test_dynamic_rotation_beyond_90_degrees(cell):
     kappa_L = bt.free_curvature(REF_A.E1, REF_A.h1, REF_A.E2, REF_A.h2, REF_A.width,
                                 bt.piezo_strain(1500.0)) * 16 * 29e-3
     assert kappa_L > math.pi / 2
-    assert r["tip_angle"].max() > math.pi / 2
+    assert r["actuator.tip_angle"].max() > math.pi / 2
     # a ramp 2.4 periods long leaves a residual oscillation of a few % of the final angle
-    assert r["tip_angle"][-1] == pytest.approx(kappa_L, rel=0.05)
+    assert r["actuator.tip_angle"][-1] == pytest.approx(kappa_L, rel=0.05)
 
 
 # ----------------------------------------------------------------------------- part 4: Fig. 12
@@ -142,7 +142,7 @@ def test_paper_fig12_loop_closes_after_first_cycle(cell):
     H = paper_strain_preisach()
     act = REF_A.actuator(PiezoDrive(Triangle(500.0, 1000.0, T), hysteresis=H), cell=cell)
     r = simulate(act, 3 * T, step=step)
-    t, u, y = r["time"], r["voltage"], r["tip_y"]
+    t, u, y = r["time"], r["actuator.voltage"], r["actuator.tip_y"]
     n = int(round(T / step))
     assert r.n_rows == 3 * n + 1  # uniform steps, none rejected
     cycles = [y[k * n:(k + 1) * n + 1] for k in range(3)]

@@ -234,10 +234,10 @@ def test_static_actuation_is_the_exact_arc(geometry, n_cells, voltage):
     r = solve_static(act)
     kappa = _composite_kappa(g, bt.piezo_strain(voltage))
     x, y = bt.arc_point(kappa, g.length)
-    assert r["tip_angle"][0] == pytest.approx(kappa * g.length, rel=1e-14)
-    assert r["tip_x"][0] == pytest.approx(float(x), abs=1e-14 * g.length)
-    assert r["tip_y"][0] == pytest.approx(float(y), abs=1e-14 * g.length)
-    angles = np.array([r[f"cell_angle_{j + 1}"][0] for j in range(n_cells)])
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * g.length, rel=1e-14)
+    assert r["actuator.tip_x"][0] == pytest.approx(float(x), abs=1e-14 * g.length)
+    assert r["actuator.tip_y"][0] == pytest.approx(float(y), abs=1e-14 * g.length)
+    angles = np.array([r[f"actuator.cell_angle_{j + 1}"][0] for j in range(n_cells)])
     np.testing.assert_allclose(angles, (np.arange(n_cells) + 0.5) * kappa * act.cell_length, rtol=1e-13)
 
 
@@ -252,9 +252,9 @@ def test_one_mode_is_exact_for_a_long_bender_without_the_coarse_cell_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         r = solve_static(act)
-    assert r["tip_angle"][0] == pytest.approx(kappa * 0.3, rel=1e-14)
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * 0.3, rel=1e-14)
     x, y = bt.arc_point(kappa, 0.3)
-    assert (r["tip_x"][0], r["tip_y"][0]) == pytest.approx((float(x), float(y)), abs=1e-14 * 0.3)
+    assert (r["actuator.tip_x"][0], r["actuator.tip_y"][0]) == pytest.approx((float(x), float(y)), abs=1e-14 * 0.3)
     rigid = type(act)(1, 0.3, act.width, act.passive, act.active, act.drive, cell="rigid")
     with pytest.warns(RuntimeWarning, match="coarse discretisation"):
         solve_static(rigid)
@@ -324,10 +324,10 @@ def test_small_triangle_follows_the_modal_solution():
     for n, tol in ((4, 1.5e-4), (3, 3e-4)):
         act = REF_A.actuator(PiezoDrive(Triangle(5.0, 10.0, 0.5)), n_cells=n, cell="ritz")
         r = simulate(act, 0.5)
-        moments = act.bending_stiffness * act.curvature_per_strain * r["strain"]
+        moments = act.bending_stiffness * act.curvature_per_strain * r["actuator.strain"]
         ref = bt.end_moment_tip_rotation(act.bending_stiffness, act.mass_per_length, act.length,
                                          act.stiffness_damping_factor, r["time"], moments)
-        assert np.max(np.abs(r["tip_angle"] - ref)) <= tol * np.max(np.abs(ref))
+        assert np.max(np.abs(r["actuator.tip_angle"] - ref)) <= tol * np.max(np.abs(ref))
 
 
 def test_papers_run_agrees_with_32_beam_elements():
@@ -345,9 +345,9 @@ def test_papers_run_agrees_with_32_beam_elements():
             runs[cell] = simulate(REF_A.actuator(drive, n_cells=n, cell=cell), 1.0)
     a, b = runs["ritz"], runs["beam"]
     assert a.n_rows == b.n_rows == 10001
-    np.testing.assert_array_equal(a["strain"], b["strain"])
-    deflection = np.max(np.abs(b["tip_y"]))
-    for name, scale in (("tip_x", deflection), ("tip_y", deflection), ("tip_angle", np.max(np.abs(b["tip_angle"])))):
+    np.testing.assert_array_equal(a["actuator.strain"], b["actuator.strain"])
+    deflection = np.max(np.abs(b["actuator.tip_y"]))
+    for name, scale in (("actuator.tip_x", deflection), ("actuator.tip_y", deflection), ("actuator.tip_angle", np.max(np.abs(b["actuator.tip_angle"])))):
         assert np.max(np.abs(a[name] - b[name])) <= 1e-4 * scale, name
 
 
@@ -361,7 +361,7 @@ def test_fast_voltage_step_warns_about_the_dynamic_rotation_and_a_slow_ramp_does
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         r = simulate(act, 0.1)
-    delta = rb.dynamic_rotation(r["tip_angle"], r["strain"], act.curvature_per_strain, act.length)
+    delta = rb.dynamic_rotation(r["actuator.tip_angle"], r["actuator.strain"], act.curvature_per_strain, act.length)
     assert 0.005 < delta < rb.DYNAMIC_ROTATION_LIMIT
 
 
@@ -390,13 +390,13 @@ def test_in_step_hysteresis_equals_offline_replay_despite_rejected_steps():
         H2 = paper_strain_preisach()
         with coarse_step_expected():
             r2 = simulate(fast_triangle_actuator("ritz", LeakyOperator(H2)), 0.1, step=2e-3, settings=REJECTING)
-    assert np.max(np.abs(r2["strain"] - H2.apply(r2["voltage"]))) > 1e-6
+    assert np.max(np.abs(r2["actuator.strain"] - H2.apply(r2["actuator.voltage"]))) > 1e-6
 
 
 @pytest.mark.parametrize("n_cells", [1, 8])
 def test_run_starts_in_static_equilibrium(n_cells):
     r, _ = check_run_starts_in_static_equilibrium("ritz", n_cells, force=(0.0, 0.0))
-    assert [c for c in r if c.startswith("cell_angle_")] == [f"cell_angle_{j + 1}" for j in range(n_cells)]
+    assert [c for c in r if c.startswith("actuator.cell_angle_")] == [f"actuator.cell_angle_{j + 1}" for j in range(n_cells)]
 
 
 # ----------------------------------------------------------------------------- cases and mechanisms
@@ -414,11 +414,11 @@ def test_fig12_case_runs_with_ritz_from_the_command_line(tmp_path):
                 "--out", "out"], tmp_path)
     assert proc.returncode == 0, proc.stderr
     data = read_csv(tmp_path / "out" / "paper_bending_actuator.csv")
-    assert [c for c in data.names if c.startswith("cell_angle_")] == [f"cell_angle_{j}" for j in (1, 2, 3, 4)]
+    assert [c for c in data.names if c.startswith("actuator.cell_angle_")] == [f"actuator.cell_angle_{j}" for j in (1, 2, 3, 4)]
     g = REF_A
     y_arc = np.array([float(bt.arc_point(_composite_kappa(g, s), g.length)[1]) if s != 0.0 else 0.0
-                      for s in data["strain"]])
-    assert np.max(np.abs(data["tip_y"] - y_arc)) <= 2e-2 * np.max(np.abs(y_arc))
+                      for s in data["actuator.strain"]])
+    assert np.max(np.abs(data["actuator.tip_y"] - y_arc)) <= 2e-2 * np.max(np.abs(y_arc))
 
 
 def test_cases_and_mechanisms_that_need_tip_loads_or_cells_refuse_ritz():

@@ -59,15 +59,15 @@ def test_free_actuation_tip_angle_is_kappa_L_and_tip_on_chain_polygon(geometry, 
         rel = 1e-9
     else:
         rel = six_bar_rel_bound(theta_c, act.spring_share)
-    assert r["tip_angle"][0] == pytest.approx(angle_ref, rel=rel)
+    assert r["actuator.tip_angle"][0] == pytest.approx(angle_ref, rel=rel)
     # tip = last vertex of the chain of rigid passive bars (length L_c) turning theta_c each;
     # an angle error d(theta) moves it by at most L * d(theta_total)
     px, py = bt.chain_polygon(kappa, g.length, g.n_cells)
     tol = g.length * rel * angle_ref + 1e-12
-    assert r["tip_x"][0] == pytest.approx(px[-1], abs=tol)
-    assert r["tip_y"][0] == pytest.approx(py[-1], abs=tol)
+    assert r["actuator.tip_x"][0] == pytest.approx(px[-1], abs=tol)
+    assert r["actuator.tip_y"][0] == pytest.approx(py[-1], abs=tol)
     # each cell's passive bar lies at the mean of its interfaces: (j + 1/2) theta_c
-    cell_angles = np.array([r[f"cell_angle_{j + 1}"][0] for j in range(g.n_cells)])
+    cell_angles = np.array([r[f"actuator.cell_angle_{j + 1}"][0] for j in range(g.n_cells)])
     np.testing.assert_allclose(cell_angles, (np.arange(g.n_cells) + 0.5) * theta_c, rtol=rel, atol=1e-12)
 
 
@@ -80,8 +80,8 @@ def test_chain_polygon_converges_to_the_arc_of_model_md():
             r = solve_static(act)
             theta_c = 4.13984 * act.cell_length
             bound = REF_A.length * theta_c**2 / 12 + 0.5e-6  # + docs/theory.rst rounding
-            assert r["tip_x"][0] == pytest.approx(85.131e-3, abs=bound)
-            assert r["tip_y"][0] == pytest.approx(15.499e-3, abs=bound)
+            assert r["actuator.tip_x"][0] == pytest.approx(85.131e-3, abs=bound)
+            assert r["actuator.tip_y"][0] == pytest.approx(15.499e-3, abs=bound)
 
 
 @pytest.mark.parametrize("cell", CELLS)
@@ -95,10 +95,10 @@ def test_large_actuation_rotation_beyond_90_degrees_converges(cell):
     L = 16 * 29e-3
     assert kappa * L > math.pi / 2
     rel = 1e-9 if cell == "rigid" else six_bar_rel_bound(kappa * 29e-3, act.spring_share)
-    assert r["tip_angle"][0] == pytest.approx(kappa * L, rel=rel)
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * L, rel=rel)
     px, py = bt.chain_polygon(kappa, L, 16)
-    assert r["tip_x"][0] == pytest.approx(px[-1], abs=L * rel * kappa * L + 1e-12)
-    assert r["tip_y"][0] == pytest.approx(py[-1], abs=L * rel * kappa * L + 1e-12)
+    assert r["actuator.tip_x"][0] == pytest.approx(px[-1], abs=L * rel * kappa * L + 1e-12)
+    assert r["actuator.tip_y"][0] == pytest.approx(py[-1], abs=L * rel * kappa * L + 1e-12)
 
 
 # ----------------------------------------------------------------------------- paper calibration
@@ -116,7 +116,7 @@ def test_paper_stiffness_curvature_ratio(geometry, cell):
     # six-bar: both runs carry the cell's O(theta_c²) kinematic deviation (see six_bar_rel_bound)
     theta_c = 1.2 * composite_kappa(g, strain) * g.cell_length
     rel = 1e-9 if cell == "rigid" else 2 * six_bar_rel_bound(theta_c, 0.2)
-    assert paper["tip_angle"][0] / comp["tip_angle"][0] == pytest.approx(ratio_ref, rel=rel)
+    assert paper["actuator.tip_angle"][0] / comp["actuator.tip_angle"][0] == pytest.approx(ratio_ref, rel=rel)
 
 
 # ----------------------------------------------------------------------------- tip force, small
@@ -138,7 +138,7 @@ def test_small_tip_force_compliance_with_chain_factor(geometry, cell, n_cells):
         factor = bt.six_bar_chain_compliance_factor(n_cells, rho_s)
     # tolerance: the chain factors are exact in linear theory; what remains is the geometric
     # nonlinearity of a deflection of 1e-3 L (relative ~ (1e-3)² x O(1)) -> 1e-5
-    assert r["tip_y"][0] / F == pytest.approx(c0 * factor, rel=1e-5)
+    assert r["actuator.tip_y"][0] / F == pytest.approx(c0 * factor, rel=1e-5)
     assert act.spring_share == pytest.approx(
         (g.E1 * g.h1**3 + g.E2 * g.h2**3) * g.width / 12 / EI, rel=1e-12)
 
@@ -154,8 +154,8 @@ def test_large_tip_force_matches_elastica(alpha):
     for n in (16, 32):
         act = g.actuator(PiezoDrive(0.0), n_cells=n, cell="rigid")
         r = solve_static(act, tip_force=(0.0, alpha * EI / g.length**2))
-        err_y = r["tip_y"][0] / g.length - y_ref
-        err_x = (1 - r["tip_x"][0] / g.length) - dx_ref
+        err_y = r["actuator.tip_y"][0] / g.length - y_ref
+        err_x = (1 - r["actuator.tip_x"][0] / g.length) - dx_ref
         # the chain of N rigid cells differs from the continuum by O(1/N²) (its small-deflection
         # compliance factor is 1 + 1/(2N²)); bound 0.5/N², plus the table's rounding (5 digits)
         assert abs(err_y) <= 0.5 / n**2 + 1e-5
@@ -206,11 +206,11 @@ def test_static_with_hysteresis_follows_the_rising_branch_from_reset(cell):
     act = REF_A.actuator(PiezoDrive(0.0, hysteresis=H), cell=cell)
     r = solve_static(act, voltage=500.0)
     strain = 12e-6 / 29e-3
-    assert r["strain"][0] == pytest.approx(strain, rel=1e-9)
-    assert r["stroke"][0] == pytest.approx(12e-6, rel=1e-9)
+    assert r["actuator.strain"][0] == pytest.approx(strain, rel=1e-9)
+    assert r["actuator.stroke"][0] == pytest.approx(12e-6, rel=1e-9)
     kappa = composite_kappa(REF_A, strain)
     rel = 1e-9 if cell == "rigid" else six_bar_rel_bound(kappa * REF_A.cell_length, act.spring_share)
-    assert r["tip_angle"][0] == pytest.approx(kappa * REF_A.length, rel=rel)
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * REF_A.length, rel=rel)
     # the operator's own memory is untouched by the static solve
     assert H.output == output_before
     H.restore(before)

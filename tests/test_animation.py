@@ -13,10 +13,12 @@ def bent_result():
     t = np.linspace(0, 1, 21)
     kappa = 4.0 * t  # uniform curvature growing in time [1/m]
     length, n = 29e-3, 3
-    series = {"time": t, "voltage": 1500 * t, "tip_x": np.zeros_like(t), "tip_y": np.zeros_like(t)}
+    series = {"time": t, "actuator.voltage": 1500 * t, "actuator.tip_x": np.zeros_like(t),
+              "actuator.tip_y": np.zeros_like(t)}
     for j in range(n):  # cell j of a circular arc turns by kappa * L * (j + 1/2)
-        series[f"cell_angle_{j + 1}"] = kappa * length * (j + 0.5)
-    units = {name: ("s" if name == "time" else "V" if name == "voltage" else "m" if name.startswith("tip") else "rad") for name in series}
+        series[f"actuator.cell_angle_{j + 1}"] = kappa * length * (j + 0.5)
+    units = {name: ("s" if name == "time" else "V" if name.endswith("voltage") else "rad" if "angle" in name else "m")
+             for name in series}
     return Result(series, units, parameters={"cell_length [m]": length})
 
 

@@ -181,7 +181,7 @@ def test_fig12_case_draws_layers_joints_and_motors_with_the_scale(tmp_path, monk
     # is built from the recorded cell angles (a beam element's: the mean of its node rotations, so
     # its chord differs from the element's arc by O(rotation difference^2) ~ 1e-6 relative)
     tip = max(line.get_ydata()[-1] for line in ax.get_lines() if line.get_label() == "passive layer")
-    assert tip == pytest.approx(1e3 * np.max(np.abs(out.result["tip_y"])), rel=1e-5)
+    assert tip == pytest.approx(1e3 * np.max(np.abs(out.result["actuator.tip_y"])), rel=1e-5)
     from PIL import Image
 
     with Image.open(tmp_path / "paper_bending_actuator_animation.gif") as gif:

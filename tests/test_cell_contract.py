@@ -217,9 +217,9 @@ def test_a_bending_actuator_by_name_follows_the_arcs_inscribed_polygon():
     r = atcm.solve_static(act)
     kappa = act.free_curvature(act.drive.static_strain(1500.0))
     px, py = bt.chain_polygon(kappa, act.length, act.n_cells)
-    assert r["tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * act.length)
-    assert r["tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * act.length)
-    assert r["tip_angle"][0] == pytest.approx(kappa * act.length, rel=1e-9)
+    assert r["actuator.tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * act.length)
+    assert r["actuator.tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * act.length)
+    assert r["actuator.tip_angle"][0] == pytest.approx(kappa * act.length, rel=1e-9)
 
 
 def test_its_first_eigenfrequency_is_the_hand_built_linear_models():

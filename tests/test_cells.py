@@ -99,14 +99,14 @@ def test_a_subclass_kind_works_in_a_lone_actuator():
     act = actuator(MyRigid())
     kappa = act.free_curvature(act.drive.static_strain(1500.0))
     px, py = bt.chain_polygon(kappa, act.length, act.n_cells)
-    assert mine["tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * act.length)
-    assert mine["tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * act.length)
+    assert mine["actuator.tip_x"][0] == pytest.approx(px[-1], abs=1e-9 * act.length)
+    assert mine["actuator.tip_y"][0] == pytest.approx(py[-1], abs=1e-9 * act.length)
 
 
 def test_a_subclass_kind_works_in_dynamics_and_eigenfrequencies():
     mine = atcm.simulate(actuator(MyRigid(), n=4), 0.005, step=1e-4)
     ref = atcm.simulate(actuator("rigid", n=4), 0.005, step=1e-4)
-    np.testing.assert_allclose(mine["tip_y"], ref["tip_y"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(mine["actuator.tip_y"], ref["actuator.tip_y"], rtol=0, atol=1e-15)
     f_mine = atcm.eigenfrequencies(actuator(MyRigid(), n=4), n=2, voltage=500.0)
     f_ref = atcm.eigenfrequencies(actuator("rigid", n=4), n=2, voltage=500.0)
     np.testing.assert_allclose(f_mine, f_ref, rtol=1e-12)
@@ -186,7 +186,7 @@ def test_a_new_kind_registers_its_own_realisation():
 
     ref = atcm.solve_static(actuator("rigid", voltage=800.0))
     mine = atcm.solve_static(actuator(Delegating(), voltage=800.0))
-    assert mine["tip_y"][0] == pytest.approx(ref["tip_y"][0], abs=1e-15)
+    assert mine["actuator.tip_y"][0] == pytest.approx(ref["actuator.tip_y"][0], abs=1e-15)
     r = atcm.solve_static(bender_with_lever(Delegating()), voltage=500.0)
     r_ref = atcm.solve_static(bender_with_lever("rigid"), voltage=500.0)
     assert r["lever.E_y"][0] == pytest.approx(r_ref["lever.E_y"][0], abs=1e-15)
@@ -323,7 +323,7 @@ def test_the_retired_actuator_registry_warns_and_says_where_to_register():
             raise AssertionError("never called: the one builder realises Old as its parent kind")
     # the registration had no effect: the kind is built as its parent, the rigid chain
     ref = atcm.solve_static(actuator("rigid", voltage=800.0))
-    assert atcm.solve_static(actuator(Old(), voltage=800.0))["tip_y"][0] == ref["tip_y"][0]
+    assert atcm.solve_static(actuator(Old(), voltage=800.0))["actuator.tip_y"][0] == ref["actuator.tip_y"][0]
     with pytest.raises(ValueError, match="add_actuator_cells is retired"):
         add_actuator_cells(Old(), None, None, None, "prestep", (0.0, 0.0))
 

@@ -40,13 +40,13 @@ def test_integral_action_brings_the_tip_to_the_setpoint_through_the_hysteresis()
     act = actuator(PiezoDrive(pid, hysteresis=paper_strain_preisach()))
     result = simulate(act, 1.5, step=2e-4)
     # integral action: zero steady-state error on a constant setpoint
-    assert result["tip_y"][-1] == pytest.approx(target, abs=2e-3 * target)
+    assert result["actuator.tip_y"][-1] == pytest.approx(target, abs=2e-3 * target)
     # the controller saw exactly the recorded deflections of the accepted steps
     seen = np.array(pid.seen)
     np.testing.assert_allclose(seen[:, 0], result["time"])
-    np.testing.assert_allclose(seen[:, 1], result["tip_y"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(seen[:, 1], result["actuator.tip_y"], rtol=0, atol=1e-15)
     # zero-order hold at its own rate: the voltage changes only right after sample instants
-    volts, t = result["voltage"], result["time"]
+    volts, t = result["actuator.voltage"], result["time"]
     changes = t[1:][np.abs(np.diff(volts)) > 0]
     # a step ending at t uses the feedback sampled at the last sample instant before t
     assert np.all(np.abs(changes - 2e-4 - np.round((changes - 2e-4) / 1e-3) * 1e-3) < 1e-9)
@@ -60,7 +60,7 @@ def test_output_limit_is_reported_not_silent():
     act = actuator(PiezoDrive(pid, hysteresis=paper_strain_preisach()))
     with pytest.warns(RuntimeWarning, match=r"at its limits \[-500.0, 1500.0\] V in \d+ of \d+ samples"):
         result = simulate(act, 0.3, step=2e-4)
-    assert result["voltage"].max() == 1500.0
+    assert result["actuator.voltage"].max() == 1500.0
     assert result.info["controller"]["limited_samples"] > 0
 
 

@@ -47,9 +47,9 @@ def test_step_response_in_simulate_is_the_closed_form_sum_of_lags():
     t = r["time"]
     closed = h1 + np.sum(CREEP.c * (h1 + (h0 - h1) * np.exp(-t[:, None] / CREEP.tau)), axis=1)
     assert r.n_rows == 301
-    np.testing.assert_allclose(r["strain"], closed, rtol=1e-9, atol=0)  # measured 2.2e-16 relative
+    np.testing.assert_allclose(r["actuator.strain"], closed, rtol=1e-9, atol=0)  # measured 2.2e-16 relative
     # the creep is really there: 12.7 % of the jump at 0.3 s (so the comparison is not trivial)
-    assert (r["strain"][-1] - r["strain"][0]) / (h1 - h0) == pytest.approx(
+    assert (r["actuator.strain"][-1] - r["actuator.strain"][0]) / (h1 - h0) == pytest.approx(
         np.sum(CREEP.c * (1 - np.exp(-0.3 / CREEP.tau))), rel=1e-9)
 
 
@@ -60,7 +60,7 @@ def test_held_input_gives_the_same_strain_at_step_1e_3_and_1e_4(lag):
     rb = run(WithDynamics(paper_strain_preisach(), CREEP, lag), 1500.0, 0.2, 1e-4)
     ka, kb, n = shared(ra, rb)
     assert n == 201
-    np.testing.assert_allclose(ra["strain"][ka], rb["strain"][kb], rtol=1e-12, atol=0)
+    np.testing.assert_allclose(ra["actuator.strain"][ka], rb["actuator.strain"][kb], rtol=1e-12, atol=0)
 
 
 def test_ramps_through_a_linear_operator_give_the_same_strain_at_both_steps():
@@ -72,8 +72,8 @@ def test_ramps_through_a_linear_operator_give_the_same_strain_at_both_steps():
     rb = run(WithDynamics(PrandtlIshlinskii([], [], 1e-6), CREEP, RateLag(0.005)), program, 0.25, 1e-4)
     ka, kb, n = shared(ra, rb)
     assert n == 251
-    scale = np.max(np.abs(ra["strain"]))
-    np.testing.assert_allclose(ra["strain"][ka], rb["strain"][kb], rtol=0, atol=1e-12 * scale)
+    scale = np.max(np.abs(ra["actuator.strain"]))
+    np.testing.assert_allclose(ra["actuator.strain"][ka], rb["actuator.strain"][kb], rtol=0, atol=1e-12 * scale)
 
 
 def test_nonlinear_operator_output_is_second_order_in_the_step():
@@ -84,7 +84,7 @@ def test_nonlinear_operator_output_is_second_order_in_the_step():
     runs = [run(WithDynamics(paper_strain_preisach(), CREEP, RateLag(0.005)), Triangle(500.0, 1000.0, 0.05), 0.1, s)
             for s in (1e-3, 1e-4)]
     ka, kb, _ = shared(*runs)
-    diff = np.max(np.abs(runs[0]["strain"][ka] - runs[1]["strain"][kb])) / np.ptp(runs[1]["strain"])
+    diff = np.max(np.abs(runs[0]["actuator.strain"][ka] - runs[1]["actuator.strain"][kb])) / np.ptp(runs[1]["actuator.strain"])
     assert 1e-12 < diff < 1e-3
 
 
@@ -95,9 +95,9 @@ def test_in_step_equals_offline_replay_despite_rejected_steps():
     r = run(op, Triangle(500.0, 1000.0, 0.05), 0.1, 2e-3, REJECTING)
     assert r.info["rejected_steps"] > 0
     assert np.diff(r["time"]).min() < 2e-3 * 0.75
-    replay = WithDynamics(paper_strain_preisach(), CREEP, RateLag(0.005)).apply(r["voltage"], r["time"])
-    np.testing.assert_allclose(r["strain"], replay, rtol=0, atol=1e-15)
-    assert np.ptp(r["strain"]) > 0.5 * (1.3793e-3 + 1.3793e-4)
+    replay = WithDynamics(paper_strain_preisach(), CREEP, RateLag(0.005)).apply(r["actuator.voltage"], r["time"])
+    np.testing.assert_allclose(r["actuator.strain"], replay, rtol=0, atol=1e-15)
+    assert np.ptp(r["actuator.strain"]) > 0.5 * (1.3793e-3 + 1.3793e-4)
 
 
 def test_in_step_creep_equals_the_offline_creep_hysteresis():
@@ -105,8 +105,8 @@ def test_in_step_creep_equals_the_offline_creep_hysteresis():
     # offline model (lags at rest at h[0]) and the in-step one (at rest at the reset output) agree
     r = run(WithDynamics(paper_strain_preisach(), CREEP), Triangle(500.0, 1000.0, 0.05), 0.1, 2e-3, REJECTING)
     assert r.info["rejected_steps"] > 0
-    offline = CreepHysteresis(paper_strain_preisach(), CREEP).apply(r["voltage"], r["time"])
-    np.testing.assert_allclose(r["strain"], offline, rtol=0, atol=1e-15)
+    offline = CreepHysteresis(paper_strain_preisach(), CREEP).apply(r["actuator.voltage"], r["time"])
+    np.testing.assert_allclose(r["actuator.strain"], offline, rtol=0, atol=1e-15)
 
 
 class LeakyTimed(WithDynamics):
@@ -153,8 +153,8 @@ def test_static_solve_and_sweep_take_the_fully_crept_strain():
     # the same strain from a linear drive (d33 U / t_IDE = 1.13 h1) gives the same equilibrium
     linear = REF_A.actuator(PiezoDrive(1500.0, d33=1.13 * h1 * 0.5e-3 / 1500.0, electrode_spacing=0.5e-3), cell="rigid")
     crept, same = solve_static(act), solve_static(linear)
-    assert crept["strain"][0] == pytest.approx(1.13 * h1, rel=1e-14)
-    for name in ("tip_x", "tip_y", "tip_angle"):
+    assert crept["actuator.strain"][0] == pytest.approx(1.13 * h1, rel=1e-14)
+    for name in ("actuator.tip_x", "actuator.tip_y", "actuator.tip_angle"):
         assert crept[name][0] == pytest.approx(same[name][0], rel=1e-12)
     # a sweep holds each point for ever: 1.13 times the rate-independent operator's path (memory kept
     # between points: 500 V falling lies on the falling branch)

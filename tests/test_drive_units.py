@@ -41,7 +41,7 @@ def displacement_model():
 
 def tip(hysteresis, voltage=1200.0):
     act = REF_A.actuator(PiezoDrive(0.0, hysteresis=hysteresis), cell="ritz")
-    return float(atcm.solve_static(act, voltage=voltage)["tip_y"][0])
+    return float(atcm.solve_static(act, voltage=voltage)["actuator.tip_y"][0])
 
 
 def test_a_displacement_model_is_refused_and_its_conversion_drives_like_the_truth():

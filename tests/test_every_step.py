@@ -72,7 +72,9 @@ def test_actuator_every_step_columns_equal_the_full_run(actuator_full, record_ev
     thin = _thinned(_actuator, record_every)
     assert thin.n_rows < actuator_full.n_rows
     every = thin.every_step
-    assert every.names == ["time", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
+    assert every.names == ["time", "actuator.voltage", "actuator.strain", "actuator.stroke", "actuator.base_x",
+                           "actuator.base_y", "actuator.tip_x", "actuator.tip_y", "actuator.base_angle",
+                           "actuator.tip_angle"]
     for name in every:
         np.testing.assert_array_equal(every[name], actuator_full[name], err_msg=name)
     # the record itself: the scheduled rows plus the last, equal to the full run's rows

@@ -266,10 +266,10 @@ def test_static_tip_in_a_drive():
     bw = solve_static(REF_A.actuator(PiezoDrive(1500.0, hysteresis=strain_operator()), cell="rigid"))
     linear = solve_static(REF_A.actuator(PiezoDrive(1500.0, d33=strain * 0.5e-3 / 1500.0, electrode_spacing=0.5e-3),
                                          cell="rigid"))
-    assert bw["strain"][0] == pytest.approx(strain, rel=1e-10)
-    for name in ("tip_x", "tip_y", "tip_angle"):
+    assert bw["actuator.strain"][0] == pytest.approx(strain, rel=1e-10)
+    for name in ("actuator.tip_x", "actuator.tip_y", "actuator.tip_angle"):
         assert bw[name][0] == pytest.approx(linear[name][0], rel=1e-9)
-    assert abs(bw["tip_angle"][0]) > 0.1
+    assert abs(bw["actuator.tip_angle"][0]) > 0.1
 
 
 def test_simulation_exact_under_step_rejection():
@@ -281,16 +281,16 @@ def test_simulation_exact_under_step_rejection():
     for r in (coarse, fine):
         # in-step strain = the equation integrated along the accepted voltages: trials of rejected
         # steps left no trace (closed form vs DOP853: 1e-10 of the range)
-        expected = reference(r["voltage"], **STRAIN)
-        np.testing.assert_allclose(r["strain"], expected, rtol=0, atol=1e-10 * np.ptp(expected))
+        expected = reference(r["actuator.voltage"], **STRAIN)
+        np.testing.assert_allclose(r["actuator.strain"], expected, rtol=0, atol=1e-10 * np.ptp(expected))
         # the run covers the loop: -500 ... 1500 V, k 2000 V = 6e-4 less the loop's 1.25e-4 width at the ends
-        assert np.ptp(r["strain"]) > 4.5e-4
+        assert np.ptp(r["actuator.strain"]) > 4.5e-4
     # both runs, at the times both recorded, carry the same strain: the voltages there are the program's, and
     # the memory differs only where a coarse step cut a triangle corner (a corner at t = 0.025 s, 0.075 s;
     # cut by at most one step of 2 ms, 80 V: measured 6.0e-4 of the range at 273 common times)
     common, i, j = np.intersect1d(np.round(coarse["time"], 12), np.round(fine["time"], 12), return_indices=True)
     assert common.size > 20
-    np.testing.assert_allclose(coarse["strain"][i], fine["strain"][j], rtol=0, atol=1e-3 * np.ptp(fine["strain"]))
+    np.testing.assert_allclose(coarse["actuator.strain"][i], fine["actuator.strain"][j], rtol=0, atol=1e-3 * np.ptp(fine["actuator.strain"]))
 
 
 # ----------------------------------------------------------------------------- the registry's refusals

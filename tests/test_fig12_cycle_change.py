@@ -56,7 +56,7 @@ def test_case_change_decays_as_the_first_mode_per_cycle(case_module, tmp_path):
     case = case_module.CASE
     out = case.run({"cell": "rigid", "period": T, "cycles": cycles, "animation": False}, out_dir=tmp_path, plot=False)
     r = out.result
-    t, y, strain = r["time"], r["tip_y"], r["strain"]
+    t, y, strain = r["time"], r["actuator.tip_y"], r["actuator.strain"]
     # the drive is periodic from the start (the loop starts at its saturation voltage)
     n = int(round(T / 1e-3))
     np.testing.assert_allclose(strain[n:], strain[:-n], rtol=0, atol=1e-12 * np.max(np.abs(strain)))

@@ -110,7 +110,7 @@ def test_simulated_free_decay_shows_the_decrement_it_was_set_from(cell, n_cells,
     else:
         r = simulate(BendingActuator(n_cells, 0.1 / n_cells, W, CFC, MFC, drive, cell=cell, damping=damping),
                      round(6.5 / f1, 2), step=1e-4)
-        y = r["tip_y"]
+        y = r["actuator.tip_y"]
     measured = free_decay_decrement(np.asarray(y), np.asarray(r["time"]), 1e-3 + 2.0 / f1)
     assert len(measured) >= 3
     np.testing.assert_allclose(measured, delta, rtol=5e-3)

@@ -68,9 +68,8 @@ def test_one_beam_bender_equals_the_beam_actuator_statics_and_eigenfrequencies(f
     ref = solve_static(act, tip_force=force)
     m = cantilever(beam(drive=drive, n_cells=4), force)
     r = solve_static(m)
-    for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
-                     ("b.cell_angle_1", "cell_angle_1"), ("b.cell_angle_4", "cell_angle_4")):
-        assert r[new][0] == pytest.approx(ref[old][0], abs=1e-12), new
+    for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_1", "cell_angle_4"):
+        assert r[f"b.{name}"][0] == pytest.approx(ref[f"actuator.{name}"][0], abs=1e-12), name
     # the clamp's three coordinate constraints hold the base node to round-off
     assert abs(r["b.base_x"][0]) < 1e-15 and abs(r["b.base_angle"][0]) < 1e-15
     assert abs(r["b.tip_y"][0]) > 1e-3
@@ -91,10 +90,9 @@ def test_one_beam_bender_equals_the_beam_actuator_dynamics_with_hysteresis():
     b = beam(drive=PiezoDrive(program, hysteresis=H2), length=act.length)
     r = simulate(cantilever(b, (0.0, -0.02)), 0.03, step=1e-3)
     np.testing.assert_array_equal(r["time"], ref["time"])
-    for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
-                     ("b.cell_angle_2", "cell_angle_2")):
-        np.testing.assert_allclose(r[new], ref[old], rtol=0, atol=1e-15, err_msg=new)
-    np.testing.assert_array_equal(r["b.strain"], ref["strain"])
+    for name in ("tip_x", "tip_y", "tip_angle", "cell_angle_2"):
+        np.testing.assert_allclose(r[f"b.{name}"], ref[f"actuator.{name}"], rtol=0, atol=1e-15, err_msg=name)
+    np.testing.assert_array_equal(r["b.strain"], ref["actuator.strain"])
     np.testing.assert_allclose(r["b.strain"], paper_strain_preisach().apply(r["b.voltage"]), rtol=0, atol=1e-15)
     assert np.ptp(r["b.tip_y"]) > 1e-3  # it moved
 
@@ -104,11 +102,13 @@ def test_static_sweep_of_a_beam_actuator_keeps_its_columns():
     act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0, hysteresis=paper_strain_preisach()), cell="beam")
     volts = [0.0, 750.0, 1500.0, 750.0]
     r = static_sweep(act, volts, tip_force=(0.0, -0.01))
-    assert r.names[:7] == ["point", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
-    np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
+    assert r.names[:10] == ["point", "actuator.voltage", "actuator.strain", "actuator.stroke", "actuator.base_x",
+                            "actuator.base_y", "actuator.tip_x", "actuator.tip_y", "actuator.base_angle",
+                            "actuator.tip_angle"]
+    np.testing.assert_allclose(r["actuator.strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
     single = solve_static(act, voltage=1500.0, tip_force=(0.0, -0.01))
-    assert r["tip_y"][2] == pytest.approx(single["tip_y"][0], rel=1e-9)
-    assert r["tip_y"][3] > r["tip_y"][1]  # descending branch above the ascending one
+    assert r["actuator.tip_y"][2] == pytest.approx(single["actuator.tip_y"][0], rel=1e-9)
+    assert r["actuator.tip_y"][3] > r["actuator.tip_y"][1]  # descending branch above the ascending one
 
 
 # ----------------------------------------------------------------------------- two benders == one
@@ -462,9 +462,9 @@ def test_static_sweep_of_any_actuator_cell_equals_solve_static_per_voltage(cell)
         # positions to 1e-10 of the length, the angle to the same 1e-10 (a rotation error e moves the tip by
         # e * length: the position tolerance over the length; it was 1e-10 * 0.087 rad, which the continuation
         # sweep misses for ancf cells by 1.7e-11 rad, a tip displacement of 1.5e-12 m)
-        for name, tol in (("tip_x", 1e-10 * 0.087), ("tip_y", 1e-10 * 0.087), ("tip_angle", 1e-10)):
+        for name, tol in (("actuator.tip_x", 1e-10 * 0.087), ("actuator.tip_y", 1e-10 * 0.087), ("actuator.tip_angle", 1e-10)):
             assert r[name][i] == pytest.approx(s[name][0], abs=tol), (name, v)
-    assert r["tip_y"][2] > 0.01  # it bent
+    assert r["actuator.tip_y"][2] > 0.01  # it bent
 
 
 def test_bad_case_cell_is_refused(guide_case):

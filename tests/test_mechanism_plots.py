@@ -153,7 +153,7 @@ def test_actuator_run_drawn_as_a_one_bender_mechanism(tmp_path):
     mech, drawn = actuator_as_mechanism(act, result)
     shape = mechanism_shape(mech, drawn, -1)
     # the drawn chain ends at the actuator's recorded tip (same cell angles and lengths)
-    np.testing.assert_allclose(shape.benders[0].passive[-1], [result["tip_x"][-1], result["tip_y"][-1]], atol=1e-12)
+    np.testing.assert_allclose(shape.benders[0].passive[-1], [result["actuator.tip_x"][-1], result["actuator.tip_y"][-1]], atol=1e-12)
     assert shape.benders[0].drives == ["actuator"] * 3
     gif = animate_mechanism(mech, drawn, tmp_path / "a.gif", frames=3, trace=["actuator.tip"])
     assert gif.read_bytes()[:6] == b"GIF89a"

@@ -51,9 +51,8 @@ def test_one_bender_mechanism_equals_bending_actuator_statics(force, cell):
     act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, drive, cell=cell)
     ref = solve_static(act, tip_force=force)
     r = solve_static(cantilever(bender(drive=drive, n_cells=4, cell=cell), force))
-    for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
-                     ("b.strain", "strain"), ("b.cell_angle_4", "cell_angle_4")):
-        assert r[new][0] == pytest.approx(ref[old][0], abs=1e-9 * 0.087), new
+    for name in ("tip_x", "tip_y", "tip_angle", "strain", "cell_angle_4"):
+        assert r[f"b.{name}"][0] == pytest.approx(ref[f"actuator.{name}"][0], abs=1e-9 * 0.087), name
     assert r["b.base_x"][0] == 0.0 and r["b.base_angle"][0] == 0.0
 
 
@@ -66,9 +65,8 @@ def test_one_bender_mechanism_equals_bending_actuator_dynamics_with_hysteresis(c
     r = simulate(cantilever(bender(drive=PiezoDrive(program, hysteresis=H2), cell=cell), (0.0, -0.02)), 0.03,
                  step=1e-3)
     np.testing.assert_array_equal(r["time"], ref["time"])
-    for new, old in (("b.tip_x", "tip_x"), ("b.tip_y", "tip_y"), ("b.tip_angle", "tip_angle"),
-                     ("b.strain", "strain"), ("b.voltage", "voltage")):
-        np.testing.assert_allclose(r[new], ref[old], rtol=0, atol=1e-9 * 0.087, err_msg=new)
+    for name in ("tip_x", "tip_y", "tip_angle", "strain", "voltage"):
+        np.testing.assert_allclose(r[f"b.{name}"], ref[f"actuator.{name}"], rtol=0, atol=1e-9 * 0.087, err_msg=name)
     assert np.ptp(r["b.tip_y"]) > 1e-3  # it moved
 
 
@@ -291,13 +289,15 @@ def test_static_sweep_of_a_bending_actuator_keeps_its_columns(cell):
     act = BendingActuator(4, 0.087 / 4, W, CFC, MFC, PiezoDrive(0.0, hysteresis=paper_strain_preisach()), cell=cell)
     volts = [0.0, 750.0, 1500.0, 750.0]
     r = static_sweep(act, volts, tip_force=(0.0, -0.01))
-    assert r.names[:7] == ["point", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
+    assert r.names[:10] == ["point", "actuator.voltage", "actuator.strain", "actuator.stroke", "actuator.base_x",
+                            "actuator.base_y", "actuator.tip_x", "actuator.tip_y", "actuator.base_angle",
+                            "actuator.tip_angle"]
     assert r.unit("point") == "-" and r["point"].tolist() == [0.0, 1.0, 2.0, 3.0]
-    np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(r["actuator.strain"], paper_strain_preisach().apply(volts), rtol=0, atol=1e-15)
     single = solve_static(act, voltage=1500.0, tip_force=(0.0, -0.01))
-    assert r["tip_y"][2] == pytest.approx(single["tip_y"][0], rel=1e-7)
-    np.testing.assert_allclose(r["stroke"], r["strain"] * 0.087 / 4, rtol=1e-15)
-    assert r["tip_y"][3] > r["tip_y"][1]  # descending branch above the ascending one
+    assert r["actuator.tip_y"][2] == pytest.approx(single["actuator.tip_y"][0], rel=1e-7)
+    np.testing.assert_allclose(r["actuator.stroke"], r["actuator.strain"] * 0.087 / 4, rtol=1e-15)
+    assert r["actuator.tip_y"][3] > r["actuator.tip_y"][1]  # descending branch above the ascending one
 
 
 def test_result_plot_draws_a_mechanism_result_from_its_columns(tmp_path, monkeypatch):

@@ -30,9 +30,11 @@ T = np.linspace(0.0, 1.0, 40)
 
 
 def _actuator_result() -> Result:
-    angles = {f"cell_angle_{j}": (j + 0.5) / 3 * 0.3 * T for j in range(3)}
-    series = {"time": T, "voltage": U, "stroke": 1e-6 * T, "tip_x": 0.087 - 1e-3 * T, "tip_y": 0.01 * T, **angles}
-    units = {"time": "s", "voltage": "V", "stroke": "m", "tip_x": "m", "tip_y": "m", **{k: "rad" for k in angles}}
+    angles = {f"actuator.cell_angle_{j}": (j + 0.5) / 3 * 0.3 * T for j in range(3)}
+    series = {"time": T, "actuator.voltage": U, "actuator.stroke": 1e-6 * T, "actuator.tip_x": 0.087 - 1e-3 * T,
+              "actuator.tip_y": 0.01 * T, **angles}
+    units = {"time": "s", "actuator.voltage": "V", "actuator.stroke": "m", "actuator.tip_x": "m", "actuator.tip_y": "m",
+             **{k: "rad" for k in angles}}
     return Result(series, units, parameters={"cell_length [m]": 0.029})
 
 

@@ -73,9 +73,9 @@ def test_program_with_corners_on_the_step_grid_is_sampled_exactly_and_accepted()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # the step vs f1 warning (dynamics) is expected
         r = simulate(act, 0.03, step=0.005)
-    np.testing.assert_allclose(r["voltage"], program(r["time"]), atol=1e-9)
-    assert r["voltage"].max() == pytest.approx(1000.0, abs=1e-9)
-    np.testing.assert_allclose(r["strain"], paper_strain_preisach().apply(r["voltage"]), atol=1e-15)
+    np.testing.assert_allclose(r["actuator.voltage"], program(r["time"]), atol=1e-9)
+    assert r["actuator.voltage"].max() == pytest.approx(1000.0, abs=1e-9)
+    np.testing.assert_allclose(r["actuator.strain"], paper_strain_preisach().apply(r["actuator.voltage"]), atol=1e-15)
     # the same program with a step whose grid misses its corners is refused
     # (0.007 s does not divide 0.03 s: warned, and the step used, 0.03 / 5 s, is quoted with the one given)
     with pytest.warns(AccuracyWarning, match=r"step = 0\.007 s does not divide t_end = 0\.03 s"):

@@ -36,7 +36,7 @@ def test_a_coarse_recording_interval_warns_quoting_it(record_every, quoted):
         r = atcm.simulate(actuator(), 0.2, step=1e-4, record_every=record_every)
     assert [w for w in record if "record_every" in str(w.message)][0].filename == __file__
     # the record then misses the peak: the largest recorded voltage is below the program's 1500 V
-    assert r["voltage"].max() <= 1500.0
+    assert r["actuator.voltage"].max() <= 1500.0
 
 
 def test_an_interval_resolving_the_program_is_silent_and_keeps_the_peak():
@@ -44,7 +44,7 @@ def test_an_interval_resolving_the_program_is_silent_and_keeps_the_peak():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         r = atcm.simulate(actuator(), 0.2, step=1e-4, record_every=interval)
-    assert r["voltage"].max() == pytest.approx(1500.0, rel=1e-12)
+    assert r["actuator.voltage"].max() == pytest.approx(1500.0, rel=1e-12)
 
 
 def test_a_mechanism_run_names_the_drive():

@@ -18,7 +18,8 @@ from exudyn_atcm.solve import simulate
 
 from _actuator_geometries import REF_A
 
-HEADER = "time [s],voltage [V],strain [-],stroke [m],tip_x [m],tip_y [m],tip_angle [rad]"
+HEADER = ("time [s],actuator.voltage [V],actuator.strain [-],actuator.stroke [m],actuator.base_x [m],"
+          "actuator.base_y [m],actuator.tip_x [m],actuator.tip_y [m],actuator.base_angle [rad],actuator.tip_angle [rad]")
 
 
 def small_result() -> Result:
@@ -58,9 +59,11 @@ def test_constructor_rejects_inconsistent_series():
 def test_simulation_result_has_standard_columns_and_csv_roundtrip(tmp_path):
     act = REF_A.actuator(PiezoDrive(lambda t: 1000.0 * t), cell="rigid")
     r = simulate(act, 0.01, step=1e-3)
-    assert r.names[:7] == ["time", "voltage", "strain", "stroke", "tip_x", "tip_y", "tip_angle"]
-    assert r.names[7:] == ["cell_angle_1", "cell_angle_2", "cell_angle_3"]
-    assert [r.unit(n) for n in r.names[:7]] == ["s", "V", "-", "m", "m", "m", "rad"]
+    assert r.names[:10] == ["time", "actuator.voltage", "actuator.strain", "actuator.stroke", "actuator.base_x",
+                            "actuator.base_y", "actuator.tip_x", "actuator.tip_y", "actuator.base_angle",
+                            "actuator.tip_angle"]
+    assert r.names[10:] == ["actuator.cell_angle_1", "actuator.cell_angle_2", "actuator.cell_angle_3"]
+    assert [r.unit(n) for n in r.names[:10]] == ["s", "V", "-", "m", "m", "m", "m", "m", "rad", "rad"]
     path = tmp_path / "run.csv"
     r.to_csv(path)
     text = path.read_text()
@@ -72,7 +75,7 @@ def test_simulation_result_has_standard_columns_and_csv_roundtrip(tmp_path):
     assert any(ln.startswith("# n_cells: 3") for ln in comments)
     assert any(ln.startswith("# cell: rigid") for ln in comments)
     header = lines[len(comments)]
-    assert header.startswith(HEADER + ",cell_angle_1 [rad]")
+    assert header.startswith(HEADER + ",actuator.cell_angle_1 [rad]")
     # numpy: comment lines are skipped, then the header row
     data = np.loadtxt(path, delimiter=",", comments="#", skiprows=len(comments) + 1)
     assert data.shape == (r.n_rows, len(r))

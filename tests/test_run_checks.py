@@ -150,7 +150,7 @@ def test_voltage_beyond_operator_range_and_rating_warns_once_with_distance():
     assert "reach 5000 V, 3500 V above the hysteresis operator's input range -500 ... 1500 V" in text
     assert "3500 V above the MFC's rated range -500 ... 1500 V" in text
     # the saturated answer (what the warning is about): the 1500 V strain, 40 µm / 29 mm
-    assert high["strain"][0] == pytest.approx(40e-6 / 29e-3, rel=1e-12)
+    assert high["actuator.strain"][0] == pytest.approx(40e-6 / 29e-3, rel=1e-12)
 
 
 def test_dynamic_run_warns_once_per_run():
@@ -241,7 +241,7 @@ def test_interrupt_from_progress_keeps_the_steps_computed():
     n = partial.n_rows
     assert partial["time"][-1] == exc.time and n == round(exc.time / 1e-4) + 1
     # what was computed is the uninterrupted run's beginning
-    for name in ("time", "voltage", "strain", "tip_y", "tip_angle"):
+    for name in ("time", "actuator.voltage", "actuator.strain", "actuator.tip_y", "actuator.tip_angle"):
         np.testing.assert_array_equal(partial[name], full[name][:n])
 
 
@@ -336,7 +336,7 @@ def test_record_every_thins_without_changing_the_solution():
     keep = list(range(0, 106, 10)) + [105]  # every 10th step and the last one
     for thin in (by_steps, by_time):
         assert thin.info["accepted_steps"] == 105
-        for name in ("time", "voltage", "strain", "tip_y"):
+        for name in ("time", "actuator.voltage", "actuator.strain", "actuator.tip_y"):
             np.testing.assert_array_equal(thin[name], full[name][keep])
     assert [repr(float(t)) for t in by_time["time"][:3]] == ["0.0", "0.001", "0.002"]
     assert by_steps.info["recorded"] == "every 10 steps" and by_time.info["recorded"] == "every 0.001 s"
@@ -385,7 +385,7 @@ def test_fig12_case_output_is_thinned_and_matches_every_step_run(tmp_path):
     assert path.stat().st_size < 220_000  # 1001 rows of 10 shortest-repr numbers, < 220 bytes a row
     every = _fig12_case().run({"cycles": 1, "record_every": 0.0})
     assert every.result.n_rows == 10001
-    np.testing.assert_array_equal(out.result["tip_y"], every.result["tip_y"][::10])
+    np.testing.assert_array_equal(out.result["actuator.tip_y"], every.result["actuator.tip_y"][::10])
 
 
 @pytest.mark.filterwarnings("ignore:record_every = .* keeps only:RuntimeWarning")  # thinned on purpose

@@ -102,7 +102,7 @@ def test_record_every_zero_records_every_step_as_on_the_command_line(zero):
     act = actuator(0.0)
     every = simulate(act, 0.01, step=1e-4, record_every=zero)
     assert every.n_rows == 101  # 100 steps and the start
-    np.testing.assert_array_equal(every["tip_y"], simulate(act, 0.01, step=1e-4)["tip_y"])
+    np.testing.assert_array_equal(every["actuator.tip_y"], simulate(act, 0.01, step=1e-4)["actuator.tip_y"])
     assert every.info["recorded"] == "every step"
 
 

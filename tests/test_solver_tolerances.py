@@ -40,7 +40,7 @@ def test_rigid_chain_shortening_is_exact_at_any_voltage(system, voltage, n):
     if system == "actuator":
         r = atcm.solve_static(atcm.BendingActuator(n, L / n, W, CFC, MFC, atcm.PiezoDrive(0.0), cell="rigid"),
                               voltage=voltage)
-        x, y, strain = r["tip_x"][-1], r["tip_y"][-1], r["strain"][-1]
+        x, y, strain = r["actuator.tip_x"][-1], r["actuator.tip_y"][-1], r["actuator.strain"][-1]
     else:
         b = atcm.Bender("b", width=W, passive=CFC, active=MFC, length=L, n_cells=n, cell="rigid",
                         drive=atcm.PiezoDrive(0.0))

@@ -113,5 +113,5 @@ def test_a_bending_actuator_sweep_takes_the_method(cell):
     cont = atcm.static_sweep(act, CYCLE, tip_force=(0.0, -0.01))
     assert cont.info["sweep_method"] == "continuation" and points.info["sweep_method"] == "points"
     # the same equilibria to the Newton tolerance (see above): 1e-9 m is 1e-8 of the length
-    for c in ("tip_x", "tip_y"):
+    for c in ("actuator.tip_x", "actuator.tip_y"):
         np.testing.assert_allclose(cont[c], points[c], rtol=0.0, atol=1e-9, err_msg=c)

@@ -131,12 +131,12 @@ def test_a_reversal_between_the_steps_of_every_run_is_flagged():
 
 def test_lone_actuator_with_a_tip_force_and_without_the_order_check():
     actuator = BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(Triangle(500.0, 1000.0, 0.1)), cell="beam")
-    report = step_error(actuator, 0.05, step=1e-3, check_order=False, tip_force=(0.0, -0.01), columns=["tip_y"])
-    assert report.summary == ["tip_y"]
-    assert math.isnan(report.columns["tip_y"].order)  # no third run
+    report = step_error(actuator, 0.05, step=1e-3, check_order=False, tip_force=(0.0, -0.01), columns=["actuator.tip_y"])
+    assert report.summary == ["actuator.tip_y"]
+    assert math.isnan(report.columns["actuator.tip_y"].order)  # no third run
     assert report.extrapolated is None  # two runs: nothing to check the order of an extrapolation against
     assert report.finest.info["step [s]"] == pytest.approx(5e-4)
-    assert report.worst().name == "tip_y"
+    assert report.worst().name == "actuator.tip_y"
 
 
 @pytest.mark.parametrize("kwargs, match", [
@@ -175,7 +175,7 @@ def test_step_is_keyword_only_and_the_positional_form_warns_for_one_release():
     with pytest.warns(AtcmDeprecationWarning, match=r"step_error\(\): pass step= by keyword"):
         old = step_error(actuator, 0.02, 2e-3, check_order=False)
     assert old.step == new.step == 2e-3
-    np.testing.assert_array_equal(old.finest["tip_angle"], new.finest["tip_angle"])
+    np.testing.assert_array_equal(old.finest["actuator.tip_angle"], new.finest["actuator.tip_angle"])
     with pytest.raises(TypeError, match="multiple values for argument 'step'"):
         step_error(actuator, 0.02, 2e-3, step=1e-3)
     with pytest.raises(TypeError, match="extra positional arguments"):

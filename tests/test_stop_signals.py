@@ -109,7 +109,7 @@ def test_sigterm_during_run_writes_the_partial_result_and_exits_143(tmp_path):
                           cwd=tmp_path, env=env(), capture_output=True, text=True, timeout=300)
     assert full.returncode == 0, full.stderr
     complete = read_csv(tmp_path / "full" / "slow_bender.csv")
-    for name in ("time", "voltage", "tip_y"):
+    for name in ("time", "actuator.voltage", "actuator.tip_y"):
         np.testing.assert_array_equal(partial[name], complete[name][:rows])
 
 

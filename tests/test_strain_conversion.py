@@ -89,9 +89,9 @@ def test_a_simulated_bender_tip_converts_back_to_the_model_strain(voltage):
     act = REF_A.actuator(atcm.PiezoDrive(0.0, hysteresis=paper_strain_preisach()), cell="ritz")
     r = atcm.solve_static(act, voltage=voltage)
     truth = float(paper_strain_preisach().apply([voltage])[-1])  # the model's strain from rest
-    assert r["strain"][0] == pytest.approx(truth, rel=1e-14)
+    assert r["actuator.strain"][0] == pytest.approx(truth, rel=1e-14)
     # the actuator as the geometry (its laminate and length); Newton's tolerance bounds the match
-    assert strain_from_tip_deflection(float(r["tip_y"][0]), act) == pytest.approx(truth, rel=1e-9)
+    assert strain_from_tip_deflection(float(r["actuator.tip_y"][0]), act) == pytest.approx(truth, rel=1e-9)
 
 
 def test_deflection_arguments_are_checked():

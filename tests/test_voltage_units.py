@@ -62,9 +62,9 @@ def test_triangle_in_kv_warns_once_with_the_peak_the_range_and_the_fix():
     hits = _messages(record, KV)
     assert len(hits) == 1
     assert "peaks at |U| = 1.5 V" in hits[0] and "-500 ... 1500 V" in hits[0] and "below 3 V" in hits[0]
-    assert r["voltage"].max() == pytest.approx(1.5)
+    assert r["actuator.voltage"].max() == pytest.approx(1.5)
     # and the answer is indeed ~1000x too small: Eq. 3 gives the strain of 1.5 V, not 1.5 kV
-    assert r["strain"].max() == pytest.approx(460e-12 * 1.5 / 0.5e-3, rel=1e-12)
+    assert r["actuator.strain"].max() == pytest.approx(460e-12 * 1.5 / 0.5e-3, rel=1e-12)
 
 
 def test_constant_in_kv_warns_for_a_static_solve():
@@ -131,7 +131,7 @@ def test_period_or_ramp_in_ms_warns(program, feature, swing, also):
     assert len(others) == (0 if also is None else 1), others
     assert also is None or re.search(also, others[0])
     # what the run sees of the program: a few volts of its 2000 V swing
-    assert np.ptp(r["voltage"]) == pytest.approx(swing, rel=1e-9)
+    assert np.ptp(r["actuator.voltage"]) == pytest.approx(swing, rel=1e-9)
 
 
 def test_a_run_over_part_of_a_period_stays_silent():

@@ -7,11 +7,13 @@ parameters of the run.
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Iterator, Mapping
 from typing import Any
 
 import numpy as np
 
+from ..errors import AtcmDeprecationWarning
 from ..suggestions import close_names
 from .atomic import write_atomic
 from .._version import __version__
@@ -36,27 +38,30 @@ class Result(Mapping):
     every_step : Result, optional
         The light columns at every accepted solver step, for a run whose record is thinned
         (see :attr:`every_step`); default: this result itself.
-    bender_columns : Result, optional
-        The same run under the column names of a mechanism's bender (a lone actuator's result: its
-        one-bender mechanism's columns ``actuator.tip_y``, ``actuator.cell_angle_1``, ...).  Those
-        names can be read (``result["actuator.tip_y"]``, :meth:`unit`, ``in``) beside the result's
-        own; they are not iterated, counted or written to files.
+    old_names : mapping of str to str, optional
+        Deprecated names of series, each to the series it now is (a lone actuator's result:
+        ``{"tip_y": "actuator.tip_y", ...}``).  An old name can still be read (``result["tip_y"]``,
+        :meth:`unit`, ``in``) for one release, with an :class:`~exudyn_atcm.AtcmDeprecationWarning`
+        naming the new name; old names are not iterated, counted or written to files.
 
     Examples
     --------
-    >>> r = Result({"time": [0.0, 0.1], "tip_y": [0.0, 1e-3]}, {"time": "s", "tip_y": "m"})
-    >>> r["tip_y"]
+    >>> r = Result({"time": [0.0, 0.1], "b.tip_y": [0.0, 1e-3]}, {"time": "s", "b.tip_y": "m"})
+    >>> r["b.tip_y"]
     array([0.   , 0.001])
-    >>> r.unit("tip_y")
+    >>> r.unit("b.tip_y")
     'm'
 
     Notes
     -----
-    The standard series of :func:`exudyn_atcm.solve.simulation.simulate` are ``time`` [s],
-    ``voltage`` [V], ``strain`` [-] (free strain of the active layer), ``stroke`` [m] (motor
-    stroke of one cell), ``tip_x``, ``tip_y`` [m] and ``tip_angle`` [rad] of the tip (the
-    passive-layer point of the last interface), then ``cell_angle_1`` ... ``cell_angle_N``
-    [rad] (rotation of each cell's passive layer).
+    The series of :func:`exudyn_atcm.simulate` for a lone :class:`~exudyn_atcm.BendingActuator` are
+    those of its one-bender mechanism (bender ``actuator``): ``time`` [s], ``actuator.voltage`` [V],
+    ``actuator.strain`` [-] (free strain of the active layer), ``actuator.stroke`` [m] (motor stroke
+    of one cell), ``actuator.base_x``, ``actuator.base_y``, ``actuator.tip_x``, ``actuator.tip_y``
+    [m], ``actuator.base_angle``, ``actuator.tip_angle`` [rad] (the tip: the passive-layer point of
+    the last interface), then ``actuator.cell_angle_1`` ... ``actuator.cell_angle_N`` [rad]
+    (rotation of each cell's passive layer).  Static solves and sweeps have ``point`` [-] in place
+    of ``time``.
     """
 
     def __init__(
@@ -66,7 +71,7 @@ class Result(Mapping):
         parameters: Mapping[str, Any] | None = None,
         info: Mapping[str, Any] | None = None,
         every_step: "Result | None" = None,
-        bender_columns: "Result | None" = None,
+        old_names: Mapping[str, str] | None = None,
     ) -> None:
         data: dict[str, np.ndarray] = {}
         length = None
@@ -92,11 +97,12 @@ class Result(Mapping):
         if every_step is not None and not isinstance(every_step, Result):
             raise ValueError(f"every_step must be a Result or None, got {type(every_step).__name__}")
         self._every_step = every_step
-        if bender_columns is not None and (not isinstance(bender_columns, Result)
-                                           or bender_columns.n_rows != self.n_rows):
-            raise ValueError(f"bender_columns must be a Result of the same {self.n_rows} rows or None, got "
-                             f"{bender_columns!r}")
-        self._bender_columns = bender_columns
+        old = dict(old_names or {})
+        wrong = {o: n for o, n in old.items() if n not in data or o in data}
+        if wrong:
+            raise ValueError(f"old_names must map names that are not series to series of this result, got {wrong!r} "
+                             f"(series: {', '.join(data)})")
+        self._old_names = old
 
     @property
     def every_step(self) -> "Result":
@@ -104,8 +110,7 @@ class Result(Mapping):
 
         A run recorded with ``record_every`` keeps only some instants in its columns (and files);
         the solver's every accepted step is still kept for the columns scalars are computed from
-        (a lone actuator: ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
-        ``tip_angle``; a mechanism: every column but the cell angles).  Extremes, crossings and
+        (every column but the cell angles).  Extremes, crossings and
         last-cycle figures computed from ``result.every_step`` are the same for any recording
         interval.  Not written to files.
         """
@@ -115,17 +120,36 @@ class Result(Mapping):
     def __getitem__(self, name: str) -> np.ndarray:
         try:
             return self._series[name]
-        except KeyError:
+        except (KeyError, TypeError):
             pass
-        if self._bender_columns is not None and name in self._bender_columns._series:
-            return self._bender_columns._series[name]
+        new = self._renamed(name)
+        if new is not None:
+            return self._series[new]
         raise self._missing(name) from None
 
+    def __contains__(self, name: object) -> bool:
+        try:
+            if name in self._series:
+                return True
+        except TypeError:
+            return False
+        return self._renamed(name) is not None
+
     @property
-    def bender_columns(self) -> "Result":
-        """The run under a mechanism's bender column names (``actuator.tip_y``, ...; see the constructor);
-        this result itself when it is a mechanism's (its columns are those names already)."""
-        return self if self._bender_columns is None else self._bender_columns
+    def old_names(self) -> dict[str, str]:
+        """Deprecated series names readable for one release, each to its new name (see the constructor)."""
+        return dict(self._old_names)
+
+    def _renamed(self, name: Any, stacklevel: int = 3) -> str | None:
+        """The new name of the deprecated series name ``name`` (warning), or None for no such name."""
+        try:
+            new = self._old_names.get(name)
+        except TypeError:
+            return None
+        if new is not None:
+            warnings.warn(f"series {name!r} is now named {new!r}, as in a mechanism's result; the old name "
+                          "goes away in the next release", AtcmDeprecationWarning, stacklevel=stacklevel)
+        return new
 
     def _missing(self, name: Any) -> KeyError:
         """KeyError for an unknown series, with the closest name (a unit or component prefix is a common slip)."""
@@ -160,8 +184,9 @@ class Result(Mapping):
         """Unit of series ``name`` (SI; ``"-"`` if unit-free)."""
         if name in self._units:
             return self._units[name]
-        if self._bender_columns is not None and name in self._bender_columns._units:
-            return self._bender_columns._units[name]
+        new = self._renamed(name)
+        if new is not None:
+            return self._units[new]
         raise self._missing(name)
 
     @property

@@ -9,7 +9,7 @@ with these methods (:class:`Controller` is the abstract base):
   not change the controller's state (the solver may try a step several times);
 * ``observe(t, tip_deflection) -> None``: called once per *accepted* step, after the
   hysteresis operator has been committed, with the step's time [s] and the tip deflection
-  ``tip_y`` [m] of the actuator (in a mechanism: the value of the result column declared
+  ``actuator.tip_y`` [m] of a lone actuator (in a mechanism: the value of the result column declared
   with :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`, e.g. ``"crank.tip_y"``);
   the controller updates its state here;
 * ``reset() -> None``: called when a simulation starts;

@@ -56,7 +56,7 @@ def plot_mechanism_series(result, out_dir: str | os.PathLike, prefix: str = "") 
     key, xlabel = _abscissa(result)
     drives, tips, points = column_groups(result)
     if not drives and not points:
-        raise ValueError("plot_result draws a simulation result: a lone actuator's (voltage, tip_y, ...) or a "
+        raise ValueError("plot_result draws a simulation result: a lone actuator's (actuator.voltage, actuator.stroke, ...) or a "
                          f"mechanism's ({{drive}}.voltage, {{component}}.tip_y, ...); this result has "
                          f"{', '.join(list(result)[:6])}")
     out_dir = os.fspath(out_dir)

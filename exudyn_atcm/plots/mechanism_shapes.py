@@ -184,9 +184,8 @@ def actuator_as_mechanism(actuator, result, name: str = "actuator"):
     """A :class:`~exudyn_atcm.BendingActuator` run as its one-bender mechanism, for drawing.
 
     Returns :meth:`actuator.as_mechanism() <exudyn_atcm.BendingActuator.as_mechanism>` (the one
-    description every solve uses: the actuator's own cell kind, layers, cells and drive) and the run's
-    columns under that mechanism's names, :attr:`result.bender_columns <exudyn_atcm.Result.bender_columns>`
-    (``actuator.tip_x``, ``actuator.cell_angle_j``, ...), so that :func:`plot_mechanism` and
+    description every solve uses: the actuator's own cell kind, layers, cells and drive) and the run
+    (its columns are that mechanism's: ``actuator.tip_x``, ``actuator.cell_angle_j``, ...), so that :func:`plot_mechanism` and
     :func:`animate_mechanism` draw both layers, the cell joints (labelled by the cell kind) and the
     motors of a cantilever actuator too.  Nothing is converted here.
 
@@ -196,8 +195,8 @@ def actuator_as_mechanism(actuator, result, name: str = "actuator"):
         The actuator the result was computed for.
     result : Result
         A run of it by :func:`~exudyn_atcm.simulate`, :func:`~exudyn_atcm.solve_static` or
-        :func:`~exudyn_atcm.static_sweep` (a result read back from a file lacks the mechanism's columns:
-        draw it with :func:`exudyn_atcm.plots.result.plot_shapes`).
+        :func:`~exudyn_atcm.static_sweep` (a file written before 0.3.0 lacks the mechanism's columns:
+        draw it with :func:`exudyn_atcm.plots.result.plot_shapes`; a file written from 0.3.0 on has them).
     name : str, optional
         Deprecated and ignored unless ``"actuator"``: the bender of an actuator is named ``"actuator"``.
 
@@ -211,8 +210,8 @@ def actuator_as_mechanism(actuator, result, name: str = "actuator"):
         raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
     if name != NAME:
         raise ValueError(f"name must be {NAME!r} (the bender of an actuator's one-bender mechanism), got {name!r}")
-    drawn = result.bender_columns
+    drawn = result
     if f"{NAME}.base_x" not in drawn:
         raise ValueError(f"the result has no column {NAME + '.base_x'!r} of the actuator's one-bender mechanism "
-                         "(a result read back from a file?); draw it with exudyn_atcm.plots.result.plot_shapes")
+                         "(a file written before 0.3.0?); draw it with exudyn_atcm.plots.result.plot_shapes")
     return actuator.as_mechanism(), drawn

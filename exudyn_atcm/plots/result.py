@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..io.atomic import make_directory
+from ..mechanism.actuator import NAME
 from .gif import save_gif
 from .mechanism_series import plot_mechanism_series
 from .style import new_figure
@@ -22,15 +23,31 @@ from ..io.progress import report_task
 __all__ = ["plot_result", "plot_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator"]
 
 
+def actuator_column(result, name: str) -> np.ndarray:
+    """Column ``actuator.<name>`` of a lone actuator's result, or ``<name>`` of one read from a file
+    written before 0.3.0 (whose columns were ``tip_y``, ``stroke``, ...; kept as written)."""
+    new = f"{NAME}.{name}"
+    return result[new] if new in result else result[name]
+
+
+def is_actuator_result(result) -> bool:
+    """Whether ``result`` is a lone actuator's (``actuator.stroke`` and ``actuator.tip_y``; in a file
+    written before 0.3.0 ``voltage`` and ``tip_y``)."""
+    if f"{NAME}.stroke" in result:
+        return f"{NAME}.tip_y" in result
+    return "voltage" in result.names and "tip_y" in result.names
+
+
 def chain_shape(result, row: int) -> tuple[np.ndarray, np.ndarray]:
     """Vertices [m] of the passive layer at recorded ``row``, from the per-cell angles.
 
     Each cell's passive layer is a straight bar of the cell length at its recorded angle,
     starting at the clamp (0, 0).
     """
-    names = [n for n in result.names if n.startswith("cell_angle_")]
+    names = [n for n in result.names if n.startswith(f"{NAME}.cell_angle_")]
+    names = names or [n for n in result.names if n.startswith("cell_angle_")]  # a file before 0.3.0
     if not names:
-        raise ValueError("result has no cell_angle_* series to draw the shape from")
+        raise ValueError(f"result has no {NAME}.cell_angle_* series to draw the shape from")
     try:
         cell_length = float(result.parameters["cell_length [m]"])
     except KeyError:
@@ -47,7 +64,8 @@ def plot_time_series(result, *legacy: Any, ax: Any = None, path: str | os.PathLi
     Parameters
     ----------
     result : Result
-        A lone actuator's run (``voltage`` [V], ``stroke`` [m], ``tip_x``/``tip_y`` [m]).
+        A lone actuator's run (``actuator.voltage`` [V], ``actuator.stroke`` [m],
+        ``actuator.tip_x``/``actuator.tip_y`` [m]).
     ax : sequence of 3 matplotlib Axes, optional
         Draw into these panels instead of a new figure.
     path : str or os.PathLike, optional
@@ -65,12 +83,13 @@ def plot_time_series(result, *legacy: Any, ax: Any = None, path: str | os.PathLi
         return old
     t = result["time"]
     fig, axes = figure_axes(ax, 3, 1, width=7, height=7, sharex=True)
-    axes[0].plot(t, result["voltage"], color="tab:blue")
+    axes[0].plot(t, actuator_column(result, "voltage"), color="tab:blue")
     axes[0].set_ylabel("voltage U [V]")
-    axes[1].plot(t, result["stroke"] * 1e6, color="tab:orange")
+    axes[1].plot(t, actuator_column(result, "stroke") * 1e6, color="tab:orange")
     axes[1].set_ylabel("cell stroke x_a [µm]")
-    axes[2].plot(t, result["tip_y"] * 1e3, label="tip y", color="tab:green")
-    axes[2].plot(t, (result["tip_x"] - result["tip_x"].max()) * 1e3, label="tip x - max(tip x)",
+    tip_x = actuator_column(result, "tip_x")
+    axes[2].plot(t, actuator_column(result, "tip_y") * 1e3, label="tip y", color="tab:green")
+    axes[2].plot(t, (tip_x - tip_x.max()) * 1e3, label="tip x - max(tip x)",
                  color="tab:red", linestyle="--")
     axes[2].set_ylabel("tip displacement [mm]")
     axes[2].set_xlabel("time t [s]")
@@ -86,7 +105,7 @@ def plot_tip_vs_voltage(result, *legacy: Any, ax: Any = None, path: str | os.Pat
     Parameters
     ----------
     result : Result
-        A lone actuator's run (``voltage`` [V], ``tip_y`` [m]).
+        A lone actuator's run (``actuator.voltage`` [V], ``actuator.tip_y`` [m]).
     ax : matplotlib Axes, optional
         Draw into this axes instead of a new figure.
     path : str or os.PathLike, optional
@@ -103,7 +122,7 @@ def plot_tip_vs_voltage(result, *legacy: Any, ax: Any = None, path: str | os.Pat
         plot_tip_vs_voltage(result, ax=ax, path=old)
         return old
     fig, (axis,) = figure_axes(ax, 1, 1, width=6, height=4.5)
-    axis.plot(result["voltage"], result["tip_y"] * 1e3, color="tab:green")
+    axis.plot(actuator_column(result, "voltage"), actuator_column(result, "tip_y") * 1e3, color="tab:green")
     axis.set_xlabel("voltage U [V]")
     axis.set_ylabel("tip deflection y [mm]")
     axis.grid(True, alpha=0.3)
@@ -117,7 +136,7 @@ def plot_shapes(result, *legacy: Any, ax: Any = None, path: str | os.PathLike | 
     Parameters
     ----------
     result : Result
-        A run with ``cell_angle_*`` series and ``cell_length [m]`` in its parameters.
+        A lone actuator's run (``actuator.cell_angle_*`` series, ``cell_length [m]`` in its parameters).
     ax : matplotlib Axes, optional
         Draw into this axes instead of a new figure.
     path : str or os.PathLike, optional
@@ -139,10 +158,11 @@ def plot_shapes(result, *legacy: Any, ax: Any = None, path: str | os.PathLike | 
     if rows is None:
         rows = sorted(set(np.linspace(0, n - 1, min(6, n)).round().astype(int).tolist()))
     fig, (axis,) = figure_axes(ax, 1, 1, width=7, height=4)
+    voltage = actuator_column(result, "voltage")
     for row in rows:
         x, y = chain_shape(result, row)
         axis.plot(x * 1e3, y * 1e3, marker="o", markersize=3,
-                  label=f"t = {result['time'][row]:.3g} s, U = {result['voltage'][row]:.0f} V")
+                  label=f"t = {result['time'][row]:.3g} s, U = {voltage[row]:.0f} V")
     axis.set_xlabel("x along the undeformed actuator [mm]")
     axis.set_ylabel("y [mm]")
     axis.set_aspect("equal", adjustable="datalim")
@@ -157,7 +177,7 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
     Parameters
     ----------
     result : Result
-        A result with ``cell_angle_*`` series and ``cell_length [m]`` in its parameters.
+        A lone actuator's run (``actuator.cell_angle_*`` series, ``cell_length [m]`` in its parameters).
     path : str or os.PathLike
         Target ``.gif`` file (written atomically).
     frames : int, optional
@@ -183,13 +203,14 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
     (chain,) = ax.plot([], [], "o-", color="tab:blue", lw=2, ms=4, label="passive layer")
     label = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
     ax.legend(loc="lower right", fontsize="small")
-    tip_x, tip_y = result["tip_x"] * 1e3, result["tip_y"] * 1e3
+    tip_x, tip_y = actuator_column(result, "tip_x") * 1e3, actuator_column(result, "tip_y") * 1e3
+    voltage = actuator_column(result, "voltage")
 
     def draw(k: int):
         x, y = shapes[k]
         chain.set_data(x * 1e3, y * 1e3)
         trace.set_data(tip_x[: rows[k] + 1], tip_y[: rows[k] + 1])
-        label.set_text(f"t = {result['time'][rows[k]]:.3f} s   U = {result['voltage'][rows[k]]:.0f} V")
+        label.set_text(f"t = {result['time'][rows[k]]:.3f} s   U = {voltage[rows[k]]:.0f} V")
         return chain, trace, label
 
     total = len(shapes)
@@ -200,13 +221,14 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
 def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[str]:
     """Write the standard plots of any result to ``out_dir``; returns the paths written.
 
-    A lone actuator's result: ``time_series.png``, ``tip_vs_voltage.png`` and ``shapes.png``.  A
+    A lone actuator's result (``actuator.stroke``, ``actuator.tip_y``, ...; or a file of one written
+    before 0.3.0, ``stroke``, ``tip_y``, ...): ``time_series.png``, ``tip_vs_voltage.png`` and ``shapes.png``.  A
     mechanism's result (columns ``{drive}.voltage``, ``{component}.tip_y``, ``{component}.{point}_x``):
     :func:`~exudyn_atcm.plots.mechanism_series.plot_mechanism_series` (voltages and tips over time or
     sweep point, each driven bender's loop, the recorded points' paths); to draw the mechanism itself,
     :func:`exudyn_atcm.plots.mechanism.plot_mechanism` with its description.
     """
-    if "voltage" not in result or "tip_y" not in result:
+    if not is_actuator_result(result):
         return plot_mechanism_series(result, out_dir, prefix)
     out_dir = os.fspath(out_dir)
     make_directory(out_dir, "plot directory")

@@ -178,14 +178,17 @@ def simulate(
     Returns
     -------
     Result
-        Series ``time``, ``voltage``, ``strain``, ``stroke``, ``tip_x``, ``tip_y``,
-        ``tip_angle``, ``cell_angle_1..N``; ``result.info`` holds the step used, the number of
+        A lone actuator: its one-bender mechanism's series (``time``, ``actuator.voltage``,
+        ``actuator.strain``, ``actuator.base_x`` ... ``actuator.tip_y``, ``actuator.tip_angle``,
+        ``actuator.cell_angle_1..N``) plus ``actuator.stroke``; the names before 0.3.0 (``tip_y``,
+        ...) are readable for one release with an :class:`~exudyn_atcm.AtcmDeprecationWarning`.
+        ``result.info`` holds the step used, the number of
         accepted, attempted and rejected steps, the recording interval (and, in closed loop,
         the controller's ``summary()`` under ``"controller"``).
 
     Closed loop: if the drive holds a controller (:mod:`exudyn_atcm.model.control`), it is reset at
     the start, the voltage of every attempted step is its ``voltage_at(t)``, and after each
-    accepted step (hysteresis committed) it observes the step's tip deflection ``tip_y``
+    accepted step (hysteresis committed) it observes the step's tip deflection ``actuator.tip_y``
     (a mechanism: the result column declared with
     :meth:`Mechanism.feedback <exudyn_atcm.Mechanism.feedback>`; a controller without one
     is refused).

@@ -34,7 +34,7 @@ import numpy as np
 
 from .._checks import positive_float
 from ..cells import CellKind
-from ..errors import AccuracyWarning
+from ..errors import AccuracyWarning, AtcmDeprecationWarning
 from ..io.result import Result
 from .keywords import keyword_signature, legacy_positional
 from .run_checks import time_grid
@@ -313,7 +313,12 @@ def step_error(system: Any, t_end: float, *legacy: Any, step: float = DEFAULT_ST
     if columns is None:
         summary = [n for n in names if runs[0].unit(n) in MOTION_UNITS] or names
     else:
-        summary = list(columns)
+        old = runs[0].old_names  # a lone actuator's names before 0.3.0 ("tip_y"), for one release
+        for n in columns:
+            if n in old:
+                warnings.warn(f"columns: series {n!r} is now named {old[n]!r}; the old name goes away in the next "
+                              "release", AtcmDeprecationWarning, stacklevel=2)
+        summary = [old.get(n, n) for n in columns]
         unknown = [n for n in summary if n not in names]
         if unknown:  # before the finer (dearer) runs
             raise ValueError(f"columns: no such result column {unknown}; available: {', '.join(names)}")
