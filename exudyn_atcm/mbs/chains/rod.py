@@ -18,10 +18,15 @@ Items per bender (coordinates ``z = (X, Y, Phi, q)``, :mod:`exudyn_atcm.theory.r
   the rod object's coordinates): its pose equals the exact tip pose ``P(z)``, ``Phi + q_1``;
 * the actuation: ``LoadCoordinate`` ``EI kappa`` on ``q_1`` (as the ``ritz`` cell); a bender
   of segments has each segment's modes on its own length (:class:`~exudyn_atcm.theory.rotation_rod.RodShapes`)
-  and one such load per driven segment, on that segment's first mode.
+  and one such load per driven segment, on that segment's first mode.  In a time step of a moving rod
+  the same moments are added to the rod's force vector instead (written anyway every step) and the
+  loads are held at zero: one Exudyn item write less per step (static solves, which scale loads by
+  the load factor, and eigenvalue analyses use the loads).
 
 The nonlinear parts (``M``, the quadratic velocity vector and the tip pose) are evaluated by
-compiled kernels and written into the items:
+compiled kernels and written into the items (in a time step one compiled call per hook,
+:func:`~exudyn_atcm.theory.rod_kernels.predicted_items` and
+:func:`~exudyn_atcm.theory.rod_kernels.solved_check`, on the rod's constants packed once):
 
 * before every attempted step (the model's strain writer, run in the pre-step hook), at the
   state predicted for the step's end to second order, ``z + h z_dot + h^2/2 z_ddot`` with the
