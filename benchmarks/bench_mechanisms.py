@@ -33,6 +33,11 @@ its speed-up over the hand-built one, and Exudyn's empty-step floor
 (``bench_step_overhead.exudyn_floor``) with the four-bar's ratio to it.  ``--large-step 5e-4,1e-3``
 runs every model at those steps too (each row names its step).  Default 0.5 s simulated (one voltage period).
 
+``--step-cost`` runs only ``step_cost.step_cost_table`` (issue 31, part 3): the package's four-bar with a
+3-mode ``rod`` crank against the hand-built linkage (one GE element per bender, ``handbuilt.py``) at
+``--steps`` (default 1e-4,4e-4), microseconds per step side by side, the rod's own Python per step, and both
+path errors against a beam reference at the same step.
+
 ``--record-every N`` runs only :func:`record_every_cost`: both mechanisms recording every step
 against every ``N``-th step, and the cost of the copy a skipped step made before the record was
 closed by reading the last step's state once after the run.
@@ -56,6 +61,7 @@ from exudyn_atcm.io.atomic import write_json
 from exudyn_atcm import __version__
 
 import mechanism_targets
+import step_cost
 from bench_systems import CELLS, MECHANISMS, RESULTS, STEP, TRACKED, path_error, timed
 from exudyn_atcm import simulate
 
@@ -140,7 +146,15 @@ def main(argv=None) -> int:
                         help="with --targets: also run every model at these steps [s] (comma list, e.g. 5e-4,1e-3)")
     parser.add_argument("--models", default=None,
                         help="with --targets: only these models (comma list of rigid, beam, rod, hand; default all)")
+    parser.add_argument("--step-cost", action="store_true",
+                        help="only the package's rod four-bar against the hand-built linkage, us per step (step_cost.py)")
+    parser.add_argument("--steps", default="1e-4,4e-4", help="with --step-cost: the steps [s] (comma list)")
     args = parser.parse_args(argv)
+    if args.step_cost:
+        step_cost.step_cost_table(t_sim=0.5 if args.t_sim is None else args.t_sim, repeats=args.repeats,
+                                  steps=[float(h) for h in args.steps.split(",") if h.strip()],
+                                  reference_cells=args.reference_cells, out=args.out)
+        return 0
     if args.targets:
         mechanism_targets.targets_table(
             t_sim=0.5 if args.t_sim is None else args.t_sim, repeats=args.repeats,

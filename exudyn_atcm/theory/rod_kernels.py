@@ -10,9 +10,11 @@ The ``rod`` cell evaluates its mass matrix, quadratic velocity vector and the li
 its tip pose once per attempted step (:func:`linearisation`, at the state predicted for the
 step's end) and once after every Newton solve (:func:`step_check`, at the solved state, which
 also tells whether to solve again; see :mod:`exudyn_atcm.mbs.chains.rod`).  In numpy that is some 35 small array operations (about
-75 µs on the development machine); compiled, about 10 µs, so the step stays near the cost of
-Exudyn's own beam elements.  Compiled on first use and cached on disk (numba's ``cache=True``);
-imported only when a ``rod`` bender is built.
+75 µs on the development machine); compiled, about 2 µs per evaluation of the items (3 modes) plus
+numba's call overhead, about 0.05 µs per argument: the package's hooks therefore call
+:func:`predicted_items` and :func:`solved_check`, nine arguments each, on the constants packed once
+by :func:`pack_rod`.  Compiled on first use and cached on disk (numba's ``cache=True``); imported
+only when a ``rod`` bender is built.
 
 May import: numpy, numba.
 """
@@ -24,7 +26,8 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "step_check", "moving", "tip_gap"]
+__all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "step_check", "moving", "tip_gap",
+           "pack_rod", "unpack_out", "predicted_items", "solved_check"]
 
 
 @numba.njit(cache=True)
@@ -85,48 +88,71 @@ def rod_matrices(z, z_dot, phi_hat, integration, weights, length, mass_per_lengt
 @numba.njit(cache=True)
 def _matrices(z, z_dot, theta, phi_hat, integration, weights, length, mass_per_length, rotary_inertia,
               phi_hat_tip):  # pragma: no cover - compiled
+    # the sums of issue 29's form, ordered for the compiler (issue 31): sin, cos and the rate once per point,
+    # the running integrals as dot products accumulated in registers, the tip in the same pass
     n_points, m = phi_hat.shape
     size = 2 + m
     rate = _rotations(z_dot, phi_hat)  # the absolute rotation's rate at the points
-    c = np.cos(theta)
-    s = np.sin(theta)
-    ax = np.zeros((n_points, m))
-    ay = np.zeros((n_points, m))
-    bx = np.zeros(n_points)
-    by = np.zeros(n_points)
+    # columns: sin(theta_k) phi_hat[k, i] (m), cos(theta_k) phi_hat[k, i] (m), cos(theta_k) rate_k^2, sin(...) rate_k^2
+    t = np.empty((n_points, 2 * m + 2))
+    x1 = np.zeros((3, size))
+    x1[0, 0] = 1.0
+    x1[1, 1] = 1.0
+    x = z[0]
+    y = z[1]
+    for k in range(n_points):
+        c = math.cos(theta[k])
+        s = math.sin(theta[k])
+        r2 = rate[k] * rate[k]
+        t[k, 2 * m] = c * r2
+        t[k, 2 * m + 1] = s * r2
+        lw = length * weights[k]
+        x += lw * c
+        y += lw * s
+        for i in range(m):
+            t[k, i] = s * phi_hat[k, i]
+            t[k, m + i] = c * phi_hat[k, i]
+            x1[0, 2 + i] -= lw * t[k, i]
+            x1[1, 2 + i] += lw * t[k, m + i]
+    # the integrals from the base to each point: integration @ t, summed over k in order, all columns at once
+    u = np.zeros((n_points, 2 * m + 2))
     for j in range(n_points):
         for k in range(n_points):
-            w = length * integration[j, k]
-            r2 = rate[k] * rate[k]
-            bx[j] -= w * c[k] * r2
-            by[j] -= w * s[k] * r2
-            for i in range(m):
-                ax[j, i] -= w * s[k] * phi_hat[k, i]
-                ay[j, i] += w * c[k] * phi_hat[k, i]
+            w = integration[j, k]
+            for col in range(2 * m + 2):
+                u[j, col] += w * t[k, col]
+    ax = np.empty((n_points, m))
+    ay = np.empty((n_points, m))
+    bx = np.empty(n_points)
+    by = np.empty(n_points)
+    for j in range(n_points):
+        bx[j] = -length * u[j, 2 * m]
+        by[j] = -length * u[j, 2 * m + 1]
+        for i in range(m):
+            ax[j, i] = -length * u[j, i]
+            ay[j, i] = length * u[j, m + i]
     mass = np.zeros((size, size))
     force = np.zeros(size)
     mass[0, 0] = mass_per_length * length
     mass[1, 1] = mass_per_length * length
     for j in range(n_points):
         lw = length * weights[j]
-        force[0] -= mass_per_length * lw * bx[j]
-        force[1] -= mass_per_length * lw * by[j]
+        ml = mass_per_length * lw
+        force[0] -= ml * bx[j]
+        force[1] -= ml * by[j]
         for i in range(m):
-            mass[0, 2 + i] += mass_per_length * lw * ax[j, i]
-            mass[1, 2 + i] += mass_per_length * lw * ay[j, i]
-            force[2 + i] -= mass_per_length * lw * (ax[j, i] * bx[j] + ay[j, i] * by[j])
+            mass[0, 2 + i] += ml * ax[j, i]
+            mass[1, 2 + i] += ml * ay[j, i]
+            force[2 + i] -= ml * (ax[j, i] * bx[j] + ay[j, i] * by[j])
             for r in range(i, m):
-                mass[2 + i, 2 + r] += lw * (mass_per_length * (ax[j, i] * ax[j, r] + ay[j, i] * ay[j, r])
-                                            + rotary_inertia * phi_hat[j, i] * phi_hat[j, r])
+                mass[2 + i, 2 + r] += (ml * (ax[j, i] * ax[j, r] + ay[j, i] * ay[j, r])
+                                       + lw * rotary_inertia * phi_hat[j, i] * phi_hat[j, r])
     for i in range(size):
         for r in range(i):
             mass[i, r] = mass[r, i]
-    x, y, angle, jac = _tip(z, theta, phi_hat, weights, length, phi_hat_tip)
-    x1 = np.zeros((3, size))
-    for i in range(size):
-        x1[0, i] = jac[0, i]
-        x1[1, i] = jac[1, i]
+    angle = 0.0
     for i in range(m):
+        angle += phi_hat_tip[i] * z[2 + i]
         x1[2, 2 + i] = phi_hat_tip[i]
     offset = np.zeros(3)
     offset[0] = -x
@@ -326,3 +352,99 @@ def tip_gap(coordinates, velocities, base_start, rod_start, tip_start, reference
     gx = abs(tip_reference[0] + coordinates[tip_start] - x)
     gy = abs(tip_reference[1] + coordinates[tip_start + 1] - y)
     return max(gx, gy) / (moving_limit if moving else rest_limit)
+
+
+# ----------------------------------------------------------------------------- one call per hook
+# A compiled function's call costs about 0.05 us per argument (numba's dispatcher types each one):
+# linearisation and step_check take some 20, so the package's hooks call these instead, with the
+# rod's constants packed into one float and one integer array (pack_rod) and the items' arrays as
+# views of one buffer.  They do what moving + linearisation (pre-step) and step_check (post-Newton)
+# do, plus the actuation EI kappa folded into the force vector (one Exudyn item write less).
+
+def pack_rod(reference, tip_reference, parameters, limits, tip_limit, stiffness, phi_hat, integration, weights,
+             phi_hat_tip, actuation, moment_per_strain):
+    """The rod's constants as ``(ints, consts, out)`` for :func:`predicted_items` and :func:`solved_check`.
+
+    ``actuation``: ``(object coordinate of the mode, strain source index)`` per driven segment, each
+    loaded by ``moment_per_strain`` [N m] times its source's strain; the other arguments as in
+    :func:`linearisation` and :func:`step_check`.  ``ints[0:4]`` are the base's, the modes', the tip's
+    ODE2 index and the tie's first algebraic index, to be filled in once the system is assembled.
+    ``out`` holds ``mass``, ``force``, ``x1``, ``offset`` and ``tangent`` (:func:`unpack_out`).
+    """
+    n_points, m = phi_hat.shape
+    size = 2 + m
+    ints = np.array([-1, -1, -1, -1, size, n_points, len(actuation)] + [v for pair in actuation for v in pair],
+                    dtype=np.int64)
+    consts = np.concatenate([np.asarray(reference, dtype=float), np.asarray(tip_reference, dtype=float)[:2],
+                             np.asarray(parameters, dtype=float), [float(moment_per_strain), float(tip_limit)],
+                             np.asarray(limits, dtype=float), np.ravel(stiffness), np.ravel(phi_hat),
+                             np.ravel(integration), np.ravel(weights), np.ravel(phi_hat_tip)])
+    out = np.zeros(2 * size * size + 4 * size + 3)
+    return ints, consts, out
+
+
+def unpack_out(out, size):
+    """Views ``(mass, force, x1, offset, tangent)`` of :func:`pack_rod`'s ``out`` (numpy or compiled)."""
+    a = size * size
+    return (out[:a].reshape((size, size)), out[a:a + size], out[a + size:a + 4 * size].reshape((3, size)),
+            out[a + 4 * size:a + 4 * size + 3], out[a + 4 * size + 3:2 * a + 4 * size + 3].reshape((size, size)))
+
+
+_unpack_out = numba.njit(cache=True)(unpack_out)
+
+
+@numba.njit(cache=True)
+def _unpack(ints, consts):  # pragma: no cover - compiled
+    size, n_points = ints[4], ints[5]
+    m = size - 2
+    o = 10 + size
+    reference, tip_reference, parameters = consts[0:3], consts[3:5], consts[5:8]
+    stiffness = consts[o:o + size * size].reshape((size, size))
+    o += size * size
+    phi_hat = consts[o:o + n_points * m].reshape((n_points, m))
+    o += n_points * m
+    integration = consts[o:o + n_points * n_points].reshape((n_points, n_points))
+    o += n_points * n_points
+    weights = consts[o:o + n_points]
+    phi_hat_tip = consts[o + n_points:o + n_points + m]
+    return reference, tip_reference, parameters, consts[10:10 + size], stiffness, phi_hat, integration, weights, phi_hat_tip
+
+
+@numba.njit(cache=True)
+def _actuate(force, strains, ints, consts, sign):  # pragma: no cover - compiled
+    for k in range(ints[6]):
+        force[ints[7 + 2 * k]] += sign * consts[8] * strains[ints[8 + 2 * k]]
+
+
+@numba.njit(cache=True)
+def predicted_items(coordinates, velocities, accelerations, h, strains, ints, consts, out):  # pragma: no cover
+    """Pre-step: if ``0 < h < inf`` [s] and the rod moves (:func:`moving`), its items linearised at the state
+    predicted for the step's end (:func:`linearisation` without the geometric stiffness) with the actuation
+    (``strains``) in the force, into ``out``; returns whether it did (else ``out`` is unchanged)."""
+    if not (0.0 < h < math.inf) or not moving(velocities, accelerations, ints[0], ints[1], ints[4] - 3):
+        return False
+    reference, _, parameters, _, stiffness, phi_hat, integration, weights, phi_hat_tip = _unpack(ints, consts)
+    mass, force, x1, offset, tangent = _unpack_out(out, ints[4])
+    linearisation(coordinates, velocities, accelerations, ints[0], ints[1], reference, h, np.empty(0), stiffness,
+                  phi_hat, integration, weights, phi_hat_tip, parameters, mass, tangent, force, x1, offset)
+    _actuate(force, strains, ints, consts, 1.0)
+    return True
+
+
+@numba.njit(cache=True)
+def solved_check(coordinates, velocities, accelerations, multipliers, strains, factor, ints, consts,
+                 out):  # pragma: no cover - compiled
+    """Post-Newton of a time step: :func:`step_check` of the items in ``out`` (written by
+    :func:`predicted_items`, the actuation of ``strains`` in the force); above 1 the items at the solved
+    state, with the actuation, are written into ``out``.  Returns the ratio."""
+    reference, tip_reference, parameters, limits, _, phi_hat, integration, weights, phi_hat_tip = _unpack(ints, consts)
+    mass, force, x1, offset, _ = _unpack_out(out, ints[4])
+    passive = force.copy()
+    _actuate(passive, strains, ints, consts, -1.0)
+    ratio = step_check(coordinates, velocities, accelerations, ints[0], ints[1], ints[2], reference, tip_reference,
+                       multipliers, ints[3], phi_hat, integration, weights, phi_hat_tip, parameters, factor, limits,
+                       consts[9], mass, passive, x1, offset)
+    if ratio > 1.0:
+        force[:] = passive
+        _actuate(force, strains, ints, consts, 1.0)
+    return ratio

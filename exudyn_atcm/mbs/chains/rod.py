@@ -18,10 +18,15 @@ Items per bender (coordinates ``z = (X, Y, Phi, q)``, :mod:`exudyn_atcm.theory.r
   the rod object's coordinates): its pose equals the exact tip pose ``P(z)``, ``Phi + q_1``;
 * the actuation: ``LoadCoordinate`` ``EI kappa`` on ``q_1`` (as the ``ritz`` cell); a bender
   of segments has each segment's modes on its own length (:class:`~exudyn_atcm.theory.rotation_rod.RodShapes`)
-  and one such load per driven segment, on that segment's first mode.
+  and one such load per driven segment, on that segment's first mode.  In a time step of a moving rod
+  the same moments are added to the rod's force vector instead (written anyway every step) and the
+  loads are held at zero: one Exudyn item write less per step (static solves, which scale loads by
+  the load factor, and eigenvalue analyses use the loads).
 
 The nonlinear parts (``M``, the quadratic velocity vector and the tip pose) are evaluated by
-compiled kernels and written into the items:
+compiled kernels and written into the items (in a time step one compiled call per hook,
+:func:`~exudyn_atcm.theory.rod_kernels.predicted_items` and
+:func:`~exudyn_atcm.theory.rod_kernels.solved_check`, on the rod's constants packed once):
 
 * before every attempted step (the model's strain writer, run in the pre-step hook), at the
   state predicted for the step's end to second order, ``z + h z_dot + h^2/2 z_ddot`` with the
@@ -126,12 +131,13 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
                                              dampingMatrix=bender.stiffness_damping_factor * K, forceVector=force0,
                                              **varying_mass))
     # the actuation: EI kappa_j on the first mode of every driven segment j
-    actuation = []
+    actuation, actuated_modes = [], []
     for j, (seg, first) in enumerate(zip(bender.segments, shapes.first_modes)):
         if seg.drive is not None:
             marker = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=node, coordinate=first))
             actuation.append((mbs.AddLoad(ii.LoadCoordinate(markerNumber=marker, load=0.0)),
                               ctx.source(bender, j)))
+            actuated_modes.append(first)
     tip_reference = np.array([*bender.points["tip"], angle], dtype=float)
     tip_node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=tip_reference.tolist(), visualization=NOVIS))
     tie = mbs.AddObject(ii.ObjectConnectorCoordinateVector(
@@ -158,6 +164,21 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
     # a user's system after add_to is assembled later): nodes are numbered in the order they were added, so
     # these stay valid when items are added after them and the system is assembled again
     ode2 = [-1, -1, -1, -1]
+    # the per-step work in one compiled call per hook (rod_kernels.predicted_items, solved_check): the constants
+    # packed once, the items' arrays views of one buffer; in a time step the actuation is in the force vector
+    limit, static_limit = TIP_TOLERANCE * length, STATIC_TIP_TOLERANCE * length
+    tip_reference_xy = np.ascontiguousarray(tip_reference[:2])
+    # the largest change of a coordinate that evaluating the inertia and the tie at a solved step's own state
+    # may make before the step is solved again with them: X, Y [m], then the rotations [rad]
+    limits = np.array([limit, limit] + [INERTIA_TOLERANCE] * (size - 2))
+    moment_per_strain = ei * bender.curvature_sign * lam.curvature_per_strain
+    ints, consts, packed = rod_kernels.pack_rod(base_reference, tip_reference_xy, [length, mu, rho_i], limits, limit,
+                                                K, phi_hat, integration, weights, phi_hat_tip,
+                                                [(3 + first, source) for (_, source), first in zip(actuation, actuated_modes)],
+                                                moment_per_strain)
+    out = rod_kernels.unpack_out(packed, size)
+    mass_out, force, x1_, offset_, tangent = out
+    out = (mass_out, tangent, force, x1_, offset_)  # the order of linearisation's outputs
 
     def indices() -> list[int]:
         """[base, modes, tip] ODE2 indices and the tie's first algebraic (multiplier) index; -1 before the system
@@ -165,6 +186,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
         if ode2[0] < 0 and mbs.GetNodeODE2Index(base_node) >= 0:
             ode2[:] = [mbs.GetNodeODE2Index(base_node), mbs.GetNodeODE2Index(node), mbs.GetNodeODE2Index(tip_node),
                        int(sd.GetObjectLTGAE(tie)[0])]
+            ints[:4] = ode2
         return ode2
 
     sd = mbs.systemData
@@ -173,11 +195,8 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
     get_q, get_v, get_time = sd.GetODE2Coordinates, sd.GetODE2Coordinates_t, sd.GetTime
     force_output = exu.OutputVariableType.Force
     parameters = np.array([length, mu, rho_i])
-    linearisation, tip_gap, step_check, moving = (rod_kernels.linearisation, rod_kernels.tip_gap,
-                                                  rod_kernels.step_check, rod_kernels.moving)
+    linearisation, tip_gap = rod_kernels.linearisation, rod_kernels.tip_gap
 
-    out = (np.empty((size, size)), np.empty((size, size)), np.empty(size), np.empty((3, size)), np.empty(3))
-    mass_out, tangent, force, x1_, offset_ = out
     no_multipliers = no_accelerations = np.empty(0)
     get_a, get_ae = sd.GetODE2Coordinates_tt, sd.GetAECoordinates
 
@@ -206,52 +225,59 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
                       phi_hat, integration, weights, phi_hat_tip, parameters, *out)
         publish(stiffen)
 
-    moment_per_strain = ei * bender.curvature_sign * lam.curvature_per_strain
     set_load = mbs.SetLoadParameter
+    predicted_items, solved_check = rod_kernels.predicted_items, rod_kernels.solved_check
+    current = exu.ConfigurationType.Current
+    # the actuation EI kappa: the loads' values (static solves: scaled by the load factor; eigenvalues), or in a
+    # time step of a moving rod folded into the force vector, the loads then held at zero
+    loads = {"active": True, "strains": no_accelerations}
+
+    def activate_loads(strains: np.ndarray) -> None:
+        loads["active"] = True
+        for load, source in actuation:
+            set_load(load, "load", moment_per_strain * strains.item(source))
 
     def write_strains(strains: np.ndarray) -> None:
         """The actuation, and the rod linearised at the state predicted for the attempted step's end
         (``z + h z_dot + h^2/2 z_ddot`` and ``z_dot + h z_ddot`` from the step's start)."""
-        for load, source in actuation:
-            set_load(load, "load", moment_per_strain * strains.item(source))
-        base_start, rod_start, _, _ = indices()
+        loads["strains"] = strains
+        base_start = ode2[0] if ode2[0] >= 0 else indices()[0]
         if base_start < 0:  # not assembled yet: the first step's pre-step hook linearises
+            activate_loads(strains)
             return
         h = get_time() - get_time(_START)
         velocities = get_v(_START, False)
-        accelerations = get_a(_START, False)
-        # a time step of a rod in motion, or starting to move (a static solver's load steps have neither)
-        if 0.0 < h < math.inf and moving(velocities, accelerations, base_start, rod_start, n):
+        # a time step of a rod in motion, or starting to move: one compiled call (a static solver's load steps
+        # have neither rates nor a finite step)
+        if predicted_items(get_q(_START, False), velocities, get_a(_START, False), h, strains, ints, consts, packed):
+            if loads["active"]:
+                loads["active"] = False
+                for load, _ in actuation:
+                    set_load(load, "load", 0.0)
             state["h"] = h
-            write(get_q(_START, False), velocities, accelerations, h, False)
-        else:
-            state["h"] = 0.0
-            write(get_q(_START, False), velocities, no_accelerations, 0.0, True)
-
-    limit, static_limit = TIP_TOLERANCE * length, STATIC_TIP_TOLERANCE * length
-    tip_reference_xy = np.ascontiguousarray(tip_reference[:2])
-    # the largest change of a coordinate that evaluating the inertia and the tie at a solved step's own state
-    # may make before the step is solved again with them: X, Y [m], then the rotations [rad]
-    limits = np.array([limit, limit] + [INERTIA_TOLERANCE] * (size - 2))
+            publish(False)
+            return
+        activate_loads(strains)
+        state["h"] = 0.0
+        write(get_q(_START, False), velocities, no_accelerations, 0.0, True)
 
     def check_tip(mbs_, t) -> float:
         """After a Newton solve: the tip node's distance from the exact tip pose, and in a time step the change
         that the inertia and the tie evaluated at the solved state would make, over their tolerances; above 1,
         the rod is linearised at the solved state and Exudyn repeats the Newton solve."""
-        base_start, rod_start, tip_start, tie_start = indices()
-        if base_start < 0:
+        if ode2[0] < 0 and indices()[0] < 0:
             return 0.0
-        coordinates, velocities = get_q(copy=False), get_v(copy=False)
         h = state["h"]
         if h > 0.0:  # a time step, solved with the items evaluated at the state predicted for it
-            ratio = step_check(coordinates, velocities, get_a(copy=False), base_start, rod_start, tip_start,
-                               base_reference, tip_reference_xy, get_ae(copy=False), tie_start, phi_hat,
-                               integration, weights, phi_hat_tip, parameters, NEWTON_POSITION_FACTOR * h * h,
-                               limits, limit, mass_out, force, x1_, offset_)
+            ratio = solved_check(get_q(current, False), get_v(current, False), get_a(current, False),
+                                 get_ae(current, False), loads["strains"], NEWTON_POSITION_FACTOR * h * h, ints,
+                                 consts, packed)
             if ratio <= 1.0:
                 return 0.0
-            publish(False)  # step_check evaluated the items at the solved state
+            publish(False)  # solved_check evaluated the items at the solved state
             return ratio
+        base_start, rod_start, tip_start, _ = ode2
+        coordinates, velocities = get_q(current, False), get_v(current, False)
         ratio = tip_gap(coordinates, velocities, base_start, rod_start, tip_start, base_reference, tip_reference_xy,
                         phi_hat, weights, phi_hat_tip, length, limit, static_limit)
         if ratio <= 1.0:
@@ -263,7 +289,9 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
         """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness."""
         if indices()[0] < 0:
             return
-        coordinates = get_q(copy=False)
+        if not loads["active"]:  # after a time step: the actuation back from the force vector into the loads
+            activate_loads(loads["strains"])
+        coordinates = get_q(current, False)
         state["h"] = 0.0
         write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
 
