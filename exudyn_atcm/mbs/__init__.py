@@ -4,7 +4,8 @@ One builder (:mod:`~exudyn_atcm.mbs.builder`) adds a :class:`~exudyn_atcm.mechan
 to a ``MainSystem``; a lone :class:`~exudyn_atcm.mechanism.actuator.BendingActuator` is built as
 the one-bender mechanism it is.  Each cell kind adds its bender through the realisation
 registered for its class (the contract :mod:`~exudyn_atcm.mbs.realisation`, written through
-:mod:`~exudyn_atcm.mbs.build_context`): rigid chains
+:mod:`~exudyn_atcm.mbs.build_context`, the one build context that connections and loads write
+through too): rigid chains
 (:mod:`~exudyn_atcm.mbs.chains.rigid`), six-bar chains (:mod:`~exudyn_atcm.mbs.chains.six_bar`), beam
 chains (:mod:`~exudyn_atcm.mbs.chains.beam`), ANCF chains (:mod:`~exudyn_atcm.mbs.chains.ancf`)
 assumed modes (:mod:`~exudyn_atcm.mbs.chains.ritz`) and the geometrically exact rod
@@ -24,7 +25,7 @@ from __future__ import annotations
 from ..mechanism.realisation import register_dof_counter, register_redundancy_check
 from .build_context import BuildContext
 from .builder import build
-from .connection_context import ConnectionContext
+from .connection_context import deprecated_alias
 from .hooks import StepHooks, add_post_newton, add_post_step, add_pre_step, step_hooks
 from .linear import DofReport, degrees_of_freedom
 from .node_chain import NodeEnds
@@ -32,7 +33,7 @@ from .realisation import CellRealisation, HingedEnds, register_realisation
 from .user_system import MechanismHandle, add_to
 
 __all__ = ["add_to", "MechanismHandle", "StepHooks", "add_pre_step", "add_post_step", "add_post_newton", "step_hooks",
-           "DofReport", "CellRealisation", "HingedEnds", "NodeEnds", "BuildContext", "ConnectionContext",
+           "DofReport", "CellRealisation", "HingedEnds", "NodeEnds", "BuildContext",
            "register_realisation"]
 
 
@@ -46,3 +47,8 @@ def _refuse_dependent(mechanism) -> None:
 
 register_dof_counter(_count)
 register_redundancy_check(_refuse_dependent)
+
+
+def __getattr__(name: str):
+    # ConnectionContext: the deprecated name of BuildContext, for one release
+    return deprecated_alias(__name__, name)

@@ -35,8 +35,6 @@ The :mod:`exudyn_atcm.mbs` package holds the package's only Exudyn calls.
 
 from __future__ import annotations
 
-import math
-
 import exudyn as exu
 import numpy as np
 from exudyn import itemInterface as ii
@@ -52,10 +50,8 @@ from .layout import check_end_connections, part_of, rigid_groups
 from .items import NOVIS as _NOVIS
 from .items import add_body as _add_body
 from .items import local_point
-from .items import rigid_marker as _rigid_marker
 from .model import Body, Element, MechanismModel
 from .graphics import part_graphics, shift_graphics
-from .connection_context import ConnectionContext, realise_connections
 from . import chains
 from .mass_damping import MassDampers, part_mass_damping_factor
 from .realisation import make_realisation
@@ -67,11 +63,14 @@ REALISATIONS = chains.MODULES
 
 # ---------------------------------------------------------------------------- building
 
-class _Builder(BuildContext):
+class _Builder:
+    """Builds one mechanism into ``mbs`` through the one public :class:`BuildContext` it hands to the extensions."""
+
     def __init__(self, mbs, mech: Mechanism, ground_item: int | None = None, free_end_bodies: bool = False,
                  stroke_path: str = "prestep", package_solves: bool = False) -> None:
-        super().__init__(mbs, mech, MechanismModel(mechanism=mech, mbs=mbs, stroke_path=stroke_path), package_solves)
-        self.mech = mech
+        self.mbs, self.mech = mbs, mech
+        self.model = MechanismModel(mechanism=mech, mbs=mbs, stroke_path=stroke_path)
+        self.ctx = BuildContext(mbs, mech, self.model, package_solves)
         self.free_end_bodies = free_end_bodies
         self.ground_item = ground_item
         sources: list = []
@@ -98,23 +97,23 @@ class _Builder(BuildContext):
                 raise MechanismError(
                     f"bender {bender.name!r}: the {bender.cell.name} cell models two layers; a passive strip "
                     f"(active=None) needs {' or '.join(f'cell={n!r}' for n in passive_strip_cells())}")
-            self.realisations[bender.name] = make_realisation(bender)
+            self.ctx.realisations[bender.name] = make_realisation(bender)
         if self.ground_item is None:
             self.ground_item = mbs.AddObject(ii.ObjectGround(visualization={'show': False, 'graphicsDataUserFunction': 0,
                                                                             'graphicsData': []}))
         gnode = mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0], visualization=_NOVIS))
-        self.ground_coordinate = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
-        self.dampers = MassDampers(mbs, self.ground_item, self.ground_coordinate)
+        self.ctx.ground_coordinate = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=gnode, coordinate=0))
+        self.ctx.dampers = MassDampers(mbs, self.ground_item, self.ctx.ground_coordinate)
         model.bodies[GROUND] = Body(GROUND, None, self.ground_item, np.zeros(3))
-        on_group_body = {name for name, r in self.realisations.items() if r.ends_on_group_body}
-        node_ends = {name for name, r in self.realisations.items() if r.ends_are_nodes}
-        self.groups, self.group_of = rigid_groups(mech, self.free_end_bodies, on_group_body, node_ends)
-        check_end_connections(mech, self.groups, self.group_of, self.free_end_bodies)
+        on_group_body = {name for name, r in self.ctx.realisations.items() if r.ends_on_group_body}
+        node_ends = {name for name, r in self.ctx.realisations.items() if r.ends_are_nodes}
+        self.ctx.groups, self.ctx.group_of = rigid_groups(mech, self.free_end_bodies, on_group_body, node_ends)
+        check_end_connections(mech, self.ctx.groups, self.ctx.group_of, self.free_end_bodies)
         self._group_bodies()
         for bender in mech.benders:
             with self._labelled(CELLS_LABEL.format(name=bender.name)):
-                self.realisations[bender.name].add_cells(self)
-        for key, g in self.groups.items():
+                self.ctx.realisations[bender.name].add_cells(self.ctx)
+        for key, g in self.ctx.groups.items():
             if g.kind == "beam-node":  # the group's body is the first node end among its parts
                 keys = (self._end_body_key(p) for p in g.interfaces)
                 model.bodies[key] = model.bodies[next(k for k in keys if k is not None)]
@@ -122,41 +121,40 @@ class _Builder(BuildContext):
         for bender in mech.benders:
             for end in ("base", "tip"):
                 with self._labelled(end_label(mech, bender, end)):
-                    self.realisations[bender.name].connect_end(self, end)
-        context = ConnectionContext(model, self.ground_coordinate, self._pin, self._slider)
+                    self.ctx.realisations[bender.name].connect_end(self.ctx, end)
         # joints with the bodies (their springs join the hinges'), then the loads and other connections
-        realise_connections(context, mech.joints, self._labelled)
+        self._realise_connections(mech.joints)
         self._flexure_pivots()
-        for realisation in self.realisations.values():
+        for realisation in self.ctx.realisations.values():
             writer, hook = realisation.strain_writer(), realisation.linearisation_hook()
             if writer is not None:
-                self.add_strain_writer(writer)
+                self.ctx.add_strain_writer(writer)
             if hook is not None:
-                self.add_linearisation_hook(hook)
-        realise_actuation(mbs, mech, model, self.ground_coordinate, self.zeros, self.clamped)
-        realise_connections(context, [c for c in mech.connections if not c.holds], self._labelled)
+                self.ctx.add_linearisation_hook(hook)
+        realise_actuation(mbs, mech, model, self.ctx.ground_coordinate, self.ctx.zeros, self.ctx.clamped)
+        self._realise_connections([c for c in mech.connections if not c.holds])
         return model
 
     def _end_body_key(self, part: str) -> str | None:
         name, _, end = part.partition("#")
-        realisation = self.realisations.get(name)
+        realisation = self.ctx.realisations.get(name)
         return realisation.end_body_key(end) if realisation is not None else None
 
     def _flexure_pivots(self) -> None:
         """The pseudo-rigid-body flexures' characteristic pivots: a hinge with the spring ``K``."""
         for comp in self.mech.components.values():
             if isinstance(comp, Flexure) and comp.model == "prbm":
-                a, b = self.group_of[f"{comp.name}#base"], self.group_of[f"{comp.name}#tip"]
+                a, b = self.ctx.group_of[f"{comp.name}#base"], self.ctx.group_of[f"{comp.name}#tip"]
                 if a == b:
                     continue  # both segments in one rigid group: the hinge cannot turn
                 k = comp.torsion_stiffness
-                el = Element(k, comp.stiffness_damping_factor * k, self.zeros(), self.zeros())
+                el = Element(k, comp.stiffness_damping_factor * k, self.ctx.zeros(), self.ctx.zeros())
                 with self._labelled(f"the pivot of flexure {comp.name!r}"):
-                    self.hinge_at(a, b, [el], comp.pivot)
+                    self.ctx.hinge_at(a, b, [el], comp.pivot)
 
     def _group_bodies(self) -> None:
         model = self.model
-        for key, g in self.groups.items():
+        for key, g in self.ctx.groups.items():
             if g.kind == "ground":
                 model.bodies[key] = model.bodies[GROUND]
                 continue
@@ -178,7 +176,7 @@ class _Builder(BuildContext):
             local_graphics = [shift_graphics(gd, -com) for gd in graphics]
             model.bodies[key] = _add_body(self.mbs, key, com, 0.0, m, inertia, (0.0, 0.0), local_graphics)
             for alpha, mm, j, c in damped:  # each laminate part's own mass, at its own centre
-                self.add_mass_damping(model.bodies[key], alpha, mm, j, c - com)
+                self.ctx.add_mass_damping(model.bodies[key], alpha, mm, j, c - com)
 
     def _part_masses(self, part: str, carried: bool = False) -> list[tuple[float, float, np.ndarray]]:
         """(mass, inertia about own centre, centre) of a rigid part; a bender end's from its realisation."""
@@ -194,8 +192,8 @@ class _Builder(BuildContext):
 
     def _end_realisation(self, comp):
         """The realisation of a bender (or a cells flexure's bender)."""
-        if comp.name in self.realisations:
-            return self.realisations[comp.name]
+        if comp.name in self.ctx.realisations:
+            return self.ctx.realisations[comp.name]
         return make_realisation(comp if isinstance(comp, Bender) else comp.as_bender())
 
     def _interface_body(self, key: str, part: str) -> Body:
@@ -206,12 +204,12 @@ class _Builder(BuildContext):
         bender = realisation.bender
         m, j, com = realisation.interface_body_mass(end)
         body = _add_body(self.mbs, key, bender.points[end], bender.angle, m, j, com, [])
-        self.add_mass_damping(body, bender.mass_damping_factor, m, j, com)
+        self.ctx.add_mass_damping(body, bender.mass_damping_factor, m, j, com)
         return body
 
     def end_element(self, bender_name: str, end: str) -> tuple[Element, str, tuple[float, float]]:
         """The end spring of a bender end: element, end cell key, the end point in the cell's frame."""
-        return self.realisations[bender_name].end_spring(self, end)
+        return self.ctx.realisations[bender_name].end_spring(self.ctx, end)
 
     # ---------------------------------------------------------------- points
     def _anchor_points(self) -> None:
@@ -221,7 +219,7 @@ class _Builder(BuildContext):
             for pname, pos in comp.points.items():
                 ref = PointRef(comp.name, pname)
                 part = part_of(mech, ref)
-                g = self.groups[self.group_of[part]]
+                g = self.ctx.groups[self.ctx.group_of[part]]
                 rigid = isinstance(comp, Link) or (isinstance(comp, Flexure) and comp.model == "prbm")
                 if rigid:
                     model.group_of_component[part] = g.key
@@ -232,53 +230,18 @@ class _Builder(BuildContext):
                     _, cell, local = self.end_element(comp.name, pname)
                     model.anchors[str(ref)] = (cell, np.array(local, dtype=float))
 
-    # ---------------------------------------------------------------- joints
-    def _side(self, ref: PointRef | None) -> str:
-        """Group key, or the interface part if ``ref`` is a virtual bender end."""
-        part = part_of(self.mech, ref)
-        g = self.groups[self.group_of[part]]
-        return part if g.kind == "virtual" else g.key
-
-    def _movable(self, label: str, side_a: str, side_b: str) -> None:
-        """Refuse a joint between two points of one rigid group (welded together): it could not move."""
-        if side_a == side_b:
-            group = self.groups[self.group_of[side_a]] if side_a in self.group_of else self.groups[side_a]
-            parts = ", ".join(sorted(p.replace("#", ".") for p in group.parts))
-            raise MechanismError(
-                f"{label} joins two points of one rigid group (welded together: {parts}); it cannot "
-                "move. Remove the joint or one of the welds")
-
-    def _pin(self, p: PointRef, q: PointRef | None, stiffness: float, damping: float, label: str) -> None:
-        side_a, side_b = self._side(p), self._side(q)
-        self._movable(label, side_a, side_b)
-        pin_el = Element(stiffness, damping, self.zeros(), self.zeros())
-        self.join_in_series(side_a, pin_el, side_b, self.mech.position(p))
-
-    def _slider(self, p: PointRef, q: PointRef | None, axis: tuple[float, float], stiffness: float, damping: float,
-                label: str) -> None:
-        mbs, model = self.mbs, self.model
-        a, b = self._side(p), self._side(q)
-        self._movable(label, a, b)
-        body_a, body_b = model.bodies[a], model.bodies[b]
-        pos = self.mech.position(p)
-        pos_q = pos if q is None else self.mech.position(q)
-        la, lb = local_point(body_a, pos), local_point(body_b, pos_q)
-        ca, sa = math.cos(body_a.reference[2]), math.sin(body_a.reference[2])
-        cb, sb = math.cos(body_b.reference[2]), math.sin(body_b.reference[2])
-        ax, ay = axis
-        axis_a = [ca * ax + sa * ay, -sa * ax + ca * ay, 0.0]
-        normal_b = [cb * (-ay) + sb * ax, -sb * (-ay) + cb * ax, 0.0]
-        ma, mb = _rigid_marker(mbs, body_a, la), _rigid_marker(mbs, body_b, lb)
-        mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[ma, mb], axisMarker0=axis_a, normalMarker1=normal_b,
-                                                constrainRotation=True, visualization=_NOVIS))
-        if stiffness > 0.0 or damping > 0.0:
-            # the sliding coordinate: relative translation along the axis (zero in the reference pose)
-            coord = mbs.AddMarker(ii.MarkerBodiesRelativeTranslationCoordinate(
-                bodyNumbers=[body_a.item, body_b.item], localPosition0=[la[0], la[1], 0.0],
-                localPosition1=[lb[0], lb[1], 0.0], axis0=axis_a))
-            item = mbs.AddObject(ii.ObjectConnectorCoordinateSpringDamper(
-                markerNumbers=[self.ground_coordinate, coord], stiffness=stiffness, damping=damping, visualization=_NOVIS))
-            model.springs.append((item, stiffness, "damping"))
+    def _realise_connections(self, connections) -> None:
+        """``connection.realise(self.ctx)`` for each of ``connections``, its items labelled with its description
+        (for the messages on dependent joints); refuse one that recorded other columns than it declares."""
+        for connection in connections:
+            before = len(self.ctx.recorded())
+            with self._labelled(connection.describe()):
+                connection.realise(self.ctx)
+            recorded, declared = list(self.ctx.recorded()[before:]), list(connection.readouts())
+            if recorded != declared:
+                raise MechanismError(f"{connection.describe()}: realise() recorded the columns {recorded} but "
+                                     f"readouts() declares {declared}; call context.add_readout once per declared "
+                                     "Readout")
 
 
 def add_mechanism(mbs, mechanism: Mechanism, ground_item: int | None = None,

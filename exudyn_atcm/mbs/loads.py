@@ -1,6 +1,6 @@
 """The Exudyn items of the package's loads: point forces, torques, springs between points, stops.
 
-Called through the public build context (:class:`~exudyn_atcm.mbs.connection_context.ConnectionContext`)
+Called through the public build context (:class:`~exudyn_atcm.mbs.build_context.BuildContext`)
 by the loads' ``realise`` (:mod:`exudyn_atcm.mechanism.loads`).
 """
 
@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from exudyn import itemInterface as ii
 
-from ..mechanism.points import GROUND, PointRef
+from ..mechanism.points import PointRef
 from .items import NOVIS, position_marker, rigid_marker
 from .model import LoadRecord, MechanismModel
 from ..errors import SetupWarning
@@ -51,27 +51,21 @@ def add_torque(mbs, model: MechanismModel, component: str, value: Any, name: str
     return load
 
 
-def add_spring_damper(mbs, model: MechanismModel, p: PointRef, q: PointRef, stiffness: float, damping: float,
+def add_spring_damper(mbs, model: MechanismModel, markers: list[int], stiffness: float, damping: float,
                       rest_length: float, name: str) -> int:
-    """A spring-damper [N/m], [N s/m] between ``p`` and ``q`` of rest length [m]; its object number."""
-    ka, la = model.anchors[str(p)]
-    kb, lb = model.anchors[str(q)]
-    ma = position_marker(mbs, model.bodies[ka], la)
-    mb = position_marker(mbs, model.bodies[kb], lb)
+    """A spring-damper [N/m], [N s/m] of rest length [m] between two position ``markers``; its object number."""
     item = model.spring_items[name] = mbs.AddObject(ii.ObjectConnectorSpringDamper(
-        markerNumbers=[ma, mb], referenceLength=rest_length, stiffness=stiffness, damping=damping,
+        markerNumbers=list(markers), referenceLength=rest_length, stiffness=stiffness, damping=damping,
         visualization={'show': True, 'drawSize': -1.0, 'color': [0.1, 0.6, 0.1, 1.0]}))
     return item
 
 
-def add_contact(mbs, model: MechanismModel, point: PointRef, position: Any, normal: Any, stiffness: float,
-                damping: float, name: str) -> int:
-    """A one-sided contact of ``point`` with the wall through ``position`` [m] (free side ``normal``)."""
-    key, local = model.anchors[str(point)]
-    ground_marker = position_marker(mbs, model.bodies[GROUND], position)
-    mp = position_marker(mbs, model.bodies[key], local)
+def add_contact(mbs, model: MechanismModel, markers: list[int], normal: Any, stiffness: float, damping: float,
+                name: str) -> int:
+    """A one-sided contact between a ground marker and a point's marker (``markers``): the wall through the
+    ground marker, free side ``normal``, stiffness [N/m] and damping [N s/m]; its object number."""
     item = model.spring_items[name] = mbs.AddObject(ii.ObjectConnectorCartesianSpringDamper(
-        markerNumbers=[ground_marker, mp], stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0],
+        markerNumbers=list(markers), stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0],
         springForceUserFunction=_stop_force(normal, stiffness, damping), visualization=NOVIS))
     return item
 

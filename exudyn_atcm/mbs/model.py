@@ -134,7 +134,7 @@ class MechanismModel:
     motor_offsets: list[tuple[int, float, int]] = field(default_factory=list)  # six-bar: (item, L_c, source)
     loads: list[LoadRecord] = field(default_factory=list)
     spring_items: dict[str, int] = field(default_factory=dict)  # spring/stop name -> Exudyn object
-    # the connections' recorded columns and their readers (ConnectionContext.add_readout), in column order
+    # the connections' recorded columns and their readers (BuildContext.add_readout), in column order
     readouts: list[tuple[Any, Callable[[], Any]]] = field(default_factory=list)
     ends: dict[str, EndReadout] = field(default_factory=dict)   # "bender.base"/"bender.tip"
     cells: dict[str, list[str]] = field(default_factory=dict)   # bender -> its cell body keys

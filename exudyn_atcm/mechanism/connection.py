@@ -11,7 +11,7 @@ Every connection or load of a :class:`~exudyn_atcm.Mechanism` is an object with
 * ``describe()``: how messages name it (e.g. ``"pin(crank.base, ground)"``);
 * ``readouts()``: the result columns it records, each a :class:`Readout` (column and unit);
 * ``realise(context)``: adds its items to the Exudyn system through the public build context
-  (:class:`exudyn_atcm.mbs.connection_context.ConnectionContext`: markers at points, items, loads, read-outs);
+  (:class:`exudyn_atcm.mbs.build_context.BuildContext`: markers at points, items, loads, read-outs);
 * ``draw(canvas)``: draws it on a mechanism drawing (:class:`exudyn_atcm.plots.canvas.MechanismCanvas`);
 * the class attributes ``holds`` (True for a joint that holds parts together: weld, pin, slider,
   subclasses of :class:`~exudyn_atcm.mechanism.joints.JointBase` that the rigid groups and the

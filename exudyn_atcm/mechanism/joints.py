@@ -3,8 +3,8 @@
 A joint's second point ``q`` is ``None`` for a connection to the ground (at ``p``'s reference
 position).  Welds fuse the parts they join into one rigid group (:mod:`exudyn_atcm.mbs.layout`);
 pins and sliders are realised through the build context's
-:meth:`~exudyn_atcm.mbs.connection_context.ConnectionContext.add_hinge` and
-:meth:`~exudyn_atcm.mbs.connection_context.ConnectionContext.add_slider`.  Each draws its ground symbol.
+:meth:`~exudyn_atcm.mbs.build_context.BuildContext.add_pin` and
+:meth:`~exudyn_atcm.mbs.build_context.BuildContext.add_slider`.  Each draws its ground symbol.
 """
 
 from __future__ import annotations
@@ -87,7 +87,7 @@ class Pin(JointBase):
 
     def realise(self, context: Any) -> None:
         """A hinge with the pin's spring and damper."""
-        context.add_hinge(self.p, self.q, self.stiffness, self.damping, self.describe())
+        context.add_pin(self.p, self.q, self.stiffness, self.damping, self.describe())
 
     def draw_ground(self, canvas: Any, x: np.ndarray, inward: np.ndarray, size: float) -> None:
         """A triangle on a hatched wall."""

@@ -1,7 +1,7 @@
 """Loads of a mechanism: point forces, torques, springs between points and one-sided stops.
 
 Each implements the connection protocol (:mod:`exudyn_atcm.mechanism.connection`): it adds its
-items through the build context (:class:`exudyn_atcm.mbs.connection_context.ConnectionContext`), names its recorded
+items through the build context (:class:`exudyn_atcm.mbs.build_context.BuildContext`), names its recorded
 columns, its parameters and draws itself.  Forces and torques are numbers or callables of time
 ``t`` [s].
 """
