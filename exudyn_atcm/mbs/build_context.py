@@ -39,7 +39,9 @@ __all__ = ["BuildContext"]
 
 
 class BuildContext:
-    """The public handle of one build: the system, the mechanism, the layout and the methods that add to them.
+    """The public handle of one build, for cell realisations and connections alike (system, mechanism, layout).
+
+    Its methods add bodies, cells, hinges, pins, sliders, markers, loads, items and recorded columns; units SI.
 
     Attributes
     ----------
