@@ -22,9 +22,9 @@ def deprecated_alias(module: str, name: str) -> Any:
     """``BuildContext`` for the old name ``ConnectionContext`` (warns :class:`~exudyn_atcm.AtcmDeprecationWarning`)."""
     if name != "ConnectionContext":
         raise AttributeError(f"module {module!r} has no attribute {name!r}")
-    warnings.warn("exudyn_atcm.mbs.ConnectionContext is deprecated: connections realise into the one build context, "
-                  "exudyn_atcm.mbs.BuildContext (add_hinge(p, q, ...) is now add_pin); the old name goes away in the "
-                  "next release", AtcmDeprecationWarning, stacklevel=3)
+    warnings.warn(f"{module}.ConnectionContext is deprecated: connections realise into the one build context, "
+                  "exudyn_atcm.mbs.BuildContext (add_hinge(p, q, ...) is now add_pin); the old name goes away in "
+                  "the next release", AtcmDeprecationWarning, stacklevel=3)
     return BuildContext
 
 
