@@ -34,7 +34,7 @@ from exudyn_atcm import theory
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
-from exudyn_atcm.solve.step_choice import ACCURACY_RANGE
+from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, accurate_run
 
 #: Default ``accuracy`` [-] of the dynamic run (relative to the travel of the recorded positions); the checks
 #: against the references (the lever's kinematics, the statics) do not depend on the step.
@@ -71,27 +71,45 @@ def build_mechanism(p: Parameters) -> Mechanism:
     return Mechanism("bender_with_lever").add(bender, lever).ground(bender.base).weld(bender.tip, lever.point("root"))
 
 
-def step_or_accuracy(p: Parameters) -> dict:
-    """``{"step": p.step}`` for a given step, else ``{"accuracy": p.accuracy}`` (the arguments of :func:`simulate`).
+#: The step chosen for ``accuracy`` divides this interval [s] (the default ``record_every``) whatever ``record_every``
+#: is, so that the solution and the scalars do not depend on the recording interval (records at a multiple of it are
+#: evenly spaced).
+STEP_GRID = 1e-3
+
+
+def dynamic_run(system, t_end: float, p: Parameters, progress=None):
+    """:func:`simulate` of ``system`` to ``t_end`` [s] at ``p.step``, or (``p.step`` 0) at the step chosen for
+    ``p.accuracy`` and checked by a probe run (:func:`exudyn_atcm.solve.step_choice.accurate_run`, as
+    ``simulate(..., accuracy=p.accuracy)`` but on the grid of :data:`STEP_GRID`).
 
     Raises
     ------
     ValueError
         For a step together with an accuracy other than the default (one of them would be ignored).
     """
+    record_every = p.record_every if p.record_every > 0.0 else None
     if p.step > 0.0:
         if p.accuracy != DEFAULT_ACCURACY:
             raise ValueError(f"give step or accuracy, not both: step={p.step!r} s fixes the step, accuracy={p.accuracy!r} "
                              f"chooses it (leave step at 0 to choose it for accuracy)")
-        return {"step": p.step}
-    return {"accuracy": p.accuracy}
+        return simulate(system, t_end, step=p.step, progress=progress, record_every=record_every)
+
+    def run_at(step: float, run_progress) -> Result:
+        return simulate(system, t_end, step=step, progress=run_progress, record_every=record_every)
+
+    return accurate_run(run_at, system, t_end, p.accuracy, progress, record_every=STEP_GRID)
+
+
+def step_notes(result: Result) -> dict:
+    """The step used [s] and why (``result.info["step_choice"]``, or that it was given), for the JSON's notes."""
+    return {"step [s]": float(result.info["step [s]"]),
+            "step_choice": result.info.get("step_choice", "given (--set step=...)")}
 
 
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     a, L = p.lever, p.length
     mech = build_mechanism(p)
-    result = simulate(mech, p.cycles * p.period, progress=ctx.progress, **step_or_accuracy(p),
-                      record_every=p.record_every if p.record_every > 0.0 else None)
+    result = dynamic_run(mech, p.cycles * p.period, p, ctx.progress)
     every = result.every_step  # every accepted step: the scalars do not depend on record_every
     end = np.stack([every["lever.end_x"], every["lever.end_y"]], axis=-1)
     ref = np.stack(theory.rigid_extension_point(every["bender.tip_x"], every["bender.tip_y"],
@@ -123,8 +141,7 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
                     "arc_reference_x": arc_end[:, 0], "arc_reference_y": arc_end[:, 1]},
                    {"voltage": "V", "strain": "-", "kappa": "1/m", "lever.end_x": "m", "lever.end_y": "m",
                     "arc_reference_x": "m", "arc_reference_y": "m"})
-    notes = {"rejected_steps": int(result.info.get("rejected_steps", 0)), "step [s]": float(result.info["step [s]"]),
-             "step_choice": result.info.get("step_choice", "given (--set step=...)"),
+    notes = {"rejected_steps": int(result.info.get("rejected_steps", 0)), **step_notes(result),
              "reference": "lever end = tip + a (cos theta, sin theta) in dynamics; arc + lever in statics"}
     return CaseOutput(result, scalars, steps=int(result.info.get("accepted_steps", result.n_rows)),
                       tables={"static": table}, notes=notes)
