@@ -24,7 +24,9 @@ voltage -> free strain -> mechanism at rest -> mechanism in motion, inverted fro
 Damping ratio from the linear model: ``-Re(p) / |p|`` of the first (second) oscillating pole of
 :attr:`LinearModel.A <exudyn_atcm.LinearModel>`, whose damping matrix is the derivative of the
 simulated forces with respect to the velocities, so it holds for any mix of Rayleigh coefficients
-over the parts (a rigid link's mass is not damped by a bender's ``alpha``).  A drive whose operator
+over the parts (a rigid link's mass is not damped by a bender's ``alpha``).  Its input is the drive's
+voltage, or for six-bar cells (whose strain is a prescribed motion, not an input of a linear model) a
+force at the output's point: the damping ratios do not depend on the input.  A drive whose operator
 has creep or rate dynamics has no linear model (:func:`~exudyn_atcm.linearise` refuses it); there the
 description is used and ``damping_source`` says so.
 
@@ -97,7 +99,8 @@ class FeedforwardReport:
     output_map : OutputMap
         The quasi-static map (:mod:`exudyn_atcm.solve.output_map`).
     linear_model : LinearModel or None
-        The model about the middle wanted output the damping ratios came from (``None`` when they did
+        The model (drive voltage, or a point force for six-bar cells, to the output) about the middle
+        wanted output the damping ratios came from (``None`` when they did
         not: ``damping_from="description"``, ``damping_ratio=`` or a drive with creep or rate dynamics).
     """
 
@@ -174,9 +177,20 @@ def _has_dynamics(mech: Mechanism) -> bool:
     return any(callable(getattr(d.hysteresis, "static_output", None)) for d in mech.drives.values())
 
 
+def _damping_input(mech: Mechanism, output: str, drive: str) -> str:
+    """The linear model's input: the drive, or for six-bar cells (their strain is a prescribed motion, no input
+    of a linear model) a force at the output's point (at the first named point for an angle)."""
+    if not any(getattr(getattr(c, "cell", None), "name", None) == "six-bar" for c in mech.components.values()):
+        return drive
+    points = [f"{c.name}.{p}" for c in mech.components.values() for p in c.points]
+    point = output[:-2] if output.endswith(("_x", "_y")) and output[:-2] in points else points[0]
+    return f"{point}_Fy"
+
+
 def _linear_damping(mech: Mechanism, output: str, drive: str, voltage: float) -> tuple[LinearModel, float, float, str]:
     """The linear model about ``voltage`` (ascending branch) and its first two modes' damping ratios [-]."""
-    model = linearise(mech, voltage={drive: voltage}, inputs=[drive], outputs=[output], branch="ascending")
+    model = linearise(mech, voltage={drive: voltage}, inputs=[_damping_input(mech, output, drive)], outputs=[output],
+                      branch="ascending")
     ratios = model.damping_ratios
     if ratios.size == 0:
         raise ValueError(f"the linear model of {mech.name!r} about {model.state} has no oscillating mode, so no "
