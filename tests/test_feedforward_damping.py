@@ -155,3 +155,9 @@ def test_on_the_compliant_four_bar_the_linear_ratio_matches_a_free_decay_and_the
     # sampled at 0.1 ms, a 0.7 mm swing on a nonlinear linkage
     assert model.damping_ratios[0] == pytest.approx(measured, rel=0.01)
     assert description < 0.1 * measured  # the hinges' 0.016 %
+
+
+def test_the_summary_names_the_linear_model(reports):
+    summary = reports["mixed", "linear"][1].summary()
+    assert summary["linear_model"].startswith("lever.end_y per bender about voltage 751.7")  # the middle output
+    assert reports["mixed", "description"][1].summary()["linear_model"] is None

@@ -134,7 +134,11 @@ class FeedforwardReport:
                 "voltage_range [V]": list(d["voltage_range"]), "reachable [output unit]": list(d["reachable"]),
                 "fit_error [output unit]": d["fit_error"], "first_frequency [Hz]": d["frequencies"],
                 "second_frequency [Hz]": d["second_frequency"], "damping_ratio [-]": d["damping_ratio"],
-                "damping_source": d["damping_source"], "window [s]": d["window"],
+                "damping_source": d["damping_source"],
+                "linear_model": None if self.linear_model is None else
+                f"{', '.join(self.linear_model.outputs)} per {', '.join(self.linear_model.inputs)} about "
+                f"{self.linear_model.state} ({self.linear_model.branch} branch)",
+                "window [s]": d["window"],
                 "clipped_samples": d["clipped_samples"],
                 "peak_voltage [V]": float(np.max(self.voltage)), "lowest_voltage [V]": float(np.min(self.voltage))}
 
