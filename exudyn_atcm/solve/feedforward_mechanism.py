@@ -8,8 +8,11 @@ voltage -> free strain -> mechanism at rest -> mechanism in motion, inverted fro
    instant, so that its lightly damped mode does not ring (inversion of the dominant mode, or input
    shaping, or rounding the corners).  The mode's frequency comes from
    :func:`~exudyn_atcm.solve.mechanism_solve.eigenfrequencies` about the equilibria at the lowest, the
-   middle and the highest wanted output (linear in between); its damping ratio from the
-   mechanism's damping description (below) or ``damping_ratio=``.
+   middle and the highest wanted output (linear in between); its damping ratio (and the second
+   mode's) from the linear model about the middle one (:func:`~exudyn_atcm.solve.linearise.linearise`
+   on the ascending branch, ``damping_from="linear"``, the default: the damping the simulation has),
+   or from the mechanism's damping description (below, ``damping_from="description"``), or
+   ``damping_ratio=``.
 2. **Output map** (:mod:`exudyn_atcm.solve.output_map`): ``q`` to the drive's free strain, from a
    static sweep (continuation), checked monotone over the wanted range and refused beyond the
    reachable one.
@@ -17,6 +20,15 @@ voltage -> free strain -> mechanism at rest -> mechanism in motion, inverted fro
    the voltage, with the operator's memory following the program from its reset state (as in the
    simulation); an operator with creep or a rate lag is inverted with the time
    (:class:`~exudyn_atcm.hysteresis.dynamics_inverse.DynamicsInverse`).
+
+Damping ratio from the linear model: ``-Re(p) / |p|`` of the first (second) oscillating pole of
+:attr:`LinearModel.A <exudyn_atcm.LinearModel>`, whose damping matrix is the derivative of the
+simulated forces with respect to the velocities, so it holds for any mix of Rayleigh coefficients
+over the parts (a rigid link's mass is not damped by a bender's ``alpha``).  Its input is the drive's
+voltage, or for six-bar cells (whose strain is a prescribed motion, not an input of a linear model) a
+force at the output's point: the damping ratios do not depend on the input.  A drive whose operator
+has creep or rate dynamics has no linear model (:func:`~exudyn_atcm.linearise` refuses it); there the
+description is used and ``damping_source`` says so.
 
 Damping ratio from the description: the mechanism's benders and flexures carry Rayleigh damping
 ``C = alpha M + beta K`` on their own stiffness and masses (:mod:`exudyn_atcm.model.damping`); rigid
@@ -32,7 +44,7 @@ measured decay (:func:`~exudyn_atcm.model.damping.damping_ratio_from_log_decreme
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -45,10 +57,15 @@ from ..mechanism.flexure import Flexure
 from ..model.feedforward import feedforward_program
 from ..model.prefilter import PREFILTERS, invert_mode, shape, smooth, uniform_grid
 from ..model.sampled_program import SampledProgram
+from .linearise import linearise
 from .mechanism_solve import eigenfrequencies
 from .output_map import OutputMap, drive_name, output_map, voltage_limits
+from .state_space import LinearModel
 
-__all__ = ["FeedforwardReport", "mechanism_feedforward", "damping_ratio_of"]
+__all__ = ["FeedforwardReport", "mechanism_feedforward", "damping_ratio_of", "DAMPING_FROM"]
+
+#: Where :func:`mechanism_feedforward` takes the modes' damping ratios from (``damping_from=``).
+DAMPING_FROM = ("linear", "description")
 
 
 @dataclass
@@ -71,12 +88,20 @@ class FeedforwardReport:
         Second eigenfrequency [Hz] about the middle one.
     damping_ratio : float
         Damping ratio [-] of the first mode used by the pre-filter; ``damping_source`` says whence.
+    damping_source : str
+        Whence the damping ratio: the linear model, the damping description or ``damping_ratio=``.
     window : float
         Rounding window of the corners [s] (0 for none).
     times, wanted, rounded, command, strain, voltage : numpy.ndarray
         Program samples [s]; the wanted output; the wanted output with rounded corners (what the
         mechanism is expected to follow); the quasi-static command; the free strain [-]; the
         voltage [V].
+    output_map : OutputMap
+        The quasi-static map (:mod:`exudyn_atcm.solve.output_map`).
+    linear_model : LinearModel or None
+        The model (drive voltage, or a point force for six-bar cells, to the output) about the middle
+        wanted output the damping ratios came from (``None`` when they did
+        not: ``damping_from="description"``, ``damping_ratio=`` or a drive with creep or rate dynamics).
     """
 
     output: str
@@ -98,15 +123,22 @@ class FeedforwardReport:
     strain: np.ndarray = field(repr=False)
     voltage: np.ndarray = field(repr=False)
     output_map: OutputMap = field(repr=False)
+    linear_model: LinearModel | None = field(default=None, repr=False)
 
     def summary(self) -> dict[str, Any]:
         """The scalars, with units in the keys (for a case's JSON)."""
-        d = {k: v for k, v in asdict(self).items() if not isinstance(v, np.ndarray) and k != "output_map"}
+        d = {k: getattr(self, k) for k in ("output", "drive", "prefilter", "voltage_range", "reachable", "fit_error",
+                                            "frequencies", "second_frequency", "damping_ratio", "damping_source",
+                                            "window", "clipped_samples")}
         return {"output": d["output"], "drive": d["drive"], "prefilter": d["prefilter"],
                 "voltage_range [V]": list(d["voltage_range"]), "reachable [output unit]": list(d["reachable"]),
                 "fit_error [output unit]": d["fit_error"], "first_frequency [Hz]": d["frequencies"],
                 "second_frequency [Hz]": d["second_frequency"], "damping_ratio [-]": d["damping_ratio"],
-                "damping_source": d["damping_source"], "window [s]": d["window"],
+                "damping_source": d["damping_source"],
+                "linear_model": None if self.linear_model is None else
+                f"{', '.join(self.linear_model.outputs)} per {', '.join(self.linear_model.inputs)} about "
+                f"{self.linear_model.state} ({self.linear_model.branch} branch)",
+                "window [s]": d["window"],
                 "clipped_samples": d["clipped_samples"],
                 "peak_voltage [V]": float(np.max(self.voltage)), "lowest_voltage [V]": float(np.min(self.voltage))}
 
@@ -131,8 +163,9 @@ def damping_ratio_of(mech: Mechanism, frequency: float) -> tuple[float, str]:
                          "Rayleigh coefficients differ; give damping_ratio= from a measured decay to be exact)")
 
 
-def _modes(mech: Mechanism, drive: str, omap: OutputMap, levels: np.ndarray) -> tuple[list[float], float]:
-    """First eigenfrequency [Hz] at the equilibria of the output ``levels``; second at the middle one."""
+def _modes(mech: Mechanism, drive: str, omap: OutputMap, levels: np.ndarray) -> tuple[list[float], float, float]:
+    """First eigenfrequency [Hz] at the equilibria of the output ``levels``; second at the middle one; the
+    middle one's voltage [V]."""
     firsts, second = [], math.nan
     volts = np.interp(omap.strain(levels), omap.strains, omap.voltages)
     for k, v in enumerate(volts):
@@ -140,7 +173,35 @@ def _modes(mech: Mechanism, drive: str, omap: OutputMap, levels: np.ndarray) -> 
         firsts.append(float(f[0]))
         if k == len(volts) // 2:
             second = float(f[1])
-    return firsts, second
+    return firsts, second, float(volts[len(volts) // 2])
+
+
+def _has_dynamics(mech: Mechanism) -> bool:
+    """Whether a drive's operator has creep or rate dynamics (no linear model: :func:`linearise` refuses it)."""
+    return any(callable(getattr(d.hysteresis, "static_output", None)) for d in mech.drives.values())
+
+
+def _damping_input(mech: Mechanism, output: str, drive: str) -> str:
+    """The linear model's input: the drive, or for six-bar cells (their strain is a prescribed motion, no input
+    of a linear model) a force at the output's point (at the first named point for an angle)."""
+    if not any(getattr(getattr(c, "cell", None), "name", None) == "six-bar" for c in mech.components.values()):
+        return drive
+    points = [f"{c.name}.{p}" for c in mech.components.values() for p in c.points]
+    point = output[:-2] if output.endswith(("_x", "_y")) and output[:-2] in points else points[0]
+    return f"{point}_Fy"
+
+
+def _linear_damping(mech: Mechanism, output: str, drive: str, voltage: float) -> tuple[LinearModel, float, float, str]:
+    """The linear model about ``voltage`` (ascending branch) and its first two modes' damping ratios [-]."""
+    model = linearise(mech, voltage={drive: voltage}, inputs=[_damping_input(mech, output, drive)], outputs=[output],
+                      branch="ascending")
+    ratios = model.damping_ratios
+    if ratios.size == 0:
+        raise ValueError(f"the linear model of {mech.name!r} about {model.state} has no oscillating mode, so no "
+                         "damping ratio for the pre-filter; give damping_ratio= or prefilter='smooth'/'none'")
+    second = float(ratios[1]) if ratios.size > 1 else float(ratios[0])
+    return model, float(ratios[0]), second, (f"linear model: -Re(p)/|p| of its first mode about {model.state} "
+                                             "(ascending branch; the damping the simulation has)")
 
 
 def _voltages(pdrive: Any, times: np.ndarray, strain: np.ndarray, limits: tuple[float, float]) -> tuple[np.ndarray,
@@ -170,6 +231,7 @@ def mechanism_feedforward(
     window: float | None = None,
     shaped_modes: int = 1,
     damping_ratio: float | None = None,
+    damping_from: str = "linear",
     voltage_range: tuple[float, float] | None = None,
     map_points: int = 41,
 ) -> tuple[SampledProgram, FeedforwardReport]:
@@ -203,8 +265,14 @@ def mechanism_feedforward(
     shaped_modes : int, optional
         Modes shaped by ``"zv"`` / ``"zvd"`` (1 or 2).
     damping_ratio : float, optional
-        Damping ratio [-] of the first mode; default from the mechanism's damping description
-        (:func:`damping_ratio_of`; the second mode's likewise).
+        Damping ratio [-] of the first mode (and of the second, for ``shaped_modes=2``); overrides
+        ``damping_from``.
+    damping_from : {"linear", "description"}, optional
+        Whence the modes' damping ratios when ``damping_ratio`` is not given: ``"linear"`` (default) the
+        linear model about the middle wanted output (:func:`~exudyn_atcm.linearise`, ascending branch; the
+        damping the simulation has, also for mixed Rayleigh coefficients; the description for a drive with
+        creep or rate dynamics, which has no linear model); ``"description"`` the mechanism's Rayleigh
+        damping description (:func:`damping_ratio_of`, an estimate when the parts' coefficients differ).
     voltage_range : (float, float), optional
         Voltages [V] the program may use (default: the drive's rating within its operator's range).
     map_points : int, optional
@@ -226,6 +294,8 @@ def mechanism_feedforward(
     y = finite_array("wanted", wanted, min_length=2)
     if t.size != y.size:
         raise ValueError(f"times and wanted must have the same length, got {t.size} and {y.size}")
+    if damping_from not in DAMPING_FROM:
+        raise ValueError(f"damping_from must be one of {', '.join(map(repr, DAMPING_FROM))}, got {damping_from!r}")
     if prefilter not in PREFILTERS:
         raise ValueError(f"prefilter must be one of {', '.join(map(repr, PREFILTERS))}, got {prefilter!r}")
     dt = positive_float("sample_time", sample_time)
@@ -243,14 +313,19 @@ def mechanism_feedforward(
     omap.check(low, high)
     grid, wanted_grid = uniform_grid(t, y, dt)
     levels = np.array([low, 0.5 * (low + high), high])
-    firsts, second = _modes(mechanism, name, omap, levels)
+    firsts, second, mid_voltage = _modes(mechanism, name, omap, levels)
     if dt > 0.1 / max(firsts):
         raise ValueError(f"sample_time = {dt:g} s is too coarse for the first mode ({max(firsts):.4g} Hz); it must be "
                          f"at most a tenth of its period, {0.1 / max(firsts):.3g} s")
     mid = firsts[1]
-    if damping_ratio is None:
+    linear_model = None
+    if damping_ratio is None and damping_from == "linear" and not _has_dynamics(mechanism):
+        linear_model, zeta, zeta2, source = _linear_damping(mechanism, output, name, mid_voltage)
+    elif damping_ratio is None:
         zeta, source = damping_ratio_of(mechanism, mid)
         zeta2, _ = damping_ratio_of(mechanism, second)
+        if damping_from == "linear":
+            source = "a drive has creep or rate dynamics, so no linear model: " + source
     else:
         zeta, source, zeta2 = float(damping_ratio), "given (damping_ratio=)", float(damping_ratio)
     rounded, used_window = wanted_grid, 0.0
@@ -278,5 +353,6 @@ def mechanism_feedforward(
     strain = omap.strain(command)
     volts, clipped = _voltages(pdrive, grid, strain, limits)
     report = FeedforwardReport(output, name, prefilter, limits, omap.reachable, omap.fit_error, firsts, second, zeta,
-                               source, used_window, clipped, grid, wanted_grid, rounded, command, strain, volts, omap)
+                               source, used_window, clipped, grid, wanted_grid, rounded, command, strain, volts, omap,
+                               linear_model)
     return SampledProgram(grid, volts), report
