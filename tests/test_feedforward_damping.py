@@ -1,6 +1,6 @@
 """The feedforward's damping ratio from the linear model (issue 32, parts 2 and 3 joined).
 
-``mechanism_feedforward(damping_from="linear")`` (the default) takes the first mode's damping ratio from
+``mechanism_feedforward(prefilter=Prefilter(damping_from="linear"))`` (the default) takes the first mode's damping ratio from
 ``linearise`` about the middle wanted output; ``"description"`` estimates it from the parts' Rayleigh
 coefficients.  The mechanism: the 6:1 lever stage of ``test_mechanism_feedforward`` (a 48 mm bender of
 4 rigid cells with a 120 mm, 2.7 g rigid lever welded to its tip), once with the bender's default damping
@@ -25,6 +25,7 @@ import pytest
 import exudyn_atcm as atcm
 from exudyn_atcm.model import PiecewiseLinear, paper_strain_preisach
 from exudyn_atcm.model.damping import damping_ratio_from_log_decrement
+from exudyn_atcm.model.prefilter import Prefilter
 from exudyn_atcm.solve.feedforward_mechanism import damping_ratio_of
 
 from _cli_helpers import CASES
@@ -70,7 +71,7 @@ def free_decay_ratio(damping) -> float:
 @pytest.fixture(scope="module")
 def reports():
     return {(name, source): atcm.mechanism_feedforward(lever(damping=damping), "lever.end_y", T_WANTED, Y_WANTED,
-                                                        damping_from=source)
+                                                        prefilter=Prefilter(damping_from=source))
             for name, damping in (("beta", 0.02), ("mixed", MIXED)) for source in ("linear", "description")}
 
 
@@ -116,8 +117,10 @@ def test_the_ramp_goal_holds_and_the_linear_ratio_tracks_better_on_the_mixed_mec
 
 def test_damping_from_is_checked_and_damping_ratio_overrides_it():
     with pytest.raises(ValueError, match=r"damping_from must be one of 'linear', 'description', got 'modal'"):
-        atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3], damping_from="modal")
-    _, report = atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3], damping_ratio=0.05)
+        atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3],
+                                   prefilter=Prefilter(damping_from="modal"))
+    _, report = atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3],
+                                           prefilter=Prefilter(damping_ratio=0.05))
     assert report.damping_ratio == 0.05 and report.linear_model is None
 
 

@@ -29,7 +29,7 @@ from exudyn_atcm.casework import load_case
 from exudyn_atcm.hysteresis.creep import Creep
 from exudyn_atcm.hysteresis.dynamics import WithDynamics
 from exudyn_atcm.model import paper_strain_preisach
-from exudyn_atcm.model.prefilter import invert_mode, shape, shaper_impulses, smooth
+from exudyn_atcm.model.prefilter import Prefilter, invert_mode, shape, shaper_impulses, smooth
 
 from _cli_helpers import CASES
 
@@ -102,8 +102,21 @@ def test_shaping_and_smoothing_ring_less_than_the_naive_program(programs, prefil
     assert report.window == (pytest.approx(1.0 / report.frequencies[1]) if prefilter == "smooth" else 0.0)
 
 
+def test_prefilter_settings_are_checked_where_they_are_given():
+    for kwargs, message in (({"kind": "zvdd"}, r"prefilter must be one of 'inversion', .*got 'zvdd'"),
+                            ({"shaped_modes": 3}, r"shaped_modes must be 1 or 2, got 3"),
+                            ({"window": -0.1}, r"window must be"),
+                            ({"damping_ratio": 1.5}, r"damping_ratio must be in \[0, 1\)"),
+                            ({"damping_from": "modal"}, r"damping_from must be one of 'linear', 'description'")):
+        with pytest.raises(ValueError, match=message):
+            Prefilter(**kwargs)
+    with pytest.raises(ValueError, match=r"prefilter must be one of"):
+        atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3], prefilter="shaper")
+
+
 def test_damping_ratio_override_and_a_too_coarse_sample_time():
-    _, report = atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3], damping_ratio=0.05)
+    _, report = atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3],
+                                           prefilter=Prefilter(damping_ratio=0.05))
     assert report.damping_ratio == 0.05 and report.damping_source.startswith("given")
     with pytest.raises(ValueError, match=r"sample_time = 0.01 s is too coarse for the first mode"):
         atcm.mechanism_feedforward(lever(), "lever.end_y", [0.0, 1.0], [6e-3, 8e-3], sample_time=0.01)

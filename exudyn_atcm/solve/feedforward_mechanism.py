@@ -10,9 +10,9 @@ voltage -> free strain -> mechanism at rest -> mechanism in motion, inverted fro
    :func:`~exudyn_atcm.solve.mechanism_solve.eigenfrequencies` about the equilibria at the lowest, the
    middle and the highest wanted output (linear in between); its damping ratio (and the second
    mode's) from the linear model about the middle one (:func:`~exudyn_atcm.solve.linearise.linearise`
-   on the ascending branch, ``damping_from="linear"``, the default: the damping the simulation has),
-   or from the mechanism's damping description (below, ``damping_from="description"``), or
-   ``damping_ratio=``.
+   on the ascending branch, ``Prefilter(damping_from="linear")``, the default: the damping the simulation has),
+   or from the mechanism's damping description (below, ``Prefilter(damping_from="description")``), or
+   ``Prefilter(damping_ratio=...)``.
 2. **Output map** (:mod:`exudyn_atcm.solve.output_map`): ``q`` to the drive's free strain, from a
    static sweep (continuation), checked monotone over the wanted range and refused beyond the
    reachable one.
@@ -37,7 +37,7 @@ links add mass but no stiffness.  When every such part has the same ``alpha`` an
 damping matrix is ``beta K`` and every mode of circular frequency ``omega`` has exactly
 ``zeta = beta omega / 2`` (the joints' geometric stiffness from external loads is undamped; it is
 zero without loads).  Otherwise the smallest ``alpha / (2 omega) + beta omega / 2`` over the parts is
-used (the lightest damping: an estimate, reported as such); give ``damping_ratio=`` from a
+used (the lightest damping: an estimate, reported as such); give ``Prefilter(damping_ratio=...)`` from a
 measured decay (:func:`~exudyn_atcm.model.damping.damping_ratio_from_log_decrement`) to override.
 """
 
@@ -55,7 +55,7 @@ from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..model.feedforward import feedforward_program
-from ..model.prefilter import PREFILTERS, invert_mode, shape, smooth, uniform_grid
+from ..model.prefilter import DAMPING_FROM, Prefilter, invert_mode, shape, smooth, uniform_grid
 from ..model.sampled_program import SampledProgram
 from .linearise import linearise
 from .mechanism_solve import eigenfrequencies
@@ -64,8 +64,6 @@ from .state_space import LinearModel
 
 __all__ = ["FeedforwardReport", "mechanism_feedforward", "damping_ratio_of", "DAMPING_FROM"]
 
-#: Where :func:`mechanism_feedforward` takes the modes' damping ratios from (``damping_from=``).
-DAMPING_FROM = ("linear", "description")
 
 
 @dataclass
@@ -89,7 +87,7 @@ class FeedforwardReport:
     damping_ratio : float
         Damping ratio [-] of the first mode used by the pre-filter; ``damping_source`` says whence.
     damping_source : str
-        Whence the damping ratio: the linear model, the damping description or ``damping_ratio=``.
+        Whence the damping ratio: the linear model, the damping description or ``Prefilter(damping_ratio=...)``.
     window : float
         Rounding window of the corners [s] (0 for none).
     times, wanted, rounded, command, strain, voltage : numpy.ndarray
@@ -101,7 +99,7 @@ class FeedforwardReport:
     linear_model : LinearModel or None
         The model (drive voltage, or a point force for six-bar cells, to the output) about the middle
         wanted output the damping ratios came from (``None`` when they did
-        not: ``damping_from="description"``, ``damping_ratio=`` or a drive with creep or rate dynamics).
+        not: ``Prefilter(damping_from="description")``, ``Prefilter(damping_ratio=...)`` or a drive with creep or rate dynamics).
     """
 
     output: str
@@ -153,14 +151,14 @@ def damping_ratio_of(mech: Mechanism, frequency: float) -> tuple[float, str]:
     parts = [c for c in mech.components.values() if isinstance(c, (Bender, Flexure))]
     if not parts:
         raise ValueError(f"mechanism {mech.name!r} has no bender or flexure, so no damping description; give "
-                         "damping_ratio=")
+                         "prefilter=Prefilter(damping_ratio=...)")
     coeffs = [(c.rayleigh_damping.alpha, c.rayleigh_damping.beta) for c in parts]
     ratios = [a / (2.0 * omega) + b * omega / 2.0 for a, b in coeffs]
     betas = [b for _, b in coeffs]
     if all(a == 0.0 for a, _ in coeffs) and max(betas) - min(betas) <= 1e-12 * max(betas):
         return ratios[0], "model: zeta = beta omega / 2 (one stiffness-proportional damping for every part: exact)"
     return min(ratios), ("model estimate: the smallest alpha/(2 omega) + beta omega/2 over the parts (their "
-                         "Rayleigh coefficients differ; give damping_ratio= from a measured decay to be exact)")
+                         "Rayleigh coefficients differ; give Prefilter(damping_ratio=...) from a measured decay to be exact)")
 
 
 def _modes(mech: Mechanism, drive: str, omap: OutputMap, levels: np.ndarray) -> tuple[list[float], float, float]:
@@ -198,7 +196,7 @@ def _linear_damping(mech: Mechanism, output: str, drive: str, voltage: float) ->
     ratios = model.damping_ratios
     if ratios.size == 0:
         raise ValueError(f"the linear model of {mech.name!r} about {model.state} has no oscillating mode, so no "
-                         "damping ratio for the pre-filter; give damping_ratio= or prefilter='smooth'/'none'")
+                         "damping ratio for the pre-filter; give prefilter=Prefilter(damping_ratio=...) or prefilter='smooth'/'none'")
     second = float(ratios[1]) if ratios.size > 1 else float(ratios[0])
     return model, float(ratios[0]), second, (f"linear model: -Re(p)/|p| of its first mode about {model.state} "
                                              "(ascending branch; the damping the simulation has)")
@@ -226,12 +224,8 @@ def mechanism_feedforward(
     wanted: Any,
     *,
     drive: str | None = None,
-    prefilter: str = "inversion",
+    prefilter: str | Prefilter = "inversion",
     sample_time: float = 1e-3,
-    window: float | None = None,
-    shaped_modes: int = 1,
-    damping_ratio: float | None = None,
-    damping_from: str = "linear",
     voltage_range: tuple[float, float] | None = None,
     map_points: int = 41,
 ) -> tuple[SampledProgram, FeedforwardReport]:
@@ -251,28 +245,15 @@ def mechanism_feedforward(
     drive : str, optional
         The drive to compensate (default: the mechanism's only drive); other drives keep their
         programs' voltages at t = 0.
-    prefilter : {"inversion", "zv", "zvd", "smooth", "none"}
-        ``"inversion"`` (default): the first mode inverted, corners rounded over ``window``;
-        ``"zv"`` / ``"zvd"``: input shaping of the first ``shaped_modes`` modes, time-advanced by
-        the shaper's centroid; ``"smooth"``: corners rounded over ``window`` (default one period of
-        the first mode); ``"none"``: the quasi-static inverse only.  See :mod:`exudyn_atcm.model.prefilter`.
+    prefilter : {"inversion", "zv", "zvd", "smooth", "none"} or Prefilter
+        The dynamic pre-filter by name with its default settings, or a
+        :class:`~exudyn_atcm.model.prefilter.Prefilter` (its corner window, shaped modes and
+        where the damping ratio comes from: by default the linear model about the middle wanted
+        output).  ``"inversion"`` (default): the first mode inverted, corners rounded over one
+        period of the second mode; ``"zv"`` / ``"zvd"``: input shaping; ``"smooth"``: corners
+        rounded; ``"none"``: the quasi-static inverse only.  See :mod:`exudyn_atcm.model.prefilter`.
     sample_time : float, optional
         Sample spacing [s] of the program (default 1 ms); at most a tenth of the first mode's period.
-    window : float, optional
-        Rounding window of the corners [s]: default one period of the second mode for
-        ``"inversion"`` (so the rounded corners do not excite it), one period of the first mode
-        for ``"smooth"``.
-    shaped_modes : int, optional
-        Modes shaped by ``"zv"`` / ``"zvd"`` (1 or 2).
-    damping_ratio : float, optional
-        Damping ratio [-] of the first mode (and of the second, for ``shaped_modes=2``); overrides
-        ``damping_from``.
-    damping_from : {"linear", "description"}, optional
-        Whence the modes' damping ratios when ``damping_ratio`` is not given: ``"linear"`` (default) the
-        linear model about the middle wanted output (:func:`~exudyn_atcm.linearise`, ascending branch; the
-        damping the simulation has, also for mixed Rayleigh coefficients; the description for a drive with
-        creep or rate dynamics, which has no linear model); ``"description"`` the mechanism's Rayleigh
-        damping description (:func:`damping_ratio_of`, an estimate when the parts' coefficients differ).
     voltage_range : (float, float), optional
         Voltages [V] the program may use (default: the drive's rating within its operator's range).
     map_points : int, optional
@@ -294,14 +275,10 @@ def mechanism_feedforward(
     y = finite_array("wanted", wanted, min_length=2)
     if t.size != y.size:
         raise ValueError(f"times and wanted must have the same length, got {t.size} and {y.size}")
-    if damping_from not in DAMPING_FROM:
-        raise ValueError(f"damping_from must be one of {', '.join(map(repr, DAMPING_FROM))}, got {damping_from!r}")
-    if prefilter not in PREFILTERS:
-        raise ValueError(f"prefilter must be one of {', '.join(map(repr, PREFILTERS))}, got {prefilter!r}")
+    options = prefilter if isinstance(prefilter, Prefilter) else Prefilter(prefilter)
+    prefilter, window, shaped_modes = options.kind, options.window, options.shaped_modes
+    damping_ratio, damping_from = options.damping_ratio, options.damping_from
     dt = positive_float("sample_time", sample_time)
-    shaped_modes = positive_int("shaped_modes", shaped_modes)
-    if shaped_modes > 2:
-        raise ValueError(f"shaped_modes must be 1 or 2, got {shaped_modes!r}")
     name = drive_name(mechanism, drive)
     pdrive = mechanism.drives[name]
     limits = voltage_limits(pdrive, voltage_range)
@@ -327,10 +304,10 @@ def mechanism_feedforward(
         if damping_from == "linear":
             source = "a drive has creep or rate dynamics, so no linear model: " + source
     else:
-        zeta, source, zeta2 = float(damping_ratio), "given (damping_ratio=)", float(damping_ratio)
+        zeta, source, zeta2 = float(damping_ratio), "given (Prefilter(damping_ratio=...))", float(damping_ratio)
     rounded, used_window = wanted_grid, 0.0
     if prefilter == "inversion":
-        used_window = 1.0 / second if window is None else positive_float("window", window)
+        used_window = 1.0 / second if window is None else window
         freq = np.interp(wanted_grid, levels, firsts) if high > low else mid
         command, rounded = invert_mode(grid, wanted_grid, freq, zeta, used_window)
     elif prefilter in ("zv", "zvd"):
@@ -338,7 +315,7 @@ def mechanism_feedforward(
         command = shape(grid, wanted_grid, modes, prefilter)
         rounded = command
     elif prefilter == "smooth":
-        used_window = 1.0 / mid if window is None else positive_float("window", window)
+        used_window = 1.0 / mid if window is None else window
         command = smooth(grid, wanted_grid, used_window)
         rounded = command
     else:
@@ -348,7 +325,7 @@ def mechanism_feedforward(
             omap.check(float(command.min()), float(command.max()), what=f"the {prefilter!r} pre-filter's command")
         except ValueError as exc:
             raise ValueError(f"{exc}. The pre-filter asks for more than the wanted range near the corners; round them "
-                             f"over a longer window= (now {used_window:g} s) or keep the wanted path further "
+                             f"over a longer Prefilter(window=...) (now {used_window:g} s) or keep the wanted path further "
                              "inside the reachable range") from None
     strain = omap.strain(command)
     volts, clipped = _voltages(pdrive, grid, strain, limits)
