@@ -9,24 +9,43 @@ Its first mode (about 17 Hz: the lever's mass on the bender's stiffness) has the
 stiffness-proportional damping, is 0.29 % at 17 Hz.
 
 The lever's end should follow a ramp of ``low -> high -> low`` over ``ramp_time`` (6 -> 20 -> 6 mm in
-2 s), after ``rest`` at ``low``.  Four drives, each one simulation with the hysteresis in the step:
+2 s), after ``rest`` at ``low``.  The control story, step by step:
+
+1. **Linear model** (:func:`exudyn_atcm.linearise`): about the static equilibrium at the middle of the
+   range (``(low + high) / 2``, 13 mm, reached at the voltage ``U0`` of the output map: about 752 V), on the
+   *ascending* branch (the voltage rose from the operator's lowest input to ``U0``: the state of the
+   ramp's rising half), input the bender's voltage, output the lever's end.  Its first modes are drawn
+   (:func:`exudyn_atcm.plots.plot_modes`) and its Bode plot (:func:`exudyn_atcm.plots.plot_bode`) is the
+   plant the PID is tuned on, with the loop gain beside it.
+2. **PID** (:class:`exudyn_atcm.PIDController`), tuned from that model's static gain ``K0 = dc_gain()``
+   [m/V] and its first mode's ``w = 2 pi natural_frequencies[0]`` and ``zeta = damping_ratios[0]``
+   (the damping the simulation has), as for ``G(s) = K0 w^2 / (s^2 + 2 zeta w s + w^2)``:
+   ``kp = kp_fraction / K0`` stiffens the loop to ``w_c = w sqrt(1 + K0 kp)``; ``kd`` adds damping up to
+   ``zeta_target`` at ``w_c``: ``kd = 2 (zeta_target w_c - zeta w) / (K0 w^2)``; ``ki`` puts the closed
+   loop's cubic ``s^3 + a2 s^2 + a1 s + a0`` (``a2 = 2 zeta_target w_c``, ``a1 = w_c^2``) at a quarter of
+   its Routh limit, ``a0 = K0 w^2 ki = a2 a1 / 4`` (a gain margin of 4 in ``ki``).  The closed loop of the
+   whole linear model (all its modes) with the continuous PID is checked: ``pid_closed_loop_max_real``
+   is the largest real part of its poles [1/s] (negative: stable).
+3. **Feedforward** (:func:`exudyn_atcm.mechanism_feedforward`): the quasi-static output map, the
+   hysteresis inverse and a pre-filter of the first mode (frequency and damping ratio from the linear
+   model about the middle output, like the PID's).
+
+Four drives, each one simulation with the hysteresis in the step:
 
 (a) naive: the quasi-static output map and the hysteresis inverse, no pre-filter
-    (:func:`exudyn_atcm.mechanism_feedforward` with ``prefilter="none"``): the mode rings at every corner;
+    (``prefilter="none"``): the mode rings at every corner;
 (b) compensated: the same with the first mode inverted (``prefilter``, default ``"inversion"``);
-(c) PID alone on the lever's end (:class:`exudyn_atcm.PIDController`), tuned from the one-mode model
-    ``G(s) = K0 w^2 / (s^2 + 2 zeta w s + w^2)`` (``K0`` the static gain dy/dU on the rising branch at
-    the middle of the range [m/V], ``w`` and ``zeta`` the first mode's): ``kp = kp_fraction / K0``
-    stiffens the loop to ``w_c = w sqrt(1 + K0 kp)``; ``kd`` adds damping up to ``zeta_target``
-    at ``w_c``: ``kd = 2 (zeta_target w_c - zeta w) / (K0 w^2)``; ``ki`` puts the closed loop's
-    cubic ``s^3 + a2 s^2 + a1 s + a0`` (``a2 = 2 zeta_target w_c``, ``a1 = w_c^2``) at a quarter of
-    its Routh limit, ``a0 = K0 w^2 ki = a2 a1 / 4`` (a gain margin of 4 in ``ki``);
+(c) PID alone on the lever's end, tuned as in 2.;
 (d) PID plus the program of (b), the derivative acting on the error (the program adds ``kd``
     times the wanted velocity, which cancels the derivative-on-measurement's share of the wanted motion).
 
-References: the wanted path itself (the errors are simulated minus wanted); the one-mode model
-(the first eigenfrequency, :func:`exudyn_atcm.eigenfrequencies`, and the damping of the description);
-the output map against the rigid chain's polygon plus the rigid lever (``map_error_polygon``).
+Written besides the time series: the tables ``modes`` (undeformed pose), ``output_map`` and
+``frequency_response`` (the linear model's plant and the PID loop, gain and phase over frequency).
+
+References: the wanted path itself (the errors are simulated minus wanted); the linear model
+(validated in ``tests/test_linearise.py``; the map's slope at the middle, ``static_gain_map``, is the same
+static gain from the static sweep); the output map against the rigid chain's polygon plus the rigid lever
+(``map_error_polygon``).
 """
 
 from __future__ import annotations
@@ -36,12 +55,12 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import (Bender, Layer, Link, Mechanism, PIDController, PiezoDrive, Result, eigenfrequencies,
-                         mechanism_feedforward, simulate)
+from exudyn_atcm import (Bender, Layer, Link, LinearModel, Mechanism, PIDController, PiezoDrive, Result,
+                         eigenfrequencies, linearise, mechanism_feedforward, modes, simulate)
 from exudyn_atcm import theory
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, PlannedRun, RunContext
 from exudyn_atcm.model import PiecewiseLinear, paper_strain_preisach
-from exudyn_atcm.plots import axis_label, new_figure, save_figure
+from exudyn_atcm.plots import axis_label, new_figure, plot_bode, plot_modes, save_figure
 
 PARAMETERS = [
     Parameter("n_cells", 4, "-", "rigid cells of the bender", minimum=1),
@@ -93,7 +112,8 @@ def wanted_path(p: Parameters) -> tuple[np.ndarray, np.ndarray]:
 
 
 def pid_gains(static_gain: float, frequency: float, zeta: float, p: Parameters) -> tuple[float, float, float]:
-    """(kp [V/m], ki [V/(m s)], kd [V s/m]) from the one-mode model (see the module)."""
+    """(kp [V/m], ki [V/(m s)], kd [V s/m]) from the static gain [m/V] and the first mode's frequency [Hz] and
+    damping ratio [-] (see the module)."""
     w = 2.0 * math.pi * frequency
     kp = p.kp_fraction / static_gain
     wc = w * math.sqrt(1.0 + static_gain * kp)
@@ -101,6 +121,26 @@ def pid_gains(static_gain: float, frequency: float, zeta: float, p: Parameters) 
     a2, a1 = 2.0 * p.zeta_target * wc, wc * wc
     ki = 0.25 * a2 * a1 / (static_gain * w * w)
     return kp, ki, kd
+
+
+def linear_model(p: Parameters, voltage: float) -> LinearModel:
+    """The stage's linear model about its equilibrium at ``voltage`` [V] on the ascending branch (bender voltage
+    to lever end)."""
+    return linearise(build(p), voltage={"bender": voltage}, inputs=["bender"], outputs=[OUTPUT], branch="ascending")
+
+
+def pid_response(frequencies: np.ndarray, kp: float, ki: float, kd: float) -> np.ndarray:
+    """The continuous PID's response ``kp + ki/s + kd s`` at ``s = i 2 pi f`` [V/m]."""
+    s = 2j * math.pi * frequencies
+    return kp + ki / s + kd * s
+
+
+def closed_loop_poles(lin: LinearModel, kp: float, ki: float, kd: float) -> np.ndarray:
+    """Poles [1/s] of the linear model in a loop with the continuous PID ``u = -(kp y + ki int y + kd y')``."""
+    A, B, C = lin.A, lin.B[:, :1], lin.C[:1]
+    gain = kp * C + kd * C @ A  # y' = C A x (C B = 0: the output is a position)
+    top = np.hstack([A - B @ gain, -ki * B])
+    return np.linalg.eigvals(np.vstack([top, np.hstack([C, np.zeros((1, 1))])]))
 
 
 def lever_end_polygon(p: Parameters, strains: np.ndarray) -> np.ndarray:
@@ -125,8 +165,14 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     program, report = mechanism_feedforward(probe, OUTPUT, t_path, y_path, prefilter=p.prefilter)
     omap = report.output_map
     mid = 0.5 * (p.low + p.high)
-    static_gain = float(np.interp(mid, omap.values, np.gradient(omap.values, omap.voltages)))
-    kp, ki, kd = pid_gains(static_gain, report.frequencies[1], report.damping_ratio, p)
+    operating_voltage = float(np.interp(mid, omap.values, omap.voltages))
+    lin = linear_model(p, operating_voltage)
+    static_gain = float(lin.dc_gain()[0, 0])
+    lin_frequency, lin_zeta = float(lin.natural_frequencies[0]), float(lin.damping_ratios[0])
+    kp, ki, kd = pid_gains(static_gain, lin_frequency, lin_zeta, p)
+    f = np.logspace(np.log10(0.05 * lin_frequency), np.log10(3.0 * lin.natural_frequencies[1]), 400)
+    plant = lin.response(OUTPUT, "bender", f)
+    loop = plant * pid_response(f, kp, ki, kd)
     setpoint = PiecewiseLinear(report.times, report.rounded)
     velocity = np.gradient(report.rounded, report.times)
 
@@ -147,7 +193,12 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     units = {"time": "s", "wanted": "m"}
     scalars = {"first_frequency": (report.frequencies[1], "Hz"), "second_frequency": (report.second_frequency, "Hz"),
                "first_frequency_unloaded": (float(freqs[0]), "Hz"), "damping_ratio": (report.damping_ratio, "-"),
-               "static_gain": (static_gain, "m/V"), "map_fit_error": (report.fit_error, "m"),
+               "operating_voltage": (operating_voltage, "V"), "static_gain": (static_gain, "m/V"),
+               "static_gain_map": (float(np.interp(mid, omap.values, np.gradient(omap.values, omap.voltages))), "m/V"),
+               "linear_first_frequency": (lin_frequency, "Hz"), "linear_damping_ratio": (lin_zeta, "-"),
+               "linear_second_frequency": (float(lin.natural_frequencies[1]), "Hz"),
+               "pid_closed_loop_max_real": (float(np.max(closed_loop_poles(lin, kp, ki, kd).real)), "1/s"),
+               "map_fit_error": (report.fit_error, "m"),
                "map_error_polygon": (float(np.max(np.abs(omap.values - lever_end_polygon(p, omap.strains)))), "m"),
                "kp": (kp, "V/m"), "ki": (ki, "V/(m s)"), "kd": (kd, "V s/m")}
     for name, r in results.items():
@@ -161,6 +212,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         scalars[f"rms_error_{name}"] = (float(np.sqrt(np.mean(error[ramp] ** 2))), "m")
         scalars[f"max_error_{name}"] = (float(np.max(np.abs(error[ramp]))), "m")
     scalars["naive_over_compensated"] = (scalars["rms_error_naive"][0] / scalars["rms_error_compensated"][0], "-")
+    response_table = Result({"frequency": f, "plant_gain": np.abs(plant), "plant_phase": np.degrees(np.unwrap(np.angle(
+        plant))), "loop_gain": np.abs(loop), "loop_phase": np.degrees(np.unwrap(np.angle(loop)))},
+        {"frequency": "Hz", "plant_gain": "m/V", "plant_phase": "deg", "loop_gain": "-", "loop_phase": "deg"})
     mode_table = Result({"mode": np.arange(1.0, freqs.size + 1.0), "frequency": freqs}, {"mode": "-", "frequency": "Hz"})
     map_table = Result({"voltage": omap.voltages, "strain": omap.strains, "lever_end_y": omap.values,
                         "polygon_lever_end_y": lever_end_polygon(p, omap.strains)},
@@ -169,9 +223,13 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
              "controller_pid": results["pid"].info["controller"],
              "controller_pid_feedforward": results["pid_feedforward"].info["controller"],
              "error_window [s]": [float(t_path[1]), float(t_path[3])],
-             "pid_tuning": "kp = kp_fraction/K0; kd: zeta_target at w_c = w sqrt(1 + K0 kp); ki at a quarter of the "
-                           "Routh limit (see the case's description)"}
-    return CaseOutput(Result(series, units), scalars, tables={"modes": mode_table, "output_map": map_table},
+             "linear_model": f"{lin.outputs[0]} per {lin.inputs[0]} voltage about {lin.state}, {lin.branch} branch "
+                             f"(local gain {lin.gains['bender']:.4g} 1/V)",
+             "pid_tuning": "from the linear model: K0 = dc_gain(), w and zeta of its first mode; kp = kp_fraction/K0; "
+                           "kd: zeta_target at w_c = w sqrt(1 + K0 kp); ki at a quarter of the Routh limit (see the "
+                           "case's description)"}
+    return CaseOutput(Result(series, units), scalars, tables={"modes": mode_table, "output_map": map_table,
+                                                           "frequency_response": response_table},
                       notes=notes)
 
 
@@ -201,27 +259,22 @@ def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
                       f"damping ratio {100 * _value(s['damping_ratio']):.2g} %")
     files.append(save_figure(fig, out_dir / f"{output.case}_tracking.png"))
 
-    # the one-mode model the PID was tuned on: plant and loop frequency responses
-    w = 2.0 * math.pi * _value(s["first_frequency"])
-    zeta, k0 = _value(s["damping_ratio"]), _value(s["static_gain"])
+    # the linear model the PID was tuned on (plot_bode) with the loop gain beside it; its first modes
+    lin = linear_model(p, _value(s["operating_voltage"]))
     kp, ki, kd = _value(s["kp"]), _value(s["ki"]), _value(s["kd"])
-    f = np.logspace(-1, 3, 800)
-    jw = 2j * math.pi * f
-    plant = k0 * w * w / (jw**2 + 2.0 * zeta * w * jw + w * w)
-    loop = plant * (kp + ki / jw + kd * jw)
+    f = np.logspace(np.log10(0.05 * lin.natural_frequencies[0]), np.log10(3.0 * lin.natural_frequencies[1]), 400)
     fig, axes = new_figure(2, 1, width=6.4, height=6.0, sharex=True)
-    axes[0].loglog(f, np.abs(plant), label="plant G = K0 w² / (s² + 2ζws + w²) [m/V]")
-    axes[0].loglog(f, np.abs(loop), label="loop G C [-]")
+    plot_bode(lin, frequencies_hz=f, ax=axes)
+    loop = lin.response(OUTPUT, "bender", f) * pid_response(f, kp, ki, kd)
+    axes[0].loglog(f, np.abs(loop), label="loop G C [-] (PID, continuous)")
     axes[0].axhline(1.0, color="grey", linewidth=0.8)
-    axes[0].set_ylabel(axis_label("magnitude", "m/V or -"))
+    axes[0].set_ylabel(axis_label("gain", "m/V; loop -"))
     axes[0].legend(fontsize=7)
-    axes[1].semilogx(f, np.degrees(np.unwrap(np.angle(plant))), label="plant")
-    axes[1].semilogx(f, np.degrees(np.unwrap(np.angle(loop))), label="loop")
-    axes[1].set_ylabel(axis_label("phase", "deg"))
-    axes[1].set_xlabel(axis_label("frequency f", "Hz"))
+    axes[1].semilogx(f, np.degrees(np.unwrap(np.angle(loop))), label="loop G C")
     axes[1].legend(fontsize=7)
-    axes[0].set_title("One-mode model used for the PID tuning (no sampling delay)")
     files.append(save_figure(fig, out_dir / f"{output.case}_bode.png"))
+    files.append(save_figure(plot_modes(modes(build(p), n=2, voltage={"bender": _value(s["operating_voltage"])})),
+                             out_dir / f"{output.case}_modes.png"))
     return files
 
 

@@ -210,3 +210,18 @@ def test_a_recording_interval_is_kept_and_the_check_uses_the_instants_recorded()
     assert np.allclose(np.diff(run["time"]), 2e-3)  # every 2 ms, as asked: the chosen step divides it
     reference = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"] / 8)
     assert relative_error(run, reference) <= 1e-3 and run.info["accuracy"]["estimated_error"] <= 1e-3
+
+
+def test_a_sparse_recording_interval_changes_neither_the_check_nor_the_step():
+    # recording only the first and the last instant (record_every = t_end) must not hide the run's error (nor
+    # shrink the travel it is relative to): the check compares every accepted step, so the choice, the estimate
+    # and the solution are those of the run that records every step
+    program, t_end = Triangle(500.0, 500.0, 0.04), 0.04
+    full = atcm.simulate(lone(program), t_end, accuracy=1e-3)
+    with pytest.warns(RuntimeWarning, match="record_every"):  # an interval coarser than the program is warned about
+        sparse = atcm.simulate(lone(program), t_end, accuracy=1e-3, record_every=t_end)
+    assert sparse.n_rows == 2
+    assert sparse.info["step [s]"] == full.info["step [s]"]
+    assert sparse.info["accuracy"]["estimated_error"] == pytest.approx(full.info["accuracy"]["estimated_error"],
+                                                                       rel=1e-12)
+    np.testing.assert_array_equal(sparse.every_step["actuator.tip_y"], full["actuator.tip_y"])

@@ -69,3 +69,17 @@ def test_a_case_without_a_step_is_refused(capsys):
         case_step_error(load_case(CASES / "parallel_guide.py"))
     assert main(["step-error", str(CASES / "parallel_guide.py")]) == 2
     assert "has no 'step' parameter" in capsys.readouterr().err
+
+
+def test_a_step_chosen_by_the_case_is_the_step_examined():
+    # bender_with_lever chooses its step for `accuracy` when step = 0: the step examined is the step it used,
+    # and the values at that step are those of a run with that step given
+    case = load_case(CASES / "bender_with_lever.py")
+    values = {"period": 0.2, "animation": False}
+    used = case.run(values).notes["step [s]"]
+    step, rows = case_step_error(case, values, check_order=False)
+    assert step == used and step > 0.0
+    given = case.run({**values, "step": used}).scalars
+    assert {r.name: r.value for r in rows} == {name: value for name, value in given.items()}
+    # a static scalar does not come from the time integration: no change between step and step/2
+    assert {r.name: r for r in rows}["static_error_arc"].error == 0.0

@@ -379,11 +379,12 @@ def test_long_run_estimate_and_warning(monkeypatch):
 
 def test_fig12_case_output_is_thinned_and_matches_every_step_run(tmp_path):
     # issue 9: the Fig. 12 case wrote 4.2 MB for 2 s (20001 rows of 17-digit numbers)
-    out = _fig12_case().run({"cycles": 1}, out_dir=tmp_path, plot=False)
+    # at a fixed step of 1e-4 s (10 steps per recorded ms; the default step is chosen for `accuracy`)
+    out = _fig12_case().run({"cycles": 1, "step": 1e-4}, out_dir=tmp_path, plot=False)
     path = tmp_path / "paper_bending_actuator.csv"
     assert out.result.n_rows == 1001 and out.steps == 10000
     assert path.stat().st_size < 220_000  # 1001 rows of 10 shortest-repr numbers, < 220 bytes a row
-    every = _fig12_case().run({"cycles": 1, "record_every": 0.0})
+    every = _fig12_case().run({"cycles": 1, "record_every": 0.0, "step": 1e-4})
     assert every.result.n_rows == 10001
     np.testing.assert_array_equal(out.result["actuator.tip_y"], every.result["actuator.tip_y"][::10])
 

@@ -47,11 +47,12 @@ def _warn_calls():
 def test_every_package_warning_has_a_package_category():
     calls = list(_warn_calls())
     assert len(calls) >= 35  # about 40 calls when this was written: the scan finds them
-    # identify issues the chosen family's fit warnings again with their own category (each checked where the fit
-    # warns): the one call whose category is a variable
-    passed_on = {"category"}
+    # two places issue warnings again that were caught with their own category (each checked where it is first
+    # issued): identify, the chosen family's fit warnings; simulate(accuracy=), the chosen run's warnings
+    passed_on = {"hysteresis/model_choice.py:": "category",
+                 "solve/step_choice.py:": "Attribute(value=Name(id='w', ctx=Load()), attr='category', ctx=Load())"}
     wrong = [(where, name) for where, name in calls
-             if name not in CATEGORIES and not (where.startswith("hysteresis/model_choice.py:") and name in passed_on)]
+             if name not in CATEGORIES and not any(where.startswith(f) and name == n for f, n in passed_on.items())]
     assert not wrong, wrong
 
 

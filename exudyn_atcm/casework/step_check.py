@@ -8,6 +8,11 @@ second-order integration, so the error at ``step`` is about 4/3 of the change to
 from the time integration (a static sweep's) do not change: their error is zero, their order
 ``nan``.
 
+A case whose ``step`` is 0 chooses its step itself (for an ``accuracy``, as
+``paper_bending_actuator`` does): it is run once so, and the step it used (its notes'
+``"step [s]"``, else its result's ``info["step [s]"]``) is the step examined; the finer runs fix
+half and a quarter of it.
+
 May import the case layer and :mod:`exudyn_atcm.io`.
 """
 
@@ -103,8 +108,13 @@ def case_step_error(case: Case, values: Mapping[str, Any] | Sequence[str] | None
                         f"(its parameters: {', '.join(names)})")
     step = float(params[STEP_PARAMETER])
     given = {name: params[name] for name in names}
+    first = None
+    if step <= 0.0:  # the case chooses its step: run it so, and examine the step it used
+        first = case.run(given)
+        step = _step_used(case.name, first)
+        given = {name: value for name, value in given.items() if name != "accuracy"}  # the step is now given
     steps = [step, step / 2.0] + ([step / 4.0] if check_order else [])
-    outputs = [case.run({**given, STEP_PARAMETER: h}) for h in steps]
+    outputs = [first if first is not None and h == step else case.run({**given, STEP_PARAMETER: h}) for h in steps]
     out = []
     for name, value in outputs[0].scalars.items():
         values_ = [o.scalars.get(name, math.nan) for o in outputs]
@@ -114,6 +124,17 @@ def case_step_error(case: Case, values: Mapping[str, Any] | Sequence[str] | None
         relative = error / abs(finest) if finest != 0.0 else math.nan
         out.append(ScalarStepError(name, outputs[0].scalar_units.get(name, "-"), value, finest, error, relative, order))
     return step, out
+
+
+def _step_used(case_name: str, output: Any) -> float:
+    """The step [s] a case run with ``step`` 0 used: its notes' ``"step [s]"``, else its result's ``info``."""
+    step = output.notes.get("step [s]") if isinstance(output.notes, Mapping) else None
+    if step is None:
+        step = getattr(output.result, "info", {}).get("step [s]")
+    if not isinstance(step, (int, float)) or not math.isfinite(step) or step <= 0.0:
+        raise CaseError(f"case {case_name} ran with step = 0 (the case chooses it) but reports no step used (notes or "
+                        f"info 'step [s]'); give the step to examine with --set step=...")
+    return float(step)
 
 
 def format_step_errors(case_name: str, step: float, rows: list[ScalarStepError]) -> str:

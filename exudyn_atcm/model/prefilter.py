@@ -26,16 +26,73 @@ are held (the mechanism at rest at the trajectory's ends).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_float
+from .._checks import finite_array, finite_float, positive_float, positive_int
 
-__all__ = ["PREFILTERS", "shaper_impulses", "shape", "smooth", "invert_mode", "uniform_grid"]
+__all__ = ["PREFILTERS", "DAMPING_FROM", "Prefilter", "shaper_impulses", "shape", "smooth", "invert_mode",
+           "uniform_grid"]
 
 #: The pre-filters :func:`~exudyn_atcm.solve.feedforward_mechanism.mechanism_feedforward` knows.
 PREFILTERS = ("inversion", "zv", "zvd", "smooth", "none")
+#: Where the modes' damping ratios come from (:attr:`Prefilter.damping_from`).
+DAMPING_FROM = ("linear", "description")
+
+
+@dataclass(frozen=True)
+class Prefilter:
+    """The dynamic pre-filter of :func:`~exudyn_atcm.mechanism_feedforward` and its settings.
+
+    Parameters
+    ----------
+    kind : {"inversion", "zv", "zvd", "smooth", "none"}
+        ``"inversion"`` (default): the first mode inverted, corners rounded over ``window``;
+        ``"zv"`` / ``"zvd"``: input shaping of the first ``shaped_modes`` modes, time-advanced by
+        the shaper's centroid; ``"smooth"``: corners rounded over ``window``; ``"none"``: the
+        quasi-static inverse only (module docstring).
+    window : float, optional
+        Rounding window of the corners [s]: default one period of the second mode for
+        ``"inversion"`` (so the rounded corners do not excite it), one period of the first mode
+        for ``"smooth"``.
+    shaped_modes : int, optional
+        Modes shaped by ``"zv"`` / ``"zvd"`` (1 or 2).
+    damping_ratio : float, optional
+        Damping ratio [-] of the first mode (and of the second, for ``shaped_modes=2``), in
+        [0, 1); overrides ``damping_from``.
+    damping_from : {"linear", "description"}, optional
+        Whence the modes' damping ratios when ``damping_ratio`` is not given: ``"linear"``
+        (default) the linear model about the middle wanted output (:func:`~exudyn_atcm.linearise`,
+        ascending branch: the damping the simulation has; the description for a drive with creep
+        or rate dynamics, which has no linear model); ``"description"`` the mechanism's Rayleigh
+        damping description (an estimate when the parts' coefficients differ).
+    """
+
+    kind: str = "inversion"
+    window: float | None = None
+    shaped_modes: int = 1
+    damping_ratio: float | None = None
+    damping_from: str = "linear"
+
+    def __post_init__(self) -> None:
+        if self.kind not in PREFILTERS:
+            raise ValueError(f"prefilter must be one of {', '.join(map(repr, PREFILTERS))}, got {self.kind!r}")
+        if self.damping_from not in DAMPING_FROM:
+            raise ValueError(f"damping_from must be one of {', '.join(map(repr, DAMPING_FROM))}, "
+                             f"got {self.damping_from!r}")
+        if self.window is not None:
+            object.__setattr__(self, "window", positive_float("window", self.window))
+        modes = positive_int("shaped_modes", self.shaped_modes)
+        if modes > 2:
+            raise ValueError(f"shaped_modes must be 1 or 2, got {self.shaped_modes!r}")
+        object.__setattr__(self, "shaped_modes", modes)
+        if self.damping_ratio is not None:
+            zeta = finite_float("damping_ratio", self.damping_ratio)
+            if not 0.0 <= zeta < 1.0:
+                raise ValueError(f"damping_ratio must be in [0, 1) (a lightly damped mode), got {self.damping_ratio!r}")
+            object.__setattr__(self, "damping_ratio", zeta)
 
 
 def uniform_grid(times: Any, values: Any, sample_time: float) -> tuple[np.ndarray, np.ndarray]:

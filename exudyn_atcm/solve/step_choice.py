@@ -267,7 +267,11 @@ def _distinct_drives(mech: Mechanism) -> list[Any]:
 
 def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:
     """Largest difference of the position columns [m] between two runs at the coarse grid's common instants,
-    relative to the largest range of those columns in ``fine`` (0 when none moves)."""
+    relative to the largest range of those columns in ``fine`` (0 when none moves).
+
+    Both runs are compared at every accepted step (:attr:`Result.every_step <exudyn_atcm.Result.every_step>`), not at
+    the recorded instants only: a coarse ``record_every`` neither hides the error nor shrinks the travel."""
+    fine, coarse = fine.every_step, coarse.every_step
     names = [n for n in fine.names if n != "time" and fine.unit(n) == "m"]
     travel = max((float(np.ptp(fine[n])) for n in names), default=0.0)
     if not names or not travel > 0.0:

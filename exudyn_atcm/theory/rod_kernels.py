@@ -27,7 +27,7 @@ import numba
 import numpy as np
 
 __all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "step_check", "moving", "tip_gap",
-           "pack_rod", "unpack_out", "predicted_items", "solved_check"]
+           "unpack_out", "predicted_items", "solved_check"]
 
 
 @numba.njit(cache=True)
