@@ -21,10 +21,14 @@ Theory of Elastic Stability*, 1963): follow it with ``simulate()``.
 check, so that every point of a static sweep can be checked:
 
 * the tangent by grouped differences (:class:`~exudyn_atcm.mbs.tangent.TangentPlan`, made once);
-* one Cholesky factorisation of ``N^T (K_T - sigma M) N`` with ``sigma`` the critical margin
-  times the reference eigenvalue: when it succeeds every eigenvalue lies above ``sigma``
-  (Sylvester's law of inertia) and the equilibrium is stable with a margin, without an
-  eigenvalue solution; only when it fails is the lowest eigenvalue computed;
+* first one Cholesky factorisation of ``K_T - sigma M + rho C_q^T C_q`` (symmetrised), ``sigma`` the
+  critical margin times the reference eigenvalue: when it succeeds ``N^T (K_T - sigma M) N`` is
+  positive definite (Finsler's lemma, :mod:`exudyn_atcm.mbs.definite`), every eigenvalue lies above
+  ``sigma`` and the equilibrium is stable with a margin, without the null space ``N``, the
+  projection or an eigenvalue solution (along a sweep of a stable mechanism nearly every point);
+* only when it fails, the null space (a pivoted QR) and one Cholesky factorisation of
+  ``N^T (K_T - sigma M) N`` (Sylvester's law of inertia: success proves the same); only when that
+  fails too is the lowest eigenvalue computed;
 * the dense algebra on one BLAS thread (``threadpoolctl``): for matrices of a few hundred rows a
   second thread gains nothing, and on a machine whose cores are busy (a study's workers) threads
   waiting for each other made a 192-row Cholesky factorisation 13 times slower (8.7 ms against
@@ -41,6 +45,7 @@ from typing import Callable
 import exudyn as exu
 import numpy as np
 
+from .definite import PenaltyProof
 from .model import MechanismModel
 from .tangent import TangentPlan
 
@@ -131,6 +136,8 @@ class StabilityProbe:
         from scipy.linalg import LinAlgError, cho_factor  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         self.model = model
         self.plan = TangentPlan(model.mbs)
+        #: the cheap stability proof tried first by :meth:`check` (its counts say how often it sufficed)
+        self.proof = PenaltyProof()
         self.use_mass = True
         self._k_reference: np.ndarray | None = None
         kr, mr = self._reduced()
@@ -146,10 +153,19 @@ class StabilityProbe:
         #: the last :meth:`check`'s result
         self.last: Stability | None = None
 
-    def _reduced(self) -> tuple[np.ndarray, np.ndarray]:
-        """``N^T K_T N`` and ``N^T M N`` (the identity without mass) at the model's current state, symmetrised."""
+    def _tangent(self) -> dict:
+        """The tangent system (:meth:`~exudyn_atcm.mbs.tangent.TangentPlan.system`) at the model's current state."""
         self.model.before_linearisation()
         ts = self.plan.system(mass=self.use_mass)
+        self._k = ts["K"]
+        self._basis = None  # projected on demand (:meth:`_reduced`)
+        self._ts = ts
+        return ts
+
+    def _reduced(self, ts: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """``N^T K_T N`` and ``N^T M N`` (the identity without mass), symmetrised, of the tangent system ``ts``
+        (default: a new one at the model's current state)."""
+        ts = self._tangent() if ts is None else ts
         k = self._k = ts["K"]
         with _one_blas_thread():
             basis = null_space(ts["Cq"], k.shape[0])
@@ -191,8 +207,24 @@ class StabilityProbe:
         return self.last
 
     def _check(self) -> Stability:
+        ts = self._tangent()
+        sigma = CRITICAL_MARGIN * self.reference
+        k = ts["K"]
+        with _one_blas_thread():
+            # the cheap proof first: K_T - sigma M positive definite on the joints' free motions, without
+            # their basis (:mod:`exudyn_atcm.mbs.definite`); every eigenvalue's real part is then above sigma
+            shifted = k - sigma * ts["M"] if self.use_mass else k - sigma * np.eye(k.shape[0])
+            if self.proof(shifted, ts["Cq"]):
+                return Stability("stable")
+        result = self._full_check(ts)
+        if result.state == "stable" and self._basis.shape[1] > 0:
+            self.proof.missed()  # stable after all: a larger penalty for the next state
+        return result
+
+    def _full_check(self, ts: dict) -> Stability:
+        """The check by the projection on the null space: Cholesky, then the lowest eigenvalue if that fails."""
         from scipy.linalg import LinAlgError, cho_factor  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
-        kr, mr = self._reduced()
+        kr, mr = self._reduced(ts)
         if kr.shape[0] == 0:
             return Stability("stable")
         if not self._conservative:  # follower loads: only divergence (a real eigenvalue through zero) is static
@@ -226,6 +258,8 @@ class StabilityProbe:
         ``nan`` when there is none.
         """
         from scipy.linalg import eig  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
+        if self._basis is None:  # the last check was proved stable without the projection
+            self._reduced(self._ts)
         basis = self._basis
         k0 = basis.T @ self._k_reference @ basis
         k0 = 0.5 * (k0 + k0.T)
