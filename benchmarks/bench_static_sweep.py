@@ -11,18 +11,29 @@ continuation's time without the stability check (a stand-in that looks at nothin
 of the cost only: the shipped sweep always checks).
 Goal: the continuation sweep at least 3 times cheaper than the dynamic run.
 
-Usage: ``python benchmarks/bench_static_sweep.py [--repeats 3]``.  Writes JSON to
-``benchmarks/results/`` (git-ignored).
+"Continuation before" is the continuation sweep of another revision (``--before``, default ``main``:
+its package is exported with ``git archive`` to a temporary folder and timed in a subprocess, run
+between this revision's timings in every repeat, warmed up first); "now" is this revision's.
+The second table gives the evaluations per minute per core of the synthesis case's evaluation
+(``cases/synthesise_path.py``: build the design's four-bar and sweep its cycle, in process),
+before and now, the same way.
+
+Usage: ``python benchmarks/bench_static_sweep.py [--repeats 3] [--before REV]`` (``--before ""``
+leaves the other revision out).  Writes JSON to ``benchmarks/results/`` (git-ignored).
 """
 
 from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import importlib.util
 import json
 import math
 import os
 import platform
+import subprocess
+import sys
+import tempfile
 import time
 
 import exudyn
@@ -97,42 +108,115 @@ def timed(fn) -> tuple[float, object]:
     return time.perf_counter() - t0, out
 
 
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def synthesis_evaluation(cases_dir: str):
+    """A function doing one in-process evaluation of the synthesis case's reference design (build and sweep)."""
+    spec = importlib.util.spec_from_file_location("bench_synthesise_path", os.path.join(cases_dir, "synthesise_path.py"))
+    case = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(case)
+    p = case.CASE.resolve({})
+    voltages, _, _ = case.cycle(p.n_steps, p.precision_voltages)
+    design = case.reference_design(p)
+    return lambda: case.solve_design(p, design, "hysteresis", voltages), len(voltages)
+
+
+def worker(cases_dir: str, repeats: int) -> dict:
+    """Best times [s] of the continuation sweeps and the synthesis evaluation with the package on the path."""
+    out = {}
+    for name, make in CASES.items():
+        volts = cycle(make())
+        atcm.static_sweep(make(), volts)  # warm-up (imports, compiled kernels)
+        out[name] = min(timed(lambda: atcm.static_sweep(make(), volts))[0] for _ in range(repeats))
+    evaluate, _ = synthesis_evaluation(cases_dir)
+    evaluate()
+    out["synthesis"] = min(timed(evaluate)[0] for _ in range(max(3, repeats)))
+    return out
+
+
+def export_revision(rev: str, folder: str) -> None:
+    """The package and cases of revision ``rev`` of this repository, unpacked into ``folder``."""
+    archive = subprocess.run(["git", "-C", REPO, "archive", rev, "exudyn_atcm", "cases"], check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", folder], input=archive, check=True)
+
+
+def run_before(folder: str) -> dict:
+    """:func:`worker` in a subprocess with the other revision's package first on the path."""
+    env = dict(os.environ, PYTHONPATH=folder)
+    code = (f"import sys, json; sys.path.insert(0, {os.path.dirname(os.path.abspath(__file__))!r}); "
+            "import bench_static_sweep as b; "
+            f"print(json.dumps(b.worker({os.path.join(folder, 'cases')!r}, 1)))")
+    done = subprocess.run([sys.executable, "-c", code], env=env, check=True, capture_output=True, text=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--before", default="main", help="revision for the 'continuation before' column ('' for none)")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
     args = parser.parse_args()
-    rows = []
-    for name, make in CASES.items():
-        volts = cycle(make())
-        best = {"points": math.inf, "continuation": math.inf, "dynamic": math.inf, "unchecked": math.inf}
-        results = {}
-        for _ in range(args.repeats):
+    folder = tempfile.mkdtemp(prefix="bench_static_sweep_") if args.before else None
+    if folder:
+        export_revision(args.before, folder)
+    before: dict[str, float] = {}
+    best: dict[str, dict[str, float]] = {name: {"points": math.inf, "continuation": math.inf, "dynamic": math.inf,
+                                                "unchecked": math.inf} for name in CASES}
+    results: dict[str, dict] = {name: {} for name in CASES}
+    evaluate, n_synthesis = synthesis_evaluation(os.path.join(REPO, "cases"))
+    evaluate()
+    synthesis_now = math.inf
+    for _ in range(args.repeats):
+        if folder:
+            for key, value in run_before(folder).items():
+                before[key] = min(value, before.get(key, math.inf))
+        for name, make in CASES.items():
+            volts = cycle(make())
             for method in ("points", "continuation"):
-                t, results[method] = timed(lambda: atcm.static_sweep(make(), volts, method=method))
-                best[method] = min(best[method], t)
+                t, results[name][method] = timed(lambda: atcm.static_sweep(make(), volts, method=method))
+                best[name][method] = min(best[name][method], t)
             t, _r = timed(lambda: atcm.simulate(make(), PERIOD))
-            best["dynamic"] = min(best["dynamic"], t)
+            best[name]["dynamic"] = min(best[name]["dynamic"], t)
             t, _r = timed(lambda: unchecked_continuation(make(), volts))
-            best["unchecked"] = min(best["unchecked"], t)
-        a, b = results["points"], results["continuation"]
+            best[name]["unchecked"] = min(best[name]["unchecked"], t)
+        synthesis_now = min([synthesis_now] + [timed(evaluate)[0] for _ in range(3)])
+    rows = []
+    for name in CASES:
+        a, b, t = results[name]["points"], results[name]["continuation"], best[name]
         diff = max(float(np.max(np.abs(a[c] - b[c]))) for c in a.names if a.unit(c) == "m")
-        rows.append({"case": name, "points": len(volts), "points_s": best["points"],
-                     "continuation_s": best["continuation"], "dynamic_s": best["dynamic"],
-                     "continuation_without_stability_check_s": best["unchecked"],
-                     "dynamic_over_continuation": best["dynamic"] / best["continuation"],
-                     "points_over_continuation": best["points"] / best["continuation"],
+        rows.append({"case": name, "points": len(a), "points_s": t["points"],
+                     "continuation_before_s": before.get(name, math.nan), "continuation_s": t["continuation"],
+                     "dynamic_s": t["dynamic"], "continuation_without_stability_check_s": t["unchecked"],
+                     "dynamic_over_continuation": t["dynamic"] / t["continuation"],
+                     "dynamic_over_continuation_before": t["dynamic"] / before.get(name, math.nan),
+                     "points_over_continuation": t["points"] / t["continuation"],
+                     "before_over_now": before.get(name, math.nan) / t["continuation"],
                      "max_position_difference_m": diff, "fallback_points": b.info["fallback_points"]})
-    print(f"{'case':28s} {'per-point':>11s} {'continuation':>13s} {'dynamic':>10s} {'per point (cont.)':>18s} "
-          f"{'dyn/cont':>9s} {'pts/cont':>9s} {'max |dx| [m]':>13s} {'cont. unchecked':>16s}")
+    print(f"{'case':28s} {'per-point':>10s} {'cont. before':>13s} {'cont. now':>10s} {'dynamic':>10s} "
+          f"{'now/point':>10s} {'dyn/before':>10s} {'dyn/now':>8s} {'before/now':>10s} {'pts/now':>8s} "
+          f"{'max |dx| [m]':>12s} {'now unchecked':>13s}")
     for r in rows:
-        print(f"{r['case']:28s} {r['points_s'] * 1e3:9.1f} ms {r['continuation_s'] * 1e3:10.1f} ms "
-              f"{r['dynamic_s'] * 1e3:7.1f} ms {r['continuation_s'] / r['points'] * 1e6:15.0f} us "
-              f"{r['dynamic_over_continuation']:8.2f}x {r['points_over_continuation']:8.2f}x "
-              f"{r['max_position_difference_m']:13.2e} {r['continuation_without_stability_check_s'] * 1e3:13.1f} ms")
+        print(f"{r['case']:28s} {r['points_s'] * 1e3:7.1f} ms {r['continuation_before_s'] * 1e3:10.1f} ms "
+              f"{r['continuation_s'] * 1e3:7.1f} ms {r['dynamic_s'] * 1e3:7.1f} ms "
+              f"{r['continuation_s'] / r['points'] * 1e6:7.0f} us {r['dynamic_over_continuation_before']:9.2f}x "
+              f"{r['dynamic_over_continuation']:7.2f}x {r['before_over_now']:9.2f}x {r['points_over_continuation']:7.2f}x "
+              f"{r['max_position_difference_m']:12.2e} {r['continuation_without_stability_check_s'] * 1e3:10.1f} ms")
+    synthesis = {"points": n_synthesis, "before_s": before.get("synthesis", math.nan), "now_s": synthesis_now,
+                 "evaluations_per_minute_before": 60.0 / before.get("synthesis", math.nan),
+                 "evaluations_per_minute_now": 60.0 / synthesis_now}
+    synthesis["now_over_before"] = synthesis["evaluations_per_minute_now"] / synthesis["evaluations_per_minute_before"]
+    print(f"\nsynthesis case evaluation (cases/synthesise_path.py, reference design, {n_synthesis}-point sweep, build "
+          "included, in process, one core):")
+    print(f"  before ({args.before or '-'}): {synthesis['before_s'] * 1e3:.1f} ms = "
+          f"{synthesis['evaluations_per_minute_before']:.0f} evaluations/min;  now: {synthesis_now * 1e3:.1f} ms = "
+          f"{synthesis['evaluations_per_minute_now']:.0f} evaluations/min ({synthesis['now_over_before']:.2f}x)")
     payload = {"benchmark": "bench_static_sweep", "exudyn_atcm": atcm.__version__, "exudyn": exudyn.__version__,
                "python": platform.python_version(), "machine": platform.machine(), "repeats": args.repeats,
-               "goal": "continuation sweep of 100 points at least 3x cheaper than the dynamic run", "rows": rows}
+               "before": args.before,
+               "goal": "continuation sweep of 100 points at least 3x cheaper than the dynamic run; synthesis "
+                       "evaluations per minute per core 3x", "rows": rows, "synthesis": synthesis}
     os.makedirs(args.out, exist_ok=True)
     stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
     path = os.path.join(args.out, f"bench_static_sweep_{stamp}.json")

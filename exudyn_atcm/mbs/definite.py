@@ -68,13 +68,14 @@ def positive_definite_on_null_space(a: np.ndarray, cq: np.ndarray, rho: float) -
 class PenaltyProof:
     """:func:`positive_definite_on_null_space` with a penalty that adapts along a sequence of states.
 
-    The penalty is ``scale * max|a| / max|cq^T cq|``; ``scale`` starts at 1 and is raised ten-fold
+    The penalty is ``scale * max|a| / max|cq^T cq|``; ``scale`` starts at 10 (measured: 1 was too small for the
+    first point of the four-bar and the rod chain) and is raised ten-fold
     (:meth:`missed`) when a proof failed on a state that was positive definite after all, up to
     :data:`MAX_RELATIVE_PENALTY`.
     """
 
     def __init__(self) -> None:
-        self.scale = 1.0
+        self.scale = 10.0
         #: proofs that succeeded and attempts (for the record)
         self.proved = 0
         self.attempts = 0

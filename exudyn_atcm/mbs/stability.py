@@ -47,6 +47,7 @@ import numpy as np
 
 from .definite import PenaltyProof
 from .model import MechanismModel
+from .solver_jacobian import SolverJacobian
 from .tangent import TangentPlan
 
 try:  # a declared dependency; imported like this where the package limits BLAS threads elsewhere
@@ -64,6 +65,11 @@ CRITICAL_MARGIN = 1e-3
 #: (conservative loads; the grouped differences leave about 1e-8); above it the loads are
 #: non-conservative (follower forces) and only divergence is checked (:meth:`StabilityProbe.check`).
 ASYMMETRY_TOLERANCE = 1e-5
+
+#: largest difference, relative to ``max|K|``, between Exudyn's Jacobian (:mod:`exudyn_atcm.mbs.solver_jacobian`,
+#: one-sided item-wise differences) and the central differences' tangent of the systems it is used for:
+#: ten times the largest measured (1e-8, rod cells)
+JACOBIAN_DIFFERENCE = 1e-7
 
 
 @dataclass(frozen=True)
@@ -138,6 +144,9 @@ class StabilityProbe:
         self.plan = TangentPlan(model.mbs)
         #: the cheap stability proof tried first by :meth:`check` (its counts say how often it sufficed)
         self.proof = PenaltyProof()
+        #: Exudyn's Jacobian as the tangent where it is exact, and the proof tried with it first
+        self.jacobian = SolverJacobian(model.mbs)
+        self.jacobian_proof = PenaltyProof()
         self.use_mass = True
         self._k_reference: np.ndarray | None = None
         kr, mr = self._reduced()
@@ -206,19 +215,42 @@ class StabilityProbe:
         self.last = self._check()
         return self.last
 
-    def _check(self) -> Stability:
-        ts = self._tangent()
-        sigma = CRITICAL_MARGIN * self.reference
+    def _shifted(self, ts: dict, cushion: float = 0.0) -> np.ndarray:
+        """``K - sigma M - cushion I`` (``M`` the identity without mass) of the tangent system ``ts``."""
         k = ts["K"]
+        metric = ts["M"] if self.use_mass else np.eye(k.shape[0])
+        shifted = k - (CRITICAL_MARGIN * self.reference) * metric
+        if cushion:
+            shifted[np.diag_indices_from(shifted)] -= cushion
+        return shifted
+
+    def _check(self) -> Stability:
         with _one_blas_thread():
             # the cheap proof first: K_T - sigma M positive definite on the joints' free motions, without
-            # their basis (:mod:`exudyn_atcm.mbs.definite`); every eigenvalue's real part is then above sigma
-            shifted = k - sigma * ts["M"] if self.use_mass else k - sigma * np.eye(k.shape[0])
-            if self.proof(shifted, ts["Cq"]):
+            # their basis (:mod:`exudyn_atcm.mbs.definite`); every eigenvalue's real part is then above sigma.
+            # Where Exudyn's Jacobian is the tangent (:mod:`exudyn_atcm.mbs.solver_jacobian`), from it, with a
+            # cushion n * JACOBIAN_DIFFERENCE * max|K| that bounds the 2-norm of its difference to the tangent
+            # of the central differences; else (or when that proof fails) from the central differences
+            if self.jacobian.exact:
+                self.model.before_linearisation()
+                js = self.jacobian.system(mass=self.use_mass)
+                k = js["K"]
+                cushion = k.shape[0] * JACOBIAN_DIFFERENCE * (float(np.max(np.abs(k))) if k.size else 0.0)
+                if self.jacobian_proof(self._shifted(js, cushion), js["Cq"]):
+                    self._basis = None
+                    self._ts = js
+                    self._k = k
+                    return Stability("stable")
+            ts = self._tangent()
+            if self.proof(self._shifted(ts), ts["Cq"]):
+                if self.jacobian.exact:
+                    self.jacobian_proof.missed()  # positive definite after all: a larger penalty for the next state
                 return Stability("stable")
         result = self._full_check(ts)
         if result.state == "stable" and self._basis.shape[1] > 0:
-            self.proof.missed()  # stable after all: a larger penalty for the next state
+            self.proof.missed()  # stable after all: larger penalties for the next state
+            if self.jacobian.exact:
+                self.jacobian_proof.missed()
         return result
 
     def _full_check(self, ts: dict) -> Stability:
