@@ -148,7 +148,7 @@ def run_before(folder: str) -> dict:
     code = (f"import sys, json; sys.path.insert(0, {os.path.dirname(os.path.abspath(__file__))!r}); "
             "import bench_static_sweep as b; "
             f"print(json.dumps(b.worker({os.path.join(folder, 'cases')!r}, 1)))")
-    done = subprocess.run([sys.executable, "-c", code], env=env, check=True, capture_output=True, text=True)
+    done = subprocess.run([sys.executable, "-c", code], env=env, cwd=folder, check=True, capture_output=True, text=True)
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
