@@ -147,6 +147,9 @@ class StabilityProbe:
         #: Exudyn's Jacobian as the tangent where it is exact, and the proof tried with it first
         self.jacobian = SolverJacobian(model.mbs)
         self.jacobian_proof = PenaltyProof()
+        #: whether :meth:`check` tries the proof from Exudyn's Jacobian (where it is exact, until it misses twice)
+        self.use_jacobian = self.jacobian.exact
+        self._jacobian_misses = 0
         self.use_mass = True
         self._k_reference: np.ndarray | None = None
         kr, mr = self._reduced()
@@ -231,27 +234,37 @@ class StabilityProbe:
             # Where Exudyn's Jacobian is the tangent (:mod:`exudyn_atcm.mbs.solver_jacobian`), from it, with a
             # cushion n * JACOBIAN_DIFFERENCE * max|K| that bounds the 2-norm of its difference to the tangent
             # of the central differences; else (or when that proof fails) from the central differences
-            if self.jacobian.exact:
+            if self.use_jacobian:
                 self.model.before_linearisation()
                 js = self.jacobian.system(mass=self.use_mass)
                 k = js["K"]
                 cushion = k.shape[0] * JACOBIAN_DIFFERENCE * (float(np.max(np.abs(k))) if k.size else 0.0)
                 if self.jacobian_proof(self._shifted(js, cushion), js["Cq"]):
+                    self._jacobian_misses = 0
                     self._basis = None
                     self._ts = js
                     self._k = k
                     return Stability("stable")
             ts = self._tangent()
             if self.proof(self._shifted(ts), ts["Cq"]):
-                if self.jacobian.exact:
-                    self.jacobian_proof.missed()  # positive definite after all: a larger penalty for the next state
+                self._jacobian_missed()
                 return Stability("stable")
         result = self._full_check(ts)
         if result.state == "stable" and self._basis.shape[1] > 0:
             self.proof.missed()  # stable after all: larger penalties for the next state
-            if self.jacobian.exact:
-                self.jacobian_proof.missed()
+            self._jacobian_missed()
         return result
+
+    def _jacobian_missed(self) -> None:
+        """The proof from Exudyn's Jacobian failed on a stable state: a larger penalty for the next one; after
+        two such misses in a row it is not tried again (its cushion, relative to the largest stiffness, hides
+        the bending stiffness of elements stiff along their axis: beam and ANCF cells, measured)."""
+        if not self.use_jacobian:
+            return
+        self.jacobian_proof.missed()
+        self._jacobian_misses += 1
+        if self._jacobian_misses >= 2:
+            self.use_jacobian = False
 
     def _full_check(self, ts: dict) -> Stability:
         """The check by the projection on the null space: Cholesky, then the lowest eigenvalue if that fails."""
