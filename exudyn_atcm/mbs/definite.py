@@ -18,8 +18,8 @@ fallback found the state stable, so that the next state of a sweep passes.
 Round-off: a Cholesky factorisation that succeeds in floating point proves the positive
 definiteness of a matrix within about ``n u`` times the penalised matrix's size of the one
 given (``u`` the unit round-off, ``n`` its order); with ``rho C_q^T C_q`` scaled to at most
-``1e3`` times ``A`` that is below ``1e-11`` of ``A``, far below the ``1e-8`` the grouped
-differences of the tangent leave (:mod:`exudyn_atcm.mbs.tangent`).
+``1e5`` times ``A`` that is about ``1e-9`` of ``A`` for 100 coordinates, below the ``1e-8`` the
+grouped differences of the tangent leave (:mod:`exudyn_atcm.mbs.tangent`).
 
 For an unsymmetric ``A`` (a follower load's tangent) the same proof bounds every eigenvalue
 ``lambda`` of ``N^T A N v = lambda N^T M N v`` (``M`` symmetric positive definite) when applied to
@@ -33,7 +33,7 @@ import numpy as np
 __all__ = ["PenaltyProof", "positive_definite_on_null_space"]
 
 #: largest penalty relative to ``max|A| / max|C_q^T C_q|`` (keeps the round-off bound above)
-MAX_RELATIVE_PENALTY = 1e3
+MAX_RELATIVE_PENALTY = 1e5
 
 
 def positive_definite_on_null_space(a: np.ndarray, cq: np.ndarray, rho: float) -> bool:
@@ -83,15 +83,26 @@ class PenaltyProof:
     def __call__(self, a: np.ndarray, cq: np.ndarray) -> bool:
         """Try the proof on ``a`` and ``cq`` (see :func:`positive_definite_on_null_space`)."""
         self.attempts += 1
-        rho = 0.0
-        if cq.shape[0]:
-            gram = float(np.max(np.sum(cq * cq, axis=0)))  # the largest diagonal entry of cq^T cq
-            size = float(np.max(np.abs(a))) if a.size else 0.0
-            rho = self.scale * size / gram if gram > 0.0 else 0.0
-        ok = positive_definite_on_null_space(a, cq, rho)
+        ok = positive_definite_on_null_space(a, cq, self._rho(a, cq))
         self.proved += ok
         return ok
 
-    def missed(self) -> None:
-        """The last failed proof was on a positive definite state: a larger penalty for the next."""
+    def missed(self, a: np.ndarray | None = None, cq: np.ndarray | None = None) -> None:
+        """The last failed proof was on a positive definite state: a larger penalty for the next.
+
+        With that state's ``a`` and ``cq``: the penalty raised ten-fold until it proves that state (at
+        most to :data:`MAX_RELATIVE_PENALTY`; a few Cholesky factorisations), so that the next state of a
+        sweep, close to it, passes; without them, ten-fold once.
+        """
         self.scale = min(10.0 * self.scale, MAX_RELATIVE_PENALTY)
+        if a is None or cq is None:
+            return
+        while self.scale < MAX_RELATIVE_PENALTY and not positive_definite_on_null_space(a, cq, self._rho(a, cq)):
+            self.scale = min(10.0 * self.scale, MAX_RELATIVE_PENALTY)
+
+    def _rho(self, a: np.ndarray, cq: np.ndarray) -> float:
+        if not cq.shape[0]:
+            return 0.0
+        gram = float(np.max(np.sum(cq * cq, axis=0)))  # the largest diagonal entry of cq^T cq
+        size = float(np.max(np.abs(a))) if a.size else 0.0
+        return self.scale * size / gram if gram > 0.0 else 0.0

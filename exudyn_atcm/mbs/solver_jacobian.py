@@ -14,6 +14,8 @@ chain's lowest eigenvalue by a factor of two (measured on a bent, loaded lone be
 Jacobian is therefore used only for systems made of the item types in :data:`EXACT_TYPES`, each
 checked against the grouped differences on a loaded, bent state by the tests (beam, ANCF and rod
 cells, and links on revolute joints); for the others :attr:`SolverJacobian.exact` is ``False``.
+Exudyn's Jacobian leaves out the loads, too: a system with a load that depends on the coordinates
+(:func:`constant_load`) is not exact either.
 The item-wise differences are one-sided: the tangent agrees with the central differences to about
 1e-8 of its largest entry (measured 8e-12 to 1e-8), which :mod:`exudyn_atcm.mbs.stability` allows for.
 """
@@ -25,11 +27,39 @@ import numpy as np
 
 from .tangent import static_settings
 
-__all__ = ["EXACT_TYPES", "SolverJacobian"]
+__all__ = ["EXACT_TYPES", "SolverJacobian", "constant_load"]
 
 #: item types whose Exudyn Jacobian (with the connector derivative) is the tangent of the grouped differences
 EXACT_TYPES = frozenset({"Ground", "RigidBody2D", "JointRevolute2D", "BeamGeometricallyExact2D", "ANCFCable2D",
                          "ConnectorCoordinate", "ConnectorCoordinateVector", "GenericODE2"})
+
+
+def constant_load(mbs, index: int) -> bool:
+    """Whether load ``index`` is a constant generalised force (Exudyn's Jacobian leaves the loads out).
+
+    True for coordinate loads, forces at a node's position or at a 2D rigid body's reference point,
+    and torques on a node's or a 2D rigid body's rotation (in the plane the rotation is a coordinate);
+    false for anything else, e.g. a force at a point of a link away from its reference point (its
+    lever arm turns with the link: measured 2 % off the projected tangent of the README four-bar
+    with a force at its coupler point) or a torque on a point of an ANCF cable.
+    """
+    load = mbs.GetLoad(index)
+    if load.get("bodyFixed", False):
+        return False
+    kind = load["loadType"]
+    if kind == "Coordinate":
+        return True
+    marker = mbs.GetMarker(load["markerNumber"])
+    marker_type = marker["markerType"]
+    if marker_type == "NodePosition":
+        return kind == "ForceVector"
+    if marker_type == "NodeRigid":
+        return kind in ("ForceVector", "TorqueVector") and mbs.GetNode(marker["nodeNumber"])["nodeType"] == "RigidBody2D"
+    if marker_type in ("BodyPosition", "BodyRigid"):
+        on_rigid_body = mbs.GetObject(marker["bodyNumber"])["objectType"] == "RigidBody2D"
+        at_reference = not np.any(np.asarray(marker.get("localPosition", [0.0]), dtype=float))
+        return on_rigid_body and (kind == "TorqueVector" or (kind == "ForceVector" and at_reference))
+    return False
 
 
 class SolverJacobian:
@@ -45,8 +75,9 @@ class SolverJacobian:
         self.mbs = mbs
         sd = mbs.systemData
         self.types = frozenset(mbs.GetObject(i)["objectType"] for i in range(sd.NumberOfObjects()))
-        #: whether every item's Jacobian is the true tangent (only then :meth:`system` may be used)
-        self.exact = self.types <= EXACT_TYPES
+        #: whether every item's Jacobian is the true tangent and no load depends on the coordinates (only then
+        #: :meth:`system` may be used)
+        self.exact = self.types <= EXACT_TYPES and all(constant_load(mbs, i) for i in range(sd.NumberOfLoads()))
         self.n_ode2 = len(sd.GetODE2Coordinates())
         self._settings = static_settings()
         self._settings.staticSolver.newton.numericalDifferentiation.jacobianConnectorDerivative = True

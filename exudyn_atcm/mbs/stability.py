@@ -260,12 +260,14 @@ class StabilityProbe:
                     self._k = k
                     return Stability("stable")
             ts = self._tangent()
-            if self.proof(self._shifted(ts), ts["Cq"]):
+            shifted = self._shifted(ts)
+            if self.proof(shifted, ts["Cq"]):
                 self._jacobian_missed()
                 return Stability("stable")
         result = self._full_check(ts)
         if result.state == "stable" and self._basis.shape[1] > 0:
-            self.proof.missed()  # stable after all: larger penalties for the next state
+            with _one_blas_thread():
+                self.proof.missed(shifted, ts["Cq"])  # stable after all: a penalty that proves it, for the next state
             self._jacobian_missed()
         return result
 
