@@ -5,18 +5,20 @@ triangle, 0 V -> 1500 V -> 0 V): the per-point static sweep (``static_sweep(...,
 each point its own equilibrium in load steps), the continuation sweep (the default: each point one
 load step from the last), and the dynamic run of the same cycle (``simulate(mech, period)`` at the
 default step 1e-4 s, the README's call).  Each timing includes the build; interleaved, each
-``--repeats`` times, the fastest kept.  Both sweeps check the stability of every point.  The
+``--repeats`` times, the fastest kept (see below).  Both sweeps check the stability of every point.  The
 largest difference of the position columns between the two sweeps is printed too, and the
 continuation's time without the stability check (a stand-in that looks at nothing; the decomposition
 of the cost only: the shipped sweep always checks).
 Goal: the continuation sweep at least 3 times cheaper than the dynamic run.
 
 "Continuation before" is the continuation sweep of another revision (``--before``, default ``main``:
-its package is exported with ``git archive`` to a temporary folder and timed in a subprocess, run
-between this revision's timings in every repeat, warmed up first); "now" is this revision's.
+its package and cases are exported with ``git archive`` to a temporary folder); "now" is this
+revision's.  Every timing is taken in a fresh subprocess per revision and repeat (warmed up first),
+the two revisions alternating, the fastest of the repeats kept (the machine's load changes;
+processes of the same kind keep the comparison fair).
 The second table gives the evaluations per minute per core of the synthesis case's evaluation
 (``cases/synthesise_path.py``: build the design's four-bar and sweep its cycle, in process),
-before and now, the same way.
+before and now, the same way (the case's default cycle: 9 points).
 
 Usage: ``python benchmarks/bench_static_sweep.py [--repeats 3] [--before REV]`` (``--before ""``
 leaves the other revision out).  Writes JSON to ``benchmarks/results/`` (git-ignored).
@@ -123,12 +125,18 @@ def synthesis_evaluation(cases_dir: str):
 
 
 def worker(cases_dir: str, repeats: int) -> dict:
-    """Best times [s] of the continuation sweeps and the synthesis evaluation with the package on the path."""
+    """Best times [s] with the package on the path: per case the per-point and continuation sweeps, the dynamic
+    run and the continuation without the check; and the synthesis evaluation.  Warmed up first."""
     out = {}
     for name, make in CASES.items():
         volts = cycle(make())
         atcm.static_sweep(make(), volts)  # warm-up (imports, compiled kernels)
-        out[name] = min(timed(lambda: atcm.static_sweep(make(), volts))[0] for _ in range(repeats))
+        runs = {"points": lambda: atcm.static_sweep(make(), volts, method="points"),
+                "continuation": lambda: atcm.static_sweep(make(), volts),
+                "dynamic": lambda: atcm.simulate(make(), PERIOD),
+                "unchecked": lambda: unchecked_continuation(make(), volts)}
+        for key, run in runs.items():
+            out[f"{name}|{key}"] = min(timed(run)[0] for _ in range(repeats))
     evaluate, _ = synthesis_evaluation(cases_dir)
     evaluate()
     out["synthesis"] = min(timed(evaluate)[0] for _ in range(max(3, repeats)))
@@ -142,8 +150,8 @@ def export_revision(rev: str, folder: str) -> None:
     subprocess.run(["tar", "-x", "-C", folder], input=archive, check=True)
 
 
-def run_before(folder: str) -> dict:
-    """:func:`worker` in a subprocess with the other revision's package first on the path."""
+def run_worker(folder: str) -> dict:
+    """:func:`worker` in a subprocess with the package and cases of ``folder`` first on the path."""
     env = dict(os.environ, PYTHONPATH=folder)
     code = (f"import sys, json; sys.path.insert(0, {os.path.dirname(os.path.abspath(__file__))!r}); "
             "import bench_static_sweep as b; "
@@ -162,27 +170,24 @@ def main() -> None:
     if folder:
         export_revision(args.before, folder)
     before: dict[str, float] = {}
-    best: dict[str, dict[str, float]] = {name: {"points": math.inf, "continuation": math.inf, "dynamic": math.inf,
-                                                "unchecked": math.inf} for name in CASES}
-    results: dict[str, dict] = {name: {} for name in CASES}
+    now: dict[str, float] = {}
+    results: dict[str, dict] = {}
     n_points = {name: len(cycle(make())) for name, make in CASES.items()}
-    evaluate, n_synthesis = synthesis_evaluation(os.path.join(REPO, "cases"))
-    evaluate()
-    synthesis_now = math.inf
-    for _ in range(args.repeats):
-        if folder:
-            for key, value in run_before(folder).items():
-                before[key] = min(value, before.get(key, math.inf))
-        for name, make in CASES.items():
-            volts = cycle(make())
-            for method in ("points", "continuation"):
-                t, results[name][method] = timed(lambda: atcm.static_sweep(make(), volts, method=method))
-                best[name][method] = min(best[name][method], t)
-            t, _r = timed(lambda: atcm.simulate(make(), PERIOD))
-            best[name]["dynamic"] = min(best[name]["dynamic"], t)
-            t, _r = timed(lambda: unchecked_continuation(make(), volts))
-            best[name]["unchecked"] = min(best[name]["unchecked"], t)
-        synthesis_now = min([synthesis_now] + [timed(evaluate)[0] for _ in range(3)])
+    for name, make in CASES.items():  # the equilibria, for the differences (in this process, not timed)
+        volts = cycle(make())
+        results[name] = {m: atcm.static_sweep(make(), volts, method=m) for m in ("points", "continuation")}
+    _, n_synthesis = synthesis_evaluation(os.path.join(REPO, "cases"))
+    for repeat in range(args.repeats):  # before and now alternate (which goes first too), each in a fresh process
+        pair = ((folder, before), (REPO, now))
+        for folder_, store in (pair if repeat % 2 == 0 else pair[::-1]):
+            if folder_:
+                for key, value in run_worker(folder_).items():
+                    store[key] = min(value, store.get(key, math.inf))
+    best = {name: {k: now[f"{name}|{k}"] for k in ("points", "continuation", "dynamic", "unchecked")} for name in CASES}
+    raw = {"before": dict(before), "now": dict(now)}
+    before = {**{name: before.get(f"{name}|continuation", math.nan) for name in CASES},
+              "synthesis": before.get("synthesis", math.nan)}
+    synthesis_now = now["synthesis"]
     rows = []
     for name in CASES:
         a, b, t = results[name]["points"], results[name]["continuation"], best[name]
@@ -217,7 +222,8 @@ def main() -> None:
                "python": platform.python_version(), "machine": platform.machine(), "repeats": args.repeats,
                "before": args.before,
                "goal": "continuation sweep of 100 points at least 3x cheaper than the dynamic run; synthesis "
-                       "evaluations per minute per core 3x", "rows": rows, "synthesis": synthesis}
+                       "evaluations per minute per core 3x", "rows": rows, "synthesis": synthesis,
+               "best_times_s": raw}
     os.makedirs(args.out, exist_ok=True)
     stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
     path = os.path.join(args.out, f"bench_static_sweep_{stamp}.json")
