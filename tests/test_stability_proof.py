@@ -122,7 +122,7 @@ def loaded_four_bar() -> atcm.Mechanism:
 
 MECHANISMS = {**{f"lone {c}": (lambda c=c: bent_lone(c)) for c in ("rigid", "six-bar", "beam", "ancf", "rod")},
               "README four-bar": readme_four_bar, "four-bar, force at P": loaded_four_bar}
-#: where Exudyn's Jacobian is not the tangent: hinge springs of rigid and six-bar cells (0.2-0.8 % off), a force
+#: where Exudyn's Jacobian is not the tangent: rigid and six-bar cells (0.2-0.8 % off), a force
 #: whose lever arm turns with its link (2 % off; Exudyn's Jacobian leaves the loads out), measured
 NOT_THE_TANGENT = ("lone rigid", "lone six-bar", "four-bar, force at P")
 
@@ -167,7 +167,7 @@ def test_exudyns_jacobian_is_used_exactly_where_it_is_the_tangent(name, probes):
 def test_the_exact_types_cover_the_default_cell_and_links():
     assert {"GenericODE2", "ConnectorCoordinate", "ConnectorCoordinateVector", "RigidBody2D",
             "JointRevolute2D"} <= EXACT_TYPES
-    assert "ConnectorCoordinateSpringDamper" not in EXACT_TYPES  # rigid and six-bar cells' hinge springs
+    assert "ConnectorCoordinateSpringDamper" not in EXACT_TYPES  # the item type only rigid and six-bar cells hold
 
 
 # ----------------------------------------------------------------------------- fast check = full eigen check
