@@ -11,7 +11,7 @@ Not for every system: for lone benders of rigid and six-bar cells (bent, loaded)
 the grouped differences by 0.2 % (rigid cells) to 0.8 % (six-bar cells) of the projected tangent, and
 moved the six-bar chain's lowest eigenvalue by a factor of two (measured).  Those systems hold
 ``ConnectorCoordinateSpringDamper`` items (the cells' hinge springs; the six-bar cells also
-``JointPrismatic2D``), which the exact systems do not; which item's Jacobian is off was not isolated.The
+``JointPrismatic2D``), which the exact systems do not; which item's Jacobian is off was not isolated.  The
 Jacobian is therefore used only for systems made of the item types in :data:`EXACT_TYPES`, each
 checked against the grouped differences on a loaded, bent state by the tests (beam, ANCF and rod
 cells, and links on revolute joints); for the others :attr:`SolverJacobian.exact` is ``False``.
