@@ -166,7 +166,8 @@ def main() -> None:
     parser.add_argument("--before", default="main", help="revision for the 'continuation before' column ('' for none)")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
     args = parser.parse_args()
-    folder = tempfile.mkdtemp(prefix="bench_static_sweep_") if args.before else None
+    scratch = tempfile.TemporaryDirectory(prefix="bench_static_sweep_")  # removed at exit
+    folder = scratch.name if args.before else None
     if folder:
         export_revision(args.before, folder)
     before: dict[str, float] = {}
