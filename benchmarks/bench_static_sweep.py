@@ -5,24 +5,37 @@ triangle, 0 V -> 1500 V -> 0 V): the per-point static sweep (``static_sweep(...,
 each point its own equilibrium in load steps), the continuation sweep (the default: each point one
 load step from the last), and the dynamic run of the same cycle (``simulate(mech, period)`` at the
 default step 1e-4 s, the README's call).  Each timing includes the build; interleaved, each
-``--repeats`` times, the fastest kept.  Both sweeps check the stability of every point.  The
+``--repeats`` times, the fastest kept (see below).  Both sweeps check the stability of every point.  The
 largest difference of the position columns between the two sweeps is printed too, and the
 continuation's time without the stability check (a stand-in that looks at nothing; the decomposition
 of the cost only: the shipped sweep always checks).
 Goal: the continuation sweep at least 3 times cheaper than the dynamic run.
 
-Usage: ``python benchmarks/bench_static_sweep.py [--repeats 3]``.  Writes JSON to
-``benchmarks/results/`` (git-ignored).
+"Continuation before" is the continuation sweep of another revision (``--before``, default ``main``:
+its package and cases are exported with ``git archive`` to a temporary folder); "now" is this
+revision's.  Every timing is taken in a fresh subprocess per revision and repeat (warmed up first),
+the two revisions alternating, the fastest of the repeats kept (the machine's load changes;
+processes of the same kind keep the comparison fair).
+The second table gives the evaluations per minute per core of the synthesis case's evaluation
+(``cases/synthesise_path.py``: build the design's four-bar and sweep its cycle, in process),
+before and now, the same way (the case's default cycle: 9 points).
+
+Usage: ``python benchmarks/bench_static_sweep.py [--repeats 3] [--before REV]`` (``--before ""``
+leaves the other revision out).  Writes JSON to ``benchmarks/results/`` (git-ignored).
 """
 
 from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import importlib.util
 import json
 import math
 import os
 import platform
+import subprocess
+import sys
+import tempfile
 import time
 
 import exudyn
@@ -97,42 +110,121 @@ def timed(fn) -> tuple[float, object]:
     return time.perf_counter() - t0, out
 
 
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def synthesis_evaluation(cases_dir: str):
+    """A function doing one in-process evaluation of the synthesis case's reference design (build and sweep)."""
+    spec = importlib.util.spec_from_file_location("bench_synthesise_path", os.path.join(cases_dir, "synthesise_path.py"))
+    case = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(case)
+    p = case.CASE.resolve({})
+    voltages, _, _ = case.cycle(p.n_steps, p.precision_voltages)
+    design = case.reference_design(p)
+    return lambda: case.solve_design(p, design, "hysteresis", voltages), len(voltages)
+
+
+def worker(cases_dir: str, repeats: int) -> dict:
+    """Best times [s] with the package on the path: per case the per-point and continuation sweeps, the dynamic
+    run and the continuation without the check; and the synthesis evaluation.  Warmed up first."""
+    out = {}
+    for name, make in CASES.items():
+        volts = cycle(make())
+        atcm.static_sweep(make(), volts)  # warm-up (imports, compiled kernels)
+        runs = {"points": lambda: atcm.static_sweep(make(), volts, method="points"),
+                "continuation": lambda: atcm.static_sweep(make(), volts),
+                "dynamic": lambda: atcm.simulate(make(), PERIOD),
+                "unchecked": lambda: unchecked_continuation(make(), volts)}
+        for key, run in runs.items():
+            out[f"{name}|{key}"] = min(timed(run)[0] for _ in range(repeats))
+    evaluate, _ = synthesis_evaluation(cases_dir)
+    evaluate()
+    out["synthesis"] = min(timed(evaluate)[0] for _ in range(max(3, repeats)))
+    return out
+
+
+def export_revision(rev: str, folder: str) -> None:
+    """The package and cases of revision ``rev`` of this repository, unpacked into ``folder``."""
+    archive = subprocess.run(["git", "-C", REPO, "archive", rev, "exudyn_atcm", "cases"], check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", folder], input=archive, check=True)
+
+
+def run_worker(folder: str) -> dict:
+    """:func:`worker` in a subprocess with the package and cases of ``folder`` first on the path."""
+    env = dict(os.environ, PYTHONPATH=folder)
+    code = (f"import sys, json; sys.path.insert(0, {os.path.dirname(os.path.abspath(__file__))!r}); "
+            "import bench_static_sweep as b; "
+            f"print(json.dumps(b.worker({os.path.join(folder, 'cases')!r}, 1)))")
+    done = subprocess.run([sys.executable, "-c", code], env=env, cwd=folder, check=True, capture_output=True, text=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--before", default="main", help="revision for the 'continuation before' column ('' for none)")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
     args = parser.parse_args()
-    rows = []
-    for name, make in CASES.items():
+    scratch = tempfile.TemporaryDirectory(prefix="bench_static_sweep_")  # removed at exit
+    folder = scratch.name if args.before else None
+    if folder:
+        export_revision(args.before, folder)
+    before: dict[str, float] = {}
+    now: dict[str, float] = {}
+    results: dict[str, dict] = {}
+    n_points = {name: len(cycle(make())) for name, make in CASES.items()}
+    for name, make in CASES.items():  # the equilibria, for the differences (in this process, not timed)
         volts = cycle(make())
-        best = {"points": math.inf, "continuation": math.inf, "dynamic": math.inf, "unchecked": math.inf}
-        results = {}
-        for _ in range(args.repeats):
-            for method in ("points", "continuation"):
-                t, results[method] = timed(lambda: atcm.static_sweep(make(), volts, method=method))
-                best[method] = min(best[method], t)
-            t, _r = timed(lambda: atcm.simulate(make(), PERIOD))
-            best["dynamic"] = min(best["dynamic"], t)
-            t, _r = timed(lambda: unchecked_continuation(make(), volts))
-            best["unchecked"] = min(best["unchecked"], t)
-        a, b = results["points"], results["continuation"]
+        results[name] = {m: atcm.static_sweep(make(), volts, method=m) for m in ("points", "continuation")}
+    _, n_synthesis = synthesis_evaluation(os.path.join(REPO, "cases"))
+    for repeat in range(args.repeats):  # before and now alternate (which goes first too), each in a fresh process
+        pair = ((folder, before), (REPO, now))
+        for folder_, store in (pair if repeat % 2 == 0 else pair[::-1]):
+            if folder_:
+                for key, value in run_worker(folder_).items():
+                    store[key] = min(value, store.get(key, math.inf))
+    best = {name: {k: now[f"{name}|{k}"] for k in ("points", "continuation", "dynamic", "unchecked")} for name in CASES}
+    raw = {"before": dict(before), "now": dict(now)}
+    before = {**{name: before.get(f"{name}|continuation", math.nan) for name in CASES},
+              "synthesis": before.get("synthesis", math.nan)}
+    synthesis_now = now["synthesis"]
+    rows = []
+    for name in CASES:
+        a, b, t = results[name]["points"], results[name]["continuation"], best[name]
         diff = max(float(np.max(np.abs(a[c] - b[c]))) for c in a.names if a.unit(c) == "m")
-        rows.append({"case": name, "points": len(volts), "points_s": best["points"],
-                     "continuation_s": best["continuation"], "dynamic_s": best["dynamic"],
-                     "continuation_without_stability_check_s": best["unchecked"],
-                     "dynamic_over_continuation": best["dynamic"] / best["continuation"],
-                     "points_over_continuation": best["points"] / best["continuation"],
+        rows.append({"case": name, "points": n_points[name], "points_s": t["points"],
+                     "continuation_before_s": before.get(name, math.nan), "continuation_s": t["continuation"],
+                     "dynamic_s": t["dynamic"], "continuation_without_stability_check_s": t["unchecked"],
+                     "dynamic_over_continuation": t["dynamic"] / t["continuation"],
+                     "dynamic_over_continuation_before": t["dynamic"] / before.get(name, math.nan),
+                     "points_over_continuation": t["points"] / t["continuation"],
+                     "before_over_now": before.get(name, math.nan) / t["continuation"],
                      "max_position_difference_m": diff, "fallback_points": b.info["fallback_points"]})
-    print(f"{'case':28s} {'per-point':>11s} {'continuation':>13s} {'dynamic':>10s} {'per point (cont.)':>18s} "
-          f"{'dyn/cont':>9s} {'pts/cont':>9s} {'max |dx| [m]':>13s} {'cont. unchecked':>16s}")
+    print(f"{'case':28s} {'per-point':>10s} {'cont. before':>13s} {'cont. now':>10s} {'dynamic':>10s} "
+          f"{'now/point':>10s} {'dyn/before':>10s} {'dyn/now':>8s} {'before/now':>10s} {'pts/now':>8s} "
+          f"{'max |dx| [m]':>12s} {'now unchecked':>13s}")
     for r in rows:
-        print(f"{r['case']:28s} {r['points_s'] * 1e3:9.1f} ms {r['continuation_s'] * 1e3:10.1f} ms "
-              f"{r['dynamic_s'] * 1e3:7.1f} ms {r['continuation_s'] / r['points'] * 1e6:15.0f} us "
-              f"{r['dynamic_over_continuation']:8.2f}x {r['points_over_continuation']:8.2f}x "
-              f"{r['max_position_difference_m']:13.2e} {r['continuation_without_stability_check_s'] * 1e3:13.1f} ms")
+        print(f"{r['case']:28s} {r['points_s'] * 1e3:7.1f} ms {r['continuation_before_s'] * 1e3:10.1f} ms "
+              f"{r['continuation_s'] * 1e3:7.1f} ms {r['dynamic_s'] * 1e3:7.1f} ms "
+              f"{r['continuation_s'] / r['points'] * 1e6:7.0f} us {r['dynamic_over_continuation_before']:9.2f}x "
+              f"{r['dynamic_over_continuation']:7.2f}x {r['before_over_now']:9.2f}x {r['points_over_continuation']:7.2f}x "
+              f"{r['max_position_difference_m']:12.2e} {r['continuation_without_stability_check_s'] * 1e3:10.1f} ms")
+    synthesis = {"points": n_synthesis, "before_s": before.get("synthesis", math.nan), "now_s": synthesis_now,
+                 "evaluations_per_minute_before": 60.0 / before.get("synthesis", math.nan),
+                 "evaluations_per_minute_now": 60.0 / synthesis_now}
+    synthesis["now_over_before"] = synthesis["evaluations_per_minute_now"] / synthesis["evaluations_per_minute_before"]
+    print(f"\nsynthesis case evaluation (cases/synthesise_path.py, reference design, {n_synthesis}-point sweep, build "
+          "included, in process, one core):")
+    print(f"  before ({args.before or '-'}): {synthesis['before_s'] * 1e3:.1f} ms = "
+          f"{synthesis['evaluations_per_minute_before']:.0f} evaluations/min;  now: {synthesis_now * 1e3:.1f} ms = "
+          f"{synthesis['evaluations_per_minute_now']:.0f} evaluations/min ({synthesis['now_over_before']:.2f}x)")
     payload = {"benchmark": "bench_static_sweep", "exudyn_atcm": atcm.__version__, "exudyn": exudyn.__version__,
                "python": platform.python_version(), "machine": platform.machine(), "repeats": args.repeats,
-               "goal": "continuation sweep of 100 points at least 3x cheaper than the dynamic run", "rows": rows}
+               "before": args.before,
+               "goal": "continuation sweep of 100 points at least 3x cheaper than the dynamic run; synthesis "
+                       "evaluations per minute per core 3x", "rows": rows, "synthesis": synthesis,
+               "best_times_s": raw}
     os.makedirs(args.out, exist_ok=True)
     stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
     path = os.path.join(args.out, f"bench_static_sweep_{stamp}.json")

@@ -21,10 +21,14 @@ Theory of Elastic Stability*, 1963): follow it with ``simulate()``.
 check, so that every point of a static sweep can be checked:
 
 * the tangent by grouped differences (:class:`~exudyn_atcm.mbs.tangent.TangentPlan`, made once);
-* one Cholesky factorisation of ``N^T (K_T - sigma M) N`` with ``sigma`` the critical margin
-  times the reference eigenvalue: when it succeeds every eigenvalue lies above ``sigma``
-  (Sylvester's law of inertia) and the equilibrium is stable with a margin, without an
-  eigenvalue solution; only when it fails is the lowest eigenvalue computed;
+* first one Cholesky factorisation of ``K_T - sigma M + rho C_q^T C_q`` (symmetrised), ``sigma`` the
+  critical margin times the reference eigenvalue: when it succeeds ``N^T (K_T - sigma M) N`` is
+  positive definite (Finsler's lemma, :mod:`exudyn_atcm.mbs.definite`), every eigenvalue lies above
+  ``sigma`` and the equilibrium is stable with a margin, without the null space ``N``, the
+  projection or an eigenvalue solution (along a sweep of a stable mechanism nearly every point);
+* only when it fails, the null space (a pivoted QR) and one Cholesky factorisation of
+  ``N^T (K_T - sigma M) N`` (Sylvester's law of inertia: success proves the same); only when that
+  fails too is the lowest eigenvalue computed;
 * the dense algebra on one BLAS thread (``threadpoolctl``): for matrices of a few hundred rows a
   second thread gains nothing, and on a machine whose cores are busy (a study's workers) threads
   waiting for each other made a 192-row Cholesky factorisation 13 times slower (8.7 ms against
@@ -41,7 +45,9 @@ from typing import Callable
 import exudyn as exu
 import numpy as np
 
+from .definite import PenaltyProof
 from .model import MechanismModel
+from .solver_jacobian import SolverJacobian
 from .tangent import TangentPlan
 
 try:  # a declared dependency; imported like this where the package limits BLAS threads elsewhere
@@ -59,6 +65,11 @@ CRITICAL_MARGIN = 1e-3
 #: (conservative loads; the grouped differences leave about 1e-8); above it the loads are
 #: non-conservative (follower forces) and only divergence is checked (:meth:`StabilityProbe.check`).
 ASYMMETRY_TOLERANCE = 1e-5
+
+#: largest difference, relative to ``max|K|``, between Exudyn's Jacobian (:mod:`exudyn_atcm.mbs.solver_jacobian`,
+#: one-sided item-wise differences) and the central differences' tangent of the systems it is used for:
+#: ten times the largest measured (1e-8, rod cells)
+JACOBIAN_DIFFERENCE = 1e-7
 
 
 @dataclass(frozen=True)
@@ -101,16 +112,30 @@ def null_space(cq: np.ndarray, n: int, tolerance: float = 1e-9) -> np.ndarray:
     return q[:, rank:]
 
 
-_CONTROLLER: list = []
+_BLAS: list = []  # the BLAS libraries' thread controllers, found once
 
 
+@contextlib.contextmanager
 def _one_blas_thread():
-    """Context manager: the BLAS calls inside on one thread (the controller scans the libraries once)."""
+    """Context manager: the BLAS calls inside on one thread.  The libraries are found once (threadpoolctl's
+    controller); each use then only reads and sets their thread counts (a few us; threadpoolctl's ``limit``
+    scans the libraries again on every call: about 60 us, measured, a fifth of a continuation point's check)."""
     if ThreadpoolController is None:
-        return contextlib.nullcontext()
-    if not _CONTROLLER:
-        _CONTROLLER.append(ThreadpoolController())
-    return _CONTROLLER[0].limit(limits=1, user_api="blas")
+        yield
+        return
+    if not _BLAS:
+        _BLAS.append(ThreadpoolController().select(user_api="blas").lib_controllers)
+    libraries = _BLAS[0]
+    saved = [lib.get_num_threads() for lib in libraries]
+    try:
+        for lib, n in zip(libraries, saved):
+            if n != 1:
+                lib.set_num_threads(1)
+        yield
+    finally:
+        for lib, n in zip(libraries, saved):
+            if n != 1:
+                lib.set_num_threads(n)
 
 
 class StabilityProbe:
@@ -131,6 +156,14 @@ class StabilityProbe:
         from scipy.linalg import LinAlgError, cho_factor  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         self.model = model
         self.plan = TangentPlan(model.mbs)
+        #: the cheap stability proof tried first by :meth:`check` (its counts say how often it sufficed)
+        self.proof = PenaltyProof()
+        #: Exudyn's Jacobian as the tangent where it is exact, and the proof tried with it first
+        self.jacobian = SolverJacobian(model.mbs)
+        self.jacobian_proof = PenaltyProof()
+        #: whether :meth:`check` tries the proof from Exudyn's Jacobian (where it is exact, until it misses twice)
+        self.use_jacobian = self.jacobian.exact
+        self._jacobian_misses = 0
         self.use_mass = True
         self._k_reference: np.ndarray | None = None
         kr, mr = self._reduced()
@@ -146,10 +179,19 @@ class StabilityProbe:
         #: the last :meth:`check`'s result
         self.last: Stability | None = None
 
-    def _reduced(self) -> tuple[np.ndarray, np.ndarray]:
-        """``N^T K_T N`` and ``N^T M N`` (the identity without mass) at the model's current state, symmetrised."""
+    def _tangent(self) -> dict:
+        """The tangent system (:meth:`~exudyn_atcm.mbs.tangent.TangentPlan.system`) at the model's current state."""
         self.model.before_linearisation()
         ts = self.plan.system(mass=self.use_mass)
+        self._k = ts["K"]
+        self._basis = None  # projected on demand (:meth:`_reduced`)
+        self._ts = ts
+        return ts
+
+    def _reduced(self, ts: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """``N^T K_T N`` and ``N^T M N`` (the identity without mass), symmetrised, of the tangent system ``ts``
+        (default: a new one at the model's current state)."""
+        ts = self._tangent() if ts is None else ts
         k = self._k = ts["K"]
         with _one_blas_thread():
             basis = null_space(ts["Cq"], k.shape[0])
@@ -190,9 +232,60 @@ class StabilityProbe:
         self.last = self._check()
         return self.last
 
+    def _shifted(self, ts: dict, cushion: float = 0.0) -> np.ndarray:
+        """``K - sigma M - cushion I`` (``M`` the identity without mass) of the tangent system ``ts``."""
+        k = ts["K"]
+        metric = ts["M"] if self.use_mass else np.eye(k.shape[0])
+        shifted = k - (CRITICAL_MARGIN * self.reference) * metric
+        if cushion:
+            shifted[np.diag_indices_from(shifted)] -= cushion
+        return shifted
+
     def _check(self) -> Stability:
+        with _one_blas_thread():
+            # the cheap proof first: K_T - sigma M positive definite on the joints' free motions, without
+            # their basis (:mod:`exudyn_atcm.mbs.definite`); every eigenvalue's real part is then above sigma.
+            # Where Exudyn's Jacobian is the tangent (:mod:`exudyn_atcm.mbs.solver_jacobian`), from it, with a
+            # cushion n * JACOBIAN_DIFFERENCE * max|K| that bounds the 2-norm of its difference to the tangent
+            # of the central differences; else (or when that proof fails) from the central differences
+            if self.use_jacobian:
+                self.model.before_linearisation()
+                js = self.jacobian.system(mass=self.use_mass)
+                k = js["K"]
+                cushion = k.shape[0] * JACOBIAN_DIFFERENCE * (float(np.max(np.abs(k))) if k.size else 0.0)
+                if self.jacobian_proof(self._shifted(js, cushion), js["Cq"]):
+                    self._jacobian_misses = 0
+                    self._basis = None
+                    self._ts = js
+                    self._k = k
+                    return Stability("stable")
+            ts = self._tangent()
+            shifted = self._shifted(ts)
+            if self.proof(shifted, ts["Cq"]):
+                self._jacobian_missed()
+                return Stability("stable")
+        result = self._full_check(ts)
+        if result.state == "stable" and self._basis.shape[1] > 0:
+            with _one_blas_thread():
+                self.proof.missed(shifted, ts["Cq"])  # stable after all: a penalty that proves it, for the next state
+            self._jacobian_missed()
+        return result
+
+    def _jacobian_missed(self) -> None:
+        """The proof from Exudyn's Jacobian failed on a stable state: a larger penalty for the next one; after
+        two such misses in a row it is not tried again (its cushion, relative to the largest stiffness, hides
+        the bending stiffness of elements stiff along their axis: beam and ANCF cells, measured)."""
+        if not self.use_jacobian:
+            return
+        self.jacobian_proof.missed()
+        self._jacobian_misses += 1
+        if self._jacobian_misses >= 2:
+            self.use_jacobian = False
+
+    def _full_check(self, ts: dict) -> Stability:
+        """The check by the projection on the null space: Cholesky, then the lowest eigenvalue if that fails."""
         from scipy.linalg import LinAlgError, cho_factor  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
-        kr, mr = self._reduced()
+        kr, mr = self._reduced(ts)
         if kr.shape[0] == 0:
             return Stability("stable")
         if not self._conservative:  # follower loads: only divergence (a real eigenvalue through zero) is static
@@ -226,6 +319,8 @@ class StabilityProbe:
         ``nan`` when there is none.
         """
         from scipy.linalg import eig  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
+        if self._basis is None:  # the last check was proved stable without the projection
+            self._reduced(self._ts)
         basis = self._basis
         k0 = basis.T @ self._k_reference @ basis
         k0 = 0.5 * (k0 + k0.T)

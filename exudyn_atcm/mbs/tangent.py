@@ -71,6 +71,16 @@ class TangentPlan:
         # per group: the (row, column) entries its differences fill, as flat index arrays
         self._entries = [(np.concatenate([self.rows[i] for i in g]),
                           np.concatenate([np.full(self.rows[i].size, i) for i in g])) for g in self.groups]
+        # the same, for all groups at once: (group, row) of each entry and its (row, column) in the derivative,
+        # and the groups' indicator matrix, so that a call does its array work in a few vectorised operations
+        self._entry_group = np.concatenate([np.full(r.size, k) for k, (r, _) in enumerate(self._entries)] or
+                                           [np.zeros(0, dtype=int)])
+        self._entry_row = np.concatenate([r for r, _ in self._entries] or [np.zeros(0, dtype=int)])
+        self._entry_column = np.concatenate([c for _, c in self._entries] or [np.zeros(0, dtype=int)])
+        self._indicator = np.zeros((len(self.groups), n2))
+        for k, g in enumerate(self.groups):
+            self._indicator[k, g] = 1.0
+        self._settings = static_settings()  # made once: a SimulationSettings costs about 10 us to make
 
     def system(self, relative_step: float = 1e-7, mass: bool = True) -> dict:
         """Mass matrix, tangent stiffness and constraint Jacobian at the current state.
@@ -106,7 +116,7 @@ class TangentPlan:
         n2 = q0.size
         if n2 != self.n_ode2:
             raise RuntimeError("tangent: the system changed since its plan was made")
-        settings = static_settings()
+        settings = self._settings
         solver = exu.MainSolverStatic()
         try:
             # the solver starts from the initial state: make it the current one (zero velocity)
@@ -132,15 +142,14 @@ class TangentPlan:
 
             r0 = residual(q0)
             h = relative_step * (1.0 + np.abs(q0))
+            steps = self._indicator * h  # row k: the step of group k's coordinates, zero elsewhere
+            plus = [residual(q) for q in q0 + steps]
+            minus = [residual(q) for q in q0 - steps]
             derivative = np.zeros((n2 + self.n_ae, n2))
-            qp = q0.copy()
-            for group, (rows, columns) in zip(self.groups, self._entries):
-                qp[group] = q0[group] + h[group]
-                rp = residual(qp)
-                qp[group] = q0[group] - h[group]
-                rm = residual(qp)
-                qp[group] = q0[group]
-                derivative[rows, columns] = (rp[rows] - rm[rows]) / (2.0 * h[columns])
+            if self.groups:
+                rows, columns, group = self._entry_row, self._entry_column, self._entry_group
+                derivative[rows, columns] = ((np.asarray(plus)[group, rows] - np.asarray(minus)[group, rows])
+                                             / (2.0 * h[columns]))
             solver.FinalizeSolver(mbs, settings)
         finally:
             sd.SetSystemState(systemStateList=initial_state, configuration=ini)

@@ -25,6 +25,7 @@ from ..mbs import builder as mb
 from ..mbs import linear
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
+from ..mbs.continuation_settings import continuation_settings
 from ..mbs.recording import RowLayout, cell_rotations, measurement_reader
 from ..mbs.stepping import Stepping
 from ..mechanism.assembly import Mechanism
@@ -133,6 +134,7 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     methods = []
     truncation: dict[str, float] = {}
     probe = stability_probe(mech, model)
+    step_settings = continuation_settings(model) if method == "continuation" else None
     states = []
     fallbacks: list[str] = []
     for i, per_drive in enumerate(table):
@@ -141,7 +143,7 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
         if i == 0 or method == "points":
             methods.append(equilibrium(mech, model, previous, strains, i == 0, None, where, probe))
         else:
-            used, note = continuation_step(mech, model, previous, strains, where, probe)
+            used, note = continuation_step(mech, model, previous, strains, where, probe, step_settings)
             methods.append(used)
             if note:
                 fallbacks.append(f"{i}: {note}; solved as its own equilibrium ({used})")

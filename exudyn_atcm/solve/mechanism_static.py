@@ -18,6 +18,7 @@ from .static_fallback import equilibrium_with_fallback
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
+from ..mbs.continuation_settings import continuation_settings
 from ..mbs.stability import StabilityProbe, snapshot
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
@@ -150,7 +151,7 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
 
 
 def continuation_step(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, end: np.ndarray, what: str,
-                      probe: StabilityProbe | None = None) -> tuple[str, str]:
+                      probe: StabilityProbe | None = None, settings: Any = None) -> tuple[str, str]:
     """A static sweep's point as one load step continued from the last equilibrium; returns (method, note).
 
     ``method`` is ``"static"`` (Exudyn's static solver) when the step succeeds, with an empty ``note``.
@@ -161,13 +162,15 @@ def continuation_step(mech: Mechanism, model: mb.MechanismModel, start: np.ndarr
     :func:`equilibrium`, so that the point reaches the same equilibrium at a fraction of the cost.
     When that step fails, or ends on an unstable equilibrium (``probe``), the state is put back
     and the point is solved by :func:`equilibrium` as a point-by-point sweep solves it; the
-    method is then that of :func:`equilibrium` and ``note`` says why.
+    method is then that of :func:`equilibrium` and ``note`` says why.  ``settings``: the step's Exudyn
+    settings (:func:`~exudyn_atcm.mbs.continuation_settings.continuation_settings` of ``model``; made
+    here when ``None``: a sweep makes them once).
     """
     restore = snapshot(model)
     model.load_factor = 1.0
     model.set_path(start, end, ramp_loads=False)
-    settings = solver_settings.static_settings(1)
-    settings.staticSolver.useLoadFactor = False
+    if settings is None:
+        settings = continuation_settings(model)
     try:
         runs.run_static(model, settings, lambda f: f)
     except runs.ExudynFailure as exc:

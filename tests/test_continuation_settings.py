@@ -1,0 +1,60 @@
+"""Settings of a static sweep's continuation steps (issue 31, part 2): dense for small systems, made once per sweep.
+
+The equilibria are unchanged by the linear solver (``test_static_sweep_continuation.py`` compares the
+continuation with the point-by-point sweep, which keeps the sparse solver, to 1e-9 m).
+"""
+
+from __future__ import annotations
+
+import exudyn as exu
+import numpy as np
+
+import exudyn_atcm as atcm
+from exudyn_atcm.mbs import builder as mb
+from exudyn_atcm.mbs import stability
+from exudyn_atcm.mbs.continuation_settings import DENSE_SIZE, continuation_settings
+from exudyn_atcm.solve import mechanism_static
+
+from test_one_stepping import four_bar, lone
+
+
+def unknowns(model) -> int:
+    sd = model.mbs.systemData
+    return len(sd.GetODE2Coordinates()) + len(sd.GetAECoordinates())
+
+
+def test_a_small_system_steps_densely_and_a_large_one_sparsely():
+    small = mb.build(four_bar(atcm.PiezoDrive(0.0)))
+    b = atcm.Bender("b", width=10e-3, passive=atcm.Layer(0.2e-3, 70e9, 1550.0),
+                    active=atcm.Layer(0.3e-3, 30.336e9, 5440.0), length=0.03, n_cells=16, drive=atcm.PiezoDrive(0.0),
+                    cell="six-bar")
+    large = mb.build(atcm.Mechanism("m").add(b).ground(b.base))
+    assert unknowns(small) <= DENSE_SIZE < unknowns(large)
+    assert continuation_settings(small).linearSolver.solverType == exu.LinearSolverType.EXUdense
+    assert continuation_settings(large).linearSolver.solverType == exu.LinearSolverType.EigenSparse
+    for model in (small, large):
+        s = continuation_settings(model)
+        assert not s.staticSolver.useLoadFactor and s.staticSolver.numberOfLoadSteps == 1
+
+
+def test_a_sweep_makes_the_settings_once(monkeypatch):
+    made = []
+    original = mechanism_static.continuation_step
+
+    def spy(*args, **kwargs):
+        made.append(args[6] if len(args) > 6 else kwargs.get("settings"))
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr("exudyn_atcm.solve.mechanism_solve.continuation_step", spy)
+    atcm.static_sweep(lone(atcm.PiezoDrive(0.0)), np.linspace(0.0, 1000.0, 5))
+    assert len(made) == 4 and all(s is made[0] for s in made) and made[0] is not None
+
+
+def test_one_blas_thread_inside_and_the_counts_restored_after():
+    with stability._one_blas_thread():
+        libraries = stability._BLAS[0]
+        assert all(lib.get_num_threads() == 1 for lib in libraries)
+    outside = [lib.get_num_threads() for lib in libraries]
+    with stability._one_blas_thread():
+        pass
+    assert [lib.get_num_threads() for lib in libraries] == outside
