@@ -20,7 +20,7 @@ from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.errors import AccuracyWarning, InputRangeWarning
-from exudyn_atcm.model.signals import Sine, Steps, Triangle
+from exudyn_atcm.model.signals import PiecewiseLinear, Sine, Steps, Triangle
 from exudyn_atcm.solve import step_choice
 from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
 from exudyn_atcm.solve.step_surrogate import alpha_response, exact_response
@@ -210,3 +210,47 @@ def test_a_recording_interval_is_kept_and_the_check_uses_the_instants_recorded()
     assert np.allclose(np.diff(run["time"]), 2e-3)  # every 2 ms, as asked: the chosen step divides it
     reference = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"] / 8)
     assert relative_error(run, reference) <= 1e-3 and run.info["accuracy"]["estimated_error"] <= 1e-3
+
+
+# --- the probe over a window (issue 31, part 1: the call's cost) ---
+
+def test_the_probe_window_is_the_stretch_where_the_stand_in_error_reaches_its_share():
+    # a synthetic error history over 1000 steps of 1 ms: a rise to 0.5 at step 200, to 1.0 at step 400, then
+    # decay; the running maximum first reaches 0.8 at step 320 (linear rise 0.5 -> 1.0 over steps 200..400:
+    # 0.5 + 0.5 * (k - 200) / 200 >= 0.8 at k = 320); one period of a 20 Hz mode adds 50 steps; a block of 8
+    # steps rounds 370 up to 376
+    k = np.arange(1001)
+    errors = np.where(k <= 200, 0.5 * k / 200, np.where(k <= 400, 0.5 + 0.5 * (k - 200) / 200, np.exp(-(k - 400) / 100)))
+    window, ratio = step_choice.probe_window(errors, 1.0, 20.0, 8)
+    assert window == pytest.approx(0.376)
+    assert ratio == pytest.approx(1.0 / (0.5 + 0.5 * 176 / 200))  # whole-run maximum 1 over the window's
+    # an error growing fast to the end (0.8 of it only after step 946): the window would be the whole run
+    assert step_choice.probe_window((k / 1000.0) ** 4, 1.0, 20.0, 8) == (1.0, 1.0)
+
+
+def test_a_run_up_to_the_window_equals_the_first_stretch_of_the_whole_run():
+    # the probes run only over the window: the integration is causal, so the shorter run repeats the whole run's
+    # first stretch (same grid, same start state, the drive's memory reset) to round-off
+    program = Steps([0.0, 0.02], [0.0, 1000.0])
+    part = atcm.simulate(lone(program), 0.04, step=5e-4)
+    whole = atcm.simulate(lone(program), 0.1, step=5e-4)
+    for name in part.names:
+        assert np.allclose(part[name], np.asarray(whole[name])[:part["time"].size], rtol=1e-10, atol=1e-13)
+
+
+def test_the_window_covers_the_sharpest_feature_and_its_estimate_bounds_the_whole_runs_error():
+    # one voltage pulse (a ramp up over 20 ms and down over 20 ms, then a hold) in a run of 200 ms: the ringing
+    # the corners start decays (damping ratio 0.02 at 36 Hz: 1/e in 0.22 s), its phase error grows until then, so
+    # the stand-in's error reaches 0.8 of its largest well before the end; the window holds the last corner (40 ms)
+    # and one period of the mode, and is shorter than the run
+    program = PiecewiseLinear([0.0, 0.02, 0.04, 0.2], [0.0, 1000.0, 0.0, 0.0])
+    run = atcm.simulate(lone(program), 0.2, accuracy=1e-3)
+    info = run.info["accuracy"]
+    assert 0.04 + 1.0 / info["lowest_frequency [Hz]"] <= info["probe_window [s]"] < 0.2
+    assert "over the first" in run.info["step_choice"]
+    reference = atcm.simulate(lone(program), 0.2, step=run.info["step [s]"] / 8)
+    achieved = relative_error(run, reference)
+    assert achieved <= 1e-3
+    # the window's estimate, scaled by the stand-in's ratio, bounds the whole run's error: the reference's own
+    # error (an eighth of the step) is below 2 % of the run's at order 2 (3 % at order 1.5)
+    assert achieved <= info["estimated_error"] * 1.03

@@ -258,17 +258,17 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
         _mechanism_only(tip_force)
         mech = system
 
-        def run(h: float, prog: Any) -> Result:
-            result = mechanism_solve.simulate(system, t_end, h, settings, prog, record_every)
+        def run(h: float, prog: Any, t_stop: float) -> Result:
+            result = mechanism_solve.simulate(system, t_stop, h, settings, prog, record_every)
             check_benders(system, result, stacklevel=5)
             return result
     else:
         actuator = _check_actuator(system)
         mech = actuator.as_mechanism(tip_force)
 
-        def run(h: float, prog: Any) -> Result:
+        def run(h: float, prog: Any, t_stop: float) -> Result:
             with actuator_interrupts(actuator):
-                result = mechanism_solve.simulate(mech, t_end, h, settings, prog, record_every)
+                result = mechanism_solve.simulate(mech, t_stop, h, settings, prog, record_every)
             return _finish_actuator_run(actuator, mech, result, "prestep")
     return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every)
 
