@@ -21,6 +21,7 @@ from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.errors import AccuracyWarning, InputRangeWarning
 from exudyn_atcm.model.signals import PiecewiseLinear, Sine, Steps, Triangle
+from exudyn_atcm.mbs import builder
 from exudyn_atcm.solve import step_choice
 from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
 from exudyn_atcm.solve.step_surrogate import alpha_response, exact_response
@@ -254,3 +255,17 @@ def test_the_window_covers_the_sharpest_feature_and_its_estimate_bounds_the_whol
     # the window's estimate, scaled by the stand-in's ratio, bounds the whole run's error: the reference's own
     # error (an eighth of the step) is below 2 % of the run's at order 2 (3 % at order 1.5)
     assert achieved <= info["estimated_error"] * 1.03
+
+
+def test_the_probe_and_the_run_share_one_build_and_give_the_plain_runs_result(monkeypatch):
+    # the model is built once for the probe and the run (and once for the eigenfrequency): two builds, not three;
+    # the run from the restored built state equals a plain run at the chosen step (a fresh build) to round-off
+    calls = []
+    build = builder.build
+    monkeypatch.setattr(builder, "build", lambda *a, **k: calls.append(1) or build(*a, **k))
+    run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
+    assert len(calls) == 2
+    monkeypatch.setattr(builder, "build", build)
+    plain = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"])
+    for name in plain.names:
+        assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
