@@ -16,10 +16,15 @@ run's own error is measured:
    :data:`STEPS_PER_FEATURE` steps per shortest drive feature, rounded so that the run's grid and
    the probe's hold every corner of the drives' programs (:func:`grid_unit`: a corner between
    steps is a first-order error no probe can estimate).
-2. **Check** (one probe run at twice the step, half the cost of the run, its warnings not
-   shown): Richardson's estimate of the run's error relative to the travel,
+2. **Check** (one probe run at twice the step, its warnings not shown, over a window only:
+   :func:`probe_window`, the first stretch of the run in which the stand-in's error reaches
+   :data:`WINDOW_SHARE` of its largest, plus one period of the lowest mode; the whole run when
+   that is most of it): Richardson's estimate of the run's error relative to the travel,
    ``|x_h - x_2h| / (2^q - 1)`` with ``q = p - 0.5`` (:data:`CHECK_ORDER_SLACK`), ``p`` the
-   integration order of the system's cells (:attr:`~exudyn_atcm.cells.CellKind.time_order`).
+   integration order of the system's cells (:attr:`~exudyn_atcm.cells.CellKind.time_order`),
+   scaled by the stand-in's ratio of its whole run's error to the window's.  The integration is
+   causal, so the run's first stretch is the window's fine run; the probe costs half a run times
+   the window's share of it.  The probe and the run share one build of the model.
 3. **Refinement**, once: if the estimate misses the target, the step is divided by the
    integer ``m`` the estimate asks for and the run repeated; the run at the former step is then
    the probe (``|x_{h/m} - x_h| / (m^q - 1)``).  If that misses too, an
