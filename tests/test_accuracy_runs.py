@@ -269,3 +269,14 @@ def test_the_probe_and_the_run_share_one_build_and_give_the_plain_runs_result(mo
     plain = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"])
     for name in plain.names:
         assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
+
+
+def test_a_step_program_is_probed_over_the_whole_run():
+    # a voltage jump on a grid instant is taken on either side by the instant's round-off, which differs between the
+    # window's grid and the run's: the window is left out for a step program (whole run, no scaling), kept for the
+    # same timing as a continuous pulse
+    steps = step_choice.predict_steps(lone(Steps([0.0, 0.02, 0.04], [0.0, 1000.0, 0.0])).as_mechanism(), 0.2, 1e-2)
+    assert (steps.window, steps.window_ratio) == (0.2, 1.0)
+    pulse = step_choice.predict_steps(lone(PiecewiseLinear([0.0, 0.02, 0.04, 0.2], [0.0, 1000.0, 0.0, 0.0]))
+                                      .as_mechanism(), 0.2, 1e-3)
+    assert pulse.window < 0.2
