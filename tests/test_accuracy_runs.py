@@ -280,3 +280,16 @@ def test_a_step_program_is_probed_over_the_whole_run():
     pulse = step_choice.predict_steps(lone(PiecewiseLinear([0.0, 0.02, 0.04, 0.2], [0.0, 1000.0, 0.0, 0.0]))
                                       .as_mechanism(), 0.2, 1e-3)
     assert pulse.window < 0.2
+
+
+def test_the_probes_grid_holds_a_single_switch_and_the_run_meets_its_target():
+    # one switch at 0.02 s = 1/10 of the run: the run's step count must be a multiple of 10 and the probe's (half
+    # of it) too, else the probe takes the switch half a step apart and misjudges the run (before the fix: 710
+    # steps, the probe's switch at 35.5 of its steps, an estimate of 0.0088 for an error of 0.0175 against a run at
+    # an eighth of the step, and no warning)
+    program = Steps([0.0, 0.02], [0.0, 1000.0])
+    n = step_choice.predict_steps(lone(program).as_mechanism(), 0.2, 1e-2).n_steps
+    assert n % 20 == 0
+    run = atcm.simulate(lone(program), 0.2, accuracy=1e-2)
+    reference = atcm.simulate(lone(program), 0.2, step=run.info["step [s]"] / 8)
+    assert relative_error(run, reference) <= 1e-2

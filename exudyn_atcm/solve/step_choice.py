@@ -300,7 +300,7 @@ def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int, grid: int = 
     """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners (and
     that is a multiple of ``grid``)."""
     unit = grid_unit(mech, t_end)
-    unit = unit * factor // math.gcd(unit, factor)
+    unit = unit * factor  # the probe takes every factor-th instant: n / factor a multiple of the corners' unit
     if unit > n:  # a grid finer than the run needs for the corners alone: only the probe's factor
         unit = factor
     if grid > 1 and grid <= n:
