@@ -34,7 +34,7 @@ from exudyn_atcm import theory
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
-from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, accurate_run
+from exudyn_atcm.solve import ACCURACY_RANGE, accurate_run
 
 #: Default ``accuracy`` [-] of the dynamic run (relative to the travel of the recorded positions); the checks
 #: against the references (the lever's kinematics, the statics) do not depend on the step.
@@ -94,8 +94,8 @@ def dynamic_run(system, t_end: float, p: Parameters, progress=None):
                              f"chooses it (leave step at 0 to choose it for accuracy)")
         return simulate(system, t_end, step=p.step, progress=progress, record_every=record_every)
 
-    def run_at(step: float, run_progress) -> Result:
-        return simulate(system, t_end, step=step, progress=run_progress, record_every=record_every)
+    def run_at(step: float, run_progress, t_stop: float) -> Result:
+        return simulate(system, t_stop, step=step, progress=run_progress, record_every=record_every)
 
     return accurate_run(run_at, system, t_end, p.accuracy, progress, record_every=STEP_GRID)
 

@@ -45,7 +45,7 @@ import numpy as np
 from exudyn_atcm import BendingActuator, Layer, PiezoDrive, Result, simulate
 from exudyn_atcm.casework import Case, CaseOutput, CellChoices, Parameter, Parameters, RunContext
 from exudyn_atcm.model import PAPER_LOOP, Triangle, paper_strain_preisach
-from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, accurate_run
+from exudyn_atcm.solve import ACCURACY_RANGE, accurate_run
 from exudyn_atcm.plots import (
     actuator_as_mechanism,
     animate_mechanism,
@@ -119,8 +119,8 @@ def dynamic_run(system, t_end: float, p: Parameters, progress=None):
                              f"chooses it (leave step at 0 to choose it for accuracy)")
         return simulate(system, t_end, step=p.step, progress=progress, record_every=record_every)
 
-    def run_at(step: float, run_progress) -> Result:
-        return simulate(system, t_end, step=step, progress=run_progress, record_every=record_every)
+    def run_at(step: float, run_progress, t_stop: float) -> Result:
+        return simulate(system, t_stop, step=step, progress=run_progress, record_every=record_every)
 
     return accurate_run(run_at, system.as_mechanism((0.0, 0.0)), t_end, p.accuracy, progress, record_every=STEP_GRID)
 

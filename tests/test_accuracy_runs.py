@@ -20,7 +20,8 @@ from exudyn_atcm.mechanism.actuator import BendingActuator
 from exudyn_atcm.model.drive import PiezoDrive
 from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.errors import AccuracyWarning, InputRangeWarning
-from exudyn_atcm.model.signals import Sine, Steps, Triangle
+from exudyn_atcm.model.signals import PiecewiseLinear, Sine, Steps, Triangle
+from exudyn_atcm.mbs import builder
 from exudyn_atcm.solve import step_choice
 from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
 from exudyn_atcm.solve.step_surrogate import alpha_response, exact_response
@@ -225,3 +226,85 @@ def test_a_sparse_recording_interval_changes_neither_the_check_nor_the_step():
     assert sparse.info["accuracy"]["estimated_error"] == pytest.approx(full.info["accuracy"]["estimated_error"],
                                                                        rel=1e-12)
     np.testing.assert_array_equal(sparse.every_step["actuator.tip_y"], full["actuator.tip_y"])
+
+
+# --- the probe over a window (issue 31, part 1: the call's cost) ---
+
+def test_the_probe_window_is_the_stretch_where_the_stand_in_error_reaches_its_share():
+    # a synthetic error history over 1000 steps of 1 ms: a rise to 0.5 at step 200, to 1.0 at step 400, then
+    # decay; the running maximum first reaches 0.8 at step 320 (linear rise 0.5 -> 1.0 over steps 200..400:
+    # 0.5 + 0.5 * (k - 200) / 200 >= 0.8 at k = 320); one period of a 20 Hz mode adds 50 steps; a block of 8
+    # steps rounds 370 up to 376
+    k = np.arange(1001)
+    errors = np.where(k <= 200, 0.5 * k / 200, np.where(k <= 400, 0.5 + 0.5 * (k - 200) / 200, np.exp(-(k - 400) / 100)))
+    window, ratio = step_choice.probe_window(errors, 1.0, 20.0, 8)
+    assert window == pytest.approx(0.376)
+    assert ratio == pytest.approx(1.0 / (0.5 + 0.5 * 176 / 200))  # whole-run maximum 1 over the window's
+    # an error growing fast to the end (0.8 of it only after step 946): the window would be the whole run
+    assert step_choice.probe_window((k / 1000.0) ** 4, 1.0, 20.0, 8) == (1.0, 1.0)
+
+
+def test_a_run_up_to_the_window_equals_the_first_stretch_of_the_whole_run():
+    # the probes run only over the window: the integration is causal, so the shorter run repeats the whole run's
+    # first stretch (same grid, same start state, the drive's memory reset) to round-off
+    program = Steps([0.0, 0.02], [0.0, 1000.0])
+    part = atcm.simulate(lone(program), 0.04, step=5e-4)
+    whole = atcm.simulate(lone(program), 0.1, step=5e-4)
+    for name in part.names:
+        assert np.allclose(part[name], np.asarray(whole[name])[:part["time"].size], rtol=1e-10, atol=1e-13)
+
+
+def test_the_window_covers_the_sharpest_feature_and_its_estimate_bounds_the_whole_runs_error():
+    # one voltage pulse (a ramp up over 20 ms and down over 20 ms, then a hold) in a run of 200 ms: the ringing
+    # the corners start decays (damping ratio 0.02 at 36 Hz: 1/e in 0.22 s), its phase error grows until then, so
+    # the stand-in's error reaches 0.8 of its largest well before the end; the window holds the last corner (40 ms)
+    # and one period of the mode, and is shorter than the run
+    program = PiecewiseLinear([0.0, 0.02, 0.04, 0.2], [0.0, 1000.0, 0.0, 0.0])
+    run = atcm.simulate(lone(program), 0.2, accuracy=1e-3)
+    info = run.info["accuracy"]
+    assert 0.04 + 1.0 / info["lowest_frequency [Hz]"] <= info["probe_window [s]"] < 0.2
+    assert "over the first" in run.info["step_choice"]
+    reference = atcm.simulate(lone(program), 0.2, step=run.info["step [s]"] / 8)
+    achieved = relative_error(run, reference)
+    assert achieved <= 1e-3
+    # the window's estimate, scaled by the stand-in's ratio, bounds the whole run's error: the reference's own
+    # error (an eighth of the step) is below 2 % of the run's at order 2 (3 % at order 1.5)
+    assert achieved <= info["estimated_error"] * 1.03
+
+
+def test_the_probe_and_the_run_share_one_build_and_give_the_plain_runs_result(monkeypatch):
+    # the model is built once for the probe and the run (and once for the eigenfrequency): two builds, not three;
+    # the run from the restored built state equals a plain run at the chosen step (a fresh build) to round-off
+    calls = []
+    build = builder.build
+    monkeypatch.setattr(builder, "build", lambda *a, **k: calls.append(1) or build(*a, **k))
+    run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
+    assert len(calls) == 2
+    monkeypatch.setattr(builder, "build", build)
+    plain = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"])
+    for name in plain.names:
+        assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
+
+
+def test_a_step_program_is_probed_over_the_whole_run():
+    # a voltage jump on a grid instant is taken on either side by the instant's round-off, which differs between the
+    # window's grid and the run's: the window is left out for a step program (whole run, no scaling), kept for the
+    # same timing as a continuous pulse
+    steps = step_choice.predict_steps(lone(Steps([0.0, 0.02, 0.04], [0.0, 1000.0, 0.0])).as_mechanism(), 0.2, 1e-2)
+    assert (steps.window, steps.window_ratio) == (0.2, 1.0)
+    pulse = step_choice.predict_steps(lone(PiecewiseLinear([0.0, 0.02, 0.04, 0.2], [0.0, 1000.0, 0.0, 0.0]))
+                                      .as_mechanism(), 0.2, 1e-3)
+    assert pulse.window < 0.2
+
+
+def test_the_probes_grid_holds_a_single_switch_and_the_run_meets_its_target():
+    # one switch at 0.02 s = 1/10 of the run: the run's step count must be a multiple of 10 and the probe's (half
+    # of it) too, else the probe takes the switch half a step apart and misjudges the run (before the fix: 710
+    # steps, the probe's switch at 35.5 of its steps, an estimate of 0.0088 for an error of 0.0175 against a run at
+    # an eighth of the step, and no warning)
+    program = Steps([0.0, 0.02], [0.0, 1000.0])
+    n = step_choice.predict_steps(lone(program).as_mechanism(), 0.2, 1e-2).n_steps
+    assert n % 20 == 0
+    run = atcm.simulate(lone(program), 0.2, accuracy=1e-2)
+    reference = atcm.simulate(lone(program), 0.2, step=run.info["step [s]"] / 8)
+    assert relative_error(run, reference) <= 1e-2

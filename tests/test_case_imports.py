@@ -21,7 +21,8 @@ CASE_FILES = sorted((ROOT / "cases").glob("*.py")) + sorted((ROOT / "cases").glo
 
 #: the documented subpackage faces a case may import from
 FACES = ("exudyn_atcm.casework", "exudyn_atcm.plots", "exudyn_atcm.theory", "exudyn_atcm.model",
-         "exudyn_atcm.hysteresis", "exudyn_atcm.signals", "exudyn_atcm.study", "exudyn_atcm.cells")
+         "exudyn_atcm.hysteresis", "exudyn_atcm.signals", "exudyn_atcm.study", "exudyn_atcm.cells",
+         "exudyn_atcm.solve")
 
 
 def _exported(face: str) -> set[str]:
@@ -66,7 +67,8 @@ def test_case_imports_only_from_faces(path):
 @pytest.mark.parametrize("source, expected", [
     ("from exudyn_atcm.plots.style import new_figure\n", "from exudyn_atcm.plots.style import ... (a deep module path)"),
     ("import exudyn_atcm.io.atomic\n", "import exudyn_atcm.io.atomic (a deep module path)"),
-    ("def f():\n    from exudyn_atcm.solve import simulate\n", "from exudyn_atcm.solve import ... (a deep module path)"),
+    ("def f():\n    from exudyn_atcm.solve.simulation import simulate\n",
+     "from exudyn_atcm.solve.simulation import ... (a deep module path)"),
     ("from exudyn_atcm.casework import _plain\n", "private name exudyn_atcm.casework._plain"),
     ("from exudyn_atcm.plots import chain_polygon\n", "exudyn_atcm.plots.chain_polygon is not in exudyn_atcm.plots.__all__"),
     ("from exudyn_atcm import deprecated_paths\n", "exudyn_atcm.deprecated_paths is not in exudyn_atcm.__all__"),

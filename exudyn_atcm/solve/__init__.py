@@ -33,6 +33,8 @@ _LAZY = {
     "FeedforwardReport": (".feedforward_mechanism", "FeedforwardReport"),
     "mechanism_feedforward": (".feedforward_mechanism", "mechanism_feedforward"),
     "OutputMap": (".output_map", "OutputMap"),
+    "ACCURACY_RANGE": (".step_choice", "ACCURACY_RANGE"),
+    "accurate_run": (".step_choice", "accurate_run"),
 }
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
@@ -49,10 +51,11 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .state_space import LinearModel
     from .feedforward_mechanism import FeedforwardReport, mechanism_feedforward
     from .output_map import OutputMap
+    from .step_choice import ACCURACY_RANGE, accurate_run
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
            "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
            "BuiltSystem", "modes", "Modes", "linearise", "LinearModel", "NoEquilibriumError",
-           "mechanism_feedforward", "FeedforwardReport", "OutputMap"]
+           "mechanism_feedforward", "FeedforwardReport", "OutputMap", "accurate_run", "ACCURACY_RANGE"]
 
 __getattr__, __dir__ = lazy_face(__name__, _LAZY, submodules=True)

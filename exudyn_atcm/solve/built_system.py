@@ -111,8 +111,8 @@ class BuiltSystem:
         if check_step_or_accuracy(step, accuracy) is not None:
             t_end = positive_float("t_end", t_end)
 
-            def run(h: float, prog: Any) -> Result:
-                result = mechanism_solve.simulate(self.mechanism, t_end, h, settings, prog, record_every,
+            def run(h: float, prog: Any, t_stop: float) -> Result:
+                result = mechanism_solve.simulate(self.mechanism, t_stop, h, settings, prog, record_every,
                                                   stroke_path=self.stroke_path, built=self._fresh())
                 check_benders(self.mechanism, result, stacklevel=5)
                 return result

@@ -25,6 +25,8 @@ from ..mechanism.actuator import BendingActuator
 from ..mechanism import Mechanism
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
+from ..mbs import builder as mb
+from ..mbs import solver_runs as runs
 from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
@@ -257,18 +259,25 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
     if isinstance(system, Mechanism):
         _mechanism_only(tip_force)
         mech = system
-
-        def run(h: float, prog: Any) -> Result:
-            result = mechanism_solve.simulate(system, t_end, h, settings, prog, record_every)
-            check_benders(system, result, stacklevel=5)
-            return result
     else:
         actuator = _check_actuator(system)
         mech = actuator.as_mechanism(tip_force)
+    model = mb.build(mech)  # once: the probe and the run start from its built state (as a BuiltSystem's solves)
+    initial = runs.save_state(model)
 
-        def run(h: float, prog: Any) -> Result:
+    def fresh() -> mb.MechanismModel:
+        runs.restore_state(model, initial)
+        return model
+
+    if isinstance(system, Mechanism):
+        def run(h: float, prog: Any, t_stop: float) -> Result:
+            result = mechanism_solve.simulate(system, t_stop, h, settings, prog, record_every, built=fresh())
+            check_benders(system, result, stacklevel=5)
+            return result
+    else:
+        def run(h: float, prog: Any, t_stop: float) -> Result:
             with actuator_interrupts(actuator):
-                result = mechanism_solve.simulate(mech, t_end, h, settings, prog, record_every)
+                result = mechanism_solve.simulate(mech, t_stop, h, settings, prog, record_every, built=fresh())
             return _finish_actuator_run(actuator, mech, result, "prestep")
     return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every)
 

@@ -168,10 +168,14 @@ class StandIn:
 
     def error(self, n: int) -> float:
         """Largest error [-] (of the unit travel) of the stand-in at the step ``t_end / n``, the worst drive's."""
+        return float(np.max(self.errors(n)))
+
+    def errors(self, n: int) -> np.ndarray:
+        """Error [-] of the stand-in at each of the ``n + 1`` instants of the step ``t_end / n``, the worst drive's."""
         t = np.linspace(0.0, self.t_end, n + 1)
-        worst = 0.0
+        worst = np.zeros(n + 1)
         for s_fine, exact in zip(self.strains, self.exact):
             s = np.interp(t, np.arange(s_fine.size) * self.dt, s_fine)
             x = alpha_response(s, self.t_end / n, self.omega, self.zeta)
-            worst = max(worst, float(np.max(np.abs(x - exact(t)))))
+            worst = np.maximum(worst, np.abs(x - exact(t)))
         return worst
