@@ -29,12 +29,13 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, simulate, static_sweep
+from exudyn_atcm import Bender, Layer, Link, Mechanism, PiezoDrive, Result, static_sweep
 from exudyn_atcm import theory
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import (Case, CaseOutput, Parameter, Parameters, RunContext, case_dynamic_run,
+                                  step_notes)
 from exudyn_atcm.model import Triangle, paper_strain_preisach
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, plot_mechanism, save_figure
-from exudyn_atcm.solve import ACCURACY_RANGE, accurate_run
+from exudyn_atcm.solve import ACCURACY_RANGE
 
 #: Default ``accuracy`` [-] of the dynamic run (relative to the travel of the recorded positions); the checks
 #: against the references (the lever's kinematics, the statics) do not depend on the step.
@@ -71,45 +72,13 @@ def build_mechanism(p: Parameters) -> Mechanism:
     return Mechanism("bender_with_lever").add(bender, lever).ground(bender.base).weld(bender.tip, lever.point("root"))
 
 
-#: The step chosen for ``accuracy`` divides this interval [s] (the default ``record_every``) whatever ``record_every``
-#: is, so that the solution and the scalars do not depend on the recording interval (records at a multiple of it are
-#: evenly spaced).
-STEP_GRID = 1e-3
-
-
-def dynamic_run(system, t_end: float, p: Parameters, progress=None):
-    """:func:`simulate` of ``system`` to ``t_end`` [s] at ``p.step``, or (``p.step`` 0) at the step chosen for
-    ``p.accuracy`` and checked by a probe run (:func:`exudyn_atcm.solve.step_choice.accurate_run`, as
-    ``simulate(..., accuracy=p.accuracy)`` but on the grid of :data:`STEP_GRID`).
-
-    Raises
-    ------
-    ValueError
-        For a step together with an accuracy other than the default (one of them would be ignored).
-    """
-    record_every = p.record_every if p.record_every > 0.0 else None
-    if p.step > 0.0:
-        if p.accuracy != DEFAULT_ACCURACY:
-            raise ValueError(f"give step or accuracy, not both: step={p.step!r} s fixes the step, accuracy={p.accuracy!r} "
-                             f"chooses it (leave step at 0 to choose it for accuracy)")
-        return simulate(system, t_end, step=p.step, progress=progress, record_every=record_every)
-
-    def run_at(step: float, run_progress, t_stop: float) -> Result:
-        return simulate(system, t_stop, step=step, progress=run_progress, record_every=record_every)
-
-    return accurate_run(run_at, system, t_end, p.accuracy, progress, record_every=STEP_GRID)
-
-
-def step_notes(result: Result) -> dict:
-    """The step used [s] and why (``result.info["step_choice"]``, or that it was given), for the JSON's notes."""
-    return {"step [s]": float(result.info["step [s]"]),
-            "step_choice": result.info.get("step_choice", "given (--set step=...)")}
 
 
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     a, L = p.lever, p.length
     mech = build_mechanism(p)
-    result = dynamic_run(mech, p.cycles * p.period, p, ctx.progress)
+    result = case_dynamic_run(mech, p.cycles * p.period, step=p.step, accuracy=p.accuracy,
+                              default_accuracy=DEFAULT_ACCURACY, record_every=p.record_every, progress=ctx.progress)
     every = result.every_step  # every accepted step: the scalars do not depend on record_every
     end = np.stack([every["lever.end_x"], every["lever.end_y"]], axis=-1)
     ref = np.stack(theory.rigid_extension_point(every["bender.tip_x"], every["bender.tip_y"],

@@ -17,6 +17,8 @@ needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
   :func:`load_case`, :func:`load_cases`;
 * :mod:`~exudyn_atcm.casework.regression` (with :mod:`~exudyn_atcm.casework.metrics`): the
   regression suite, :func:`run_suite`;
+* :mod:`~exudyn_atcm.casework.dynamic_runs`: a case's dynamic run at its ``step`` or at the step
+  chosen for its ``accuracy`` (:func:`case_dynamic_run`, :func:`step_notes`);
 * :mod:`~exudyn_atcm.casework.step_check`: a case's key scalars at step, step/2 and step/4
   (``exudyn-atcm step-error``).
 
@@ -39,6 +41,9 @@ _LAZY = {
     "TABLE_FORMATS": (".case_table", "TABLE_FORMATS"),
     "case_table": (".case_table", "case_table"),
     "check_benchmark": (".declarations", "check_benchmark"),
+    "STEP_GRID": (".dynamic_runs", "STEP_GRID"),
+    "case_dynamic_run": (".dynamic_runs", "case_dynamic_run"),
+    "step_notes": (".dynamic_runs", "step_notes"),
     "CASE_MARKERS": (".discovery", "CASE_MARKERS"),
     "ENV_CASES": (".discovery", "ENV_CASES"),
     "case_dirs": (".discovery", "case_dirs"),
@@ -70,6 +75,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .case import Case, PlotFunction, RunFunction, add_run_options, run_and_report
     from .case_table import TABLE_FORMATS, case_table
     from .declarations import check_benchmark
+    from .dynamic_runs import STEP_GRID, case_dynamic_run, step_notes
     from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, follows_convention, list_cases,
                             load_case, load_cases)
     from .metrics import MetricRow
@@ -79,6 +85,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
 
 __all__ = [
     "Case",
+    "case_dynamic_run",
+    "step_notes",
+    "STEP_GRID",
     "CaseOutput",
     "Parameter",
     "CellChoices",
