@@ -238,7 +238,8 @@ def _run_locked(case: Case, spec: Any, fixed_values: dict[str, Any], pts: list[d
         # stop the workers at once instead of waiting for the runs in flight
         runner.abort()
         if isinstance(exc, KeyboardInterrupt):  # say what a new start would find
-            exc.stored_runs = sum(1 for r in by_key.values() if not r.get("transient")) if run_store is not None else 0
+            # counted in the store itself: a signal between saving a run and noting it here must not undercount
+            exc.stored_runs = sum(1 for k in set(keys) if k in run_store) if run_store is not None else 0
             exc.distinct_runs = len(set(keys))
             exc.store_directory = run_store.directory if run_store is not None else None
         raise
