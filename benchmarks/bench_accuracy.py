@@ -44,22 +44,12 @@ from exudyn_atcm.model import Sine, Steps, Triangle
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "cases"))
 import micro_gripper  # noqa: E402
+from readme_systems import CFC, MFC, readme_four_bar  # noqa: E402
 
-CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
-MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
 
 
 def four_bar(program) -> atcm.Mechanism:
-    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3,
-                        drive=atcm.PiezoDrive(program), angle=math.pi / 2, cell="rod")
-    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
-    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
-    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
-    m.ground(crank.base)
-    m.pin(crank.tip, coupler.point("A"))
-    m.pin("coupler.B", "rocker.B")
-    m.ground("rocker.O", joint="pin")
-    return m
+    return readme_four_bar(program, n_cells=3, cell="rod")
 
 
 def gripper(program) -> atcm.Mechanism:

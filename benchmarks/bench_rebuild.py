@@ -32,24 +32,15 @@ import exudyn_atcm as atcm
 from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.model import Triangle
 
-CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
-MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
+from readme_systems import CFC, MFC, readme_four_bar
+
 VOLTAGES = np.linspace(0.0, 1000.0, 20)
 SIMULATIONS, T_END, STEP = 10, 5e-3, 1e-4
 
 
 def four_bar() -> atcm.Mechanism:
-    """The README's four-bar (six rigid cells in the crank)."""
-    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=6,
-                        drive=atcm.PiezoDrive(Triangle(750.0, 750.0, 0.1)), angle=math.pi / 2)
-    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
-    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
-    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
-    m.ground(crank.base)
-    m.pin(crank.tip, coupler.point("A"))
-    m.pin("coupler.B", "rocker.B")
-    m.ground("rocker.O", joint="pin")
-    return m
+    """The README's four-bar (six cells of the default kind in the crank)."""
+    return readme_four_bar(Triangle(750.0, 750.0, 0.1))
 
 
 def lone(cell: str, n: int):
@@ -61,7 +52,7 @@ def lone(cell: str, n: int):
 
 
 SYSTEMS = {
-    "README four-bar (6 rigid cells)": four_bar,
+    "README four-bar (6 rod cells)": four_bar,
     "lone actuator, 8 rigid cells": lone("rigid", 8),
     "lone actuator, 32 beam cells": lone("beam", 32),
 }

@@ -48,23 +48,11 @@ from exudyn_atcm.solve import mechanism_solve
 from exudyn_atcm.model import Triangle
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 
-CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
-MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
+from readme_systems import CFC, MFC, readme_four_bar
+
 PERIOD = 0.1  # s, the README drive's triangle
 
 
-def readme_four_bar() -> atcm.Mechanism:
-    """The README's four-bar as it stands there (default cell and hysteresis)."""
-    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=6,
-                        drive=atcm.PiezoDrive(Triangle(750.0, 750.0, PERIOD)), angle=math.pi / 2)
-    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
-    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
-    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
-    m.ground(crank.base)
-    m.pin(crank.tip, coupler.point("A"))
-    m.pin("coupler.B", "rocker.B")
-    m.ground("rocker.O", joint="pin")
-    return m
 
 
 def lone(cell: str) -> atcm.Mechanism:
@@ -76,7 +64,7 @@ def lone(cell: str) -> atcm.Mechanism:
     return m
 
 
-CASES = {"README four-bar": readme_four_bar, "lone actuator, rigid cells": lambda: lone("rigid"),
+CASES = {"README four-bar": lambda: readme_four_bar(750.0), "lone actuator, rigid cells": lambda: lone("rigid"),
          "lone actuator, rod cells": lambda: lone("rod")}
 
 
