@@ -6,7 +6,6 @@ Shared by ``bench_mechanisms.py``, ``mechanism_targets.py`` and ``bench_step_ove
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import time
 from pathlib import Path
@@ -14,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_atcm import simulate
-from exudyn_atcm.casework import find_case
+from exudyn_atcm import casework
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.model.signals import Triangle
 
@@ -26,10 +25,7 @@ PERIOD = 0.5  # s
 
 def case_module(name: str):
     """The case file as a module (its CASE and its build_mechanism)."""
-    spec = importlib.util.spec_from_file_location(name, find_case(name, CASES))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return casework.case_module(name, CASES)
 
 
 CELLS = ("rigid", "beam")

@@ -32,7 +32,6 @@ recover its dimensions (``*_error``).
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -40,22 +39,12 @@ from scipy.interpolate import PchipInterpolator
 from scipy.optimize import least_squares
 
 from exudyn_atcm import Result, mechanism_feedforward, simulate, static_sweep
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext, case_module
 from exudyn_atcm.plots import axis_label, new_figure, save_figure
 
 
-def _four_bar_module():
-    """The ``compliant_four_bar`` case file beside this one, as a module (its builder)."""
-    path = Path(__file__).with_name("compliant_four_bar.py")
-    spec = importlib.util.spec_from_file_location("exudyn_atcm_case_compliant_four_bar_for_compensation", path)
-    if spec is None or spec.loader is None:  # pragma: no cover
-        raise ImportError(f"cannot import the compliant_four_bar case from {path}")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-FOUR_BAR = _four_bar_module()
+#: The ``compliant_four_bar`` case file beside this one, as a module (its builder and helpers).
+FOUR_BAR = case_module(Path(__file__).with_name("compliant_four_bar.py"))
 
 #: The design variables and their bounds [m] (those of synthesise_path).
 BOUNDS = {"rocker_pivot_height": (0.005, 0.045), "coupler_point_x": (0.0, 0.06), "coupler_point_y": (0.005, 0.045)}

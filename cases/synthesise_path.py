@@ -56,29 +56,18 @@ the store's keys hash this file only), so a repeated synthesis replays them.
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import math
 from pathlib import Path
 
 import numpy as np
 
 from exudyn_atcm import Result, static_sweep
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
+from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext, case_module
 from exudyn_atcm.plots import animate_mechanism, axis_label, new_figure, save_figure
 
 
-def _four_bar_module():
-    """The ``compliant_four_bar`` case file beside this one, as a module (its builder and helpers)."""
-    path = Path(__file__).with_name("compliant_four_bar.py")
-    spec = importlib.util.spec_from_file_location("exudyn_atcm_case_compliant_four_bar_for_synthesis", path)
-    if spec is None or spec.loader is None:  # pragma: no cover
-        raise ImportError(f"cannot import the compliant_four_bar case from {path}")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-FOUR_BAR = _four_bar_module()
+#: The ``compliant_four_bar`` case file beside this one, as a module (its builder and helpers).
+FOUR_BAR = case_module(Path(__file__).with_name("compliant_four_bar.py"))
 
 #: The design variables and their bounds [m] (the middle of the bounds differs from the reference design).
 BOUNDS = {

@@ -14,7 +14,7 @@ needs (the convention is in :mod:`exudyn_atcm.casework.case`).  The modules:
   settings, regression benchmarks, its row in the case tables); :mod:`~exudyn_atcm.casework.case_table`:
   the README's and the docs' case tables, :func:`case_table`;
 * :mod:`~exudyn_atcm.casework.discovery`: :func:`case_dirs`, :func:`list_cases`, :func:`find_case`,
-  :func:`load_case`, :func:`load_cases`;
+  :func:`load_case`, :func:`case_module`, :func:`load_cases`;
 * :mod:`~exudyn_atcm.casework.regression` (with :mod:`~exudyn_atcm.casework.metrics`): the
   regression suite, :func:`run_suite`;
 * :mod:`~exudyn_atcm.casework.dynamic_runs`: a case's dynamic run at its ``step`` or at the step
@@ -48,6 +48,7 @@ _LAZY = {
     "ENV_CASES": (".discovery", "ENV_CASES"),
     "case_dirs": (".discovery", "case_dirs"),
     "case_files": (".discovery", "case_files"),
+    "case_module": (".discovery", "case_module"),
     "find_case": (".discovery", "find_case"),
     "follows_convention": (".discovery", "follows_convention"),
     "list_cases": (".discovery", "list_cases"),
@@ -76,8 +77,8 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .case_table import TABLE_FORMATS, case_table
     from .declarations import check_benchmark
     from .dynamic_runs import STEP_GRID, case_dynamic_run, step_notes
-    from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, find_case, follows_convention, list_cases,
-                            load_case, load_cases)
+    from .discovery import (CASE_MARKERS, ENV_CASES, case_dirs, case_files, case_module, find_case, follows_convention,
+                            list_cases, load_case, load_cases)
     from .metrics import MetricRow
     from .outputs import CaseOutput, PlannedRun, RunContext, RunPlan, versions
     from .parameters import CaseError, CellChoices, Parameter, Parameters, closest
@@ -104,6 +105,7 @@ __all__ = [
     "find_case",
     "case_files",
     "load_case",
+    "case_module",
     "load_cases",
     "follows_convention",
     "case_table",

@@ -10,12 +10,13 @@ import os
 import warnings
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from .case import Case
 from .parameters import CaseError, closest
 from ..errors import SetupWarning
 
-__all__ = ["ENV_CASES", "CASE_MARKERS", "case_dirs", "case_files", "list_cases", "find_case", "load_case",
+__all__ = ["ENV_CASES", "CASE_MARKERS", "case_dirs", "case_files", "list_cases", "find_case", "case_module", "load_case",
            "follows_convention", "load_cases"]
 
 #: Environment variable with extra case directories (``os.pathsep``-separated).
@@ -153,8 +154,9 @@ def case_files(name: str, cases_dir: str | os.PathLike | None = None) -> list[Pa
     return files
 
 
-def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> Case:
-    """Import a case file (by path or name) and return its ``CASE``.
+def case_module(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> Any:
+    """Import a case file (by path or name) as a module: its ``CASE`` and its functions (a case that
+    builds on another case's builder, such as ``synthesise_path`` on ``compliant_four_bar``).
 
     A file that does not mention ``CASE`` and the case framework (``exudyn_atcm.casework``, or the
     deprecated ``exudyn_atcm.cases``) is refused without being executed (a plain script may run a
@@ -163,7 +165,7 @@ def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
     Raises
     ------
     CaseError
-        If the file is missing, fails to import, or defines no ``CASE``.
+        If the file is missing, does not follow the case convention or fails to import.
     """
     path = find_case(spec, cases_dir)
     try:
@@ -183,6 +185,21 @@ def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = Non
     except Exception as exc:  # noqa: BLE001
         message = " ".join(str(exc).split())
         raise CaseError(f"{path}: import failed: {type(exc).__name__}: {message}") from exc
+    module.__file__ = str(path)
+    return module
+
+
+def load_case(spec: str | os.PathLike, cases_dir: str | os.PathLike | None = None) -> Case:
+    """Import a case file (by path or name, :func:`case_module`) and return its ``CASE``.
+
+    Raises
+    ------
+    CaseError
+        If the file is missing, does not follow the case convention, fails to import, or defines
+        no ``CASE``.
+    """
+    module = case_module(spec, cases_dir)
+    path = Path(module.__file__)
     case = getattr(module, "CASE", None)
     if not isinstance(case, Case):
         raise CaseError(f"{path}: defines no CASE = exudyn_atcm.casework.Case(...)")
