@@ -13,7 +13,7 @@ import exudyn_atcm as atcm
 from exudyn_atcm.mbs import builder as mb
 from exudyn_atcm.mbs import stability
 from exudyn_atcm.mbs.continuation_settings import DENSE_SIZE, continuation_settings
-from exudyn_atcm.solve import mechanism_static
+from exudyn_atcm.solve import sweep_continuation
 
 from test_one_stepping import four_bar, lone
 
@@ -37,24 +37,26 @@ def test_a_small_system_steps_densely_and_a_large_one_sparsely():
         assert not s.staticSolver.useLoadFactor and s.staticSolver.numberOfLoadSteps == 1
 
 
-def test_a_sweep_makes_the_settings_once(monkeypatch):
-    made = []
-    original = mechanism_static.continuation_step
+def test_a_smooth_sweep_continues_in_one_static_solve(monkeypatch):
+    """The points after the first are the load steps of one Exudyn static solve (one set of settings, one
+    solver set-up), not one solve per point."""
+    calls = []
+    original = sweep_continuation.solve_points
 
-    def spy(*args, **kwargs):
-        made.append(args[6] if len(args) > 6 else kwargs.get("settings"))
-        return original(*args, **kwargs)
+    def spy(model, strains, first, on_point, **kwargs):
+        calls.append(first)
+        return original(model, strains, first, on_point, **kwargs)
 
-    monkeypatch.setattr("exudyn_atcm.solve.mechanism_solve.continuation_step", spy)
-    atcm.static_sweep(lone(atcm.PiezoDrive(0.0)), np.linspace(0.0, 1000.0, 5))
-    assert len(made) == 4 and all(s is made[0] for s in made) and made[0] is not None
+    monkeypatch.setattr(sweep_continuation, "solve_points", spy)
+    r = atcm.static_sweep(lone(atcm.PiezoDrive(0.0)), np.linspace(0.0, 1000.0, 5))
+    assert calls == [1] and r.info["continued_points"] == 4
 
 
 def test_one_blas_thread_inside_and_the_counts_restored_after():
-    with stability._one_blas_thread():
+    with stability.one_blas_thread():
         libraries = stability._BLAS[0]
         assert all(lib.get_num_threads() == 1 for lib in libraries)
     outside = [lib.get_num_threads() for lib in libraries]
-    with stability._one_blas_thread():
+    with stability.one_blas_thread():
         pass
     assert [lib.get_num_threads() for lib in libraries] == outside

@@ -1,11 +1,12 @@
 """Issue 31, part 2: a static sweep as one continuation.
 
-``static_sweep(..., method="continuation")`` (the default) solves every point after the first as one
-static load step from the previous equilibrium; ``method="points"`` solves each point as its own
-equilibrium in load steps (the sweep before the continuation).  References: the per-point path
-computed in the same test (both are Newton solutions of the same equilibrium equations with the same
-tolerances, so they agree to the solver tolerance), a plain play operator applied offline to the
-voltages (the hysteresis memory across reversals), and a forced failure of every continuation step.
+``static_sweep(..., method="continuation")`` (the default) solves the points after the first as the
+load steps of one Exudyn static solve continuing from the first equilibrium; ``method="points"``
+solves each point as its own equilibrium in load steps (the sweep before the continuation).
+References: the per-point path computed in the same test (both are Newton solutions of the same
+equilibrium equations with the same tolerances, so they agree to the solver tolerance), a plain play
+operator applied offline to the voltages (the hysteresis memory across reversals), forced failures
+of the continuation at chosen points and forced misses of the stability proof inside the solve.
 """
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ import pytest
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import solver_runs
 from exudyn_atcm.mbs.stability import StabilityProbe
-from exudyn_atcm.solve import mechanism_static
+from exudyn_atcm.mbs.sweep_solve import PointsSolved
+from exudyn_atcm.solve import sweep_continuation
 
 from test_one_stepping import CountingPlay, four_bar, lone, offline_play, paper_drive
 
@@ -62,40 +64,87 @@ def test_continuation_keeps_the_hysteresis_memory_across_reversals():
     np.testing.assert_allclose(r["b.strain"], expected, rtol=1e-15, atol=0.0)
 
 
-def test_stability_is_checked_at_every_point(monkeypatch):
-    checks = []
-    original = StabilityProbe.check
+@pytest.mark.parametrize("cell", ["rigid", "rod", "six-bar"])
+def test_stability_is_checked_at_every_point(monkeypatch, cell):
+    # rigid and rod cells: the proof from the running solver's Jacobian inside the solve (the full check only where
+    # that proof misses); six-bar cells (Exudyn's Jacobian is not their tangent): the full check of every point
+    # after the solve
+    checked = []
+    check, in_solve = StabilityProbe.check, StabilityProbe.proved_in_solve
 
-    def counting(self):
-        checks.append(1)
-        return original(self)
+    def counting_check(self):
+        checked.append("check")
+        return check(self)
 
-    monkeypatch.setattr(StabilityProbe, "check", counting)
-    atcm.static_sweep(lone(paper_drive()), CYCLE)
-    assert len(checks) >= len(CYCLE)
+    def counting_in_solve(self, solver):
+        proved = in_solve(self, solver)
+        checked.append("in solve" if proved else "missed")
+        return proved
+
+    monkeypatch.setattr(StabilityProbe, "check", counting_check)
+    monkeypatch.setattr(StabilityProbe, "proved_in_solve", counting_in_solve)
+    atcm.static_sweep(lone(paper_drive(), cell=cell), CYCLE)
+    assert len(checked) - checked.count("missed") >= len(CYCLE)
+    assert ("in solve" in checked) == (cell != "six-bar")
 
 
-def test_a_failed_continuation_step_falls_back_to_its_own_equilibrium(monkeypatch):
-    original = solver_runs.run_static
+def failing_at(points: set[int]):
+    """A stand-in for ``solve_points`` whose Newton iteration fails half-way to each point in ``points``: the
+    real solve up to the point before, then the failure (the model left in that point's equilibrium, as the
+    real one leaves it)."""
+    original = sweep_continuation.solve_points
 
-    def failing(model, settings, strain_at_factor):
-        st = settings.staticSolver
-        moving = not np.array_equal(model.path_from, model.path_to)
-        if st.numberOfLoadSteps == 1 and not st.useLoadFactor and moving:  # the continuation step only
-            raise solver_runs.ExudynFailure("static Newton iteration did not converge", 0.5)
-        return original(model, settings, strain_at_factor)
+    def solve(model, strains, first, on_point, **kwargs):
+        stop = min([k for k in points if k >= first], default=len(strains))
+        failure = solver_runs.ExudynFailure("static Newton iteration did not converge", 0.5)
+        if stop == first:
+            return PointsSolved(first - 1, failure=failure)
+        solved = original(model, strains[:stop], first, on_point, **kwargs)
+        if solved.last == stop - 1 and stop < len(strains):
+            return PointsSolved(solved.last, failure=failure)
+        return solved
 
-    reference = atcm.static_sweep(lone(paper_drive()), CYCLE, method="points")
-    monkeypatch.setattr(mechanism_static.runs, "run_static", failing)
-    r = atcm.static_sweep(lone(paper_drive()), CYCLE)
+    return solve
+
+
+@pytest.mark.parametrize("cell", ["six-bar", "rod"])
+def test_a_failed_continuation_falls_back_to_its_own_equilibrium_and_continues(monkeypatch, cell):
+    reference = atcm.static_sweep(lone(paper_drive(), cell=cell), CYCLE, method="points")
+    failing = {3, 4, 11, len(CYCLE) - 1}
+    monkeypatch.setattr(sweep_continuation, "solve_points", failing_at(failing))
+    r = atcm.static_sweep(lone(paper_drive(), cell=cell), CYCLE)
     notes = r.info["fallback_points"].split(" | ")
-    # the stand-in fails a step that moves the strains (a point whose strain stays, as just after a
-    # reversal on the operator's flat branch, is a zero step and continues)
-    moved = [i for i in range(1, len(CYCLE)) if r["b.strain"][i] != r["b.strain"][i - 1]]
-    assert len(moved) >= 10
-    assert [int(n.split(":")[0]) for n in notes] == moved
-    assert r.info["continued_points"] == len(CYCLE) - 1 - len(moved)
+    assert [int(n.split(":")[0]) for n in notes] == sorted(failing)
+    assert r.info["continued_points"] == len(CYCLE) - 1 - len(failing)
     assert "continuation step failed at load factor 0.5" in notes[0] and "own equilibrium" in notes[0]
+    assert r.n_rows == len(CYCLE) and list(r["point"]) == list(range(len(CYCLE)))
+    # the same equilibria as the per-point sweep to the Newton tolerance (see above)
+    for c in position_columns(r):
+        np.testing.assert_allclose(r[c], reference[c], rtol=0.0, atol=1e-9, err_msg=c)
+
+
+def test_a_missed_proof_in_the_solve_is_checked_in_full_and_the_sweep_goes_on(monkeypatch):
+    reference = atcm.static_sweep(lone(paper_drive(), cell="rod"), CYCLE)
+    missed, calls = {5, 6, 20}, []
+    original = StabilityProbe.proved_in_solve
+
+    def missing(self, solver):
+        calls.append(1)
+        return False if len(calls) in missed else original(self, solver)
+
+    full = []
+    check = StabilityProbe.check
+
+    def counting_check(self):
+        full.append(1)
+        return check(self)
+
+    monkeypatch.setattr(StabilityProbe, "proved_in_solve", missing)
+    monkeypatch.setattr(StabilityProbe, "check", counting_check)
+    r = atcm.static_sweep(lone(paper_drive(), cell="rod"), CYCLE)
+    # every miss stops the solve, its point is checked in full (stable) and kept, a new solve goes on
+    assert len(full) >= len(missed) and r.info["fallback_points"] == "" and r.info["unstable_points"] == ""
+    assert r.info["continued_points"] == len(CYCLE) - 1
     for c in position_columns(r):
         np.testing.assert_allclose(r[c], reference[c], rtol=0.0, atol=1e-12, err_msg=c)
 

@@ -390,9 +390,16 @@ class BuildContext:
         """The bender's mass matrix changes from step to step: the package's runs let Exudyn re-read it."""
         self.model.varying_mass_benders.append(bender.name)
 
-    def set_truncation_estimator(self, bender: Bender, estimate: Callable[[], float]) -> None:
-        """``estimate()``: the tip error [m] of the bender's discretisation in a static state."""
+    def set_truncation_estimator(self, bender: Bender, estimate: Callable[[], float], *,
+                                 deferred: tuple[Callable[[], Any], Callable[[list], Any]] | None = None) -> None:
+        """``estimate()``: the tip error [m] of the bender's discretisation in a static state.
+
+        ``deferred``: optionally ``(read, many)``, the same estimate in two parts for a static sweep:
+        ``read()`` a cheap reading of the current state, ``many(readings)`` the errors [m] of many
+        states at once (after the sweep)."""
         self.model.truncation_estimators[bender.name] = estimate
+        if deferred is not None:
+            self.model.truncation_deferred[bender.name] = deferred
 
     def add_post_newton(self, check: Callable[[Any, float], float]) -> None:
         """A check after every Newton solve (see :func:`~exudyn_atcm.mbs.hooks.add_post_newton`)."""

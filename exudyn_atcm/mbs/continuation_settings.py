@@ -1,4 +1,4 @@
-"""Exudyn settings of a static sweep's continuation step (:func:`exudyn_atcm.solve.mechanism_static.continuation_step`)."""
+"""Exudyn settings of a static sweep's continuation (:func:`exudyn_atcm.mbs.sweep_solve.solve_points`)."""
 
 from __future__ import annotations
 
@@ -14,7 +14,8 @@ DENSE_SIZE = 64
 
 
 def continuation_settings(model: MechanismModel):
-    """Settings of a continuation step of ``model``: one load step with the loads in full (no load factor).
+    """Settings of a continuation of ``model``: one load step with the loads in full (no load factor; a sweep's
+    continuation then sets one load step per point).
 
     For at most :data:`DENSE_SIZE` unknowns the dense linear solver: 10 % less time on 100-point
     sweeps of the README four-bar and a lone actuator (30, 20 and 16 unknowns), the same equilibria to

@@ -174,6 +174,8 @@ class MechanismModel:
     varying_mass_benders: list[str] = field(default_factory=list)
     # assumed-mode benders: name -> estimate() of the tip error [m] at the current static state from the left-out modes
     truncation_estimators: dict = field(default_factory=dict)
+    # name -> (read() -> a reading of the current state, many(readings) -> errors [m]): the same estimate deferred
+    truncation_deferred: dict = field(default_factory=dict)
     # Exudyn object number -> the joint it realises, for messages ("pin(a.tip, b.base)", "the cells of bender 'b'")
     constraint_labels: dict[int, str] = field(default_factory=dict)
     _writer: tuple | None = None               # (item counts, strain writer) of strain_writer()
@@ -267,6 +269,24 @@ class MechanismModel:
     def truncation_errors(self) -> dict[str, float]:
         """Estimated tip-position error [m] of every assumed-mode bender from the modes it leaves out (current state)."""
         return {name: estimate() for name, estimate in self.truncation_estimators.items()}
+
+    def truncation_readings(self) -> dict:
+        """What :meth:`largest_truncation_errors` needs of the current state: per bender its deferred reading
+        (cheap: a few coordinates and forces), or its error [m] where the estimate is not deferred."""
+        deferred = self.truncation_deferred
+        return {name: deferred[name][0]() if name in deferred else estimate()
+                for name, estimate in self.truncation_estimators.items()}
+
+    def largest_truncation_errors(self, readings: list[dict]) -> dict[str, float]:
+        """The largest :meth:`truncation_errors` [m] over states given by their :meth:`truncation_readings`
+        (a deferred estimate evaluated once for all of them)."""
+        out = {}
+        for name in self.truncation_estimators:
+            values = [r[name] for r in readings if name in r]
+            if values:
+                errors = self.truncation_deferred[name][1](values) if name in self.truncation_deferred else values
+                out[name] = float(np.max(errors))
+        return out
 
     def before_linearisation(self) -> None:
         """Prepare an eigenvalue analysis about the current state (the cells' hooks, with the current strains)."""

@@ -7,14 +7,17 @@ forces' geometric stiffness ``-(d C_q^T/dq) lambda`` that :mod:`exudyn_atcm.mbs.
 then equals the tangent of :class:`~exudyn_atcm.mbs.tangent.TangentPlan` at about 1/50 of its cost
 (10 us against 0.3 to 0.6 ms for 10 to 30 coordinates, measured).
 
-Not for every system: for lone benders of rigid and six-bar cells (bent, loaded) it differs from
-the grouped differences by 0.2 % (rigid cells) to 0.8 % (six-bar cells) of the projected tangent, and
-moved the six-bar chain's lowest eigenvalue by a factor of two (measured).  Those systems hold
-``ConnectorCoordinateSpringDamper`` items (the cells' hinge springs; the six-bar cells also
-``JointPrismatic2D``), which the exact systems do not; which item's Jacobian is off was not isolated.  The
-Jacobian is therefore used only for systems made of the item types in :data:`EXACT_TYPES`, each
-checked against the grouped differences on a loaded, bent state by the tests (beam, ANCF and rod
-cells, and links on revolute joints); for the others :attr:`SolverJacobian.exact` is ``False``.
+Not as Exudyn gives it: its Jacobian of a revolute joint leaves out the derivative of the joint
+force's moment about a rigid body's reference point (zero in Exudyn, ``lambda . R p`` in truth;
+:class:`JointLevers` adds it).  Without it a chain of rigid cells under a tip force was 0.2 % off
+the grouped differences, and a link on pins carrying a force would have been too stiff by that
+term: a rigid-cell column past its buckling load was proved stable from it
+(``tests/test_sweep_solve.py``).  With it, rigid cells (bent, loaded) agree to 1e-11.  Not for
+every system even so: six-bar cells (``JointPrismatic2D``, ``MarkerBodiesRelativeTranslationCoordinate``)
+differ by 0.8 % of the projected tangent (measured; the item not isolated).  The Jacobian is
+therefore used only for systems made of the item types in :data:`EXACT_TYPES`, each checked against
+the grouped differences on a loaded, bent state by the tests (rigid, beam, ANCF and rod cells, and
+links on revolute joints); for the others :attr:`SolverJacobian.exact` is ``False``.
 Exudyn's Jacobian leaves out the loads, too: a system with a load that depends on the coordinates
 (:func:`constant_load`) is not exact either.
 The item-wise differences are one-sided: the tangent agrees with the central differences to about
@@ -28,11 +31,59 @@ import numpy as np
 
 from .tangent import static_settings
 
-__all__ = ["EXACT_TYPES", "SolverJacobian", "constant_load"]
+__all__ = ["EXACT_TYPES", "JointLevers", "SolverJacobian", "constant_load"]
 
-#: item types whose Exudyn Jacobian (with the connector derivative) is the tangent of the grouped differences
+#: item types whose Exudyn Jacobian (with the connector derivative, and the revolute joints' geometric stiffness
+#: added by :class:`JointLevers`) is the tangent of the grouped differences
 EXACT_TYPES = frozenset({"Ground", "RigidBody2D", "JointRevolute2D", "BeamGeometricallyExact2D", "ANCFCable2D",
-                         "ConnectorCoordinate", "ConnectorCoordinateVector", "GenericODE2"})
+                         "ConnectorCoordinate", "ConnectorCoordinateVector", "GenericODE2",
+                         "ConnectorCoordinateSpringDamper"})
+
+
+class JointLevers:
+    """The geometric stiffness of the revolute joints at points away from a rigid body's reference point.
+
+    Exudyn's Jacobian of an ``ObjectJointRevolute2D`` (``ComputeJacobianAE``, also with
+    ``jacobianConnectorDerivative``) leaves out the derivative of the constraint force's moment
+    about the body's reference point: for a joint marker at ``p`` (body frame) on a body turned by
+    ``theta``, the joint's multipliers ``lambda`` (its two algebraic coordinates) contribute
+    ``s lambda . (R(theta) p)`` to the tangent's ``(theta, theta)`` entry, ``s = +1`` for the
+    joint's second marker and ``-1`` for its first (``d^2 (R p) / d theta^2 = -R p``).  Measured:
+    a pinned bar with multipliers (1.5, -0.7) N, marker 0.05 m from its reference point, turned
+    0.3 rad: Exudyn 0, central differences -0.0613 N m, this term -0.0613 N m
+    (``tests/test_sweep_solve.py``).  Without it the tangent of a chain of rigid cells under a tip
+    force of 0.02 N was 4e-4 N m/rad too stiff on every cell's rotation (``F L_c``), and a proof of
+    stability from it could pass a state the true tangent fails.
+    """
+
+    def __init__(self, mbs) -> None:
+        sd = mbs.systemData
+        entries = []
+        for i in range(sd.NumberOfObjects()):
+            obj = mbs.GetObject(i)
+            if obj["objectType"] != "JointRevolute2D":
+                continue
+            for sign, marker_number in zip((-1.0, 1.0), obj["markerNumbers"]):
+                marker = mbs.GetMarker(marker_number)
+                if marker["markerType"] not in ("BodyPosition", "BodyRigid"):
+                    continue  # a node's position: no lever
+                body = mbs.GetObject(marker["bodyNumber"])
+                local = np.asarray(marker.get("localPosition", [0.0, 0.0, 0.0]), dtype=float)[:2]
+                if body["objectType"] != "RigidBody2D" or not np.any(local):
+                    continue
+                node = body["nodeNumber"]
+                angle0 = float(mbs.GetNode(node)["referenceCoordinates"][2])
+                entries.append((i, sign, int(sd.GetNodeLTGODE2(node)[2]), angle0, local))
+        self.entries = entries
+        self._ae = [(np.asarray(sd.GetObjectLTGAE(i), dtype=int)[:2]) for i, *_ in entries]
+
+    def add_to(self, k: np.ndarray, q: np.ndarray, multipliers: np.ndarray) -> None:
+        """Add the joints' terms to the tangent ``k`` (in place) at coordinates ``q`` and multipliers ``multipliers``."""
+        for (_, sign, row, angle0, (px, py)), ae in zip(self.entries, self._ae):
+            theta = angle0 + q[row]
+            c, s_ = np.cos(theta), np.sin(theta)
+            lx, ly = multipliers[ae[0]], multipliers[ae[1]]
+            k[row, row] += sign * (lx * (c * px - s_ * py) + ly * (s_ * px + c * py))
 
 
 def constant_load(mbs, index: int) -> bool:
@@ -80,6 +131,7 @@ class SolverJacobian:
         #: :meth:`system` may be used)
         self.exact = self.types <= EXACT_TYPES and all(constant_load(mbs, i) for i in range(sd.NumberOfLoads()))
         self.n_ode2 = len(sd.GetODE2Coordinates())
+        self.levers = JointLevers(mbs)
         self._settings = static_settings()
         self._settings.staticSolver.newton.numericalDifferentiation.jacobianConnectorDerivative = True
 
@@ -115,4 +167,35 @@ class SolverJacobian:
         finally:
             sd.SetSystemState(systemStateList=initial_state, configuration=ini)
             sd.SetSystemState(systemStateList=current_state, configuration=cur)
-        return {"M": m, "K": jacobian[:n2, :n2], "Cq": jacobian[n2:, :n2]}
+        return self._split(jacobian, m)
+
+    def _split(self, jacobian: np.ndarray, m: np.ndarray | None) -> dict:
+        """``M``, ``K`` (with the joints' lever terms) and ``Cq`` of the system Jacobian at the current state."""
+        n2 = self.n_ode2
+        k = jacobian[:n2, :n2]
+        if self.levers.entries:
+            sd = self.mbs.systemData
+            self.levers.add_to(k, sd.GetODE2Coordinates(copy=False), sd.GetAECoordinates(copy=False))
+        return {"M": m, "K": k, "Cq": jacobian[n2:, :n2]}
+
+    def running_system(self, solver, mass: bool = True) -> dict:
+        """:meth:`system` from a static solver that is running on this system, in one of its step hooks.
+
+        The solver's own Jacobian functions at the current state: no solver of its own and no state
+        saved or restored (a few microseconds instead of about 40).  The solver's settings must have
+        ``staticSolver.newton.numericalDifferentiation.jacobianConnectorDerivative = True`` (as
+        :meth:`system` uses; otherwise the constraint forces' geometric stiffness is missing); the
+        solver forms its Jacobian afresh in the next Newton iteration (full Newton), so nothing it
+        holds is disturbed.  Equal to :meth:`system` to the last bit (measured on the README four-bar
+        and a lone rod bender; ``tests/test_sweep_solve.py``).
+        """
+        n2 = self.n_ode2
+        m = None
+        if mass:
+            solver.ComputeMassMatrix(self.mbs)
+            m = np.array(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
+        solver.ComputeJacobianODE2RHS(self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0)
+        solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0,
+                                 velocityLevel=False)
+        jacobian = np.array(solver.GetSystemJacobian(), dtype=float)
+        return self._split(jacobian, m)

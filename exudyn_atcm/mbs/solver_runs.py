@@ -92,6 +92,15 @@ def _apply_tolerance_floor(model: SolvableModel, newton) -> None:
         newton.absoluteTolerance = model.newton_tolerance_floor
 
 
+def apply_static_tolerances(model: SolvableModel, settings) -> None:
+    """The model's Newton tolerances for a static solve written into ``settings`` (its floor, its own values)."""
+    _apply_tolerance_floor(model, settings.staticSolver.newton)
+    if model.static_relative_tolerance is not None:
+        settings.staticSolver.newton.relativeTolerance = model.static_relative_tolerance
+    if getattr(model, "static_absolute_tolerance", None) is not None:
+        settings.staticSolver.newton.absoluteTolerance = model.static_absolute_tolerance
+
+
 def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float], float]) -> None:
     """Solve statically; the strain follows the load factor ``f`` in [0, 1] via ``strain_at_factor``."""
     mbs = model.mbs
@@ -107,11 +116,7 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
             raise
         return True
 
-    _apply_tolerance_floor(model, settings.staticSolver.newton)
-    if model.static_relative_tolerance is not None:
-        settings.staticSolver.newton.relativeTolerance = model.static_relative_tolerance
-    if getattr(model, "static_absolute_tolerance", None) is not None:
-        settings.staticSolver.newton.absoluteTolerance = model.static_absolute_tolerance
+    apply_static_tolerances(model, settings)
     mbs.SetPreStepUserFunction(pre)
     model.set_strain(strain_at_factor(0.0))
     saved_uf = model.uf_strains  # the user functions read the strains the pre-step hook set
@@ -122,7 +127,7 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001 - any Exudyn failure is reported with context
         errors.raise_first()
-        t = _solver_time(solver)
+        t = solver_time(solver)
         raise ExudynFailure(f"{type(exc).__name__}: {exc}", t) from exc
     finally:
         restore_console()
@@ -130,14 +135,14 @@ def run_static(model: SolvableModel, settings, strain_at_factor: Callable[[float
         model.uf_strains = saved_uf
     if not ok:
         errors.raise_first()
-        raise ExudynFailure("static Newton iteration did not converge", _solver_time(solver))
+        raise ExudynFailure("static Newton iteration did not converge", solver_time(solver))
     # the static solver ends at load factor 1: make sure the final strain is exact (written again
     # only when the last step's pre-step hook did not write exactly it)
     if last_factor[0] != 1.0:
         model.set_strain(strain_at_factor(1.0))
 
 
-def _solver_time(solver) -> float:
+def solver_time(solver) -> float:
     try:
         return float(solver.it.currentTime)
     except Exception:  # noqa: BLE001
@@ -261,7 +266,7 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001
         errors.raise_first()
-        raise ExudynFailure(f"{type(exc).__name__}: {exc}", _solver_time(solver) / t_end) from exc
+        raise ExudynFailure(f"{type(exc).__name__}: {exc}", solver_time(solver) / t_end) from exc
     finally:
         restore_console()
         mbs.SetPreStepUserFunction(0)
@@ -272,7 +277,7 @@ def run_relaxation(model: SolvableModel, strain: float, omega1: float, damping_f
         model.scale_loads(1.0)
     if not ok:
         errors.raise_first()
-        raise ExudynFailure("dynamic relaxation did not converge", _solver_time(solver) / t_end)
+        raise ExudynFailure("dynamic relaxation did not converge", solver_time(solver) / t_end)
     model.set_strain(strain)
     return tail["change"]
 
@@ -319,7 +324,7 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001
         errors.raise_first()
-        raise ExudynFailure(f"{type(exc).__name__}: {exc}", _solver_time(solver)) from exc
+        raise ExudynFailure(f"{type(exc).__name__}: {exc}", solver_time(solver)) from exc
     finally:
         restore_console()
         mbs.SetPreStepUserFunction(0)
@@ -327,7 +332,7 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
     if not ok:
         errors.raise_first()
         raise ExudynFailure("Newton iteration did not converge even at the minimum step size",
-                            _solver_time(solver))
+                            solver_time(solver))
     it = solver.it
     return {
         "pre_step_calls": counts["attempts"],

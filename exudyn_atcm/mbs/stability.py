@@ -55,7 +55,7 @@ try:  # a declared dependency; imported like this where the package limits BLAS 
 except ImportError:  # pragma: no cover
     ThreadpoolController = None
 
-__all__ = ["Stability", "StabilityProbe", "CRITICAL_MARGIN", "null_space", "snapshot"]
+__all__ = ["Stability", "StabilityProbe", "CRITICAL_MARGIN", "null_space", "one_blas_thread", "snapshot"]
 
 #: ``omega_1^2 / omega_ref^2`` below which an equilibrium is critical (at a stability limit; for a
 #: column ``P > 0.999 P_cr``): an imperfection's effect is amplified about ``1 / margin`` times.
@@ -116,10 +116,11 @@ _BLAS: list = []  # the BLAS libraries' thread controllers, found once
 
 
 @contextlib.contextmanager
-def _one_blas_thread():
+def one_blas_thread():
     """Context manager: the BLAS calls inside on one thread.  The libraries are found once (threadpoolctl's
     controller); each use then only reads and sets their thread counts (a few us; threadpoolctl's ``limit``
-    scans the libraries again on every call: about 60 us, measured, a fifth of a continuation point's check)."""
+    scans the libraries again on every call: about 60 us, measured, a fifth of a continuation point's check).
+    Inside another use it only reads them (a sweep holds one around all its points' checks)."""
     if ThreadpoolController is None:
         yield
         return
@@ -168,7 +169,7 @@ class StabilityProbe:
         self._k_reference: np.ndarray | None = None
         kr, mr = self._reduced()
         self._k_reference = self._k
-        with _one_blas_thread():
+        with one_blas_thread():
             try:
                 cho_factor(mr)
             except LinAlgError:  # a direction without mass: the stiffness alone decides (identity metric)
@@ -193,7 +194,7 @@ class StabilityProbe:
         (default: a new one at the model's current state)."""
         ts = self._tangent() if ts is None else ts
         k = self._k = ts["K"]
-        with _one_blas_thread():
+        with one_blas_thread():
             basis = null_space(ts["Cq"], k.shape[0])
             self._basis = basis
             kr = basis.T @ k @ basis
@@ -218,7 +219,7 @@ class StabilityProbe:
         follower load's tangent is not symmetric) and its mode; ``inf`` when every eigenvalue is complex."""
         from scipy.linalg import eig  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         kr = self._kr
-        with _one_blas_thread():
+        with one_blas_thread():
             values, vecs = eig(kr, mr)
         finite = np.isfinite(values)
         real = finite & (np.abs(values.imag) <= 1e-6 * np.maximum(np.abs(values), 1e-300))
@@ -238,11 +239,11 @@ class StabilityProbe:
         metric = ts["M"] if self.use_mass else np.eye(k.shape[0])
         shifted = k - (CRITICAL_MARGIN * self.reference) * metric
         if cushion:
-            shifted[np.diag_indices_from(shifted)] -= cushion
+            shifted.flat[::k.shape[0] + 1] -= cushion  # the diagonal
         return shifted
 
     def _check(self) -> Stability:
-        with _one_blas_thread():
+        with one_blas_thread():
             # the cheap proof first: K_T - sigma M positive definite on the joints' free motions, without
             # their basis (:mod:`exudyn_atcm.mbs.definite`); every eigenvalue's real part is then above sigma.
             # Where Exudyn's Jacobian is the tangent (:mod:`exudyn_atcm.mbs.solver_jacobian`), from it, with a
@@ -250,14 +251,7 @@ class StabilityProbe:
             # of the central differences; else (or when that proof fails) from the central differences
             if self.use_jacobian:
                 self.model.before_linearisation()
-                js = self.jacobian.system(mass=self.use_mass)
-                k = js["K"]
-                cushion = k.shape[0] * JACOBIAN_DIFFERENCE * (float(np.max(np.abs(k))) if k.size else 0.0)
-                if self.jacobian_proof(self._shifted(js, cushion), js["Cq"]):
-                    self._jacobian_misses = 0
-                    self._basis = None
-                    self._ts = js
-                    self._k = k
+                if self._jacobian_proved(self.jacobian.system(mass=self.use_mass)):
                     return Stability("stable")
             ts = self._tangent()
             shifted = self._shifted(ts)
@@ -266,10 +260,40 @@ class StabilityProbe:
                 return Stability("stable")
         result = self._full_check(ts)
         if result.state == "stable" and self._basis.shape[1] > 0:
-            with _one_blas_thread():
+            with one_blas_thread():
                 self.proof.missed(shifted, ts["Cq"])  # stable after all: a penalty that proves it, for the next state
             self._jacobian_missed()
         return result
+
+    def _jacobian_proved(self, js: dict) -> bool:
+        """The cheap proof from Exudyn's Jacobian ``js`` (:class:`SolverJacobian`), with its cushion."""
+        k = js["K"]
+        cushion = k.shape[0] * JACOBIAN_DIFFERENCE * (float(abs(k).max()) if k.size else 0.0)
+        if not self.jacobian_proof(self._shifted(js, cushion), js["Cq"]):
+            return False
+        self._jacobian_misses = 0
+        self._basis = None
+        self._ts = js
+        self._k = k
+        return True
+
+    def proved_in_solve(self, solver) -> bool:
+        """Whether the cheap proof from Exudyn's Jacobian shows the current state stable, inside a running static solve.
+
+        ``solver``: the ``exudyn.MainSolverStatic`` whose step hook calls this, its settings with the
+        connector derivative (:meth:`SolverJacobian.running_system`).  ``True`` sets :attr:`last` to a
+        stable :class:`Stability`, as :meth:`check` would; ``False`` proves nothing (and changes
+        nothing): the caller then calls :meth:`check` on this state outside the solve.  Always
+        ``False`` where Exudyn's Jacobian is not the tangent (:attr:`use_jacobian`).
+        """
+        if not self.use_jacobian:
+            return False
+        self.model.before_linearisation()
+        with one_blas_thread():
+            proved = self._jacobian_proved(self.jacobian.running_system(solver, mass=self.use_mass))
+        if proved:
+            self.last = Stability("stable")
+        return proved
 
     def _jacobian_missed(self) -> None:
         """The proof from Exudyn's Jacobian failed on a stable state: a larger penalty for the next one; after
@@ -296,7 +320,7 @@ class StabilityProbe:
             state = "unstable" if margin < -CRITICAL_MARGIN else ("critical" if margin <= CRITICAL_MARGIN else "stable")
             return Stability(state, margin if state != "stable" else math.nan, lowest if state != "stable" else math.nan,
                              mode if state != "stable" else None)
-        with _one_blas_thread():
+        with one_blas_thread():
             try:
                 cho_factor(kr - CRITICAL_MARGIN * self.reference * mr)
                 return Stability("stable")
@@ -325,7 +349,7 @@ class StabilityProbe:
         k0 = basis.T @ self._k_reference @ basis
         k0 = 0.5 * (k0 + k0.T)
         k1 = 0.5 * (self._kr + self._kr.T)
-        with _one_blas_thread():
+        with one_blas_thread():
             # (K_0 + f (K_1 - K_0)) v = 0  <=>  K_0 v = f (K_0 - K_1) v
             values = eig(k0, k0 - k1, right=False)
         factors = [v.real for v in values if np.isfinite(v) and abs(v.imag) <= 1e-9 * abs(v) and 0.0 < v.real <= 1.0]

@@ -12,7 +12,8 @@ the one place where the drives' hysteresis is trialled and committed:
   (:meth:`InStepStrain.commit <exudyn_atcm.model.strain_sources.InStepStrain.commit>`) and the step
   written as one row into the :class:`~exudyn_atcm.mbs.step_record.StepRecord`;
 * :meth:`Stepping.hold_path` (static sweeps): every operator committed once per point, the voltage held for ever;
-  :meth:`Stepping.record_state` writes an equilibrium into the same record.
+  :meth:`Stepping.record_state` writes an equilibrium into the same record (:meth:`Stepping.state_row` and
+  :meth:`Stepping.record_row` in two parts, for a sweep that keeps a state only once it is checked).
 
 The rows are cut back into result columns by :class:`~exudyn_atcm.mbs.recording.RowLayout`, so a
 result of :func:`~exudyn_atcm.simulate` and of :meth:`MechanismHandle.result
@@ -206,16 +207,29 @@ class Stepping:
 
     def record_state(self, t: float, volts: np.ndarray, strains: np.ndarray) -> None:
         """Record the model's current (equilibrium) state as a row at ``t`` (a time [s] or a point index)."""
+        self.record_row(self.state_row(t, volts, strains))
+
+    def state_row(self, t: float, volts: np.ndarray, strains: np.ndarray) -> np.ndarray:
+        """The row :meth:`record_state` would record for the model's current state, as an array of its own (for
+        a state that joins the record only once it is known to be kept: :meth:`record_row`)."""
         if self.record is None:
             self.start()
         n = len(self.sources)
         _, q_slice, force_slice, read_forces = self._plan
-        row = self.record.begin(t)
+        row = np.empty(self.record.width)
+        row[0] = t
         row[1:1 + n], row[1 + n:1 + 2 * n] = volts, strains
         row[q_slice] = self.model.coordinates()
         if read_forces is not None:
             row[force_slice] = read_forces()
-        self.record.end(t)
+        return row
+
+    def record_row(self, row: np.ndarray) -> None:
+        """Add a row of :meth:`state_row` to the record."""
+        if self.record is None:
+            self.start()
+        self.record.begin(row[0])[:] = row
+        self.record.end(row[0])
 
     # ------------------------------------------------------------------ the result
     def close(self) -> np.ndarray:

@@ -25,7 +25,6 @@ from ..mbs import builder as mb
 from ..mbs import linear
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
-from ..mbs.continuation_settings import continuation_settings
 from ..mbs.recording import RowLayout, cell_rotations, measurement_reader
 from ..mbs.stepping import Stepping
 from ..mechanism.assembly import Mechanism
@@ -36,7 +35,8 @@ from .run_checks import SimulationInterrupted, WallClock, snap_time, snap_times
 from .dynamic_run import integrate, mark_partial
 from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
 from .long_runs import is_announced
-from .mechanism_static import (VoltageSpec, continuation_step, describe, describe_voltages, drive_voltages, equilibrium,
+from .sweep_continuation import SweepPoint, continue_sweep
+from .mechanism_static import (VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium,
                                source_values)
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from .static_stability import load_path_note, stability_probe, warn_unstable
@@ -114,10 +114,10 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     """Quasi-static path of a mechanism over a voltage sequence (see :func:`exudyn_atcm.static_sweep`).
 
     ``built``: a model of ``mech`` already built and in its built state (:class:`~exudyn_atcm.BuiltSystem`).
-    ``method``: ``"continuation"`` (each point after the first one load step from the last
-    equilibrium, :func:`~exudyn_atcm.solve.mechanism_static.continuation_step`, falling back to
-    ``"points"`` for a point where that fails) or ``"points"`` (each point its own equilibrium in
-    load steps, :func:`~exudyn_atcm.solve.mechanism_static.equilibrium`).
+    ``method``: ``"continuation"`` (the points after the first as the load steps of one static
+    solve continuing from the first equilibrium, :func:`~exudyn_atcm.solve.sweep_continuation.continue_sweep`,
+    falling back to ``"points"`` for a point where that fails or ends unstable) or ``"points"``
+    (each point its own equilibrium in load steps, :func:`~exudyn_atcm.solve.mechanism_static.equilibrium`).
     """
     check_sweep_method(method)
     table = sweep_table(mech, voltages)
@@ -130,33 +130,35 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     # each point is held for ever: an operator with creep or a rate lag gives its fully crept output
     strain_table = stepping.hold_path(source_table)
     check_drive_ranges(model, source_table, strain_table)
-    previous = np.zeros(len(model.sources))
     methods = []
-    truncation: dict[str, float] = {}
+    readings: list[dict] = []  # every point's truncation readings, estimated together at the end
     probe = stability_probe(mech, model)
-    step_settings = continuation_settings(model) if method == "continuation" else None
     states = []
+
+    def where(i: int) -> str:
+        return f"sweep point {i} ({describe_voltages(table[i])})"
+
+    def keep(point: SweepPoint) -> None:
+        methods.append(point.method)
+        states.append((where(point.index), point.stability))
+        stepping.record_row(point.row)
+        readings.append(point.truncation)
+
+    previous = np.zeros(len(model.sources))
     fallbacks: list[str] = []
-    for i, per_drive in enumerate(table):
-        volts, strains = source_table[i], strain_table[i]
-        where = f"sweep point {i} ({describe_voltages(per_drive)})"
-        if i == 0 or method == "points":
-            methods.append(equilibrium(mech, model, previous, strains, i == 0, None, where, probe))
-        else:
-            used, note = continuation_step(mech, model, previous, strains, where, probe, step_settings)
-            methods.append(used)
-            if note:
-                fallbacks.append(f"{i}: {note}; solved as its own equilibrium ({used})")
-        states.append((where, probe.last))
+    for i in range(len(table) if method == "points" else min(1, len(table))):
+        strains = strain_table[i]
+        used = equilibrium(mech, model, previous, strains, i == 0, None, where(i), probe)
         runs.set_current_as_initial(model, zero_velocity=True)
-        stepping.record_state(float(i), volts, strains)
+        keep(SweepPoint(i, stepping.state_row(float(i), source_table[i], strains), model.truncation_readings(),
+                        probe.last, used))
         previous = strains
-        for name, error in model.truncation_errors().items():
-            truncation[name] = max(error, truncation.get(name, 0.0))
+    if method == "continuation" and len(table) > 1:
+        fallbacks = continue_sweep(mech, model, source_table, strain_table, probe, stepping, where, keep)
     rows = stepping.close()
     _, _, row_strains, q, _ = stepping.layout.parts(rows)
     warn_coarse_cells(mech, cell_rotations(model, q, row_strains))
-    warn_few_modes(mech, truncation)
+    warn_few_modes(mech, model.largest_truncation_errors(readings))
     warn_unstable(describe(mech), states)
     unstable = [i for i, (_, s) in enumerate(states) if s.state != "stable"]
     info = {"solver": "static sweep", "sweep_method": method, "methods": ",".join(sorted(set(methods))),

@@ -1,8 +1,8 @@
 """Static equilibrium of a built mechanism model: drive voltages to strains, load steps, relaxation.
 
 Internal API of the solve layer (documented for tests): :func:`drive_voltages`,
-:func:`source_values`, :func:`equilibrium`, :func:`continuation_step` (a static sweep's point
-continued from the last one).
+:func:`source_values`, :func:`equilibrium` (a static sweep's points after the first are continued by
+:mod:`exudyn_atcm.solve.sweep_continuation`).
 """
 
 from __future__ import annotations
@@ -18,14 +18,13 @@ from .static_fallback import equilibrium_with_fallback
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
-from ..mbs.continuation_settings import continuation_settings
 from ..mbs.stability import StabilityProbe, snapshot
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..mechanism.points import MechanismError, closest
 
-__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium", "continuation_step", "describe",
+__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium", "describe",
            "describe_voltages"]
 
 VoltageSpec = Any  # None | float | Mapping[str, float]
@@ -148,36 +147,3 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
     if probe is not None and method != "static":
         probe.check()  # the relaxation's state (a converged static state was checked on the way)
     return method
-
-
-def continuation_step(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, end: np.ndarray, what: str,
-                      probe: StabilityProbe | None = None, settings: Any = None) -> tuple[str, str]:
-    """A static sweep's point as one load step continued from the last equilibrium; returns (method, note).
-
-    ``method`` is ``"static"`` (Exudyn's static solver) when the step succeeds, with an empty ``note``.
-
-    The model is in the previous point's equilibrium with the strains ``start``; the strains move
-    to ``end`` in one load step of Exudyn's static solver (its adaptive stepping halves the step
-    when the Newton iteration fails), with the loads kept and the same Newton tolerances as
-    :func:`equilibrium`, so that the point reaches the same equilibrium at a fraction of the cost.
-    When that step fails, or ends on an unstable equilibrium (``probe``), the state is put back
-    and the point is solved by :func:`equilibrium` as a point-by-point sweep solves it; the
-    method is then that of :func:`equilibrium` and ``note`` says why.  ``settings``: the step's Exudyn
-    settings (:func:`~exudyn_atcm.mbs.continuation_settings.continuation_settings` of ``model``; made
-    here when ``None``: a sweep makes them once).
-    """
-    restore = snapshot(model)
-    model.load_factor = 1.0
-    model.set_path(start, end, ramp_loads=False)
-    if settings is None:
-        settings = continuation_settings(model)
-    try:
-        runs.run_static(model, settings, lambda f: f)
-    except runs.ExudynFailure as exc:
-        note = f"the continuation step failed at load factor {exc.time:.3g} ({exc})"
-    else:
-        if probe is None or probe.check().state != "unstable":
-            return "static", ""
-        note = "the continuation step ended on an unstable equilibrium"
-    restore()
-    return equilibrium(mech, model, start, end, False, None, what, probe), note

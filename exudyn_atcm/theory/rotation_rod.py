@@ -252,7 +252,8 @@ def truncation_error(shapes: RodShapes, bending_stiffness: float, base_angle: fl
 
 def truncation_estimator(shapes: RodShapes, bending_stiffness: float) -> Callable[..., float]:
     """:func:`truncation_error` for one rod, with its shapes prepared once: ``estimate(base_angle, q,
-    tip_force, follower_force=(0, 0))`` [m] (a static sweep asks at every point)."""
+    tip_force, follower_force=(0, 0))`` [m]; ``estimate.many(base_angles, q, tip_forces, follower_forces)``
+    gives it for many states at once (a static sweep's points, read during the sweep, estimated after it)."""
     richer = rod_shapes(shapes.n + len(shapes.modes), shapes.length, tuple(m + 1 for m in shapes.modes),
                         shapes.lengths)
     extra = np.array([first + m for first, m in zip(richer.first_modes, shapes.modes)])
@@ -278,4 +279,26 @@ def truncation_estimator(shapes: RodShapes, bending_stiffness: float) -> Callabl
             step[extra] = work[extra] / np.diag(stiffness)[extra]
         return float(np.hypot(*(jac @ step)))
 
+    def many(base_angles, q, tip_forces, follower_forces) -> np.ndarray:
+        """``estimate`` of ``P`` states at once [m], shape ``(P,)``: base angles ``(P,)``, amplitudes ``(P, n)``,
+        tip and follower forces ``(P, 2)`` (the same algebra on stacked arrays: one call for a whole sweep)."""
+        q = np.atleast_2d(np.asarray(q, dtype=float))
+        forces = np.atleast_2d(np.asarray(tip_forces, dtype=float))
+        followers = np.atleast_2d(np.asarray(follower_forces, dtype=float))
+        theta = np.asarray(base_angles, dtype=float)[:, None] + q @ phi_kept.T
+        c, s = np.cos(theta), np.sin(theta)
+        fx, fy = forces[:, :1], forces[:, 1:2]
+        jx, jy = -(lw * s) @ phi, (lw * c) @ phi
+        tangent = stiffness + (phi.T[None, :, :] * (lw * (fx * c + fy * s))[:, None, :]) @ phi
+        turned = followers[:, 1:2] * -jx + followers[:, :1] * jy  # J^T (-F_f,y, F_f,x), row per state
+        tangent -= turned[:, :, None] * phi_tip[None, None, :]
+        work = np.zeros((len(q), richer.n))
+        work[:, extra] = fx * jx[:, extra] + fy * jy[:, extra]
+        try:
+            step = np.linalg.solve(tangent, work[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:  # a singular tangent somewhere: state by state (with its fallback)
+            return np.array([estimate(a, qi, f, ff) for a, qi, f, ff in zip(base_angles, q, forces, followers)])
+        return np.hypot(np.sum(jx * step, axis=1), np.sum(jy * step, axis=1))
+
+    estimate.many = many
     return estimate

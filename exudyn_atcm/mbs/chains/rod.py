@@ -315,17 +315,30 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
             out += (c * fx - s_ * fy, s_ * fx + c * fy)
         return out
 
-    def truncation() -> float:
-        """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
+    def reading() -> tuple | None:
+        """What the estimate needs of the current (static) state: base angle, amplitudes, tip and follower forces."""
         base_start, rod_start, tip_start, _ = indices()
         if base_start < 0:
-            return 0.0
+            return None
         coordinates = get_q(copy=False)
-        force = get_output(tie, force_output)  # the force on the tip node: dead and follower loads together
-        return estimate(base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n], force,
-                        follower_force(tip_reference[2] + coordinates[tip_start + 2]))
+        force = np.array(get_output(tie, force_output), dtype=float)[:2]  # on the tip node: dead and follower loads
+        return (base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n].copy(), force,
+                follower_force(tip_reference[2] + coordinates[tip_start + 2]))
 
-    ctx.set_truncation_estimator(bender, truncation)
+    def truncation() -> float:
+        """The tip error [m] that the left-out modes would make, from the tie's force (static states)."""
+        state = reading()
+        return 0.0 if state is None else estimate(*state)
+
+    def many(readings: list) -> np.ndarray:
+        """:func:`truncation` of many states from their readings (one stacked evaluation)."""
+        states = [r for r in readings if r is not None]
+        if not states:
+            return np.zeros(1)
+        angles, q, forces, followers = (np.array(part) for part in zip(*states))
+        return estimate.many(angles, q, forces, followers)
+
+    ctx.set_truncation_estimator(bender, truncation, deferred=(reading, many))
     if by_parameter:
         ctx.mark_varying_mass(bender)  # the runs let Exudyn re-read it every step
     ctx.add_spring(obj, K, "dampingMatrix")  # the relaxation damps the modes at its factor times K

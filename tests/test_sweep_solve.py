@@ -1,0 +1,176 @@
+"""A static sweep's points as the load steps of one Exudyn static solve (:mod:`exudyn_atcm.mbs.sweep_solve`).
+
+References: the Jacobian a solver of its own forms at the same state (:meth:`SolverJacobian.system`,
+whose agreement with central differences ``test_stability_proof.py`` checks), and the equilibria of
+the same solve run to its end.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import exudyn_atcm as atcm
+from exudyn_atcm.mbs import builder as mb
+from exudyn_atcm.mbs import solver_runs
+from exudyn_atcm.mbs.stepping import Stepping
+from exudyn_atcm.mbs.sweep_solve import solve_points, system_state
+from exudyn_atcm.solve import mechanism_static as ms
+from exudyn_atcm.solve.static_stability import stability_probe
+
+from test_one_stepping import CFC, MFC, lone, paper_drive
+
+VOLTS = np.concatenate([np.linspace(0.0, 1200.0, 7), np.linspace(1200.0, -200.0, 8)[1:]])
+
+
+def rod_four_bar() -> atcm.Mechanism:
+    """The README's four-bar (rod cells, the default)."""
+    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=paper_drive(),
+                        angle=np.pi / 2)
+    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
+    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
+    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
+    m.ground(crank.base)
+    m.pin(crank.tip, coupler.point("A"))
+    m.pin("coupler.B", "rocker.B")
+    m.ground("rocker.O", joint="pin")
+    return m
+
+
+def prepared(mech):
+    """A built model in the equilibrium of the sweep's first point, its probe and every point's strains."""
+    model = mb.build(mech)
+    probe = stability_probe(mech, model)
+    strains = Stepping.static(model).hold_path(VOLTS[:, None] * np.ones((1, len(model.sources))))
+    ms.equilibrium(mech, model, np.zeros(len(model.sources)), strains[0], True, None, "point 0", probe)
+    solver_runs.set_current_as_initial(model, zero_velocity=True)
+    return model, probe, strains
+
+
+@pytest.mark.parametrize("make", [lambda: lone(paper_drive(), cell="rod"),
+                                  rod_four_bar], ids=["lone rod", "four-bar rod"])
+def test_the_running_solvers_jacobian_is_the_probes_to_the_bit(make):
+    model, probe, strains = prepared(make())
+    assert probe.jacobian.exact
+    seen = []
+
+    def on_point(k, solver):
+        model.before_linearisation()
+        running = probe.jacobian.running_system(solver, mass=True)
+        own = probe.jacobian.system(mass=True)
+        for key in ("M", "K", "Cq"):
+            np.testing.assert_array_equal(running[key], own[key], err_msg=f"{key} at point {k}")
+        seen.append(k)
+        return True
+
+    solved = solve_points(model, strains, 1, on_point, connector_derivative=True)
+    assert seen == list(range(1, len(VOLTS))) and solved.last == len(VOLTS) - 1
+    assert not solved.stopped and solved.failure is None
+
+
+def test_a_stopped_solve_holds_the_point_it_stopped_at():
+    model, _, strains = prepared(lone(paper_drive(), cell="rod"))
+    states = {}
+
+    def to_the_end(k, solver):
+        states[k] = np.array(system_state(model)[0])
+        return True
+
+    start = system_state(model)
+    solve_points(model, strains, 1, to_the_end)
+    model2, _, _ = prepared(lone(paper_drive(), cell="rod"))
+    np.testing.assert_array_equal(system_state(model2)[0], start[0])
+
+    def stop_at_5(k, solver):
+        return k < 5
+
+    solved = solve_points(model2, strains, 1, stop_at_5)
+    assert solved.last == 5 and solved.stopped and solved.failure is None
+    np.testing.assert_array_equal(system_state(model2)[0], states[5])
+    # and it continues from there to the same end
+    rest = solve_points(model2, strains, 6, lambda k, solver: True)
+    assert rest.last == len(VOLTS) - 1
+    np.testing.assert_allclose(system_state(model2)[0], states[len(VOLTS) - 1], rtol=0.0, atol=1e-12)
+
+
+def test_an_error_in_the_point_hook_is_raised_as_itself():
+    model, _, strains = prepared(lone(paper_drive(), cell="rigid"))
+
+    def broken(k, solver):
+        raise KeyError("mine")
+
+    with pytest.raises(KeyError, match="mine"):
+        solve_points(model, strains, 1, broken)
+
+
+def test_a_bad_first_point_is_refused():
+    model, _, strains = prepared(lone(paper_drive(), cell="rigid"))
+    with pytest.raises(ValueError, match=r"first: expected a point in 1 \.\.\. 13, got 0"):
+        solve_points(model, strains, 0, lambda k, solver: True)
+
+
+def test_the_rods_truncation_estimate_of_many_states_is_the_estimate_of_each():
+    """A sweep reads every point's state and estimates them together (``estimate.many``): the same numbers as
+    the estimate of each state alone (the same algebra, stacked), over random states with dead and follower
+    forces."""
+    from exudyn_atcm.theory import rotation_rod as rr
+    shapes = rr.rod_shapes(3, 0.087)
+    estimate = rr.truncation_estimator(shapes, 0.01)
+    rng = np.random.default_rng(1)
+    p = 25
+    angles, q = rng.uniform(-1.0, 1.0, p), rng.uniform(-0.5, 0.5, (p, shapes.n))
+    forces, followers = rng.uniform(-1.0, 1.0, (p, 2)), rng.uniform(-0.3, 0.3, (p, 2))
+    one = np.array([estimate(angles[i], q[i], forces[i], followers[i]) for i in range(p)])
+    np.testing.assert_allclose(estimate.many(angles, q, forces, followers), one, rtol=1e-12, atol=0.0)
+    assert np.all(one > 0.0)
+
+
+def test_the_joint_lever_term_of_a_pinned_bar_is_the_analytic_one():
+    """Exudyn's Jacobian of a revolute joint leaves out ``lambda . d^2(R p)/dtheta^2``; :class:`JointLevers` adds it.
+    Reference: the closed form ``s lambda . (R(theta) p)`` and the central differences of the residual."""
+    import exudyn as exu
+    import exudyn.itemInterface as ii
+    from exudyn_atcm.mbs.solver_jacobian import SolverJacobian
+    from exudyn_atcm.mbs.tangent import TangentPlan
+
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    ground = mbs.AddObject(ii.ObjectGround())
+    node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[0.05, 0.0, 0.0]))
+    bar = mbs.AddObject(ii.ObjectRigidBody2D(nodeNumber=node, mass=0.1, inertia=1e-3))
+    pin = [mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0])),
+           mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=bar, localPosition=[-0.05, 0.0, 0.0]))]
+    mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=pin))
+    mbs.Assemble()
+    theta, lam = 0.3, np.array([1.5, -0.7])
+    for configuration in (exu.ConfigurationType.Current, exu.ConfigurationType.Initial):
+        mbs.systemData.SetODE2Coordinates([0.0, 0.0, theta], configuration=configuration)
+        mbs.systemData.SetAECoordinates(lam, configuration=configuration)
+    closed_form = lam @ np.array([-0.05 * np.cos(theta), -0.05 * np.sin(theta)])  # s = +1: the second marker
+    fast = SolverJacobian(mbs).system(mass=False)["K"]
+    differences = TangentPlan(mbs).system(mass=False)["K"]
+    assert closed_form == pytest.approx(-0.0613070, rel=1e-5)
+    assert fast[2, 2] == pytest.approx(closed_form, rel=1e-12)
+    assert differences[2, 2] == pytest.approx(closed_form, rel=1e-6)
+
+
+def test_without_the_lever_terms_a_buckled_rigid_column_would_be_proved_stable(monkeypatch):
+    """Why the lever terms matter: a rigid-cell column under 1.5 times Euler's load is unstable (the compressive
+    force's geometric softening ``F L_c`` at every joint is what buckles it); from Exudyn's Jacobian alone the
+    proof would pass it."""
+    from exudyn_atcm.mbs.solver_jacobian import JointLevers
+    from test_static_stability import column
+
+    def probe_of_column():
+        mech, _ = column("rigid", 8, 1.5, nudge=0.0)
+        model = mb.build(mech)
+        probe = stability_probe(mech, model)
+        ms.equilibrium(mech, model, np.zeros(1), np.zeros(1), True, None, "the column", probe)  # the straight one
+        return probe
+
+    probe = probe_of_column()
+    assert probe.jacobian.exact and probe.check().state == "unstable"
+    monkeypatch.setattr(JointLevers, "add_to", lambda self, k, q, multipliers: None)
+    probe = probe_of_column()
+    probe.model.before_linearisation()
+    assert probe._jacobian_proved(probe.jacobian.system(mass=probe.use_mass))  # the false proof, without them
