@@ -38,6 +38,22 @@ def test_sine_steps_piecewise_constant():
     assert Constant(7.5)(np.arange(3)).tolist() == [7.5, 7.5, 7.5]
 
 
+def test_a_step_switch_is_taken_at_the_step_whose_time_misses_it_by_round_off():
+    """A solver's step times are sums of steps: 3000 steps of 1e-4 s end 1.7e-14 s before 0.3 s, 1000 end
+    1.8e-15 s after 0.1 s.  Either way the switch is at that step (not one step later for one of them); a time
+    a microsecond before the switch is still before it."""
+    steps = Steps([0.0, 0.1, 0.3], [0.0, 100.0, -50.0])
+    t = 0.0
+    times = []
+    for _ in range(3000):
+        t += 1e-4
+        times.append(t)
+    assert times[999] > 0.1 and times[2999] < 0.3  # the round-off the program must not depend on
+    assert steps(times[999]) == 100.0 and steps(times[2999]) == -50.0
+    assert steps(np.array([times[998], times[999], times[2998], times[2999]])).tolist() == [0.0, 100.0, 100.0, -50.0]
+    assert steps(0.3 - 1e-6) == 100.0 and steps(0.1 - 1e-6) == 0.0
+
+
 def test_piecewise_linear_outside_error():
     ramp = PiecewiseLinear([0.0, 1.0], [0.0, 1.0], outside="error")
     with pytest.raises(ValueError, match=r"t = 1.5 s lies outside"):

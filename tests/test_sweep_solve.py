@@ -174,3 +174,34 @@ def test_without_the_lever_terms_a_buckled_rigid_column_would_be_proved_stable(m
     probe = probe_of_column()
     probe.model.before_linearisation()
     assert probe._jacobian_proved(probe.jacobian.system(mass=probe.use_mass))  # the false proof, without them
+
+
+def test_the_compiled_proof_is_the_numpy_proof_and_never_false():
+    """:func:`shifted_penalised_cholesky` against the numpy proof on the same shifted matrix (same decision away
+    from round-off) and against the truth, the lowest eigenvalue of the projection on the null space."""
+    from scipy.linalg import null_space as scipy_null_space
+    from exudyn_atcm.mbs.definite import PenaltyProof, positive_definite_on_null_space
+
+    rng = np.random.default_rng(7)
+    agree = proved = 0
+    for trial in range(300):
+        n, m = int(rng.integers(4, 20)), int(rng.integers(0, 4))
+        cq = rng.normal(size=(m, n))
+        k = rng.normal(size=(n, n))
+        k = k @ k.T - rng.uniform(0.0, 3.0) * np.eye(n) + 0.3 * rng.normal(size=(n, n))
+        mass = np.diag(rng.uniform(0.5, 2.0, n))
+        sigma, per_size = float(rng.uniform(0.0, 0.5)), n * 1e-7
+        a = k - sigma * mass - per_size * np.max(np.abs(k)) * np.eye(n)
+        proof = PenaltyProof()
+        proof.scale = float(10.0 ** rng.integers(0, 5))
+        fast = proof.prove_shifted(k, mass, cq, sigma, per_size)
+        slow = positive_definite_on_null_space(a, cq, proof._rho(a, cq.T @ cq if m else None))
+        basis = scipy_null_space(cq) if m else np.eye(n)
+        lowest = float(np.linalg.eigvalsh(basis.T @ (0.5 * (a + a.T)) @ basis)[0])
+        if fast:
+            assert lowest > 0.0, f"trial {trial}: a false proof"
+            proved += 1
+        if abs(lowest) > 1e-6 * np.max(np.abs(a)):  # away from round-off, both decide alike
+            assert fast == slow, trial
+            agree += 1
+    assert agree > 250 and proved > 15  # the sample holds definite cases too (27 of 300 proved)

@@ -96,6 +96,20 @@ class PenaltyProof:
         self.proved += ok
         return ok
 
+    def prove_shifted(self, k: np.ndarray, metric: np.ndarray, cq: np.ndarray, sigma: float,
+                      cushion_per_size: float) -> bool:
+        """The proof on ``a = K - sigma M - c I`` (``c = cushion_per_size max|K|``) in one compiled call
+        (:func:`~exudyn_atcm.mbs.definite_kernel.shifted_penalised_cholesky`; the same arithmetic as forming
+        ``a`` and calling this object on it)."""
+        from .definite_kernel import shifted_penalised_cholesky  # noqa: PLC0415 - lazy: numba is slow to import
+        self.attempts += 1
+        gram = cq.T @ cq if cq.shape[0] else np.zeros((k.shape[0], k.shape[0]))
+        ok = bool(shifted_penalised_cholesky(np.ascontiguousarray(k), np.ascontiguousarray(metric),
+                                             np.ascontiguousarray(gram), float(sigma), float(cushion_per_size),
+                                             float(self.scale)))
+        self.proved += ok
+        return ok
+
     def missed(self, a: np.ndarray | None = None, cq: np.ndarray | None = None) -> None:
         """The last failed proof was on a positive definite state: a larger penalty for the next.
 

@@ -74,16 +74,25 @@ class JointLevers:
                 node = body["nodeNumber"]
                 angle0 = float(mbs.GetNode(node)["referenceCoordinates"][2])
                 entries.append((i, sign, int(sd.GetNodeLTGODE2(node)[2]), angle0, local))
+        #: (joint object, sign, rotation coordinate, reference angle [rad], marker position [m]) per lever
         self.entries = entries
-        self._ae = [(np.asarray(sd.GetObjectLTGAE(i), dtype=int)[:2]) for i, *_ in entries]
+        n = len(entries)
+        self._rows = np.array([e[2] for e in entries], dtype=int)
+        self._signs = np.array([e[1] for e in entries], dtype=float)
+        self._angles = np.array([e[3] for e in entries], dtype=float)
+        self._local = np.array([e[4] for e in entries], dtype=float).reshape(n, 2)
+        self._ae = np.array([np.asarray(sd.GetObjectLTGAE(e[0]), dtype=int)[:2] for e in entries], dtype=int).reshape(n, 2)
 
     def add_to(self, k: np.ndarray, q: np.ndarray, multipliers: np.ndarray) -> None:
         """Add the joints' terms to the tangent ``k`` (in place) at coordinates ``q`` and multipliers ``multipliers``."""
-        for (_, sign, row, angle0, (px, py)), ae in zip(self.entries, self._ae):
-            theta = angle0 + q[row]
-            c, s_ = np.cos(theta), np.sin(theta)
-            lx, ly = multipliers[ae[0]], multipliers[ae[1]]
-            k[row, row] += sign * (lx * (c * px - s_ * py) + ly * (s_ * px + c * py))
+        if not self.entries:
+            return
+        theta = self._angles + q[self._rows]
+        c, s = np.cos(theta), np.sin(theta)
+        px, py = self._local[:, 0], self._local[:, 1]
+        lam = multipliers[self._ae]
+        terms = self._signs * (lam[:, 0] * (c * px - s * py) + lam[:, 1] * (s * px + c * py))
+        np.add.at(k, (self._rows, self._rows), terms)  # a body with levers at both ends gets both
 
 
 def constant_load(mbs, index: int) -> bool:
@@ -132,6 +141,10 @@ class SolverJacobian:
         self.exact = self.types <= EXACT_TYPES and all(constant_load(mbs, i) for i in range(sd.NumberOfLoads()))
         self.n_ode2 = len(sd.GetODE2Coordinates())
         self.levers = JointLevers(mbs)
+        #: whether the mass matrix is the same in every state (rigid bodies, beams, cables; not a rod, whose mass
+        #: matrix the package rewrites): :meth:`running_system` then forms it once (the caller must not change it)
+        self.constant_mass = "GenericODE2" not in self.types
+        self._mass: np.ndarray | None = None
         self._settings = static_settings()
         self._settings.staticSolver.newton.numericalDifferentiation.jacobianConnectorDerivative = True
 
@@ -192,8 +205,12 @@ class SolverJacobian:
         n2 = self.n_ode2
         m = None
         if mass:
-            solver.ComputeMassMatrix(self.mbs)
-            m = np.array(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
+            if self.constant_mass and self._mass is not None:
+                m = self._mass
+            else:
+                solver.ComputeMassMatrix(self.mbs)
+                m = np.array(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
+                self._mass = m
         solver.ComputeJacobianODE2RHS(self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0)
         solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0,
                                  velocityLevel=False)
