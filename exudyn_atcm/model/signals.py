@@ -51,10 +51,9 @@ class Signal:
 
         A solver must take several steps across it to follow the program (see
         :func:`exudyn_atcm.solve.run_checks.check_step_against_program`): the ramp of a triangle
-        (half a period), half a sine period (extremum to extremum), the dwell of a step
-        program, the shortest stretch between reversals or marked kinks of a piecewise-linear
-        program.  ``None`` for a program
-        without corners (a constant).
+        (half a period), half a sine period (extremum to extremum), the dwell of a step program, the
+        shortest stretch between reversals or marked kinks of a piecewise-linear program.  ``None``
+        for a program without corners (a constant).
 
         Parameters
         ----------
@@ -96,9 +95,8 @@ class Triangle(Signal):
     r"""Symmetric triangle wave of the paper's Eq. 11.
 
     :math:`U(t) = U_{med} + U_{amp}(4t/T - 1 - 2k)(-1)^k`, :math:`k = \lfloor 2t/T \rfloor`:
-    ``u_med - u_amp`` at ``t = 0`` (and every multiple of ``period``), ``u_med + u_amp`` at
-    ``period/2``.  (The paper calls it a saw tooth; it is a triangle.)  For ``t < 0`` the wave is
-    continued periodically (floor instead of the paper's truncation).
+    ``u_med - u_amp`` at ``t = 0`` (and every multiple of ``period``), ``u_med + u_amp`` at ``period/2``
+    (the paper calls it a saw tooth).  For ``t < 0`` it continues periodically (floor, not truncation).
 
     Parameters
     ----------
@@ -126,8 +124,7 @@ class Triangle(Signal):
     def _scalar(self, t: float) -> float:
         phase = 2.0 * t / self.period
         k = math.floor(phase)
-        sign = 1.0 if k % 2 == 0 else -1.0
-        return self.u_med + self.u_amp * (2.0 * phase - 1.0 - 2.0 * k) * sign
+        return self.u_med + self.u_amp * (2.0 * phase - 1.0 - 2.0 * k) * (1.0 if k % 2 == 0 else -1.0)
 
     def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
         if self.u_amp == 0.0:
@@ -186,19 +183,15 @@ def _breakpoints(times: Any, values: Any) -> tuple[np.ndarray, np.ndarray]:
     return t, v
 
 
-#: a time within this fraction of ``max(1 s, |t|)`` before a switch of a :class:`Steps` program counts as at it
-SWITCH_TOLERANCE = 1e-9
+SWITCH_TOLERANCE = 1e-9  #: fraction of ``max(1 s, |t|)`` before a :class:`Steps` switch that counts as at it
 
 
 class Steps(Signal):
     """Piecewise-constant program: ``values[k]`` from ``times[k]`` until ``times[k+1]``.
 
-    Before ``times[0]`` the signal is ``values[0]``; after the last time it holds the last value.
-    A time less than :data:`SWITCH_TOLERANCE` ``max(1 s, |t|)`` before a switch counts as at the
-    switch: a solver's step times are sums of steps, which miss a switch at ``k h`` by round-off
-    (1000 steps of 1e-4 s end at 0.1 + 1.8e-15 s, 3000 at 0.3 - 1.7e-14 s), and the switch must
-    not move by a whole step with it (a run and its probe at twice the step would see different
-    programs).
+    Before ``times[0]`` the signal is ``values[0]``; after the last time it holds the last value.  A
+    time within :data:`SWITCH_TOLERANCE` ``max(1 s, |t|)`` before a switch counts as at it: step times
+    miss ``k h`` by round-off (3000 steps of 1e-4 s end 1.7e-14 s before 0.3 s).
 
     Parameters
     ----------
@@ -212,8 +205,8 @@ class Steps(Signal):
         self.times, self.values = _breakpoints(times, values)
 
     def _values(self, t: np.ndarray) -> np.ndarray:
-        index = np.searchsorted(self.times, t + SWITCH_TOLERANCE * np.maximum(1.0, np.abs(t)), side="right") - 1
-        return self.values[np.clip(index, 0, None)]
+        at = np.searchsorted(self.times, t + SWITCH_TOLERANCE * np.maximum(1.0, np.abs(t)), side="right") - 1
+        return self.values[np.clip(at, 0, None)]
 
     def shortest_feature(self, t_end: float | None = None) -> tuple[float, str] | None:
         # dwell between successive switches that change the value (only those before t_end)
