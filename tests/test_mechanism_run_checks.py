@@ -18,6 +18,7 @@ import pytest
 from exudyn_atcm import Bender, Layer, Link, Mechanism, MechanismError, PiezoDrive, simulate
 from exudyn_atcm.solve import run_checks
 from exudyn_atcm.model.control import Controller, PIDController
+from exudyn_atcm.model.signals import Steps
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 from exudyn_atcm.solve.run_checks import SimulationInterrupted
 from exudyn_atcm.model.signals import Triangle
@@ -262,6 +263,16 @@ def test_measurement_declared_for_a_drive_without_controller_is_refused():
     mech.feedback("crank", "crank.tip_y")
     with pytest.raises(MechanismError, match=r"declares the measurement 'crank.tip_y' for drive 'crank'.*not a controller"):
         simulate(mech, 1e-3, step=1e-4)
+
+
+def test_a_long_program_is_cut_short_in_the_refusal():
+    # a step program of 2000 switches: its repr is some 60,000 characters; the message names it in about 100
+    times = np.linspace(0.0, 10.0, 2000)  # dwells of 5 ms: 50 steps each
+    mech = cantilever(bender("crank", PiezoDrive(Steps(times, 300.0 * np.sin(times)))))
+    mech.feedback("crank", "crank.tip_y")
+    with pytest.raises(MechanismError, match=r"not a controller \(Steps\(times=\[.*\.\.\. \(Steps, \d+ characters\)\)") as info:
+        simulate(mech, 1e-3, step=1e-4)
+    assert len(str(info.value)) < 500
 
 
 def test_range_check_sees_every_step_not_only_the_recorded_ones():

@@ -217,6 +217,20 @@ def test_mechanism_refuses_tip_force_and_unknown_drive():
         solve_static(m, voltage={"c": 1.0})
 
 
+def test_a_bad_voltage_is_refused_before_the_system_is_built(monkeypatch):
+    from exudyn_atcm.mbs import builder
+
+    def no_build(*args, **kwargs):
+        raise AssertionError("built before the voltage was checked")
+
+    monkeypatch.setattr(builder, "build", no_build)
+    m = cantilever(bender())
+    with pytest.raises(ValueError, match="unknown drive 'c'"):
+        solve_static(m, voltage={"c": 1.0})
+    with pytest.raises(ValueError, match="voltage"):
+        solve_static(m, voltage=float("nan"))
+
+
 # ----------------------------------------------------------------------------- segments, pinned ends
 
 # incidental warning: -800 V (beyond the MFC's -500 V) makes the opposite curvature large; the polygon is exact

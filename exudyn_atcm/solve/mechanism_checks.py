@@ -146,6 +146,12 @@ def check_steps(mech: Mechanism, grid: Any, t_end: float, schedule: Any = None) 
                  stacklevel=5)
 
 
+def brief(value: object, limit: int = 100) -> str:
+    """``repr(value)`` cut to about ``limit`` characters (a sampled program's repr holds every sample)."""
+    text = repr(value)
+    return text if len(text) <= limit else f"{text[:limit]}... ({type(value).__name__}, {len(text)} characters)"
+
+
 def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[Any, str]]:
     """``(controller, measurement column)`` of every drive set by a controller.
 
@@ -160,7 +166,7 @@ def feedback_controllers(mech: Mechanism, model: MechanismModel) -> list[tuple[A
             if names:
                 raise MechanismError(
                     f"mechanism {mech.name!r} declares the measurement {mech.measurements[names[0]]!r} for drive "
-                    f"{names[0]!r}, but that drive's voltage is not a controller ({drive.voltage!r}): nothing "
+                    f"{names[0]!r}, but that drive's voltage is not a controller ({brief(drive.voltage)}): nothing "
                     "would observe it. Give the PiezoDrive a controller (exudyn_atcm.model.control) or remove the "
                     "feedback declaration")
             continue

@@ -55,11 +55,11 @@ def solve_static(mech: Mechanism, voltage: VoltageSpec = None, load_steps: int |
     """
     if load_steps is not None:
         load_steps = positive_int("load_steps", load_steps)
+    volts = drive_voltages(mech, voltage)  # checked before the build: a bad voltage is refused at once
+    strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
     if built is None:
         warn_if_large(mech, "solve_static", equilibria=1, quiet=is_announced(), stacklevel=5)  # before the build
     model = built if built is not None else mb.build(mech)
-    volts = drive_voltages(mech, voltage)
-    strains_by_drive = {n: mech.drives[n].static_strain(v) for n, v in volts.items()}
     strains = source_values(model, strains_by_drive, "solve_static")
     source_volts = source_values(model, volts, "solve_static")
     check_drive_ranges(model, source_volts, strains)
