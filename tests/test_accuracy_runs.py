@@ -307,4 +307,8 @@ def test_the_probes_grid_holds_a_single_switch_and_the_run_meets_its_target():
     assert n % 20 == 0
     run = atcm.simulate(lone(program), 0.2, accuracy=1e-2)
     reference = atcm.simulate(lone(program), 0.2, step=run.info["step [s]"] / 8)
-    assert relative_error(run, reference) <= 1e-2
+    achieved = relative_error(run, reference)
+    assert achieved <= 1e-2
+    # the jump makes the error first order (JUMP_ORDER): assuming 1.5 estimated 0.0086 for 0.015 and kept that run;
+    # the estimate now follows the error (measured 0.0050 for 0.0049 after one refinement)
+    assert run.info["accuracy"]["estimated_error"] >= 0.8 * achieved
