@@ -272,9 +272,10 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1)
     predicted = float(np.max(errors))
     window, ratio = probe_window(errors, t_end, frequency, math.lcm(PROBE_FACTOR, n_used // grid if grid > 1 else 1))
     if any(isinstance(d.voltage, Steps) for d in _distinct_drives(mech)):
-        # a jump on a grid instant is taken on the side the instant's round-off says: the window's grid
-        # (t_stop / k) and the run's (t_end / n) differ in the last bit, and the probe over a window took the
-        # gripper's switch a step apart from the run (its estimate 2.7 times the whole run's)
+        # a jump on a grid instant was taken on the side the instant's round-off said (the window's grid t_stop / k
+        # and the run's t_end / n differ in the last bit): the probe over a window took the gripper's switch a step
+        # apart from the run, its estimate 2.7 times the whole run's.  Steps now samples a switch within round-off
+        # consistently (SWITCH_TOLERANCE); the whole run is kept until windows on step programs are re-measured
         window, ratio = t_end, 1.0
     reason = (f"one-mode stand-in ({frequency:.4g} Hz, damping ratio {zeta:.3g}) driven by the drives' free strain "
               f"misses {predicted:.2g} of its travel at this step")
