@@ -221,7 +221,8 @@ class Bender(MaterialDamped):
     def laminate(self) -> Laminate:
         """The cross-section (layers, width, stiffness model)."""
         material = self.damping if isinstance(self.damping, RayleighDamping) else None
-        return Laminate(self.width, self.passive, self.active, self.stiffness, material)
+        return self._cached("laminate", (self.width, self.passive, self.active, self.stiffness, material),
+                            lambda: Laminate(self.width, self.passive, self.active, self.stiffness, material))
 
     @property
     def length(self) -> float:

@@ -123,7 +123,8 @@ class Flexure(MaterialDamped):
     def laminate(self) -> Laminate:
         """The cross-section as a passive laminate."""
         material = self.damping if isinstance(self.damping, RayleighDamping) else None
-        return Laminate(self.width, self.layer, None, "composite", material)
+        return self._cached("laminate", (self.width, self.thickness, self.youngs_modulus, self.density, material),
+                            lambda: Laminate(self.width, self.layer, None, "composite", material))
 
     @property
     def bending_stiffness(self) -> float:
