@@ -141,10 +141,6 @@ class SolverJacobian:
         self.exact = self.types <= EXACT_TYPES and all(constant_load(mbs, i) for i in range(sd.NumberOfLoads()))
         self.n_ode2 = len(sd.GetODE2Coordinates())
         self.levers = JointLevers(mbs)
-        #: whether the mass matrix is the same in every state (rigid bodies, beams, cables; not a rod, whose mass
-        #: matrix the package rewrites): :meth:`running_system` then forms it once (the caller must not change it)
-        self.constant_mass = "GenericODE2" not in self.types
-        self._mass: np.ndarray | None = None
         self._settings = static_settings()
         self._settings.staticSolver.newton.numericalDifferentiation.jacobianConnectorDerivative = True
 
@@ -204,13 +200,9 @@ class SolverJacobian:
         """
         n2 = self.n_ode2
         m = None
-        if mass:
-            if self.constant_mass and self._mass is not None:
-                m = self._mass
-            else:
-                solver.ComputeMassMatrix(self.mbs)
-                m = np.array(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
-                self._mass = m
+        if mass:  # formed every time: a rigid cell's mass matrix turns with it (its centre of mass is off its node)
+            solver.ComputeMassMatrix(self.mbs)
+            m = np.array(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
         solver.ComputeJacobianODE2RHS(self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0)
         solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0,
                                  velocityLevel=False)
