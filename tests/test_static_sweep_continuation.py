@@ -123,6 +123,17 @@ def test_a_failed_continuation_falls_back_to_its_own_equilibrium_and_continues(m
         np.testing.assert_allclose(r[c], reference[c], rtol=0.0, atol=1e-9, err_msg=c)
 
 
+def test_a_solve_that_reaches_no_point_and_reports_no_failure_falls_back_instead_of_looping(monkeypatch):
+    monkeypatch.setattr(sweep_continuation, "solve_points", lambda model, strains, first, on_point, **kw:
+                        PointsSolved(first - 1))
+    reference = atcm.static_sweep(lone(paper_drive(), cell="rod"), CYCLE[:6], method="points")
+    r = atcm.static_sweep(lone(paper_drive(), cell="rod"), CYCLE[:6])
+    notes = r.info["fallback_points"].split(" | ")
+    assert len(notes) == 5 and all("the continuation reached no point" in n for n in notes)
+    for c in position_columns(r):
+        np.testing.assert_allclose(r[c], reference[c], rtol=0.0, atol=1e-12, err_msg=c)
+
+
 def test_a_missed_proof_in_the_solve_is_checked_in_full_and_the_sweep_goes_on(monkeypatch):
     reference = atcm.static_sweep(lone(paper_drive(), cell="rod"), CYCLE)
     missed, calls = {5, 6, 20}, []

@@ -159,7 +159,8 @@ def solve_points(model: MechanismModel, strains: np.ndarray, first: int,
         ok = solver.SolveSystem(mbs, settings)
     except Exception as exc:  # noqa: BLE001 - any Exudyn failure is reported with context
         errors.raise_first()
-        ok, failure = False, ExudynFailure(f"{type(exc).__name__}: {exc}", solver_time(solver) - (reached["point"] - first + 1))
+        within = solver_time(solver) - (reached["point"] - first + 1)  # the load-step time into the failed point
+        ok, failure = False, ExudynFailure(f"{type(exc).__name__}: {exc}", within)
     finally:
         restore_console()
         mbs.SetPreStepUserFunction(0)

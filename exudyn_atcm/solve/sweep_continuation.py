@@ -74,9 +74,12 @@ def continue_sweep(mech: Mechanism, model: MechanismModel, volts: np.ndarray, st
                                       probe.last if proved else None, state=system_state(model)))
             return proved or not in_solve  # where the proof in the solve missed: stop, check it outside
 
+        start = first
         with one_blas_thread():  # once for all the points' proofs (each proof's own use then only reads the counts)
             solved = solve_points(model, strains, first, on_point, connector_derivative=in_solve)
-        why = "" if solved.failure is None else f"the continuation step failed at load factor {solved.failure.time:.3g} ({solved.failure})"
+        why = ""
+        if solved.failure is not None:
+            why = f"the continuation step failed at load factor {solved.failure.time:.3g} ({solved.failure})"
         for point in pending:
             if point.stability is None:  # not proved in the solve: the full check on its state
                 set_state(model, point.state, strains[point.index])
@@ -88,6 +91,8 @@ def continue_sweep(mech: Mechanism, model: MechanismModel, volts: np.ndarray, st
             first, last_state = point.index + 1, point.state
         if first >= n:
             break
+        if not why and first == start:  # no point reached and no failure reported: never loop on it
+            why = "the continuation reached no point"
         if not why:  # stopped where the proof missed, and that point was stable after all: continue after it
             set_state(model, last_state, strains[first - 1])
             runs.set_current_as_initial(model, zero_velocity=True)
