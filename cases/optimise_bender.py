@@ -179,7 +179,7 @@ def optimise(p: Parameters, ctx: RunContext) -> CaseOutput:
         "frequency_bound_active": (float(best.scalars["first_frequency"] < p.f1_min * 1.001), "-"),
         "evaluations": (float(best.evaluations), "-"),
     }
-    notes = {"optimiser": best.message, "runs executed": best.executed}
+    notes = {"optimiser": best.message, "runs executed": best.executed, "evaluation rate": best.describe_rate()}
     if p.check_nonlinear and p.kinematics == "linear":
         fixed = _fixed(p, kinematics="nonlinear", passive_modulus=design["passive_modulus"], n_cells=design["n_cells"])
         nonlinear = optimize(CASE, "work", {"passive_thickness": bounds["passive_thickness"]}, method="nelder-mead",

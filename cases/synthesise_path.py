@@ -285,7 +285,8 @@ def synthesise(p: Parameters, ctx: RunContext) -> CaseOutput:
         history.update({name: np.asarray(column(opt.history, name), dtype=float) for name in DESIGN})
         history[objective] = np.asarray(column(opt.history, objective), dtype=float)
         tables[f"history_{label}"] = Result(history, {"evaluation": "-", **{n: "m" for n in DESIGN}, objective: "m"})
-    notes = {"optimiser": hyst.message, "precision points": "given" if p.precision_points else
+    notes = {"optimiser": hyst.message, "evaluation rate": hyst.describe_rate(),
+             "precision points": "given" if p.precision_points else
              "simulated rising-branch coupler points of the reference design",
              "rigid four-bar": "through the PRBM pivots B*, C*, D* for the simulated crank-tip pivot B*; "
                                "error relative to the coupler point's travel"}

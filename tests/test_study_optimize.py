@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -64,19 +65,29 @@ def test_optimise_bender_case_finds_the_design(bender, tmp_path):
     # geometric nonlinearity at 1500 V favours thicker layers (smaller free rotation): t grows
     assert 1.0 < s["thickness_ratio_optimum_nonlinear"] / s["thickness_ratio_optimum"] < 1.05
     assert (tmp_path / "optimise_bender_work.png").is_file()
+    assert "evaluations per minute per core" in out.notes["evaluation rate"]  # issue 31: the case reports its rate
 
 
 def test_differential_evolution_with_integer_and_constraint_parallel_and_resumable(tmp_path):
     """max z = n sin(x) subject to y = x^2 + n <= 3: n = 2, x = 1 (n = 1 gives sin(sqrt 2) < 1, n = 3 gives 0)."""
     kwargs = dict(maximize=True, constraints={"y": (None, 3.0)}, options=OptimizeOptions(maxiter=40))
     bounds = {"x": (0.0, 3.0), "n": (1, 3)}
+    called = time.perf_counter()
     first = optimize(SYNTHETIC, "z", bounds, run=RunOptions(workers=2, out=tmp_path), **kwargs)
+    called = time.perf_counter() - called
     assert first.design["n"] == 2 and first.design["x"] == pytest.approx(1.0, abs=1e-3)
+    # the rate per core: the runs executed over the search's wall time on its two workers (within the call's)
+    assert first.cores == 2 and 0.0 < first.search_time <= called
+    assert first.evaluation_rate == pytest.approx(first.executed / (2.0 * first.search_time), rel=1e-12)
+    assert first.describe_rate().startswith(f"{60.0 * first.evaluation_rate:.0f} evaluations per minute per core "
+                                            f"({first.executed} runs executed in")
     assert first.feasible and first.objective == pytest.approx(2.0 * math.sin(1.0), rel=1e-3)
     assert first.executed > 0 and (tmp_path / "synthetic_study_optimize_history.csv").is_file()
     # the same optimisation again: every evaluation comes from the store, same answer, in one process
     again = optimize(SYNTHETIC, "z", bounds, run=RunOptions(workers=1, out=tmp_path), **kwargs)
     assert again.executed == 0 and again.design == first.design and again.evaluations == first.evaluations
+    assert math.isnan(again.evaluation_rate) and again.cores == 1  # nothing executed: no rate
+    assert again.describe_rate().startswith("no run executed")
 
 
 def test_lbfgsb_with_finite_differences_and_a_callable_objective():

@@ -132,10 +132,12 @@ def test_differential_evolution_in_parallel_writes_plots_and_resumes(case, tmp_p
     s = first.scalars
     assert s["design_error_max"] < 1e-6  # polished by Nelder-Mead to the reference (same tolerance as above)
     assert s["runs_executed"] > 0
+    assert "evaluations per minute per core" in first.notes["evaluation rate"]  # issue 31: the case reports its rate
     for suffix in ("_paths.png", "_history.png", "_animation.gif", ".csv", "_history_hysteresis.csv", "_path.csv"):
         assert (tmp_path / f"synthesise_path{suffix}").is_file(), suffix
     again = case.run(values, out_dir=tmp_path, plot=False)
     assert again.scalars["runs_executed"] == 0
+    assert again.notes["evaluation rate"].startswith("no run executed")
     assert again.scalars["design_error_max"] == s["design_error_max"]
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import os
+import time
 from collections.abc import Mapping
 from contextlib import ExitStack
 from dataclasses import dataclass, field
@@ -78,6 +79,11 @@ class OptimizationResult:
     max_evaluations : int
         The cap on evaluations that was in force: ``max_evaluations`` if given, else the
         methods' own bound (:func:`~exudyn_atcm.study.budget.evaluation_bounds`).
+    search_time : float
+        Wall time [s] of the search, its runs included (not the re-run of the best design).
+    cores : int
+        The workers that ran the evaluations (1 in the calling process; a pool's or a Dask
+        cluster's workers).
     """
 
     design: dict[str, Any]
@@ -93,6 +99,24 @@ class OptimizationResult:
     scipy_result: Any = None
     files: list[Path] = field(default_factory=list)
     max_evaluations: int = 0
+    search_time: float = 0.0
+    cores: int = 1
+
+    @property
+    def evaluation_rate(self) -> float:
+        """Runs executed per second of the search per core [1/s] (``executed / (search_time * cores)``; runs taken
+        from the store are not counted; ``nan`` when none was executed)."""
+        if self.executed <= 0 or not self.search_time > 0.0:
+            return math.nan
+        return self.executed / (self.search_time * max(1, self.cores))
+
+    def describe_rate(self) -> str:
+        """:attr:`evaluation_rate` as a sentence for a report (per minute per core, with what it counts)."""
+        if math.isnan(self.evaluation_rate):
+            return f"no run executed (all {self.evaluations} evaluations from the store or repeats)"
+        return (f"{60.0 * self.evaluation_rate:.0f} evaluations per minute per core ({self.executed} runs executed in "
+                f"{self.search_time:.3g} s on {self.cores} worker{'s' if self.cores > 1 else ''}; runs from the store "
+                "not counted)")
 
 
 @hide_keywords
@@ -283,8 +307,10 @@ def optimize(
                                     announce=method == "differential_evolution")
         start = np.array([(float(x0[nm]) - lo) / (hi - lo) if x0 and nm in x0 else 0.5
                           for nm, lo, hi in zip(names, lows, highs)])
+        searched = time.perf_counter()
         result, stopped = _search(problem, method, start, kinds, seed, maxiter, popsize, tol, xatol, fatol, polish,
                                   penalty, constraint_handling == "scipy")
+        searched = time.perf_counter() - searched
         problem.add_unvisited()
         history = history_columns(case, problem, names)
         summary = {"case": case.name, "method": method, "maximize": maximize,
@@ -305,6 +331,7 @@ def optimize(
                 error.args = (f"{error} (every evaluation is in {written[0]})",)
             raise error
         opt = _best(case, problem, history, result, stopped, cap, rerun_best, out_dir, plot)
+        opt.search_time, opt.cores = searched, int(getattr(problem.engine, "workers", 1) or 1)
         if out_dir is not None:
             opt.files += _write_summary(out_dir, case.name, history, {
                 **summary, "design": opt.design, "objective value": opt.objective, "feasible": opt.feasible,
