@@ -10,7 +10,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import exudyn_atcm as atcm
 from exudyn_atcm.mbs import builder as mb
 from exudyn_atcm.mbs import solver_runs
 from exudyn_atcm.mbs.stepping import Stepping
@@ -18,23 +17,10 @@ from exudyn_atcm.mbs.sweep_solve import solve_points, system_state
 from exudyn_atcm.solve import mechanism_static as ms
 from exudyn_atcm.solve.static_stability import stability_probe
 
-from test_one_stepping import CFC, MFC, lone, paper_drive
+from test_one_stepping import lone, paper_drive
+from test_stability_proof import readme_four_bar
 
 VOLTS = np.concatenate([np.linspace(0.0, 1200.0, 7), np.linspace(1200.0, -200.0, 8)[1:]])
-
-
-def rod_four_bar() -> atcm.Mechanism:
-    """The README's four-bar (rod cells, the default)."""
-    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=3, drive=paper_drive(),
-                        angle=np.pi / 2)
-    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
-    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
-    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
-    m.ground(crank.base)
-    m.pin(crank.tip, coupler.point("A"))
-    m.pin("coupler.B", "rocker.B")
-    m.ground("rocker.O", joint="pin")
-    return m
 
 
 def prepared(mech):
@@ -47,7 +33,7 @@ def prepared(mech):
     return model, probe, strains
 
 
-@pytest.mark.parametrize("make", [lambda: lone(paper_drive(), cell="rod"), rod_four_bar,
+@pytest.mark.parametrize("make", [lambda: lone(paper_drive(), cell="rod"), readme_four_bar,
                                   lambda: lone(paper_drive(), cell="rigid")], ids=["lone rod", "four-bar rod", "lone rigid"])
 def test_the_running_solvers_jacobian_is_the_probes_to_the_bit(make):
     # the mass matrix too, at every point: a rigid cell's turns with it (it was once formed only once, and the

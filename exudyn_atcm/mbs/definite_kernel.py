@@ -13,7 +13,7 @@ same proof as :func:`~exudyn_atcm.mbs.definite.positive_definite_on_null_space`
 eigenvalues).  Compiled on first use and cached on disk (numba's ``cache=True``), like the rod
 cell's kernels.
 
-May import: numpy, numba.
+May import: numpy, numba, :mod:`exudyn_atcm.theory.cholesky_kernel`.
 """
 
 from __future__ import annotations
@@ -22,6 +22,8 @@ import math
 
 import numba
 import numpy as np
+
+from ..theory.cholesky_kernel import cholesky_in_place
 
 __all__ = ["shifted_penalised_cholesky"]
 
@@ -66,18 +68,4 @@ def shifted_penalised_cholesky(k, metric, gram, sigma, cushion_per_size, scale):
             if not math.isfinite(v):
                 return False
             p[i, j] = v
-    # lower Cholesky factorisation in place (the lower triangle of p)
-    for j in range(n):
-        d = p[j, j]
-        for s in range(j):
-            d -= p[j, s] * p[j, s]
-        if not d > 0.0:
-            return False
-        d = math.sqrt(d)
-        p[j, j] = d
-        for i in range(j + 1, n):
-            v = p[i, j]
-            for s in range(j):
-                v -= p[i, s] * p[j, s]
-            p[i, j] = v / d
-    return True
+    return cholesky_in_place(p)  # the lower triangle of p, in place

@@ -16,7 +16,7 @@ numba's call overhead, about 0.05 µs per argument: the package's hooks therefor
 by :func:`pack_rod`.  Compiled on first use and cached on disk (numba's ``cache=True``); imported
 only when a ``rod`` bender is built.
 
-May import: numpy, numba.
+May import: numpy, numba, :mod:`.cholesky_kernel`.
 """
 
 from __future__ import annotations
@@ -25,6 +25,8 @@ import math
 
 import numba
 import numpy as np
+
+from .cholesky_kernel import cholesky_in_place
 
 __all__ = ["rod_matrices", "tip_pose", "geometric_stiffness", "linearisation", "step_check", "moving", "tip_gap",
            "unpack_out", "predicted_items", "solved_check"]
@@ -243,17 +245,7 @@ def linearisation(coordinates, velocities, accelerations, base_start, rod_start,
 def _cholesky_solve(a, b):  # pragma: no cover - compiled
     """Solve ``a x = b`` in place for a small symmetric positive definite ``a`` (overwritten by its factor)."""
     size = a.shape[0]
-    for j in range(size):
-        d = a[j, j]
-        for k in range(j):
-            d -= a[j, k] * a[j, k]
-        d = math.sqrt(d)
-        a[j, j] = d
-        for i in range(j + 1, size):
-            v = a[i, j]
-            for k in range(j):
-                v -= a[i, k] * a[j, k]
-            a[i, j] = v / d
+    cholesky_in_place(a)
     for i in range(size):
         v = b[i]
         for k in range(i):
