@@ -193,3 +193,77 @@ def test_the_compiled_proof_is_the_numpy_proof_and_never_false():
             assert fast == slow, trial
             agree += 1
     assert agree > 250 and proved > 15  # the sample holds definite cases too (27 of 300 proved)
+
+
+def test_the_proof_on_the_solvers_jacobian_is_the_proof_on_its_split_tangent():
+    """:func:`jacobian_penalised_cholesky` (the solver's whole Jacobian, levers added and ``C_q^T C_q`` formed in the
+    compiled call) against :meth:`PenaltyProof.prove_shifted` on the tangent split out of it with the lever terms
+    written here in numpy (``K[r, r] += s lambda . R(theta) p``, see :class:`JointLevers`): the same decision
+    away from round-off, and never a proof where the projected matrix is not positive definite."""
+    from scipy.linalg import null_space as scipy_null_space
+    from exudyn_atcm.mbs.definite import PenaltyProof
+
+    rng = np.random.default_rng(11)
+    agree = proved = 0
+    for trial in range(300):
+        n2, m = int(rng.integers(4, 20)), int(rng.integers(0, 5))
+        jacobian = rng.normal(size=(n2 + m, n2 + m))
+        k0 = rng.normal(size=(n2, n2))
+        jacobian[:n2, :n2] = k0 @ k0.T - rng.uniform(0.0, 3.0) * np.eye(n2) + 0.3 * rng.normal(size=(n2, n2))
+        q, multipliers = rng.normal(size=n2), rng.normal(size=m)
+        levers = int(rng.integers(0, 4)) if m else 0
+        rows = rng.integers(0, n2, size=levers)
+        signs = rng.choice([-1.0, 1.0], size=levers)
+        angles, local = rng.uniform(-3.0, 3.0, size=levers), rng.normal(size=(levers, 2))
+        ae = rng.integers(0, max(m, 1), size=(levers, 2))
+        mass = np.diag(rng.uniform(0.5, 2.0, n2))
+        sigma, per_size = float(rng.uniform(0.0, 0.5)), n2 * 1e-7
+        k = jacobian[:n2, :n2].copy()
+        for r, s, a0, p, (i0, i1) in zip(rows, signs, angles, local, ae):
+            c, sn = np.cos(a0 + q[r]), np.sin(a0 + q[r])
+            k[r, r] += s * (multipliers[i0] * (c * p[0] - sn * p[1]) + multipliers[i1] * (sn * p[0] + c * p[1]))
+        cq = jacobian[n2:, :n2]
+        scale = float(10.0 ** rng.integers(0, 5))
+        split_proof, fused_proof = PenaltyProof(), PenaltyProof()
+        split_proof.scale = fused_proof.scale = scale
+        split = split_proof.prove_shifted(k, mass, cq, sigma, per_size)
+        fused = fused_proof.prove_from_jacobian(jacobian, n2, mass, (rows, signs, angles, local, ae), q, multipliers,
+                                                sigma, per_size)
+        a = k - sigma * mass - per_size * np.max(np.abs(k)) * np.eye(n2)
+        basis = scipy_null_space(cq) if m else np.eye(n2)
+        lowest = float(np.linalg.eigvalsh(basis.T @ (0.5 * (a + a.T)) @ basis)[0]) if basis.shape[1] else 1.0
+        if fused:
+            assert lowest > 0.0, f"trial {trial}: a false proof"
+            proved += 1
+        if abs(lowest) > 1e-6 * np.max(np.abs(a)):
+            assert fused == split, trial
+            agree += 1
+    assert agree > 250 and proved > 15
+
+
+@pytest.mark.parametrize("make", [readme_four_bar, lambda: lone(paper_drive(), cell="rigid")],
+                         ids=["four-bar rod", "lone rigid"])
+def test_the_in_solve_proof_decides_as_the_proof_on_the_split_tangent_along_a_sweep(make):
+    # the same states as the compiled call sees them inside the solve; the rigid chain has lever terms on every cell
+    model, probe, strains = prepared(make())
+    assert probe.jacobian.exact
+    decisions = []
+
+    def on_point(k, solver):
+        model.before_linearisation()
+        split = probe._jacobian_proved(probe.jacobian.running_system(solver, mass=probe.use_mass))
+        fused = probe.proved_in_solve(solver)  # last: the probe keeps its Jacobian unsplit
+        decisions.append((k, fused, split))
+        return True
+
+    solve_points(model, strains, 1, on_point, connector_derivative=True)
+    assert len(decisions) == len(VOLTS) - 1
+    assert all(fused == split for _, fused, split in decisions), decisions
+    assert all(fused for _, fused, _ in decisions)  # these sweeps are stable throughout, with a margin
+    # the tangent of the last state proved inside the solve, split on demand, is the one a solver of its own forms
+    model.before_linearisation()
+    own = probe.jacobian.system(mass=probe.use_mass)
+    assert isinstance(probe._ts, tuple)
+    kept = probe._kept_tangent()
+    for key in ("K", "Cq"):
+        np.testing.assert_array_equal(kept[key], own[key], err_msg=key)

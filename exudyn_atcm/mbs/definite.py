@@ -110,6 +110,20 @@ class PenaltyProof:
         self.proved += ok
         return ok
 
+    def prove_from_jacobian(self, jacobian: np.ndarray, n2: int, metric: np.ndarray, levers: tuple, q: np.ndarray,
+                            multipliers: np.ndarray, sigma: float, cushion_per_size: float) -> bool:
+        """:meth:`prove_shifted` on the tangent in a static solver's system Jacobian, in one compiled call
+        (:func:`~exudyn_atcm.mbs.definite_kernel.jacobian_penalised_cholesky`: ``K`` its first ``n2`` rows and
+        columns plus the revolute joints' lever terms ``levers``, the arrays of
+        :attr:`JointLevers.arrays <exudyn_atcm.mbs.solver_jacobian.JointLevers.arrays>`, at coordinates ``q`` and
+        multipliers ``multipliers``; ``C_q`` its remaining rows)."""
+        from .definite_kernel import jacobian_penalised_cholesky  # noqa: PLC0415 - lazy: numba is slow to import
+        self.attempts += 1
+        ok = bool(jacobian_penalised_cholesky(jacobian, n2, metric, *levers, q, multipliers, float(sigma),
+                                              float(cushion_per_size), float(self.scale)))
+        self.proved += ok
+        return ok
+
     def missed(self, a: np.ndarray | None = None, cq: np.ndarray | None = None) -> None:
         """The last failed proof was on a positive definite state: a larger penalty for the next.
 

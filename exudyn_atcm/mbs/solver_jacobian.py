@@ -83,16 +83,21 @@ class JointLevers:
         self._local = np.array([e[4] for e in entries], dtype=float).reshape(n, 2)
         self._ae = np.array([np.asarray(sd.GetObjectLTGAE(e[0]), dtype=int)[:2] for e in entries], dtype=int).reshape(n, 2)
 
+    @property
+    def arrays(self) -> tuple[np.ndarray, ...]:
+        """The levers as arrays: rotation coordinates, signs, reference angles [rad], marker positions [m] (n x 2)
+        and the joints' multiplier indices (n x 2), in the order
+        :func:`~exudyn_atcm.mbs.definite_kernel.add_lever_terms` takes them."""
+        return self._rows, self._signs, self._angles, self._local, self._ae
+
     def add_to(self, k: np.ndarray, q: np.ndarray, multipliers: np.ndarray) -> None:
-        """Add the joints' terms to the tangent ``k`` (in place) at coordinates ``q`` and multipliers ``multipliers``."""
+        """Add the joints' terms to the tangent ``k`` (in place) at coordinates ``q`` and multipliers ``multipliers``
+        (compiled: :func:`~exudyn_atcm.mbs.definite_kernel.add_lever_terms`; a body with levers at both ends gets
+        both)."""
         if not self.entries:
             return
-        theta = self._angles + q[self._rows]
-        c, s = np.cos(theta), np.sin(theta)
-        px, py = self._local[:, 0], self._local[:, 1]
-        lam = multipliers[self._ae]
-        terms = self._signs * (lam[:, 0] * (c * px - s * py) + lam[:, 1] * (s * px + c * py))
-        np.add.at(k, (self._rows, self._rows), terms)  # a body with levers at both ends gets both
+        from .definite_kernel import add_lever_terms  # noqa: PLC0415 - lazy: numba is slow to import
+        add_lever_terms(k, *self.arrays, np.asarray(q, dtype=float), np.asarray(multipliers, dtype=float))
 
 
 def constant_load(mbs, index: int) -> bool:
@@ -176,15 +181,19 @@ class SolverJacobian:
         finally:
             sd.SetSystemState(systemStateList=initial_state, configuration=ini)
             sd.SetSystemState(systemStateList=current_state, configuration=cur)
-        return self._split(jacobian, m)
+        return self.split(jacobian, m)
 
-    def _split(self, jacobian: np.ndarray, m: np.ndarray | None) -> dict:
-        """``M``, ``K`` (with the joints' lever terms) and ``Cq`` of the system Jacobian at the current state."""
+    def split(self, jacobian: np.ndarray, m: np.ndarray | None, q: np.ndarray | None = None,
+              multipliers: np.ndarray | None = None) -> dict:
+        """``M``, ``K`` (with the joints' lever terms) and ``Cq`` of the system Jacobian ``jacobian`` (``m``: the mass
+        matrix or ``None``) at the ODE2 coordinates ``q`` and multipliers ``multipliers`` (default: the current
+        state's)."""
         n2 = self.n_ode2
         k = jacobian[:n2, :n2]
         if self.levers.entries:
             sd = self.mbs.systemData
-            self.levers.add_to(k, sd.GetODE2Coordinates(copy=False), sd.GetAECoordinates(copy=False))
+            self.levers.add_to(k, sd.GetODE2Coordinates(copy=False) if q is None else q,
+                               sd.GetAECoordinates(copy=False) if multipliers is None else multipliers)
         return {"M": m, "K": k, "Cq": jacobian[n2:, :n2]}
 
     def running_system(self, solver, mass: bool = True) -> dict:
@@ -198,6 +207,12 @@ class SolverJacobian:
         holds is disturbed.  Equal to :meth:`system` to the last bit (measured on the README four-bar
         and a lone rod bender; ``tests/test_sweep_solve.py``).
         """
+        jacobian, m = self.running_jacobian(solver, mass)
+        return self.split(jacobian, m)
+
+    def running_jacobian(self, solver, mass: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
+        """The running solver's system Jacobian as Exudyn forms it (without the lever terms) and the mass matrix
+        (or ``None``): what :meth:`running_system` splits."""
         n2 = self.n_ode2
         m = None
         if mass:  # formed every time: a rigid cell's mass matrix turns with it (its centre of mass is off its node)
@@ -206,5 +221,4 @@ class SolverJacobian:
         solver.ComputeJacobianODE2RHS(self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0)
         solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0,
                                  velocityLevel=False)
-        jacobian = np.array(solver.GetSystemJacobian(), dtype=float)
-        return self._split(jacobian, m)
+        return np.array(solver.GetSystemJacobian(), dtype=float), m

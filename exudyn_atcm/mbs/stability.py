@@ -289,24 +289,14 @@ class StabilityProbe:
         k = js["K"]
         n = k.shape[0]
         if 0 < n <= KERNEL_SIZE:
-            if self.use_mass:
-                metric = js["M"]
-            else:
-                if self._identity is None or self._identity.shape[0] != n:
-                    self._identity = np.eye(n)
-                metric = self._identity
-            proved = self.jacobian_proof.prove_shifted(k, metric, js["Cq"], CRITICAL_MARGIN * self.reference,
-                                                       n * JACOBIAN_DIFFERENCE)
+            proved = self.jacobian_proof.prove_shifted(k, js["M"] if self.use_mass else self._eye(n), js["Cq"],
+                                                       CRITICAL_MARGIN * self.reference, n * JACOBIAN_DIFFERENCE)
         else:
             cushion = n * JACOBIAN_DIFFERENCE * (float(abs(k).max()) if k.size else 0.0)
             proved = self.jacobian_proof(self._shifted(js, cushion), js["Cq"])
-        if not proved:
-            return False
-        self._jacobian_misses = 0
-        self._basis = None
-        self._ts = js
-        self._k = k
-        return True
+        if proved:
+            self._proved(js)
+        return proved
 
     def proved_in_solve(self, solver) -> bool:
         """Whether the cheap proof from Exudyn's Jacobian shows the current state stable, inside a running static solve.
@@ -315,16 +305,51 @@ class StabilityProbe:
         connector derivative (:meth:`SolverJacobian.running_system`).  ``True`` sets :attr:`last` to a
         stable :class:`Stability`, as :meth:`check` would; ``False`` proves nothing (and changes
         nothing): the caller then calls :meth:`check` on this state outside the solve.  Always
-        ``False`` where Exudyn's Jacobian is not the tangent (:attr:`use_jacobian`).
+        ``False`` where Exudyn's Jacobian is not the tangent (:attr:`use_jacobian`).  Up to
+        :data:`KERNEL_SIZE` coordinates the whole proof is one compiled call on the solver's Jacobian
+        (:func:`~exudyn_atcm.mbs.definite_kernel.jacobian_penalised_cholesky`; the tangent is split
+        out of it only if :meth:`critical_load_factor` asks for it).
         """
         if not self.use_jacobian:
             return False
         self.model.before_linearisation()
-        with one_blas_thread():
-            proved = self._jacobian_proved(self.jacobian.running_system(solver, mass=self.use_mass))
+        jacobian, m = self.jacobian.running_jacobian(solver, mass=self.use_mass)
+        n = self.jacobian.n_ode2
+        if 0 < n <= KERNEL_SIZE:
+            sd = self.model.mbs.systemData
+            q = np.array(sd.GetODE2Coordinates(copy=False), dtype=float)
+            multipliers = np.array(sd.GetAECoordinates(copy=False), dtype=float)
+            proved = self.jacobian_proof.prove_from_jacobian(jacobian, n, m if self.use_mass else self._eye(n),
+                                                             self.jacobian.levers.arrays, q, multipliers,
+                                                             CRITICAL_MARGIN * self.reference, n * JACOBIAN_DIFFERENCE)
+            if proved:
+                self._proved((jacobian, m, q, multipliers))
+        else:
+            with one_blas_thread():
+                proved = self._jacobian_proved(self.jacobian.split(jacobian, m))
         if proved:
             self.last = Stability("stable")
         return proved
+
+    def _eye(self, n: int) -> np.ndarray:
+        """The identity of order ``n`` (the metric without mass), kept."""
+        if self._identity is None or self._identity.shape[0] != n:
+            self._identity = np.eye(n)
+        return self._identity
+
+    def _proved(self, tangent: dict | tuple) -> None:
+        """Keep the state just proved stable from Exudyn's Jacobian: its tangent system, or the Jacobian, mass
+        matrix, coordinates and multipliers to split it from on demand (:meth:`_kept_tangent`)."""
+        self._jacobian_misses = 0
+        self._basis = None
+        self._ts = tangent
+
+    def _kept_tangent(self) -> dict:
+        """The tangent system of the last state checked (split from Exudyn's Jacobian if it was kept unsplit)."""
+        if isinstance(self._ts, tuple):
+            jacobian, m, q, multipliers = self._ts
+            self._ts = self.jacobian.split(jacobian, m, q, multipliers)
+        return self._ts
 
     def _jacobian_missed(self) -> None:
         """The proof from Exudyn's Jacobian failed on a stable state: a larger penalty for the next one; after
@@ -375,7 +400,7 @@ class StabilityProbe:
         """
         from scipy.linalg import eig  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
         if self._basis is None:  # the last check was proved stable without the projection
-            self._reduced(self._ts)
+            self._reduced(self._kept_tangent())
         basis = self._basis
         k0 = basis.T @ self._k_reference @ basis
         k0 = 0.5 * (k0 + k0.T)
