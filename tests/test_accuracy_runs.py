@@ -312,3 +312,29 @@ def test_the_probes_grid_holds_a_single_switch_and_the_run_meets_its_target():
     # the jump makes the error first order (JUMP_ORDER): assuming 1.5 estimated 0.0086 for 0.015 and kept that run;
     # the estimate now follows the error (measured 0.0050 for 0.0049 after one refinement)
     assert run.info["accuracy"]["estimated_error"] >= 0.8 * achieved
+
+
+@pytest.mark.parametrize("stage", ["accuracy probe", "accuracy run"])
+def test_an_interrupt_says_which_run_of_the_choice_its_partial_result_is(stage):
+    # Ctrl-C during the probe used to hand back the probe's partial run (twice the step, a window only) as if it were
+    # the run: the exception and the partial result now name the stage and its step
+    from exudyn_atcm.solve.run_checks import SimulationInterrupted
+
+    class Display:
+        def __call__(self, t, t_end):
+            pass
+
+        def stage(self, label, share, detail=""):
+            if label == stage and share > (0.0 if stage == "accuracy probe" else 0.5):
+                raise KeyboardInterrupt
+
+    with pytest.raises(SimulationInterrupted, match=stage) as info:
+        atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3, progress=Display())
+    partial = info.value.result
+    assert partial.info["partial"] is True and partial.info["interrupted_in"].startswith(stage)
+    step = float(np.diff(partial["time"][:2])[0])
+    assert f"step {step:.4g} s" in partial.info["interrupted_in"]
+    finished = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
+    chosen = finished.info["step [s]"]
+    # the probe runs at twice the step the run is made at
+    assert step == pytest.approx(2.0 * chosen if stage == "accuracy probe" else chosen, rel=1e-9)

@@ -209,7 +209,9 @@ def simulate(
     SimulationInterrupted
         On Ctrl-C (``KeyboardInterrupt`` in the solver's hooks, the voltage program or
         ``progress``): a ``KeyboardInterrupt`` whose ``result`` holds the steps computed so
-        far (``info["partial"]`` True, ``info["interrupted_at [s]"]``).
+        far (``info["partial"]`` True, ``info["interrupted_at [s]"]``).  With ``accuracy``, the
+        message and ``info["interrupted_in"]`` say which run of the choice stopped (the probe at
+        twice the step, the run, or its refinement) and at which step.
 
     Warns
     -----

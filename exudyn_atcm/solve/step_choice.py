@@ -54,6 +54,7 @@ from ..mechanism import Mechanism
 from ..mechanism.damped import MaterialDamped
 from ..model.signals import Sine, Steps, Triangle
 from . import mechanism_solve
+from .interrupts import SimulationInterrupted
 from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
 from .step_surrogate import StandIn, unit_strain
@@ -366,12 +367,23 @@ def _record_grid(record_every: Any, t_end: float) -> int:
     return 1
 
 
-def _quiet(run: Runner, step: float, progress: Any, t_stop: float) -> tuple[Result, list[warnings.WarningMessage]]:
+def _quiet(run: Runner, step: float, progress: Any, t_stop: float,
+           stage: str = "") -> tuple[Result, list[warnings.WarningMessage]]:
     """``run(step, progress, t_stop)`` with its warnings caught (every one, in order), for the caller to re-issue or
-    drop."""
+    drop.  Interrupted (:class:`SimulationInterrupted`), the exception and its partial result name the ``stage``
+    of the choice it stopped in and that run's step: a probe's or the first run's partial result is not the run
+    at the step chosen, and must not pass for it."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        result = run(step, progress, t_stop)
+        try:
+            result = run(step, progress, t_stop)
+        except SimulationInterrupted as exc:
+            if stage:
+                where = f"{stage}, step {step:.4g} s"
+                exc.args = (f"{exc.args[0]} in the {where} of simulate(accuracy=...)",)
+                if exc.result is not None:
+                    exc.result.info["interrupted_in"] = where
+            raise
     return result, caught
 
 
@@ -401,8 +413,10 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
              f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s")
     share = window / t_end / r  # the probe's part of the work
     share = share / (1.0 + share)
-    probe, _ = _quiet(run, r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"), window)
-    result, caught = _quiet(run, h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress, t_end)
+    probe, _ = _quiet(run, r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"), window,
+                      "accuracy probe (a check at twice the chosen step; the run itself had not started)")
+    result, caught = _quiet(run, h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress, t_end,
+                            "accuracy run (the step chosen, not yet checked)")
     estimate = position_error(result, probe, r * h) / (r ** order - 1.0) * prediction.window_ratio
     over = (f" over the first {window:.4g} s (scaled by {prediction.window_ratio:.3g}, the stand-in's ratio of its "
             f"whole run's error to the window's)" if window < t_end else "")
@@ -416,7 +430,8 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
         coarse, coarse_h = result, h
         h = coarse_h / m
         result, caught = _quiet(run, h, _stage(progress, "accuracy refinement", 1.0, 0.0, f"step {h:.3g} s")
-                                or progress, t_end)
+                                or progress, t_end, f"accuracy refinement (the run at {coarse_h:.4g} s missed the "
+                                "target and was complete)")
         estimate = position_error(result, coarse, coarse_h) / (m ** order - 1.0)
         checks.append(f"missed {accuracy:g}: refined once to {h:.4g} s ({m * n} steps), estimated error "
                       f"{estimate:.2g} against the run at {coarse_h:.4g} s")
