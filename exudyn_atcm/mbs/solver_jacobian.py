@@ -54,20 +54,29 @@ class JointLevers:
     (``tests/test_sweep_solve.py``).  Without it the tangent of a chain of rigid cells under a tip
     force of 0.02 N was 4e-4 N m/rad too stiff on every cell's rotation (``F L_c``), and a proof of
     stability from it could pass a state the true tangent fails.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        An assembled system.
+    objects : list of dict, optional
+        Its objects as ``mbs.GetObject`` gives them, when the caller has read them already (each
+        read copies the object's data: about 4 us an object); default: read here.
     """
 
-    def __init__(self, mbs) -> None:
+    def __init__(self, mbs, objects: list[dict] | None = None) -> None:
         sd = mbs.systemData
+        if objects is None:
+            objects = [mbs.GetObject(i) for i in range(sd.NumberOfObjects())]
         entries = []
-        for i in range(sd.NumberOfObjects()):
-            obj = mbs.GetObject(i)
+        for i, obj in enumerate(objects):
             if obj["objectType"] != "JointRevolute2D":
                 continue
             for sign, marker_number in zip((-1.0, 1.0), obj["markerNumbers"]):
                 marker = mbs.GetMarker(marker_number)
                 if marker["markerType"] not in ("BodyPosition", "BodyRigid"):
                     continue  # a node's position: no lever
-                body = mbs.GetObject(marker["bodyNumber"])
+                body = objects[marker["bodyNumber"]]
                 local = np.asarray(marker.get("localPosition", [0.0, 0.0, 0.0]), dtype=float)[:2]
                 if body["objectType"] != "RigidBody2D" or not np.any(local):
                     continue
@@ -140,12 +149,13 @@ class SolverJacobian:
     def __init__(self, mbs) -> None:
         self.mbs = mbs
         sd = mbs.systemData
-        self.types = frozenset(mbs.GetObject(i)["objectType"] for i in range(sd.NumberOfObjects()))
+        objects = [mbs.GetObject(i) for i in range(sd.NumberOfObjects())]  # read once (each read copies its data)
+        self.types = frozenset(obj["objectType"] for obj in objects)
         #: whether every item's Jacobian is the true tangent and no load depends on the coordinates (only then
         #: :meth:`system` may be used)
         self.exact = self.types <= EXACT_TYPES and all(constant_load(mbs, i) for i in range(sd.NumberOfLoads()))
         self.n_ode2 = len(sd.GetODE2Coordinates())
-        self.levers = JointLevers(mbs)
+        self.levers = JointLevers(mbs, objects)
         self._settings = static_settings()
         self._settings.staticSolver.newton.numericalDifferentiation.jacobianConnectorDerivative = True
 
