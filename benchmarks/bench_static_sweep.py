@@ -95,7 +95,10 @@ def unchecked_continuation(mech: atcm.Mechanism, volts: np.ndarray):
 
 def cycle(mech: atcm.Mechanism, n: int = 100) -> np.ndarray:
     drive = next(iter(mech.drives.values()))
-    return np.array([drive.voltage_at(t) for t in np.linspace(0.0, PERIOD, n)])
+    volts = np.array([drive.voltage_at(t) for t in np.linspace(0.0, PERIOD, n)])
+    if not np.ptp(volts) > 0.0:  # a constant drive is no cycle (the four-bar's figures were once measured on one)
+        raise ValueError(f"cycle: the drive of {mech.name!r} holds {volts[0]:g} V: no cycle to sweep")
+    return volts
 
 
 def timed(fn) -> tuple[float, object]:
