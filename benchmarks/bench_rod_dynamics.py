@@ -15,7 +15,8 @@ laminate, 4 modes, f1 = 76 Hz) released from rest under loads that rise over 2 m
   (f1 = 302 Hz, h omega = 0.19 at 1e-4 s);
 * ``cost``: wall time per step (best of ``--repeats``) and Newton passes per step (Exudyn's
   discontinuous iterations) of the dead 3 EI/L^2 swing (0.05 s) and of the compliant four-bar and
-  the micro-gripper with 4-mode rods through the paper's Preisach loop (0.1 s), at 1e-4 s.
+  the micro-gripper with 4-mode rods with the paper's Preisach operator in the step (0.1 s of
+  ``Triangle(500, 1000, 0.5)`` V: the rising branch from -500 to 300 V, no reversal), at 1e-4 s.
 
 Before/after in one run: ``python benchmarks/compare_revisions.py --old DIR:PYTHON --new DIR:PYTHON
 --skip mechanisms,discretisation --rod-dynamics-args "--quick"`` runs *this* script (of the new

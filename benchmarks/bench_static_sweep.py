@@ -43,12 +43,12 @@ import numpy as np
 
 import exudyn_atcm as atcm
 from exudyn_atcm.io.atomic import write_text
-from exudyn_atcm.mbs.stability import Stability
 from exudyn_atcm.solve import mechanism_solve
 from exudyn_atcm.model import Triangle
 from exudyn_atcm.model.parameter_sets import paper_strain_preisach
 
 from readme_systems import CFC, MFC, readme_four_bar
+from unchecked_probe import unchecked_probe
 
 PERIOD = 0.1  # s, the README drive's triangle
 
@@ -70,23 +70,10 @@ CASES = {"README four-bar": lambda: readme_four_bar(Triangle(750.0, 750.0, PERIO
          "lone actuator, rod cells": lambda: lone("rod")}
 
 
-class _NoCheck:
-    """A probe that reports every state stable without looking: the continuation's cost without the check."""
-
-    last = Stability("stable")
-    use_jacobian = True  # "proved" inside the solve (no check after it)
-
-    def check(self) -> Stability:
-        return self.last
-
-    def proved_in_solve(self, solver) -> bool:
-        return True
-
-
 def unchecked_continuation(mech: atcm.Mechanism, volts: np.ndarray):
     """The continuation sweep with the stability check stood in for (a decomposition of the cost only)."""
     original = mechanism_solve.stability_probe
-    mechanism_solve.stability_probe = lambda mech_, model_: _NoCheck()
+    mechanism_solve.stability_probe = unchecked_probe
     try:
         return atcm.static_sweep(mech, volts)
     finally:

@@ -71,7 +71,7 @@ def rms(e):
 
 
 # ----------------------------------------------------------------------------- part 1: PI from rest
-def test_pi_fit_from_rest_is_within_1_1x_of_the_plain_least_squares_pi(preisach_record):
+def test_pi_fit_from_rest_is_the_plain_least_squares_pi_and_auto_is_no_worse(preisach_record):
     u, y = preisach_record
     model, report = PrandtlIshlinskii.fit(u, y, 20)
     # every sample used: the record starts at rest at its lowest input
@@ -87,7 +87,13 @@ def test_pi_fit_from_rest_is_within_1_1x_of_the_plain_least_squares_pi(preisach_
     reference = rms((design - mean_d) @ coef + mean_y - y)
     applied = rms(model.apply(u) - y)  # the model from its reset state reproduces the fitted history
     assert applied == pytest.approx(report.model_errors["fit"]["rms"], rel=1e-9)
-    assert applied <= 1.1 * reference  # measured 0.76x (the descended state chosen)
+    # like for like: the fit held at rest is the same least squares as the plain one (the same plays at rest, the same
+    # radii): equal to round-off; 'auto' then keeps the better of the initial states (here 'descended', 0.76x)
+    rest, rest_report = PrandtlIshlinskii.fit(u, y, 20, initial="rest")
+    assert rest_report.settings["initial"] == "rest"
+    at_rest = rms(rest.apply(u) - y)
+    assert at_rest == pytest.approx(reference, rel=1e-6)
+    assert applied <= at_rest * (1.0 + 1e-9)
     # before issue 28 the fit waited until the input had covered its range: the last cycle only
     _, waited = PrandtlIshlinskii.fit(u, y, 20, initial="covered")
     assert waited.fit_start > 0.85 * u.size
