@@ -28,9 +28,11 @@ class RodCell(CellKind):
     chain_of_cells = False
     end_kind = END_NODE
     joint_label = "segment ends"
-    # bench_run_cost.py of 2026-11-26 (0.2 s, best of 3, lone actuator): 93, 70 and 79 µs per step at 3, 6 and
-    # 12 modes (a profile of the 3-mode run: 68 µs); the machine's noise is larger than the trend
-    cost_per_step = (70e-6, 0.8e-6, 0.0)
+    # bench_run_cost.py of 2026-11-29 (0.2 s, best of 3, lone actuator, the set-up subtracted): 36, 44, 66, 113, 238
+    # and 715 µs per step at 3, 6, 10, 16, 24 and 40 modes: the dense modal block grows as n^2; the fit a + c n^2
+    # (relative least squares) is within -14 % ... +10 % of each.  The constants before, (70, 0.8, 0) µs from 3 to
+    # 12 modes, predicted 0.14 of a 40-mode run's cost, so its long run was not announced
+    cost_per_step = (31e-6, 0.0, 0.37e-6)
     # bench_build_cost.py of 2026-11-28 (best of 2, fresh process each): 0.016, 0.056 and 0.83 s and 0, 0.3 and
     # 8.2 MB at 8, 32 and 128 modes (dense in the modes); the fit n (a + b n) s, memory k = 8.2 MB / 128^2
     build_cost = (1.3e-3, 3.1e-5, 0.0, 500.0)
