@@ -367,24 +367,19 @@ def _record_grid(record_every: Any, t_end: float) -> int:
     return 1
 
 
-def _quiet(run: Runner, step: float, progress: Any, t_stop: float,
-           stage: str = "") -> tuple[Result, list[warnings.WarningMessage]]:
-    """``run(step, progress, t_stop)`` with its warnings caught (every one, in order), for the caller to re-issue or
-    drop.  Interrupted (:class:`SimulationInterrupted`), the exception and its partial result name the ``stage``
-    of the choice it stopped in and that run's step: a probe's or the first run's partial result is not the run
-    at the step chosen, and must not pass for it."""
+def _quiet(run: Runner, step: float, progress: Any, t_stop: float, stage: str) -> tuple[Result, list]:
+    """``run(step, progress, t_stop)`` and its warnings (every one, in order), for the caller to re-issue or drop.
+    An interrupt names the ``stage`` of the choice and its step: a probe's partial result must not pass for the run's."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            result = run(step, progress, t_stop)
+            return run(step, progress, t_stop), caught
         except SimulationInterrupted as exc:
-            if stage:
-                where = f"{stage}, step {step:.4g} s"
-                exc.args = (f"{exc.args[0]} in the {where} of simulate(accuracy=...)",)
-                if exc.result is not None:
-                    exc.result.info["interrupted_in"] = where
+            where = f"{stage}, step {step:.4g} s"
+            exc.args = (f"{exc.args[0]} in the {where} of simulate(accuracy=...)",)
+            if exc.result is not None:
+                exc.result.info["interrupted_in"] = where
             raise
-    return result, caught
 
 
 def _stage(progress: Any, label: str, share: float, weight: float, detail: str) -> Any:
@@ -411,8 +406,7 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     h, window = t_end / n, prediction.window
     chose = (f"step {h:.4g} s ({n} steps) for {accuracy:g} of the travel: {prediction.reason}"
              f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s")
-    share = window / t_end / r  # the probe's part of the work
-    share = share / (1.0 + share)
+    share = (window / t_end / r) / (1.0 + window / t_end / r)  # the probe's part of the work
     probe, _ = _quiet(run, r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"), window,
                       "accuracy probe (a check at twice the chosen step; the run itself had not started)")
     result, caught = _quiet(run, h, _stage(progress, "accuracy run", share, 1.0 - share, chose) or progress, t_end,
@@ -420,8 +414,7 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     estimate = position_error(result, probe, r * h) / (r ** order - 1.0) * prediction.window_ratio
     over = (f" over the first {window:.4g} s (scaled by {prediction.window_ratio:.3g}, the stand-in's ratio of its "
             f"whole run's error to the window's)" if window < t_end else "")
-    why = ("a drive jumps" if prediction.order <= JUMP_ORDER + CHECK_ORDER_SLACK
-           else f"of the cells' {prediction.order:g}")
+    why = "a drive jumps" if prediction.order <= JUMP_ORDER + CHECK_ORDER_SLACK else f"of the cells' {prediction.order:g}"
     checks = [f"probe at {r * h:.4g} s{over}: estimated error {estimate:.2g} (Richardson, assuming order {order:g}: "
               f"{why})"]
     refined = False
