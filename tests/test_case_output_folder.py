@@ -39,7 +39,7 @@ PARAMETERS = [
     Parameter("stop", "none", "-", "how the plotting stops", choices=("none", "raise", "signal", "hang", "fail", "run", "signal_run")),
     Parameter("flag", "", "-", "file created once the first plot is written (for a test that kills the run)"),
     Parameter("note", "no", "-", "write a note through ctx.output_file during the run", choices=("no", "yes")),
-    Parameter("interrupt_run", "no", "-", "stop the simulation half-way (a partial result)", choices=("no", "yes")),
+    Parameter("interrupt_run", "no", "-", "stop the simulation half-way (a partial result)", choices=("no", "yes", "probe")),
 ]
 
 
@@ -52,8 +52,11 @@ def run(p, ctx):
     if p.note == "yes" and ctx.out_dir is not None:
         ctx.output_file("output_case_note.txt").write_text(repr(p.x))
     result = Result({"time": [0.0, 1.0], "y": [0.0, 3.0 * p.x]}, {"time": "s", "y": "m"})
-    if p.interrupt_run == "yes":
-        partial = Result({"time": [0.0], "y": [0.0]}, {"time": "s", "y": "m"}, info={"partial": True})
+    if p.interrupt_run in ("yes", "probe"):
+        info = {"partial": True}
+        if p.interrupt_run == "probe":  # as simulate(accuracy=) marks its probe's partial run
+            info["interrupted_in"] = "accuracy probe (a check at twice the chosen step), step 0.002 s"
+        partial = Result({"time": [0.0], "y": [0.0]}, {"time": "s", "y": "m"}, info=info)
         raise SimulationInterrupted(0.5, partial)
     table = Result({"k": [1.0, 2.0], "x": [p.x, p.x]}, {"k": "-", "x": "-"})
     return CaseOutput(result, {"y": (3.0 * p.x, "m")}, tables={"table": table})
@@ -260,3 +263,15 @@ def test_a_hand_edited_file_list_never_removes_files_outside_the_folder(case_fil
     (folder / "output_case.json").write_text(json.dumps(record))
     case.run({"x": 2.0, "n_plots": 0}, out_dir=folder)
     assert outside.read_text() == "keep" and (folder / "sub").is_dir()
+
+
+def test_a_run_stopped_in_the_accuracy_probe_says_so_in_the_message_and_the_notes(case_file, tmp_path):
+    # the probe's partial run (twice the chosen step) is written as the case's partial result: the error line and the
+    # JSON notes say which run of simulate(accuracy=)'s choice it is
+    stopped = cli(["run", str(case_file), "--set", "interrupt_run=probe", "--out", "o"], tmp_path)
+    assert stopped.returncode == 130, stopped.stderr
+    line = stopped.stderr.strip().splitlines()[-1]
+    assert line.startswith("error: output_case: interrupted at t = 0.5 s in the accuracy probe (a check at twice the "
+                           "chosen step), step 0.002 s; wrote the 1 recorded instants"), line
+    notes = json.loads((tmp_path / "o" / "output_case.json").read_text())["notes"]
+    assert notes["interrupted_in"].startswith("accuracy probe") and notes["partial"] is True

@@ -292,7 +292,10 @@ class Case:
         if exc.result is None:
             folder.abandon(f"interrupted at t = {exc.time:.6g} s before anything was recorded")
             return
-        partial = CaseOutput(exc.result, notes={"partial": True, "interrupted_at [s]": exc.time})
+        notes = {"partial": True, "interrupted_at [s]": exc.time}
+        if "interrupted_in" in exc.result.info:  # a run of simulate(accuracy=)'s choice: which one (the probe's is not the run)
+            notes["interrupted_in"] = exc.result.info["interrupted_in"]
+        partial = CaseOutput(exc.result, notes=notes)
         partial.case = self.name
         partial.parameters = params
         partial.wall_time = wall

@@ -90,11 +90,13 @@ def _interrupted(case: RunnableCase, exc: KeyboardInterrupt, out: str, debug: bo
     if isinstance(exc, SimulationInterrupted):
         files = getattr(exc, "files", [])
         rows = exc.result.n_rows if exc.result is not None else 0
+        stage = exc.result.info.get("interrupted_in") if exc.result is not None else None
+        where = f" in the {stage}" if stage else ""  # simulate(accuracy=): the probe's partial run is not the run
         if files:
             written = f"; wrote the {rows} recorded instants up to there (marked partial) to {files[0]}{unfinished}"
         else:
             written = "; nothing was written (no output directory, or nothing computed yet)"
-        return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{written}", debug, stop.exit_status)
+        return _fail(f"{case.name}: {how} at t = {exc.time:.6g} s{where}{written}", debug, stop.exit_status)
     if unfinished:
         return _fail(f"{case.name}: {stop.describe()} before the simulation started or after it ended; the files "
                      f"written are one unfinished run, listed in {marker}", debug, stop.exit_status)
