@@ -133,8 +133,8 @@ def measure(build, t_sim: float) -> dict:
             "attempted": timer.pre_calls, "accepted": timer.post_calls, "channels": channels(result)}
 
 
-def exudyn_floor(t_sim: float) -> float:
-    """Wall seconds per simulated second of a one-mass Exudyn system with trivial Python hooks."""
+def exudyn_floor(t_sim: float, step: float = STEP) -> float:
+    """Wall seconds per simulated second of a one-mass Exudyn system with trivial Python hooks, at ``step`` [s]."""
     import exudyn.itemInterface as ii  # noqa: PLC0415 - only the floor system needs Exudyn's items
 
     from exudyn_atcm.mbs import solver_settings  # noqa: PLC0415
@@ -151,7 +151,7 @@ def exudyn_floor(t_sim: float) -> float:
     mbs.SetPreStepUserFunction(lambda mbs_, t: True)
     mbs.SetPostStepUserFunction(lambda mbs_, t: True)
     mbs.Assemble()
-    settings = solver_settings.dynamic_settings(t_sim, STEP)
+    settings = solver_settings.dynamic_settings(t_sim, step)
     start = time.perf_counter()
     exudyn.SolveDynamic(mbs, settings, showHints=False)
     return (time.perf_counter() - start) / t_sim
