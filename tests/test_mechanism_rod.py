@@ -555,3 +555,49 @@ def test_rod_refuses_mass_damping():
     # its mass matrix is not a set of rigid bodies: mass-proportional damping is refused, not approximated
     with pytest.raises(ValueError, match="which the 'rod' cell cannot realise exactly"):
         rod(damping=atcm.RayleighDamping(alpha=2.0))
+
+
+def test_the_ties_force_is_its_algebraic_coordinates_and_a_repeated_linearisation_writes_the_same_items():
+    """The rod reads its tie's force as the tie's algebraic coordinates (a slice of the system's, instead of Exudyn's
+    Force output, about 10 us inside a solve): equal to the output to the bit on a loaded, bent rod.  And the
+    linearisation for an eigenvalue or stability analysis, skipped when the items hold the one at exactly that
+    state, leaves them as a fresh one at that state would: the same Exudyn system Jacobian and mass matrix."""
+    import exudyn as exu
+    from exudyn_atcm.mbs.solver_jacobian import SolverJacobian
+    from exudyn_atcm.solve import mechanism_solve
+
+    made, linearisations = [], [0]
+    original, kernel = mechanism_solve.stability_probe, rod_kernels.linearisation
+
+    def keep(mech, model):
+        made.append(original(mech, model))
+        return made[-1]
+
+    def counted(*args):
+        linearisations[0] += 1
+        return kernel(*args)
+
+    mechanism_solve.stability_probe, rod_kernels.linearisation = keep, counted  # the rod takes its kernel at build
+    try:
+        b = rod(n_cells=4, drive=PiezoDrive(1200.0))
+        ei = b.laminate.bending_stiffness
+        solve_static(cantilever(b, force=(0.4 * ei / L**2, -1.2 * ei / L**2)))
+    finally:
+        mechanism_solve.stability_probe, rod_kernels.linearisation = original, kernel
+    model = made[-1].model
+    mbs, sd = model.mbs, model.mbs.systemData
+    ties = [i for i in range(sd.NumberOfObjects()) if mbs.GetObject(i)["objectType"] == "ConnectorCoordinateVector"]
+    assert len(ties) == 1
+    force = np.array(mbs.GetObjectOutput(ties[0], exu.OutputVariableType.Force))
+    multipliers = np.array(sd.GetAECoordinates())[list(sd.GetObjectLTGAE(ties[0]))]
+    assert np.linalg.norm(force) > 0.1 * ei / L**2  # loaded
+    np.testing.assert_array_equal(force, multipliers)
+    jacobian = SolverJacobian(mbs)
+    model.before_linearisation()  # writes the linearisation at this state (the solve's last pass may not have)
+    first = jacobian.system()
+    before = linearisations[0]
+    model.before_linearisation()  # the same state: skipped
+    assert linearisations[0] == before
+    again = jacobian.system()
+    for key in ("M", "K", "Cq"):
+        np.testing.assert_array_equal(first[key], again[key], err_msg=key)

@@ -115,7 +115,9 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
     z0 = np.concatenate([base_reference, np.zeros(n)])
     mass0, force0, x1, offset = rod_kernels.rod_matrices(z0, np.zeros(size), phi_hat, integration, weights, length,
                                                          mu, rho_i, phi_hat_tip)
-    state = {"mass": mass0, "stiffened": False, "h": 0.0}
+    # "at": the inputs of the last linearisation at a state itself with the tie's stiffness (the items' values
+    # then follow from them alone), None once anything else is written: see linearise
+    state = {"mass": mass0, "stiffened": False, "h": 0.0, "at": None}
     # the mass matrix changes every step: in the package's own runs it is written as the item's
     # parameter and the runs let Exudyn re-read it (``reuseConstantMassMatrix = False``, from
     # BuildContext.mark_varying_mass); in a user's system (add_to), whose settings the package does not
@@ -191,9 +193,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
 
     sd = mbs.systemData
     set_parameter = mbs.SetObjectParameter
-    get_output = mbs.GetObjectOutput
     get_q, get_v, get_time = sd.GetODE2Coordinates, sd.GetODE2Coordinates_t, sd.GetTime
-    force_output = exu.OutputVariableType.Force
     parameters = np.array([length, mu, rho_i])
     linearisation, tip_gap = rod_kernels.linearisation, rod_kernels.tip_gap
 
@@ -203,6 +203,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
     def publish(stiffen: bool) -> None:
         """Hand the rod's items in ``out`` to Exudyn (with ``stiffen``: the tangent with the tie's geometric
         stiffness; else ``K``, written back only if the tangent was written before)."""
+        state["at"] = None
         if by_parameter:
             set_parameter(obj, "massMatrix", mass_out)
         else:
@@ -219,11 +220,15 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
         """Linearise the rod at the state predicted a step ``h`` ahead (``h = 0``: at the state itself): mass
         matrix, quadratic velocity vector and tie; with ``stiffen`` also the tie's geometric stiffness at its
         current force (static passes and eigenvalues; a dynamic step is checked by ``check_tip`` instead)."""
-        lam_ = get_output(tie, force_output) if stiffen else no_multipliers
-        base_start, rod_start, _, _ = indices()
+        base_start, rod_start, _, tie_ae = indices()
+        # the tie's force: its algebraic coordinates (Exudyn's Force output of the item, to the bit, measured in
+        # tests/test_mechanism_rod.py; reading the output inside a solve costs about 10 us, the slice 1 us)
+        lam_ = get_ae(current, False)[tie_ae:tie_ae + 3].copy() if stiffen else no_multipliers
         linearisation(coordinates, velocities, accelerations, base_start, rod_start, base_reference, h, lam_, K,
                       phi_hat, integration, weights, phi_hat_tip, parameters, *out)
         publish(stiffen)
+        if stiffen and h == 0.0 and not accelerations.shape[0]:
+            state["at"] = linearised_at(coordinates, velocities)
 
     set_load = mbs.SetLoadParameter
     predicted_items, solved_check = rod_kernels.predicted_items, rod_kernels.solved_check
@@ -285,14 +290,33 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
         write(coordinates, velocities, no_accelerations, 0.0, True)
         return ratio
 
+    at_rest = bytes(8 * size)  # the rates of a state at rest: size zeros (+0.0) as bytes
+
+    def linearised_at(coordinates: np.ndarray, velocities: np.ndarray | None) -> bytes:
+        """Everything a linearisation at a state itself reads that can change, as bytes (compared bit for bit): the
+        rod's coordinates and rates (base node and modes; ``None``: at rest) and the tie's algebraic coordinates
+        (its force, the multipliers, follows from them)."""
+        b, r, _, a = ode2
+        rates = at_rest if velocities is None else velocities[b:b + 3].tobytes() + velocities[r:r + n].tobytes()
+        return b"".join((coordinates[b:b + 3].tobytes(), coordinates[r:r + n].tobytes(), rates,
+                         get_ae(current, False)[a:a + 3].tobytes()))
+
     def linearise(strains: np.ndarray) -> None:
-        """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness."""
+        """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness.
+
+        Nothing is written when the items already hold the linearisation at exactly this state (the
+        same coordinates, zero rates and tie multipliers, bit for bit, and nothing written since):
+        a static solve's last Newton pass often leaves them so (the README four-bar's crank, whose tie
+        carries no force, at every point of a sweep), and its stability proof then reads them as
+        they are."""
         if indices()[0] < 0:
             return
         if not loads["active"]:  # after a time step: the actuation back from the force vector into the loads
             activate_loads(loads["strains"])
         coordinates = get_q(current, False)
         state["h"] = 0.0
+        if state["at"] is not None and state["at"] == linearised_at(coordinates, None):
+            return
         write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
 
     estimate = rotation_rod.truncation_estimator(shapes, ei)
@@ -317,11 +341,11 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
 
     def reading() -> tuple | None:
         """What the estimate needs of the current (static) state: base angle, amplitudes, tip and follower forces."""
-        base_start, rod_start, tip_start, _ = indices()
+        base_start, rod_start, tip_start, tie_ae = indices()
         if base_start < 0:
             return None
         coordinates = get_q(copy=False)
-        force = np.array(get_output(tie, force_output), dtype=float)[:2]  # on the tip node: dead and follower loads
+        force = get_ae(current, False)[tie_ae:tie_ae + 2].copy()  # the tie's force on the tip node: dead and follower loads
         return (base_reference[2] + coordinates[base_start + 2], coordinates[rod_start:rod_start + n].copy(), force,
                 follower_force(tip_reference[2] + coordinates[tip_start + 2]))
 
