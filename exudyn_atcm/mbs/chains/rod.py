@@ -228,7 +228,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
                       phi_hat, integration, weights, phi_hat_tip, parameters, *out)
         publish(stiffen)
         if stiffen and h == 0.0 and not accelerations.shape[0]:
-            state["at"] = linearised_at(coordinates, velocities)
+            state["at"] = linearised_at(coordinates, velocities, lam_)
 
     set_load = mbs.SetLoadParameter
     predicted_items, solved_check = rod_kernels.predicted_items, rod_kernels.solved_check
@@ -292,14 +292,12 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
 
     at_rest = bytes(8 * size)  # the rates of a state at rest: size zeros (+0.0) as bytes
 
-    def linearised_at(coordinates: np.ndarray, velocities: np.ndarray | None) -> bytes:
+    def linearised_at(coordinates: np.ndarray, velocities: np.ndarray | None, multipliers: np.ndarray) -> bytes:
         """Everything a linearisation at a state itself reads that can change, as bytes (compared bit for bit): the
-        rod's coordinates and rates (base node and modes; ``None``: at rest) and the tie's algebraic coordinates
-        (its force, the multipliers, follows from them)."""
-        b, r, _, a = ode2
+        rod's coordinates and rates (base node and modes; ``None``: at rest) and the tie's multipliers (its force)."""
+        b, r = ode2[0], ode2[1]
         rates = at_rest if velocities is None else velocities[b:b + 3].tobytes() + velocities[r:r + n].tobytes()
-        return b"".join((coordinates[b:b + 3].tobytes(), coordinates[r:r + n].tobytes(), rates,
-                         get_ae(current, False)[a:a + 3].tobytes()))
+        return b"".join((coordinates[b:b + 3].tobytes(), coordinates[r:r + n].tobytes(), rates, multipliers.tobytes()))
 
     def linearise(strains: np.ndarray) -> None:
         """Eigenvalues: the tangent at the current (equilibrium) state, with the tie's geometric stiffness.
@@ -315,7 +313,8 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
             activate_loads(loads["strains"])
         coordinates = get_q(current, False)
         state["h"] = 0.0
-        if state["at"] is not None and state["at"] == linearised_at(coordinates, None):
+        a = ode2[3]
+        if state["at"] is not None and state["at"] == linearised_at(coordinates, None, get_ae(current, False)[a:a + 3]):
             return
         write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
 
