@@ -76,8 +76,8 @@ def test_stability_is_checked_at_every_point(monkeypatch, cell):
         checked.append("check")
         return check(self)
 
-    def counting_in_solve(self, solver):
-        proved = in_solve(self, solver)
+    def counting_in_solve(self, solver, *state):
+        proved = in_solve(self, solver, *state)
         checked.append("in solve" if proved else "missed")
         return proved
 
@@ -139,9 +139,9 @@ def test_a_missed_proof_in_the_solve_is_checked_in_full_and_the_sweep_goes_on(mo
     missed, calls = {5, 6, 20}, []
     original = StabilityProbe.proved_in_solve
 
-    def missing(self, solver):
+    def missing(self, solver, *state):
         calls.append(1)
-        return False if len(calls) in missed else original(self, solver)
+        return False if len(calls) in missed else original(self, solver, *state)
 
     full = []
     check = StabilityProbe.check

@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 
 from exudyn_atcm.mbs import builder as mb
-from exudyn_atcm.mbs import solver_runs
+import exudyn_atcm as atcm
+from exudyn_atcm.mbs import continuation_settings, solver_runs, sweep_solve
 from exudyn_atcm.mbs.stepping import Stepping
-from exudyn_atcm.mbs.sweep_solve import solve_points, system_state
+from exudyn_atcm.mbs.sweep_solve import LARGEST_SECANT_RATIO, secant_step, solve_points, system_state
 from exudyn_atcm.solve import mechanism_static as ms
 from exudyn_atcm.solve.static_stability import stability_probe
 
@@ -42,7 +43,7 @@ def test_the_running_solvers_jacobian_is_the_probes_to_the_bit(make):
     assert probe.jacobian.exact
     seen = []
 
-    def on_point(k, solver):
+    def on_point(k, solver, state):
         model.before_linearisation()
         running = probe.jacobian.running_system(solver, mass=True)
         own = probe.jacobian.system(mass=True)
@@ -56,11 +57,96 @@ def test_the_running_solvers_jacobian_is_the_probes_to_the_bit(make):
     assert not solved.stopped and solved.failure is None
 
 
+def test_the_secant_step_is_the_next_strain_step_over_the_last_along_it():
+    e = np.array
+    assert secant_step(e([0.0]), e([1e-4]), e([2e-4])) == pytest.approx(1.0, rel=1e-12)
+    assert secant_step(e([0.0]), e([1e-4]), e([0.0])) == pytest.approx(-1.0, rel=1e-12)  # a reversal: back along it
+    assert secant_step(e([0.0]), e([1e-4]), e([2.5e-4])) == pytest.approx(1.5, rel=1e-12)
+    # two sources: the projection of the next step on the last one
+    assert secant_step(e([0.0, 0.0]), e([1.0, 0.0]), e([2.0, 5.0])) == pytest.approx(1.0, rel=1e-12)
+    assert secant_step(e([1e-4]), e([1e-4]), e([2e-4])) is None  # the last step was none: nothing to go along
+    beyond = 1e-4 * (1.0 + LARGEST_SECANT_RATIO * 1.01)
+    assert secant_step(e([0.0]), e([1e-4]), e([beyond])) is None  # a jump: started from the last point instead
+
+
+@pytest.mark.parametrize("make", [lambda: lone(paper_drive(), cell="rod"), readme_four_bar,
+                                  lambda: lone(paper_drive(), cell="rigid"), lambda: lone(paper_drive(), cell="six-bar")],
+                         ids=["lone rod", "four-bar rod", "lone rigid", "lone six-bar"])
+def test_the_secant_prediction_saves_newton_iterations_and_leaves_the_equilibria(make, monkeypatch):
+    # the reference: the same solve with every point's iteration started from the last point's equilibrium (no
+    # prediction: what the continuation did before it had one); the same equations and tolerances, so the same
+    # equilibria within the Newton tolerance (1e-9, as the per-point sweep's, tests/test_static_sweep_continuation.py)
+    def solved() -> tuple[dict, int]:
+        model, _, strains = prepared(make())
+        states, newton = {}, [0]
+
+        def on_point(k, solver, state):
+            states[k], newton[0] = state[0], solver.it.newtonStepsCount
+            return True
+
+        assert solve_points(model, strains, 1, on_point).last == len(VOLTS) - 1
+        return states, newton[0]
+
+    predicted, with_prediction = solved()
+    monkeypatch.setattr(sweep_solve, "secant_step", lambda *strains: None)
+    plain, without = solved()
+    assert sorted(predicted) == sorted(plain) == list(range(1, len(VOLTS)))
+    for k in plain:
+        np.testing.assert_allclose(predicted[k], plain[k], rtol=0.0, atol=1e-9, err_msg=f"point {k}")
+    # on this coarse cycle (200 V a point, a reversal) 0.52-0.81 of the iterations (measured); the README
+    # four-bar's 100-point cycle: 393 -> 105 (benchmarks/REPORTS.md)
+    assert with_prediction <= 0.85 * without
+
+
+def test_a_point_reached_with_reduced_steps_ends_the_solve_there(monkeypatch):
+    # a wild prediction (300 times the last step along it): Newton's iteration from there fails, Exudyn reduces
+    # the point's step, the reduced steps start from the last point's equilibrium; the solve stops at the point
+    # so reached (Exudyn would grow the step again without regard to the points), with that point's equilibrium
+    def from_start(ratio) -> tuple[dict, object]:
+        monkeypatch.setattr(sweep_solve, "secant_step", lambda *strains: ratio)
+        model, _, strains = prepared(readme_four_bar())
+        states, attempts = {}, []
+
+        def on_point(k, solver, state):
+            states[k] = state[0]
+            attempts.append(solver.it.currentStepIndex)
+            return True
+
+        return states, solve_points(model, strains, 1, on_point), attempts
+
+    wild, stop, attempts = from_start(300.0)
+    plain, end, _ = from_start(None)
+    assert end.last == len(VOLTS) - 1 and not end.stopped and end.failure is None
+    assert stop.stopped and stop.failure is None and 1 < stop.last < len(VOLTS) - 1
+    assert sorted(wild) == list(range(1, stop.last + 1))
+    assert attempts[-1] > stop.last  # the last point took more than its one step
+    for k in wild:
+        np.testing.assert_allclose(wild[k], plain[k], rtol=0.0, atol=1e-9, err_msg=f"point {k}")
+
+
+@pytest.mark.parametrize("grow", [False, True], ids=["never grown (the settings)", "grown back"])
+def test_a_sweep_whose_steps_are_reduced_keeps_every_point(monkeypatch, grow):
+    # the sweep goes on after such a stop in a new solve; with the step let grow again (Exudyn's default
+    # recovery), a grown step ends beyond the next point: reported as a failure there, and that point solved as
+    # its own equilibrium, never left out
+    reference = atcm.static_sweep(readme_four_bar(), VOLTS, method="points")
+    monkeypatch.setattr(sweep_solve, "secant_step", lambda *strains: 300.0)
+    if grow:
+        monkeypatch.setattr(continuation_settings, "NEVER_GROW", 1)
+    r = atcm.static_sweep(readme_four_bar(), VOLTS)
+    assert list(r["point"]) == list(range(len(VOLTS)))
+    notes = r.info["fallback_points"]
+    assert ("went beyond point" in notes) == grow
+    assert (r.info["continued_points"] < len(VOLTS) - 1) == grow
+    for c in (c for c in r.names if r.unit(c) == "m"):
+        np.testing.assert_allclose(r[c], reference[c], rtol=0.0, atol=1e-9, err_msg=c)
+
+
 def test_a_stopped_solve_holds_the_point_it_stopped_at():
     model, _, strains = prepared(lone(paper_drive(), cell="rod"))
     states = {}
 
-    def to_the_end(k, solver):
+    def to_the_end(k, solver, state):
         states[k] = np.array(system_state(model)[0])
         return True
 
@@ -69,14 +155,14 @@ def test_a_stopped_solve_holds_the_point_it_stopped_at():
     model2, _, _ = prepared(lone(paper_drive(), cell="rod"))
     np.testing.assert_array_equal(system_state(model2)[0], start[0])
 
-    def stop_at_5(k, solver):
+    def stop_at_5(k, solver, state):
         return k < 5
 
     solved = solve_points(model2, strains, 1, stop_at_5)
     assert solved.last == 5 and solved.stopped and solved.failure is None
     np.testing.assert_array_equal(system_state(model2)[0], states[5])
     # and it continues from there to the same end
-    rest = solve_points(model2, strains, 6, lambda k, solver: True)
+    rest = solve_points(model2, strains, 6, lambda k, solver, state: True)
     assert rest.last == len(VOLTS) - 1
     np.testing.assert_allclose(system_state(model2)[0], states[len(VOLTS) - 1], rtol=0.0, atol=1e-12)
 
@@ -84,7 +170,7 @@ def test_a_stopped_solve_holds_the_point_it_stopped_at():
 def test_an_error_in_the_point_hook_is_raised_as_itself():
     model, _, strains = prepared(lone(paper_drive(), cell="rigid"))
 
-    def broken(k, solver):
+    def broken(k, solver, state):
         raise KeyError("mine")
 
     with pytest.raises(KeyError, match="mine"):
@@ -94,7 +180,7 @@ def test_an_error_in_the_point_hook_is_raised_as_itself():
 def test_a_bad_first_point_is_refused():
     model, _, strains = prepared(lone(paper_drive(), cell="rigid"))
     with pytest.raises(ValueError, match=r"first: expected a point in 1 \.\.\. 13, got 0"):
-        solve_points(model, strains, 0, lambda k, solver: True)
+        solve_points(model, strains, 0, lambda k, solver, state: True)
 
 
 def test_the_rods_truncation_estimate_of_many_states_is_the_estimate_of_each():
@@ -249,7 +335,7 @@ def test_the_in_solve_proof_decides_as_the_proof_on_the_split_tangent_along_a_sw
     assert probe.jacobian.exact
     decisions = []
 
-    def on_point(k, solver):
+    def on_point(k, solver, state):
         model.before_linearisation()
         split = probe._jacobian_proved(probe.jacobian.running_system(solver, mass=probe.use_mass))
         fused = probe.proved_in_solve(solver)  # last: the probe keeps its Jacobian unsplit

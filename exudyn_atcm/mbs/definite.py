@@ -34,6 +34,8 @@ __all__ = ["PenaltyProof", "positive_definite_on_null_space"]
 
 #: largest penalty relative to ``max|A| / max|C_q^T C_q|`` (keeps the round-off bound above)
 MAX_RELATIVE_PENALTY = 1e5
+#: the compiled kernels, imported at their first use
+_KERNELS: dict = {}
 
 
 def positive_definite_on_null_space(a: np.ndarray, cq: np.ndarray, rho: float) -> bool:
@@ -117,10 +119,13 @@ class PenaltyProof:
         columns plus the revolute joints' lever terms ``levers``, the arrays of
         :attr:`JointLevers.arrays <exudyn_atcm.mbs.solver_jacobian.JointLevers.arrays>`, at coordinates ``q`` and
         multipliers ``multipliers``; ``C_q`` its remaining rows)."""
-        from .definite_kernel import jacobian_penalised_cholesky  # noqa: PLC0415 - lazy: numba is slow to import
+        kernel = _KERNELS.get("jacobian")
+        if kernel is None:  # lazy: numba is slow to import; kept after the first use (a sweep proves every point)
+            from .definite_kernel import jacobian_penalised_cholesky  # noqa: PLC0415
+            kernel = _KERNELS["jacobian"] = jacobian_penalised_cholesky
         self.attempts += 1
-        ok = bool(jacobian_penalised_cholesky(jacobian, n2, metric, *levers, q, multipliers, float(sigma),
-                                              float(cushion_per_size), float(self.scale)))
+        ok = bool(kernel(jacobian, n2, metric, *levers, q, multipliers, float(sigma), float(cushion_per_size),
+                         float(self.scale)))
         self.proved += ok
         return ok
 

@@ -225,10 +225,12 @@ class SolverJacobian:
         (or ``None``): what :meth:`running_system` splits."""
         n2 = self.n_ode2
         m = None
+        # Exudyn hands out fresh float arrays (copies); the arguments by position (its keywords: scalarFactor_ODE2,
+        # scalarFactor_ODE2_t, scalarFactor_ODE1[, velocityLevel]): keyword parsing costs 1-2 us a call, in every
+        # point of a sweep
         if mass:  # formed every time: a rigid cell's mass matrix turns with it (its centre of mass is off its node)
             solver.ComputeMassMatrix(self.mbs)
-            m = np.array(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
-        solver.ComputeJacobianODE2RHS(self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0)
-        solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0, scalarFactor_ODE1=0.0,
-                                 velocityLevel=False)
-        return np.array(solver.GetSystemJacobian(), dtype=float), m
+            m = np.asarray(solver.GetSystemMassMatrix(), dtype=float)[:n2, :n2]
+        solver.ComputeJacobianODE2RHS(self.mbs, -1.0, 0.0, 0.0)
+        solver.ComputeJacobianAE(self.mbs, 1.0, 0.0, 0.0, False)
+        return np.asarray(solver.GetSystemJacobian(), dtype=float), m

@@ -298,11 +298,12 @@ class StabilityProbe:
             self._proved(js)
         return proved
 
-    def proved_in_solve(self, solver) -> bool:
+    def proved_in_solve(self, solver, q: np.ndarray | None = None, multipliers: np.ndarray | None = None) -> bool:
         """Whether the cheap proof from Exudyn's Jacobian shows the current state stable, inside a running static solve.
 
         ``solver``: the ``exudyn.MainSolverStatic`` whose step hook calls this, its settings with the
-        connector derivative (:meth:`SolverJacobian.running_system`).  ``True`` sets :attr:`last` to a
+        connector derivative (:meth:`SolverJacobian.running_system`); ``q`` and ``multipliers``: copies of
+        the current ODE2 coordinates and multipliers where the caller has them (read here otherwise).  ``True`` sets :attr:`last` to a
         stable :class:`Stability`, as :meth:`check` would; ``False`` proves nothing (and changes
         nothing): the caller then calls :meth:`check` on this state outside the solve.  Always
         ``False`` where Exudyn's Jacobian is not the tangent (:attr:`use_jacobian`).  Up to
@@ -317,8 +318,10 @@ class StabilityProbe:
         n = self.jacobian.n_ode2
         if 0 < n <= KERNEL_SIZE:
             sd = self.model.mbs.systemData
-            q = np.array(sd.GetODE2Coordinates(copy=False), dtype=float)
-            multipliers = np.array(sd.GetAECoordinates(copy=False), dtype=float)
+            if q is None:
+                q = np.array(sd.GetODE2Coordinates(copy=False), dtype=float)
+            if multipliers is None:
+                multipliers = np.array(sd.GetAECoordinates(copy=False), dtype=float)
             proved = self.jacobian_proof.prove_from_jacobian(jacobian, n, m if self.use_mass else self._eye(n),
                                                              self.jacobian.levers.arrays, q, multipliers,
                                                              CRITICAL_MARGIN * self.reference, n * JACOBIAN_DIFFERENCE)

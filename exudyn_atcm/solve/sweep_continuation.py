@@ -68,10 +68,10 @@ def continue_sweep(mech: Mechanism, model: MechanismModel, volts: np.ndarray, st
     while first < n:
         pending: list[SweepPoint] = []
 
-        def on_point(k: int, solver) -> bool:
-            proved = in_solve and probe.proved_in_solve(solver)
+        def on_point(k: int, solver, state: list) -> bool:
+            proved = in_solve and probe.proved_in_solve(solver, state[0], state[3])
             pending.append(SweepPoint(k, stepping.state_row(float(k), volts[k], strains[k]), model.truncation_readings(),
-                                      probe.last if proved else None, state=system_state(model)))
+                                      probe.last if proved else None, state=state))
             return proved or not in_solve  # where the proof in the solve missed: stop, check it outside
 
         start = first

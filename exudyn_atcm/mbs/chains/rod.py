@@ -244,7 +244,9 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
 
     def write_strains(strains: np.ndarray) -> None:
         """The actuation, and the rod linearised at the state predicted for the attempted step's end
-        (``z + h z_dot + h^2/2 z_ddot`` and ``z_dot + h z_ddot`` from the step's start)."""
+        (``z + h z_dot + h^2/2 z_ddot`` and ``z_dot + h z_ddot`` from the step's start); at rest (a static
+        load step) at the current state: the step's start, or where a continuation's predictor put the
+        iteration's start (:func:`~exudyn_atcm.mbs.sweep_solve.solve_points`)."""
         loads["strains"] = strains
         base_start = ode2[0] if ode2[0] >= 0 else indices()[0]
         if base_start < 0:  # not assembled yet: the first step's pre-step hook linearises
@@ -264,7 +266,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
             return
         activate_loads(strains)
         state["h"] = 0.0
-        write(get_q(_START, False), velocities, no_accelerations, 0.0, True)
+        write(get_q(current, False), velocities, no_accelerations, 0.0, True)
 
     def check_tip(mbs_, t) -> float:
         """After a Newton solve: the tip node's distance from the exact tip pose, and in a time step the change
