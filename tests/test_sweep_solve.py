@@ -14,7 +14,7 @@ from exudyn_atcm.mbs import builder as mb
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import continuation_settings, solver_runs, sweep_solve
 from exudyn_atcm.mbs.stepping import Stepping
-from exudyn_atcm.mbs.sweep_solve import LARGEST_SECANT_RATIO, secant_step, solve_points, system_state
+from exudyn_atcm.mbs.sweep_solve import LARGEST_SECANT_RATIO, secant_steps, solve_points, system_state
 from exudyn_atcm.solve import mechanism_static as ms
 from exudyn_atcm.solve.static_stability import stability_probe
 
@@ -58,15 +58,17 @@ def test_the_running_solvers_jacobian_is_the_probes_to_the_bit(make):
 
 
 def test_the_secant_step_is_the_next_strain_step_over_the_last_along_it():
-    e = np.array
-    assert secant_step(e([0.0]), e([1e-4]), e([2e-4])) == pytest.approx(1.0, rel=1e-12)
-    assert secant_step(e([0.0]), e([1e-4]), e([0.0])) == pytest.approx(-1.0, rel=1e-12)  # a reversal: back along it
-    assert secant_step(e([0.0]), e([1e-4]), e([2.5e-4])) == pytest.approx(1.5, rel=1e-12)
+    one = secant_steps(np.array([0.0, 1e-4, 2e-4, 1e-4, 1e-4, 2e-4, 4.5e-4, 1e-4])[:, None])
+    # points 0 and 1: no last step; an even step: 1; a reversal: back along it (-1); a repeated point: 0, and no
+    # last step after it (nan); 2.5 times the last: beyond LARGEST_SECANT_RATIO (2), a jump: started from the
+    # last point (nan); then -3.5 / 2.5
+    np.testing.assert_allclose(one, [np.nan, np.nan, 1.0, -1.0, 0.0, np.nan, np.nan, -1.4], rtol=1e-12)
+    assert LARGEST_SECANT_RATIO == 2.0
+    np.testing.assert_allclose(secant_steps(np.array([[0.0], [1e-4], [3e-4]])), [np.nan, np.nan, 2.0], rtol=1e-12)
     # two sources: the projection of the next step on the last one
-    assert secant_step(e([0.0, 0.0]), e([1.0, 0.0]), e([2.0, 5.0])) == pytest.approx(1.0, rel=1e-12)
-    assert secant_step(e([1e-4]), e([1e-4]), e([2e-4])) is None  # the last step was none: nothing to go along
-    beyond = 1e-4 * (1.0 + LARGEST_SECANT_RATIO * 1.01)
-    assert secant_step(e([0.0]), e([1e-4]), e([beyond])) is None  # a jump: started from the last point instead
+    two = secant_steps(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 5.0]]))
+    np.testing.assert_allclose(two, [np.nan, np.nan, 1.0], rtol=1e-12)
+    assert secant_steps(np.zeros((2, 1))).shape == (2,) and np.isnan(secant_steps(np.zeros((2, 1)))).all()
 
 
 @pytest.mark.parametrize("make", [lambda: lone(paper_drive(), cell="rod"), readme_four_bar,
@@ -88,7 +90,7 @@ def test_the_secant_prediction_saves_newton_iterations_and_leaves_the_equilibria
         return states, newton[0]
 
     predicted, with_prediction = solved()
-    monkeypatch.setattr(sweep_solve, "secant_step", lambda *strains: None)
+    monkeypatch.setattr(sweep_solve, "secant_steps", lambda strains: np.full(len(strains), np.nan))
     plain, without = solved()
     assert sorted(predicted) == sorted(plain) == list(range(1, len(VOLTS)))
     for k in plain:
@@ -103,7 +105,7 @@ def test_a_point_reached_with_reduced_steps_ends_the_solve_there(monkeypatch):
     # the point's step, the reduced steps start from the last point's equilibrium; the solve stops at the point
     # so reached (Exudyn would grow the step again without regard to the points), with that point's equilibrium
     def from_start(ratio) -> tuple[dict, object]:
-        monkeypatch.setattr(sweep_solve, "secant_step", lambda *strains: ratio)
+        monkeypatch.setattr(sweep_solve, "secant_steps", lambda strains: np.full(len(strains), ratio))
         model, _, strains = prepared(readme_four_bar())
         states, attempts = {}, []
 
@@ -115,7 +117,7 @@ def test_a_point_reached_with_reduced_steps_ends_the_solve_there(monkeypatch):
         return states, solve_points(model, strains, 1, on_point), attempts
 
     wild, stop, attempts = from_start(300.0)
-    plain, end, _ = from_start(None)
+    plain, end, _ = from_start(np.nan)
     assert end.last == len(VOLTS) - 1 and not end.stopped and end.failure is None
     assert stop.stopped and stop.failure is None and 1 < stop.last < len(VOLTS) - 1
     assert sorted(wild) == list(range(1, stop.last + 1))
@@ -130,7 +132,7 @@ def test_a_sweep_whose_steps_are_reduced_keeps_every_point(monkeypatch, grow):
     # recovery), a grown step ends beyond the next point: reported as a failure there, and that point solved as
     # its own equilibrium, never left out
     reference = atcm.static_sweep(readme_four_bar(), VOLTS, method="points")
-    monkeypatch.setattr(sweep_solve, "secant_step", lambda *strains: 300.0)
+    monkeypatch.setattr(sweep_solve, "secant_steps", lambda strains: np.full(len(strains), 300.0))
     if grow:
         monkeypatch.setattr(continuation_settings, "NEVER_GROW", 1)
     r = atcm.static_sweep(readme_four_bar(), VOLTS)

@@ -304,7 +304,8 @@ class MechanismModel:
         """Path parameter ``f`` in [0, 1] (the static solver's load factor): strains and, if ramped, loads."""
         if self.ramp_loads:
             self.load_factor = f
-        self.set_strains(self.path_from + f * (self.path_to - self.path_from))
+        # at the path's end its end itself (a continuation's every whole step; the same to round-off)
+        self.set_strains(self.path_to if f == 1.0 else self.path_from + f * (self.path_to - self.path_from))
 
     def scale_loads(self, factor: float) -> None:
         """Scale every external force and torque by ``factor`` (relaxation ramps; kept at 1 on a sweep's later steps)."""

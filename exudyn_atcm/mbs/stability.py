@@ -55,7 +55,7 @@ try:  # a declared dependency; imported like this where the package limits BLAS 
 except ImportError:  # pragma: no cover
     ThreadpoolController = None
 
-__all__ = ["Stability", "StabilityProbe", "CRITICAL_MARGIN", "null_space", "one_blas_thread", "snapshot"]
+__all__ = ["Stability", "STABLE", "StabilityProbe", "CRITICAL_MARGIN", "null_space", "one_blas_thread", "snapshot"]
 
 #: ``omega_1^2 / omega_ref^2`` below which an equilibrium is critical (at a stability limit; for a
 #: column ``P > 0.999 P_cr``): an imperfection's effect is amplified about ``1 / margin`` times.
@@ -103,6 +103,10 @@ class Stability:
     def frequency(self) -> float:
         """The lowest eigenfrequency [Hz], negative for an unstable direction (``nan`` when not computed)."""
         return math.copysign(math.sqrt(abs(self.lowest)), self.lowest) / (2.0 * math.pi)
+
+
+#: a stable equilibrium's :class:`Stability` (frozen: one instance serves every point proved stable in a sweep)
+STABLE = Stability("stable")
 
 
 def null_space(cq: np.ndarray, n: int, tolerance: float = 1e-9) -> np.ndarray:
@@ -331,7 +335,7 @@ class StabilityProbe:
             with one_blas_thread():
                 proved = self._jacobian_proved(self.jacobian.split(jacobian, m))
         if proved:
-            self.last = Stability("stable")
+            self.last = STABLE
         return proved
 
     def _eye(self, n: int) -> np.ndarray:

@@ -14,7 +14,7 @@ tolerances; ``tests/test_sweep_solve.py``).
 
 Each point's Newton iteration starts from a secant prediction (continuation's predictor step): the
 last two points' coordinates and multipliers extrapolated along the strain path, in proportion to the
-strain step (:func:`secant_step`).  The mechanics at given strains is elastic, so the equilibrium is a
+strain step (:func:`secant_steps`).  The mechanics at given strains is elastic, so the equilibrium is a
 smooth function of the strains along a branch, and a reversal of the voltage (the strain steps back)
 predicts a return along the branch.  The prediction is only the iteration's start: the equations and
 tolerances are those of a point's own solve.  On the README four-bar's 100-point cycle it takes the
@@ -48,7 +48,7 @@ from .model import MechanismModel
 from .solver_runs import (ExudynFailure, HookErrors, apply_static_tolerances, quiet_console, restore_console,
                           set_current_as_initial, solver_time)
 
-__all__ = ["PointsSolved", "solve_points", "set_state", "system_state", "secant_step", "LARGEST_SECANT_RATIO"]
+__all__ = ["PointsSolved", "solve_points", "set_state", "system_state", "secant_steps", "LARGEST_SECANT_RATIO"]
 
 #: distance [load-step time] within which the solver's time counts as a point's (the times are sums of
 #: reduced unit steps: exact in binary unless a step was reduced below 2^-40)
@@ -97,17 +97,21 @@ def set_state(model: MechanismModel, state: list, strains: np.ndarray) -> None:
     model.set_strain(1.0)
 
 
-def secant_step(strains_before: np.ndarray, strains_last: np.ndarray, strains_next: np.ndarray) -> float | None:
-    """The secant predictor's step: how many times the last strain step (``strains_before`` to ``strains_last``,
-    [-] per source) the next one (to ``strains_next``) goes along it (its projection; ``-1`` at a reversal of
-    an even grid), or ``None`` where no prediction is made (the last step was zero, or the ratio is beyond
-    :data:`LARGEST_SECANT_RATIO`)."""
-    last = strains_last - strains_before
-    norm = float(last @ last)
-    if not norm > 0.0:
-        return None
-    ratio = float((strains_next - strains_last) @ last) / norm
-    return ratio if abs(ratio) <= LARGEST_SECANT_RATIO else None
+def secant_steps(strains: np.ndarray) -> np.ndarray:
+    """The secant predictor's step of every point: how many times the last strain step (point ``k - 2`` to
+    ``k - 1``, rows of ``strains`` [-], one column per source) point ``k``'s step goes along it (its
+    projection: ``1`` on an even grid, ``-1`` at its reversals); ``nan`` where no prediction is made (points 0
+    and 1, a last step of zero, a ratio beyond :data:`LARGEST_SECANT_RATIO`).  One entry per row."""
+    e = np.asarray(strains, dtype=float).reshape(len(strains), -1)
+    out = np.full(len(e), np.nan)
+    if len(e) < 3:
+        return out
+    last, step = e[1:-1] - e[:-2], e[2:] - e[1:-1]
+    norm = np.einsum("ij,ij->i", last, last)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.einsum("ij,ij->i", step, last) / norm
+    out[2:] = np.where((norm > 0.0) & (np.abs(ratio) <= LARGEST_SECANT_RATIO), ratio, np.nan)
+    return out
 
 
 def solve_points(model: MechanismModel, strains: np.ndarray, first: int,
@@ -160,21 +164,20 @@ def solve_points(model: MechanismModel, strains: np.ndarray, first: int,
     sd = mbs.systemData
     current = exu.ConfigurationType.Current
     # the last two points reached: (index, coordinates, multipliers); the first is the start's (and the secant
-    # predictor's step from them into the point being solved: (last coordinates, their change, last multipliers,
-    # their change, the coordinates and multipliers predicted at the point), or None)
+    # predictor's step from them into the point being solved: (both points' coordinates, their multipliers, the
+    # secant step, the coordinates and multipliers predicted at the point), or None)
     start = reached["state"]
     points: list[tuple] = [(first - 1, start[0], start[3])]
     predictor: list = [None]
 
+    ratios = secant_steps(strains).tolist()  # nan: no prediction
+
     def predict(k: int) -> tuple | None:
-        if len(points) < 2 or points[0][0] != k - 2:
-            return None
-        ratio = secant_step(strains[k - 2], strains[k - 1], strains[k])
-        if ratio is None:
+        ratio = ratios[k]
+        if ratio != ratio or len(points) < 2 or points[0][0] != k - 2:
             return None
         (_, q0, a0), (_, q1, a1) = points
-        dq, da = ratio * (q1 - q0), ratio * (a1 - a0)
-        return q1, dq, a1, da, q1 + dq, a1 + da
+        return q0, q1, a0, a1, ratio, q1 + ratio * (q1 - q0), a1 + ratio * (a1 - a0)
 
     def pre(mbs_, t):
         attempts[0] += 1
@@ -189,10 +192,13 @@ def solve_points(model: MechanismModel, strains: np.ndarray, first: int,
                 predictor[0] = None
             f = min(max(t - (j - 1), 0.0), 1.0)
             if predictor[0] is not None:  # the iteration's start (Exudyn keeps the step's start for a repeat)
-                q1, dq, a1, da, q_end, a_end = predictor[0]
-                whole = f == 1.0  # a point's whole step: its prediction made once
-                sd.SetODE2Coordinates(q_end if whole else q1 + f * dq, current)
-                sd.SetAECoordinates(a_end if whole else a1 + f * da, current)
+                q0, q1, a0, a1, ratio, q_end, a_end = predictor[0]
+                if f == 1.0:  # a point's whole step: its prediction made once
+                    sd.SetODE2Coordinates(q_end, current)
+                    sd.SetAECoordinates(a_end, current)
+                else:
+                    sd.SetODE2Coordinates(q1 + (f * ratio) * (q1 - q0), current)
+                    sd.SetAECoordinates(a1 + (f * ratio) * (a1 - a0), current)
             model.set_strain(f)
         except Exception as exc:
             errors.keep(exc, "pre-step", f"load-step time {t:.6g} (points)")

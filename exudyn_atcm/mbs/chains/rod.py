@@ -293,6 +293,7 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
         return ratio
 
     at_rest = bytes(8 * size)  # the rates of a state at rest: size zeros (+0.0) as bytes
+    rest = [np.zeros(0)]  # zero rates of every ODE2 coordinate (the kernel reads them; never written)
 
     def linearised_at(coordinates: np.ndarray, velocities: np.ndarray | None, multipliers: np.ndarray) -> bytes:
         """Everything a linearisation at a state itself reads that can change, as bytes (compared bit for bit): the
@@ -318,7 +319,9 @@ def add_rod_bender(ctx, bender: Bender) -> tuple[Callable, Callable]:
         a = ode2[3]
         if state["at"] is not None and state["at"] == linearised_at(coordinates, None, get_ae(current, False)[a:a + 3]):
             return
-        write(coordinates, np.zeros_like(coordinates), no_accelerations, 0.0, True)
+        if rest[0].shape != coordinates.shape:  # the rates of a state at rest (the system's size, read once)
+            rest[0] = np.zeros_like(coordinates)
+        write(coordinates, rest[0], no_accelerations, 0.0, True)
 
     estimate = rotation_rod.truncation_estimator(shapes, ei)
     followers: list[int] = []  # the follower forces on the tip node (Exudyn load indices), found at first use
