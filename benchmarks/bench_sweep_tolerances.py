@@ -59,9 +59,9 @@ class Variant:
             for key, value in changes.items():
                 setattr(settings.staticSolver.newton, key, value)
 
-        def counting(probe, solver):
+        def counting(probe, solver, *state):
             steps.append(solver.it.newtonStepsCount)
-            return proof(probe, solver)
+            return proof(probe, solver, *state)
 
         sweep_solve.apply_static_tolerances = apply
         stability.StabilityProbe.proved_in_solve = counting
