@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import annotate
 from .eigen import constrained_eigenfrequencies
 from .solver_settings import dynamic_settings
+from .step_grid import GridKeeper
 
 
 class SolvableModel(Protocol):
@@ -286,6 +287,9 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
                 post_step: Callable[[float], None]) -> dict:
     """Integrate in time; ``pre_step(t)`` before each attempted step, ``post_step(t)`` after each accepted one.
 
+    Every instant of the run's grid (``endTime / numberOfSteps`` apart) is a step's end, also after
+    Exudyn reduced a step (:class:`~exudyn_atcm.mbs.step_grid.GridKeeper`).
+
     A hook returning ``False`` stops the integration cleanly (Exudyn ends the run).  An exception
     raised in a hook is raised as it is after Exudyn stops (:class:`HookErrors`), not as a failure.
 
@@ -294,11 +298,14 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
     mbs = model.mbs
     counts = {"attempts": 0}
     errors = HookErrors("the time integration")
+    grid = GridKeeper(mbs, settings)  # after a reduced step, no step passes over an instant k h of the run's grid
+    watch = grid.watch
 
     if pre_step is not None:
         def pre(mbs_, t):
             counts["attempts"] += 1
             try:
+                watch(t)
                 return pre_step(t) is not False  # False: stop the run (e.g. Ctrl-C caught in the hook)
             except Exception as exc:
                 errors.keep(exc, "pre-step", f"t = {t:.9g} s (the step being attempted)")
@@ -306,6 +313,7 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
     else:
         def pre(mbs_, t):
             counts["attempts"] += 1
+            watch(t)
             return True
 
     def post(mbs_, t):
@@ -329,6 +337,7 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
         restore_console()
         mbs.SetPreStepUserFunction(0)
         mbs.SetPostStepUserFunction(0)
+        grid.restore()
     if not ok:
         errors.raise_first()
         raise ExudynFailure("Newton iteration did not converge even at the minimum step size",
@@ -339,6 +348,7 @@ def run_dynamic(model: SolvableModel, settings, pre_step: Callable[[float], None
         "newton_steps": int(it.newtonStepsCount),
         "rejected_steps": int(getattr(it, "rejectedModifiedNewtonSteps", 0)),
         "discontinuous_iterations": int(it.discontinuousIterationsCount),
+        "steps_sent_to_the_grid": grid.refused,
     }
 
 

@@ -64,8 +64,10 @@ def run_info(grid: TimeGrid, accepted: int, schedule: RecordingSchedule, stats: 
     """``result.info`` of a time integration: step used (and requested), step counts, recording.
 
     ``accepted`` counts accepted steps after the initial instant; ``stats`` are the solver
-    statistics (``pre_step_calls``, ``newton_steps``) or ``None`` when the solve was
-    interrupted before returning them.
+    statistics (``pre_step_calls``, ``newton_steps``, ``steps_sent_to_the_grid``: the steps
+    redone to end on an instant of the run's grid after Exudyn reduced one,
+    :class:`~exudyn_atcm.mbs.step_grid.GridKeeper`) or ``None`` when the solve was interrupted
+    before returning them.
     """
     info: dict[str, Any] = {"solver": "generalized-alpha", "step [s]": grid.step, "accepted_steps": accepted,
                             "recorded": schedule.describe()}
@@ -75,6 +77,8 @@ def run_info(grid: TimeGrid, accepted: int, schedule: RecordingSchedule, stats: 
         info["attempted_steps"] = stats["pre_step_calls"]
         info["rejected_steps"] = max(stats["pre_step_calls"] - accepted, 0)
         info["newton_steps"] = stats["newton_steps"]
+        if stats.get("steps_sent_to_the_grid"):  # Exudyn reduced a step; the steps passing over an instant were redone
+            info["steps_sent_to_the_grid"] = stats["steps_sent_to_the_grid"]
     info.update(extra)
     return info
 
