@@ -9,7 +9,7 @@ switches fall inside steps, and an accuracy check comparing two runs at their co
 (:func:`~exudyn_atcm.solve.step_choice.position_error`) loses the rest of the run without a word.
 
 :class:`GridKeeper` watches the attempted steps (:meth:`GridKeeper.watch`, from the run's pre-step
-hook: one time read a step) and, once Exudyn has reduced a step, installs a ``PostNewton``
+hook: one comparison a step) and, once Exudyn has reduced a step, installs a ``PostNewton``
 function (around the system's own, whose error and recommendation it keeps) that refuses a step
 passing over an instant of the grid: it returns an error above Exudyn's
 ``discontinuous.iterationTolerance`` and, as the recommended step size, the distance to that
@@ -73,12 +73,16 @@ class GridKeeper:
         self.previous: Callable | None = previous if callable(previous) else None
         sd, start = mbs.systemData, exu.ConfigurationType.StartOfStep
         self._start_time = lambda: sd.GetTime(start)
+        self._last_attempt = -math.inf
 
     def watch(self, t: float) -> None:
-        """Pre-step: a step shorter than ``h`` (Exudyn reduced one) installs the keeper for the rest of the run."""
-        if self.active and not self.installed and t - self._start_time() < self.step * (1.0 - GRID_TOLERANCE):
+        """Pre-step (``t``: the end of the step attempted): a step attempted again, shorter (Exudyn reduced a failed
+        one: its end is not after the last attempt's), installs the keeper for the rest of the run.  One comparison
+        a step until then."""
+        if t <= self._last_attempt and self.active and not self.installed:
             self.installed = True
             self.mbs.SetPostNewtonUserFunction(self)
+        self._last_attempt = t
 
     def restore(self) -> None:
         """Put the system's own ``PostNewton`` function back."""
