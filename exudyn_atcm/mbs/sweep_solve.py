@@ -115,7 +115,7 @@ def secant_steps(strains: np.ndarray) -> np.ndarray:
 
 
 def solve_points(model: MechanismModel, strains: np.ndarray, first: int,
-                 on_point: Callable[[int, object], bool], *, connector_derivative: bool = False) -> PointsSolved:
+                 on_point: Callable[[int, object, list], bool], *, connector_derivative: bool = False) -> PointsSolved:
     """Continue from point ``first - 1``'s equilibrium through points ``first, ..., len(strains) - 1`` in one static solve.
 
     Parameters
