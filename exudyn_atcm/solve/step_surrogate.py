@@ -19,7 +19,7 @@ of :mod:`exudyn_atcm.solve.step_choice` measures the real one); a mode the drive
 slow sine, whose strain has no slope jump at its reversals) gives a small error at coarse
 steps that do not resolve the mode at all, as the run does.
 
-No Exudyn import; numpy and ``scipy.signal.lfilter`` only.
+No Exudyn import; numpy, and ``scipy.signal.lfilter`` imported at its first use (:func:`lfilter`).
 """
 
 from __future__ import annotations
@@ -31,7 +31,6 @@ import warnings
 from typing import Any
 
 import numpy as np
-from scipy.signal import lfilter
 
 from ..model.signals import Signal
 
@@ -39,6 +38,15 @@ __all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response",
 
 #: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
 SPECTRAL_RADIUS = 0.8
+
+
+def lfilter(b: Any, a: Any, x: np.ndarray) -> np.ndarray:
+    """:func:`scipy.signal.lfilter`, imported at its first use: importing :mod:`scipy.signal` takes about
+    a second (it loads :mod:`scipy.stats`), which every process that builds or solves a mechanism would
+    otherwise pay, though only the step choice of ``simulate(accuracy=...)`` filters."""
+    from scipy.signal import lfilter as scipy_lfilter
+
+    return scipy_lfilter(b, a, x)
 
 
 def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
