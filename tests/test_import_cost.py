@@ -39,15 +39,16 @@ def test_cli_help_loads_no_scipy_nor_matplotlib():
 
 
 def test_solving_an_actuator_loads_no_scipy_signal_nor_stats():
-    # a static sweep and a fixed-step run need scipy.linalg only: scipy.signal (with scipy.stats, about a
-    # second) is imported where the step choice of simulate(accuracy=...) filters its stand-in
+    # a static sweep and a run, at a fixed step or one chosen for an accuracy, need scipy.linalg only:
+    # scipy.signal (with scipy.stats, about a second) was loaded for the step choice's one filter
     code = ("import warnings; warnings.simplefilter('ignore')\nimport exudyn_atcm as atcm\n"
             "from exudyn_atcm.mechanism.actuator import BendingActuator\n"
             "from exudyn_atcm.model.drive import PiezoDrive\nfrom exudyn_atcm.model.materials import Layer\n"
             "from exudyn_atcm.model.signals import Triangle\n"
             "act = BendingActuator(3, 29e-3, 28e-3, Layer(0.2e-3, 70e9, 1550.0), Layer(0.3e-3, 30.336e9, 5440.0), "
             "PiezoDrive(Triangle(750.0, 750.0, 0.02)), cell='rod')\n"
-            "atcm.static_sweep(act, [0.0, 500.0, 1000.0])\natcm.simulate(act, 0.02, step=1e-3)")
+            "atcm.static_sweep(act, [0.0, 500.0, 1000.0])\natcm.simulate(act, 0.02, step=1e-3)\n"
+            "assert 'step_choice' in atcm.simulate(act, 0.02, accuracy=1e-2).info")
     loaded = _loaded_after(code)
     assert "scipy.linalg" in loaded  # the probe sees what the solve does load
     assert not loaded & {"scipy.signal", "scipy.stats", "matplotlib"}

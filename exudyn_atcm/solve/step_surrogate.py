@@ -19,7 +19,7 @@ of :mod:`exudyn_atcm.solve.step_choice` measures the real one); a mode the drive
 slow sine, whose strain has no slope jump at its reversals) gives a small error at coarse
 steps that do not resolve the mode at all, as the run does.
 
-No Exudyn import; numpy, and ``scipy.signal.lfilter`` imported at its first use (:func:`lfilter`).
+No Exudyn import; numpy only (the filters: :mod:`exudyn_atcm.solve.linear_recurrence`).
 """
 
 from __future__ import annotations
@@ -33,20 +33,12 @@ from typing import Any
 import numpy as np
 
 from ..model.signals import Signal
+from .linear_recurrence import first_component, first_order
 
 __all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "ExactResponse", "StandIn"]
 
 #: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
 SPECTRAL_RADIUS = 0.8
-
-
-def lfilter(b: Any, a: Any, x: np.ndarray) -> np.ndarray:
-    """:func:`scipy.signal.lfilter`, imported at its first use: importing :mod:`scipy.signal` takes about
-    a second (it loads :mod:`scipy.stats`), which every process that builds or solves a mechanism would
-    otherwise pay, though only the step choice of ``simulate(accuracy=...)`` filters."""
-    from scipy.signal import lfilter as scipy_lfilter
-
-    return scipy_lfilter(b, a, x)
 
 
 def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
@@ -105,7 +97,7 @@ class ExactResponse:
         damped = omega * math.sqrt(max(1.0 - zeta * zeta, 1e-12))
         self.lam = complex(-zeta * omega, damped)
         dw = 2.0 * zeta * kicks / omega
-        self.c = lfilter([1.0], [1.0, -np.exp(self.lam * dt)], dw - 1j * (-kicks + zeta * omega * dw) / damped)
+        self.c = first_order(np.exp(self.lam * dt), dw - 1j * (-kicks + zeta * omega * dw) / damped)
         self.s, self.dt, self.lag = np.asarray(s, dtype=float), dt, 2.0 * zeta / omega
 
     def __call__(self, times: np.ndarray) -> np.ndarray:
@@ -131,7 +123,7 @@ def alpha_response(s: np.ndarray, h: float, omega: float, zeta: float = 0.0,
     The Arnold-Brüls form Exudyn integrates with (the algorithmic acceleration ``a`` apart from
     the acceleration ``x''``), started at rest in equilibrium (all zero, as ``s(0) = 0``).  The
     recurrence of the state ``(x, v, a, f)`` is linear, so it runs as one filter of the input
-    (``scipy.signal.lfilter``).
+    (:func:`~exudyn_atcm.solve.linear_recurrence.first_component`).
     """
     am, af, gamma, beta = _alpha_constants(rho)
     w2, c = omega * omega, 2.0 * zeta * omega
@@ -147,23 +139,8 @@ def alpha_response(s: np.ndarray, h: float, omega: float, zeta: float = 0.0,
     transition[2] = row
     drive = np.array([h * h * beta / d, h * gamma / d, 1.0 / d, 1.0])  # the input f_{n+1}; the last row keeps it
     out = np.zeros(len(s))
-    out[1:] = _first_component(transition, drive, w2 * np.asarray(s[1:], dtype=float))
+    out[1:] = first_component(transition, drive, w2 * np.asarray(s[1:], dtype=float))
     return out
-
-
-def _first_component(a: np.ndarray, b: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """First component of ``z_{n+1} = A z_n + b u_n`` (``z_0 = 0``) at ``n = 1..len(u)``, as one filter.
-
-    The transfer function ``e_0 (zI - A)^-1 b``: denominator the characteristic polynomial,
-    numerator from the Faddeev-LeVerrier matrices of ``adj(zI - A)``.
-    """
-    den = np.real(np.poly(a))
-    size = a.shape[0]
-    mats = [np.eye(size)]
-    for k in range(1, size):
-        mats.append(a @ mats[-1] + den[k] * np.eye(size))
-    num = np.array([0.0] + [float(m[0] @ b) for m in mats])
-    return lfilter(num, den, np.r_[u, 0.0])[1:]  # output k is z_k: one input later
 
 
 class StandIn:
