@@ -46,3 +46,38 @@ def test_gif_is_written_atomically(tmp_path):
 def test_bad_arguments(tmp_path, kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):
         animate_actuator(bent_result(), tmp_path / "a.gif", **kwargs)
+
+
+def test_blitted_frames_are_the_whole_drawings_of_each_frame(tmp_path):
+    # save_gif draws the first frame whole and then only what draw(k) returns, on a copy of the rest:
+    # every frame must be what drawing the whole figure in that state gives (the same quantizer)
+    from PIL import Image, ImageSequence
+
+    from exudyn_atcm.plots.gif import save_gif
+    from exudyn_atcm.plots.style import new_figure
+
+    fig, (ax,) = new_figure(1, 1, width=4, height=3)
+    ax.grid(True, alpha=0.3)
+    ax.plot([0, 1], [0, 1], color="0.5", ls="--", zorder=1)  # a static artist below the moving ones
+    ax.set_xlim(0, 1)
+    ax.set_ylim(-1, 1)
+    ax.set_xlabel("x [m]")
+    (moving,) = ax.plot([], [], "o-", color="tab:blue", zorder=3)
+    x = np.linspace(0, 1, 30)
+
+    def state(k):
+        moving.set_data(x, np.sin(2 * np.pi * (x + 0.1 * k)))
+        ax.set_title(f"frame {k}")
+        return moving, ax.title
+
+    save_gif(fig, state, 6, tmp_path / "b.gif", fps=5, colors=256)
+    with Image.open(tmp_path / "b.gif") as image:
+        frames = [np.asarray(f.convert("RGB")) for f in ImageSequence.Iterator(image)]
+    assert len(frames) == 6
+    for k in (5, 1, 3):  # whole drawings, in another order than the animation's
+        state(k)
+        fig.canvas.draw()
+        whole = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
+        expected = np.asarray(whole.quantize(256, method=Image.Quantize.MAXCOVERAGE).convert("RGB"))
+        assert np.array_equal(frames[k], expected), k
+    assert not np.array_equal(frames[1], frames[2])

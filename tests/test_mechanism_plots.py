@@ -180,3 +180,32 @@ def test_real_run_with_every_component_kind_is_drawn(tmp_path):
     assert float(axis[0] * offset[1] - axis[1] * offset[0]) > 0.0
     plot_mechanism(mech, result, path=tmp_path / "kinds.png", scale=5.0)
     assert (tmp_path / "kinds.png").is_file()
+
+
+def test_every_animation_frame_is_the_whole_drawing_of_its_state(tmp_path, monkeypatch):
+    # animate_mechanism hands save_gif the artists that change (the mechanism, the traces, the title, the
+    # legend above them); each blitted frame must equal a whole drawing of the figure in that frame's state
+    from PIL import Image, ImageSequence
+
+    from exudyn_atcm.plots import gif as gif_module
+    from exudyn_atcm.plots import mechanism as mechanism_plots
+
+    seen = {}
+
+    def keep(fig, draw, n_frames, path, **kwargs):
+        seen.update(fig=fig, draw=draw)
+        return gif_module.save_gif(fig, draw, n_frames, path, colors=256, **{k: v for k, v in kwargs.items() if k != "colors"})
+
+    monkeypatch.setattr(mechanism_plots, "save_gif", keep)
+    mech, result = _mechanism(), _synthetic_result(KAPPAS)
+    gif = animate_mechanism(mech, result, tmp_path / "m.gif", frames=6, fps=5, trace=["coupler.P"])
+    with Image.open(gif) as image:
+        frames = [np.asarray(f.convert("RGB")) for f in ImageSequence.Iterator(image)]
+    fig, draw = seen["fig"], seen["draw"]
+    for k in (4, 1, 5):
+        draw(k)
+        fig.canvas.draw()
+        whole = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
+        expected = np.asarray(whole.quantize(256, method=Image.Quantize.MAXCOVERAGE).convert("RGB"))
+        assert np.array_equal(frames[k], expected), k
+        assert (frames[k][:20] < 128).any()  # the title with the frame's time is drawn

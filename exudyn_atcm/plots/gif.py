@@ -1,16 +1,20 @@
-"""GIF animations: every frame drawn once on a figure's Agg canvas, written atomically with Pillow.
+"""GIF animations: frames drawn on a figure's Agg canvas, written atomically with Pillow.
 
 The one GIF writer of the package (:func:`~exudyn_atcm.plots.result.animate_actuator` and
-:func:`~exudyn_atcm.plots.mechanism.animate_mechanism` both go through :func:`save_gif`).
+:func:`~exudyn_atcm.plots.mechanism.animate_mechanism` both go through :func:`save_gif`).  The first
+frame is a whole drawing of the figure; the others draw only the artists that ``draw(k)`` returns on
+a copy of everything else (matplotlib's blitting): axes, ticks, grid and labels are drawn twice in
+all, not once a frame, which was most of an animation's cost (about 0.1 s a frame on a mechanism).
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.figure import Figure
 
 from ..io.atomic import atomic_path
@@ -19,12 +23,12 @@ from ..io.progress import report_task
 __all__ = ["save_gif"]
 
 
-def save_gif(fig: Figure, draw: Callable[[int], object], n_frames: int, path: str | os.PathLike, *, fps: int,
-             colors: int = 128, progress: Callable[[int, int], None] | None = None) -> Path:
+def save_gif(fig: Figure, draw: Callable[[int], Sequence[Artist] | None], n_frames: int, path: str | os.PathLike, *,
+             fps: int, colors: int = 128, progress: Callable[[int, int], None] | None = None) -> Path:
     """Draw frames ``draw(0) ... draw(n_frames - 1)`` on ``fig`` and write them as a looping GIF.
 
     The layout of the first frame is kept for all frames (no jumping axes).  Each frame is
-    reduced to an adaptive palette of ``colors`` colours; the frame duration is
+    reduced to an adaptive palette of ``colors`` colours (Pillow's maximum-coverage quantizer); the frame duration is
     ``round(1000 / fps)`` ms.
 
     Parameters
@@ -32,7 +36,11 @@ def save_gif(fig: Figure, draw: Callable[[int], object], n_frames: int, path: st
     fig : matplotlib.figure.Figure
         A figure on the Agg canvas (:func:`~exudyn_atcm.plots.style.new_figure`).
     draw : callable
-        ``draw(k)`` updates the figure for frame ``k``.
+        ``draw(k)`` updates the figure for frame ``k``.  If it returns the artists that differ between
+        frames (changed, or added for this frame and removed by the next call) and any artist that
+        must stay above them, only those are drawn after the first frame, in the order of their
+        ``zorder``, on a copy of everything else, which must not change (fixed axis limits, ticks and
+        labels).  If it returns ``None``, every frame is drawn whole.
     n_frames : int
         Number of frames, ``>= 1``.
     path : str or os.PathLike
@@ -66,13 +74,32 @@ def save_gif(fig: Figure, draw: Callable[[int], object], n_frames: int, path: st
         raise ValueError(f"path must be in an existing directory, got {target!r}")
     images = []
     report_task("GIF frames", 0, n_frames)
+    canvas = fig.canvas
+    background = None
     for k in range(n_frames):
-        draw(k)
-        fig.canvas.draw()
-        if k == 0:
+        changing = draw(k)
+        if k == 0 or changing is None:
+            canvas.draw()
             fig.set_layout_engine("none")
-        rgba = np.asarray(fig.canvas.buffer_rgba())
-        images.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.Palette.ADAPTIVE, colors=colors))
+        else:
+            changing = list(changing)
+            if background is None:  # the figure without what changes, once
+                # animated artists are left out of a drawing (hidden ones would also leave the layout: an
+                # axes title hidden so is moved off the figure)
+                still = [a for a in changing if not a.get_animated()]
+                for artist in still:
+                    artist.set_animated(True)
+                canvas.draw()
+                background = canvas.copy_from_bbox(fig.bbox)
+                for artist in still:
+                    artist.set_animated(False)
+            canvas.restore_region(background)
+            for artist in sorted(changing, key=lambda a: a.get_zorder()):  # stable: equal zorders in order drawn
+                fig.draw_artist(artist)
+        rgba = np.asarray(canvas.buffer_rgba())
+        # maximum coverage: half the time of the median cut, at most 12 levels off where the median cut put
+        # a few pixels 80 off (a mechanism's frames, 128 colours; the mean 0.2 levels instead of 0.04)
+        images.append(Image.fromarray(rgba[..., :3].copy()).quantize(colors, method=Image.Quantize.MAXCOVERAGE))
         report_task("GIF frames", k + 1, n_frames)
         if progress is not None:
             progress(k + 1, n_frames)

@@ -75,6 +75,19 @@ _DRIVE_COLORS = [c for c in COLORS if c.upper() != _ACTIVE]
 
 
 # ----------------------------------------------------------------------------- drawing
+def _draw_reference(ax, mechanism: Mechanism) -> None:
+    """Draw the mechanism's reference pose on ``ax`` (axes in mm): benders straight and links as described,
+    thin grey dashed lines below the grid."""
+    for b in mechanism.benders:
+        p = np.array([b.base_position, np.array(b.base_position) + b.length * b.direction])
+        ax.plot(*(p * _MM).T, color="0.75", lw=1.0, ls="--", zorder=1)
+    for comp in mechanism.components.values():
+        if isinstance(comp, Link):
+            poly = order_around_centroid(np.array(list(comp.points.values())))
+            closed = np.vstack([poly, poly[:1]]) if len(poly) > 2 else poly
+            ax.plot(*(closed * _MM).T, color="0.75", lw=1.0, ls="--", zorder=1)
+
+
 def draw_mechanism(
     ax,
     mechanism: Mechanism,
@@ -117,14 +130,7 @@ def draw_mechanism(
         offset_scale = max(1.0, 0.01 * size / e) if e > 0 else 1.0
     shape = mechanism_shape(mechanism, result, row, scale=scale, offset_scale=offset_scale)
     if reference:
-        for b in mechanism.benders:
-            p = np.array([b.base_position, np.array(b.base_position) + b.length * b.direction])
-            ax.plot(*(p * _MM).T, color="0.75", lw=1.0, ls="--", zorder=1)
-        for comp in mechanism.components.values():
-            if isinstance(comp, Link):
-                poly = order_around_centroid(np.array(list(comp.points.values())))
-                closed = np.vstack([poly, poly[:1]]) if len(poly) > 2 else poly
-                ax.plot(*(closed * _MM).T, color="0.75", lw=1.0, ls="--", zorder=1)
+        _draw_reference(ax, mechanism)
     drive_colors: dict[str, str] = {}
     layer_label = f"active layer (offset e drawn ×{offset_scale:.3g})" if offset_scale != 1.0 else "active layer"
     first = True
@@ -317,18 +323,32 @@ def animate_mechanism(
     fig, (ax,) = new_figure(1, 1, width=6.4, height=5.2)
     fig.set_dpi(90)
     head = title or mechanism.name
+    # what every frame shares, drawn once: grid, reference pose, limits and labels
+    ax.grid(True, alpha=0.3)
+    _draw_reference(ax, mechanism)
+    xlim = ((lo[0] - margin) * _MM, (hi[0] + margin) * _MM)
+    ylim = ((lo[1] - margin) * _MM, (hi[1] + margin) * _MM)
+    drawn: list = []  # the artists of the last frame, but the legend
 
-    def draw(k: int):
-        ax.clear()
-        ax.grid(True, alpha=0.3)
+    def draw(k: int) -> list:
+        legend = ax.get_legend()
+        if k == 1 and legend is not None:
+            # the first frame's legend, where loc="best" put it, for every frame (the legend no longer jumps)
+            corner = legend.get_window_extent(fig.canvas.get_renderer()).p0
+            legend.set_loc(tuple(ax.transAxes.inverted().transform(corner)))
+        for artist in drawn:
+            artist.remove()
+        before = set(ax.get_children())
         row = int(rows[k])
         _draw_traces(ax, mechanism, result, trace, scale, row)
-        draw_mechanism(ax, mechanism, result, row, scale=scale, labels=False, legend=True)
-        ax.set_xlim((lo[0] - margin) * _MM, (hi[0] + margin) * _MM)
-        ax.set_ylim((lo[1] - margin) * _MM, (hi[1] + margin) * _MM)
+        draw_mechanism(ax, mechanism, result, row, scale=scale, reference=False, labels=False, legend=k == 0)
+        ax.set_xlim(*xlim)
+        ax.set_ylim(*ylim)
         ax.set_aspect("equal", adjustable="box")
         ax.set_title(f"{head} ({_scale_text(scale)})\n{_time_text(result, row)}", fontsize=8)
-        return ()
+        legend = ax.get_legend()
+        drawn[:] = [a for a in ax.get_children() if a not in before and a is not legend]
+        return drawn + [ax.title] + ([legend] if legend is not None else [])
 
     return save_gif(fig, draw, len(rows), target, fps=fps)
 

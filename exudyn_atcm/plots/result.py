@@ -202,7 +202,7 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
     (trace,) = ax.plot([], [], color="0.6", lw=1, label="tip path")
     (chain,) = ax.plot([], [], "o-", color="tab:blue", lw=2, ms=4, label="passive layer")
     label = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
-    ax.legend(loc="lower right", fontsize="small")
+    legend = ax.legend(loc="lower right", fontsize="small")
     tip_x, tip_y = actuator_column(result, "tip_x") * 1e3, actuator_column(result, "tip_y") * 1e3
     voltage = actuator_column(result, "voltage")
 
@@ -211,7 +211,7 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
         chain.set_data(x * 1e3, y * 1e3)
         trace.set_data(tip_x[: rows[k] + 1], tip_y[: rows[k] + 1])
         label.set_text(f"t = {result['time'][rows[k]]:.3f} s   U = {voltage[rows[k]]:.0f} V")
-        return chain, trace, label
+        return chain, trace, label, legend  # the legend stays above the chain
 
     total = len(shapes)
     save_gif(fig, draw, total, path, fps=fps)  # reports the frames to the active progress display
