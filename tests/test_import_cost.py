@@ -54,6 +54,23 @@ def test_solving_an_actuator_loads_no_scipy_signal_nor_stats():
     assert not loaded & {"scipy.signal", "scipy.stats", "matplotlib"}
 
 
+def test_loading_every_case_and_plot_module_loads_no_matplotlib_nor_scipy_signal():
+    # a case run without plots (--no-plot, a study's runs) must not pay for matplotlib (~0.5 s): the case
+    # files import their plot functions at the top, and the plot modules import matplotlib where a figure is made
+    from pathlib import Path
+
+    cases = sorted(str(p) for p in (Path(__file__).resolve().parents[1] / "cases").glob("*.py") if p.name != "__init__.py")
+    # every plot name but the cell drawings of the documentation (plots.cells draws with matplotlib's patches)
+    code = ("import importlib, importlib.util\nimport exudyn_atcm.plots as plots\n"
+            "for name in plots.__all__:\n"
+            "    if plots._LAZY[name][0] != 'cells': getattr(plots, name)\n"
+            f"for i, path in enumerate({cases!r}):\n"
+            "    spec = importlib.util.spec_from_file_location(f'case_{i}', path)\n"
+            "    spec.loader.exec_module(importlib.util.module_from_spec(spec))")
+    loaded = _loaded_after(code)
+    assert not loaded & {"matplotlib", "matplotlib.figure", "matplotlib.pyplot", "scipy.signal", "scipy.stats"}
+
+
 def test_probe_sees_heavy_modules_when_they_are_loaded():
     # the probe itself can fail: a fit module that needs scipy.optimize, and a figure, load them
     code = ("import numpy as np\nfrom exudyn_atcm.hysteresis.loop_identification import isotonic\n"

@@ -12,13 +12,16 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.artist import Artist
-from matplotlib.figure import Figure
 
 from ..io.atomic import atomic_path
 from ..io.progress import report_task
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.artist import Artist
+    from matplotlib.figure import Figure
 
 __all__ = ["save_gif"]
 

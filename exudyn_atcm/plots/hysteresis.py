@@ -11,14 +11,16 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from .style import axis_label, display_scale
 from .target import figure_axes, finish, is_path, warn_path_form
 from ..io.result import Result
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
 
 __all__ = ["Curve", "plot_loops", "plot_time_series", "plot_relays"]
 

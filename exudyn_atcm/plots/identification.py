@@ -4,14 +4,16 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from .._checks import hide_keywords, options_from_keywords
 from .style import AxisLabels, axis_label, display_scale
 from .target import figure_axes, finish, is_path, warn_path_form
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_fit", "plot_fit_series", "plot_model_choice", "fitted_samples"]
 

@@ -35,9 +35,9 @@ import math
 import os
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from ..mechanism import Link, Mechanism
 from .mechanism_shapes import (
@@ -53,6 +53,9 @@ from .canvas import MechanismCanvas
 from .gif import save_gif
 from .style import COLORS, axis_label, new_figure
 from .target import figure_axes, finish, legacy_path
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
 
 __all__ = [
     "BenderShape",

@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from .style import axis_label
 from .target import figure_axes, finish
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_modes"]
 

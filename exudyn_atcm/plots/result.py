@@ -7,10 +7,9 @@ calling this module never selects or opens a GUI backend.
 from __future__ import annotations
 
 import os
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from ..io.atomic import make_directory
 from ..mechanism.actuator import NAME
@@ -19,6 +18,9 @@ from .mechanism_series import plot_mechanism_series
 from .style import new_figure
 from .target import figure_axes, finish, legacy_path
 from ..io.progress import report_task
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_result", "plot_time_series", "plot_tip_vs_voltage", "plot_shapes", "chain_shape", "animate_actuator"]
 

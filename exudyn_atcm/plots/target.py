@@ -13,13 +13,13 @@ from __future__ import annotations
 import os
 import warnings
 from collections.abc import Sequence
-from typing import Any
-
-from matplotlib.axes import Axes
-from matplotlib.figure import Figure
+from typing import TYPE_CHECKING, Any
 
 from ..errors import AtcmDeprecationWarning
 from .style import new_figure, save_figure
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
 
 __all__ = ["figure_axes", "finish", "is_path", "warn_path_form", "legacy_path"]
 
@@ -35,6 +35,8 @@ def figure_axes(ax: Any, n_rows: int = 1, n_cols: int = 1, **layout: Any) -> tup
     n = n_rows * n_cols
     if ax is None:
         return new_figure(n_rows, n_cols, **layout)
+    from matplotlib.axes import Axes  # noqa: PLC0415 - lazy: a caller's axes means matplotlib is loaded already
+
     axes = [ax] if isinstance(ax, Axes) else list(ax) if isinstance(ax, Sequence) else None
     if axes is None or len(axes) != n or not all(isinstance(a, Axes) for a in axes):
         allowed = "a matplotlib Axes" if n == 1 else f"a sequence of {n} matplotlib Axes (one per panel)"
