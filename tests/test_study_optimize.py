@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from pathlib import Path
@@ -76,11 +77,22 @@ def test_differential_evolution_with_integer_and_constraint_parallel_and_resumab
     first = optimize(SYNTHETIC, "z", bounds, run=RunOptions(workers=2, out=tmp_path), **kwargs)
     called = time.perf_counter() - called
     assert first.design["n"] == 2 and first.design["x"] == pytest.approx(1.0, abs=1e-3)
-    # the rate per core: the runs executed over the search's wall time on its two workers (within the call's)
+    # the rate per core: the runs executed over the cores held, two workers for the generations and one for
+    # the polish (a pool of one forked worker: one design at a time), each times its stage's wall time
     assert first.cores == 2 and 0.0 < first.search_time <= called
-    assert first.evaluation_rate == pytest.approx(first.executed / (2.0 * first.search_time), rel=1e-12)
+    assert [w for w, _ in first.stages] == [2, 1] and sum(t for _, t in first.stages) <= first.search_time
+    assert first.core_seconds == pytest.approx(2.0 * first.stages[0][1] + first.stages[1][1], rel=1e-12)
+    assert first.search_time < first.core_seconds < 2.0 * first.search_time
+    assert first.evaluation_rate == pytest.approx(first.executed / first.core_seconds, rel=1e-12)
     assert first.describe_rate().startswith(f"{60.0 * first.evaluation_rate:.0f} evaluations per minute per core "
                                             f"({first.executed} runs executed in")
+    assert "on 2 workers for" in first.describe_rate() and ", then 1 worker for" in first.describe_rate()
+    # the polish's runs (the last evaluations; the generations' come first) all ran in one worker process
+    records = [json.loads(p.read_text()) for p in (tmp_path / "runs").rglob("*.json") if p.parent.parent.name != "latest"]
+    worker_of = {r["key"]: r["worker"] for r in records if "worker" in r}
+    keys = [k for k in first.history["key"] if k in worker_of]
+    polish_workers = {worker_of[k] for k in keys[-5:]}
+    assert len(polish_workers) == 1 and not polish_workers & {worker_of[k] for k in keys[:5]}
     assert first.feasible and first.objective == pytest.approx(2.0 * math.sin(1.0), rel=1e-3)
     assert first.executed > 0 and (tmp_path / "synthetic_study_optimize_history.csv").is_file()
     # the same optimisation again: every evaluation comes from the store, same answer, in one process

@@ -34,6 +34,7 @@ from . import search
 from .budget import RunBudget, evaluation_bounds, max_runs
 from .design import GridError, case_parameter, check_point
 from .engines import make_engine
+from .held_cores import CoreClock, one_worker_for
 from .lock import TableLock
 from .options import METHODS, OptimizeOptions, RunOptions
 from .problem import Objective, Problem, check_constraints, check_objective, history_columns
@@ -82,8 +83,12 @@ class OptimizationResult:
     search_time : float
         Wall time [s] of the search, its runs included (not the re-run of the best design).
     cores : int
-        The workers that ran the evaluations (1 in the calling process; a pool's or a Dask
+        The most workers that ran the evaluations (1 in the calling process; a pool's or a Dask
         cluster's workers).
+    stages : list of (int, float)
+        The workers held and the wall time [s] of each stage of the search: a differential
+        evolution's polish runs one design at a time on a pool of one forked worker
+        (:func:`~exudyn_atcm.study.held_cores.one_worker_for`).
     """
 
     design: dict[str, Any]
@@ -101,22 +106,34 @@ class OptimizationResult:
     max_evaluations: int = 0
     search_time: float = 0.0
     cores: int = 1
+    stages: list[tuple[int, float]] = field(default_factory=list)
+
+    @property
+    def core_seconds(self) -> float:
+        """Wall time times the workers held [s], summed over the :attr:`stages` (``search_time * cores`` without them)."""
+        if self.stages:
+            return float(sum(workers * seconds for workers, seconds in self.stages))
+        return self.search_time * max(1, self.cores)
 
     @property
     def evaluation_rate(self) -> float:
-        """Runs executed per second of the search per core [1/s] (``executed / (search_time * cores)``; runs taken
-        from the store are not counted; ``nan`` when none was executed)."""
-        if self.executed <= 0 or not self.search_time > 0.0:
+        """Runs executed per second per core held [1/s] (``executed / core_seconds``; runs taken from the store
+        are not counted; ``nan`` when none was executed)."""
+        if self.executed <= 0 or not self.core_seconds > 0.0:
             return math.nan
-        return self.executed / (self.search_time * max(1, self.cores))
+        return self.executed / self.core_seconds
 
     def describe_rate(self) -> str:
         """:attr:`evaluation_rate` as a sentence for a report (per minute per core, with what it counts)."""
         if math.isnan(self.evaluation_rate):
             return f"no run executed (all {self.evaluations} evaluations from the store or repeats)"
+        held = {workers for workers, _ in self.stages} or {self.cores}
+        if len(held) == 1:
+            on = f"on {self.cores} worker{'s' if self.cores > 1 else ''}"
+        else:
+            on = "on " + ", then ".join(f"{w} worker{'s' if w > 1 else ''} for {t:.3g} s" for w, t in self.stages)
         return (f"{60.0 * self.evaluation_rate:.0f} evaluations per minute per core ({self.executed} runs executed in "
-                f"{self.search_time:.3g} s on {self.cores} worker{'s' if self.cores > 1 else ''}; runs from the store "
-                "not counted)")
+                f"{self.search_time:.3g} s {on}; runs from the store not counted)")
 
 
 @hide_keywords
@@ -308,8 +325,9 @@ def optimize(
         start = np.array([(float(x0[nm]) - lo) / (hi - lo) if x0 and nm in x0 else 0.5
                           for nm, lo, hi in zip(names, lows, highs)])
         searched = time.perf_counter()
+        clock = CoreClock(engine)
         result, stopped = _search(problem, method, start, kinds, seed, maxiter, popsize, tol, xatol, fatol, polish,
-                                  penalty, constraint_handling == "scipy")
+                                  penalty, constraint_handling == "scipy", clock)
         searched = time.perf_counter() - searched
         problem.add_unvisited()
         history = history_columns(case, problem, names)
@@ -331,7 +349,8 @@ def optimize(
                 error.args = (f"{error} (every evaluation is in {written[0]})",)
             raise error
         opt = _best(case, problem, history, result, stopped, cap, rerun_best, out_dir, plot)
-        opt.search_time, opt.cores = searched, int(getattr(problem.engine, "workers", 1) or 1)
+        opt.search_time, opt.stages = searched, clock.stages
+        opt.cores = max(workers for workers, _ in clock.stages)
         if out_dir is not None:
             opt.files += _write_summary(out_dir, case.name, history, {
                 **summary, "design": opt.design, "objective value": opt.objective, "feasible": opt.feasible,
@@ -340,8 +359,11 @@ def optimize(
 
 
 def _search(problem: Problem, method: str, start: np.ndarray, kinds: list[str], seed, maxiter: int, popsize: int, tol: float,
-            xatol: float, fatol: float, polish: bool, penalty: float, scipy_constraints: bool):
+            xatol: float, fatol: float, polish: bool, penalty: float, scipy_constraints: bool, clock: CoreClock):
     """Run the scipy stages; ``(result of the last finished stage or None, the stop or None)``.
+
+    A differential evolution's polish runs on one worker (:func:`~exudyn_atcm.study.held_cores.one_worker_for`);
+    ``clock`` times the stages (stopped when the engine is closed).
 
     A spent evaluation budget (:class:`SearchStopped`) and an objective never finite on the
     first batch (:class:`ObjectiveNotFiniteError`) end the search and are returned; any other
@@ -353,6 +375,8 @@ def _search(problem: Problem, method: str, start: np.ndarray, kinds: list[str], 
             result = search.differential_evolution(problem, kinds, seed, maxiter, popsize, tol, scipy_constraints)
             if polish and "float" in kinds:
                 problem.penalty = float(penalty)  # Nelder-Mead knows constraints only as penalties
+                problem.engine = one_worker_for(problem.engine)  # one design at a time
+                clock.switch(problem.engine)
                 result = search.polish(problem, np.asarray(result.x, float), kinds, xatol, fatol, maxiter)
         else:
             result = search.local_search(problem, method, start, xatol, fatol, maxiter)
@@ -367,6 +391,7 @@ def _search(problem: Problem, method: str, start: np.ndarray, kinds: list[str], 
         raise
     finally:
         problem.engine.close()
+        clock.stop()
     return result, None
 
 
