@@ -291,6 +291,10 @@ def animate_mechanism(
 ) -> Path:
     """GIF animation of the moving mechanism (frames drawn on the Agg canvas, written atomically with Pillow).
 
+    The grid, the reference pose and the axes are drawn once; each frame draws the mechanism, the
+    traces, the title and the legend over them (:func:`~exudyn_atcm.plots.gif.save_gif`).  The legend
+    stays where ``loc="best"`` put it in the first frame.
+
     Parameters
     ----------
     mechanism, result
