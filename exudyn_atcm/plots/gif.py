@@ -84,6 +84,7 @@ def save_gif(fig: Figure, draw: Callable[[int], Sequence[Artist] | None], n_fram
         if k == 0 or changing is None:
             canvas.draw()
             fig.set_layout_engine("none")
+            background = None  # a frame drawn whole may have changed anything: the next blit copies anew
         else:
             changing = list(changing)
             if background is None:  # the figure without what changes, once
