@@ -21,17 +21,18 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
-from matplotlib.patches import FancyArrowPatch, Rectangle
-from matplotlib.path import Path as Path_
-from matplotlib.ticker import FuncFormatter, MultipleLocator
 
 from ..mechanism.actuator import BendingActuator
 from ..model.drive import PiezoDrive
 from ..model.materials import Layer
 from .style import COLORS, new_figure, save_figure
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is made (style.new_figure)
+    from matplotlib.figure import Figure
+    from matplotlib.path import Path as Path_
 
 __all__ = ["paper_actuator", "height_exaggeration", "draw_six_bar_cell", "draw_rigid_chain", "cell_figure",
            "save_cell_drawing"]
@@ -89,10 +90,12 @@ def _si(value: float, unit: str) -> str:
 
 def _dimension(ax, p0, p1, text, *, offset=(0.0, 0.0), color=_GREY, text_offset=(0.0, 0.0), **text_kw):
     """A two-headed dimension arrow from p0 to p1 (drawing units) with a label at its middle."""
+    from matplotlib import patches  # noqa: PLC0415 - lazy: matplotlib is slow to import
+
     a = (p0[0] + offset[0], p0[1] + offset[1])
     b = (p1[0] + offset[0], p1[1] + offset[1])
-    ax.add_patch(FancyArrowPatch(a, b, arrowstyle="<->", mutation_scale=9, color=color, lw=0.9,
-                                 shrinkA=0, shrinkB=0))
+    ax.add_patch(patches.FancyArrowPatch(a, b, arrowstyle="<->", mutation_scale=9, color=color, lw=0.9,
+                                         shrinkA=0, shrinkB=0))
     mid = (0.5 * (a[0] + b[0]) + text_offset[0], 0.5 * (a[1] + b[1]) + text_offset[1])
     kw = {"ha": "center", "va": "center", "color": color, "fontsize": 9}
     kw.update(text_kw)
@@ -110,9 +113,11 @@ def _spring(ax, x0, x1, y, height, turns=5, color=_SPRING):
 
 def _spiral_marker() -> Path_:
     """A spiral as a marker path (drawn in points, so it stays round on stretched axes)."""
+    from matplotlib import path as mpath  # noqa: PLC0415 - lazy: matplotlib is slow to import
+
     phi = np.linspace(0.0, 3.2 * np.pi, 120)
     r = 0.45 + 0.55 * phi / phi[-1]
-    return Path_(np.column_stack([r * np.cos(phi), r * np.sin(phi)]))
+    return mpath.Path(np.column_stack([r * np.cos(phi), r * np.sin(phi)]))
 
 
 def _joint(ax, x, y, spring=True):
@@ -126,13 +131,17 @@ def _joint(ax, x, y, spring=True):
 
 def _clamp(ax, x, y_low, y_high, width):
     """Hatched ground left of x between y_low and y_high."""
-    ax.add_patch(Rectangle((x - width, y_low), width, y_high - y_low, facecolor="0.85", edgecolor="black",
-                           hatch="////", lw=0.8, zorder=1))
+    from matplotlib import patches  # noqa: PLC0415 - lazy: matplotlib is slow to import
+
+    ax.add_patch(patches.Rectangle((x - width, y_low), width, y_high - y_low, facecolor="0.85", edgecolor="black",
+                                   hatch="////", lw=0.8, zorder=1))
 
 
 def _true_mm_ticks(ax, scale: float) -> None:
-    ax.yaxis.set_major_locator(MultipleLocator(0.2 * scale))  # every 0.2 mm of true height
-    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{v / scale:.1f}"))
+    from matplotlib import ticker  # noqa: PLC0415 - lazy: matplotlib is slow to import
+
+    ax.yaxis.set_major_locator(ticker.MultipleLocator(0.2 * scale))  # every 0.2 mm of true height
+    ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _pos: f"{v / scale:.1f}"))
 
 
 def draw_six_bar_cell(ax, actuator: BendingActuator | None = None, *, exaggeration: float | None = None) -> float:
@@ -159,6 +168,8 @@ def draw_six_bar_cell(ax, actuator: BendingActuator | None = None, *, exaggerati
     float
         The height exaggeration factor used.
     """
+    from matplotlib import patches  # noqa: PLC0415 - lazy: matplotlib is slow to import
+
     act = paper_actuator() if actuator is None else actuator
     s = height_exaggeration(act) if exaggeration is None else float(exaggeration)
     lc = _mm(act.cell_length)
@@ -166,8 +177,8 @@ def draw_six_bar_cell(ax, actuator: BendingActuator | None = None, *, exaggerati
     h1 = _mm(act.passive.thickness) * s
     h2 = _mm(act.active.thickness) * s
     # true layer cross-sections, faint, behind the bars
-    ax.add_patch(Rectangle((0.0, -0.5 * h1), lc, h1, facecolor=_PASSIVE, alpha=0.12, lw=0))
-    ax.add_patch(Rectangle((0.0, -0.5 * h1 - h2), lc, h2, facecolor=_ACTIVE, alpha=0.12, lw=0))
+    ax.add_patch(patches.Rectangle((0.0, -0.5 * h1), lc, h1, facecolor=_PASSIVE, alpha=0.12, lw=0))
+    ax.add_patch(patches.Rectangle((0.0, -0.5 * h1 - h2), lc, h2, facecolor=_ACTIVE, alpha=0.12, lw=0))
     # interface elements
     over = 0.25 * e
     for x, name in ((0.0, r"$I_j$"), (lc, r"$I_{j+1}$")):
@@ -191,11 +202,11 @@ def draw_six_bar_cell(ax, actuator: BendingActuator | None = None, *, exaggerati
     # motor A1-A2: a box with the stroke arrow
     xm = third
     box_h = 0.5 * e
-    ax.add_patch(Rectangle((xm - 0.5 * gap, -e - 0.5 * box_h), gap, box_h, facecolor="white", edgecolor="black",
-                           lw=1.0, zorder=5))
+    ax.add_patch(patches.Rectangle((xm - 0.5 * gap, -e - 0.5 * box_h), gap, box_h, facecolor="white", edgecolor="black",
+                                   lw=1.0, zorder=5))
     ax.text(xm, -e, "M", ha="center", va="center", fontsize=8, zorder=6)
-    ax.add_patch(FancyArrowPatch((xm - 0.5 * gap, -e + 0.45 * e), (xm + 0.9 * gap, -e + 0.45 * e),
-                                 arrowstyle="->", mutation_scale=9, color="black", lw=0.9))
+    ax.add_patch(patches.FancyArrowPatch((xm - 0.5 * gap, -e + 0.45 * e), (xm + 0.9 * gap, -e + 0.45 * e),
+                                         arrowstyle="->", mutation_scale=9, color="black", lw=0.9))
     ax.text(xm + 0.2 * gap, -e + 0.5 * e, r"$x_a = \Lambda L_j$", ha="center", va="bottom", fontsize=9)
     # axial spring A2-A3
     xs = 2.0 * third
@@ -264,6 +275,8 @@ def draw_rigid_chain(ax, actuator: BendingActuator | None = None, *, n_cells: in
     float
         The height exaggeration factor used.
     """
+    from matplotlib import patches  # noqa: PLC0415 - lazy: matplotlib is slow to import
+
     if isinstance(n_cells, bool) or not isinstance(n_cells, int) or n_cells < 1:
         raise ValueError(f"n_cells must be an integer >= 1, got {n_cells!r}")
     act = paper_actuator("rigid") if actuator is None else actuator
@@ -277,9 +290,10 @@ def draw_rigid_chain(ax, actuator: BendingActuator | None = None, *, n_cells: in
     ax.text(-0.03 * lc, 0.9 * e, "clamp", ha="center", va="bottom", fontsize=9)
     for j in range(n_cells):
         x0 = j * lc
-        ax.add_patch(Rectangle((x0 + 0.02 * lc, -0.5 * h1), lc - 0.04 * lc, h1, facecolor=_PASSIVE, alpha=0.25, lw=0))
-        ax.add_patch(Rectangle((x0 + 0.02 * lc, -0.5 * h1 - h2), lc - 0.04 * lc, h2, facecolor=_ACTIVE, alpha=0.25,
-                               lw=0))
+        ax.add_patch(patches.Rectangle((x0 + 0.02 * lc, -0.5 * h1), lc - 0.04 * lc, h1, facecolor=_PASSIVE,
+                                       alpha=0.25, lw=0))
+        ax.add_patch(patches.Rectangle((x0 + 0.02 * lc, -0.5 * h1 - h2), lc - 0.04 * lc, h2, facecolor=_ACTIVE,
+                                       alpha=0.25, lw=0))
         ax.plot([x0, x0 + lc], [0.0, 0.0], color="black", lw=2.5, zorder=4)
         ax.text(x0 + 0.5 * lc, -0.5 * h1 - h2 - 0.1 * e, f"rigid cell {j + 1}\n(both layers' mass)", ha="center",
                 va="top", fontsize=8.5)
