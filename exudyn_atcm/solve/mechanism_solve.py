@@ -133,14 +133,14 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     methods = []
     readings: list[dict] = []  # every point's truncation readings, estimated together at the end
     probe = stability_probe(mech, model)
-    states = []
+    states = []  # (point, stability) per point; the point described only where a warning names it
 
     def where(i: int) -> str:
         return f"sweep point {i} ({describe_voltages(table[i])})"
 
     def keep(point: SweepPoint) -> None:
         methods.append(point.method)
-        states.append((where(point.index), point.stability))
+        states.append((point.index, point.stability))
         stepping.record_row(point.row)
         readings.append(point.truncation)
 
@@ -159,7 +159,7 @@ def static_sweep(mech: Mechanism, voltages: Sequence[float] | Mapping[str, Seque
     _, _, row_strains, q, _ = stepping.layout.parts(rows)
     warn_coarse_cells(mech, cell_rotations(model, q, row_strains))
     warn_few_modes(mech, model.largest_truncation_errors(readings))
-    warn_unstable(describe(mech), states)
+    warn_unstable(describe(mech), [(where(i) if s.state != "stable" else "", s) for i, s in states])
     unstable = [i for i, (_, s) in enumerate(states) if s.state != "stable"]
     info = {"solver": "static sweep", "sweep_method": method, "methods": ",".join(sorted(set(methods))),
             "points": len(table), "unstable_points": ",".join(map(str, unstable))}
