@@ -81,3 +81,43 @@ def test_blitted_frames_are_the_whole_drawings_of_each_frame(tmp_path):
         expected = np.asarray(whole.quantize(256, method=Image.Quantize.MAXCOVERAGE).convert("RGB"))
         assert np.array_equal(frames[k], expected), k
     assert not np.array_equal(frames[1], frames[2])
+
+
+def test_a_legend_kept_above_the_moving_artists_is_the_whole_drawing_in_every_frame(tmp_path):
+    # a static legend above a marker that is far from it in some frames and crosses it in others: its pixels
+    # are put back where nothing moving came near, drawn again where something did; every frame must be
+    # what drawing the whole figure gives
+    from PIL import Image, ImageSequence
+
+    from exudyn_atcm.plots.gif import save_gif
+    from exudyn_atcm.plots.style import new_figure
+
+    fig, (ax,) = new_figure(1, 1, width=4, height=3)
+    ax.grid(True, alpha=0.3)
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    ax.plot([0.1, 0.2], [0.1, 0.2], color="0.5", label="still")
+    (moving,) = ax.plot([], [], "o-", color="tab:red", ms=8, lw=3, zorder=3, label="moving")
+    legend = ax.legend(loc="upper right")
+    spots = [(0.1, 0.1), (0.2, 0.2), (0.5, 0.3), (0.8, 0.85), (0.9, 0.9), (0.15, 0.2)]  # frames 3, 4 in the legend
+
+    def state(k):
+        x, y = spots[k]
+        moving.set_data([x - 0.05, x], [y - 0.05, y])
+        ax.set_title(f"frame {k}")
+        return moving, ax.title
+
+    drawn = []
+    real_draw_artist = fig.draw_artist
+    fig.draw_artist = lambda a: (drawn.append(a), real_draw_artist(a))[1]
+    save_gif(fig, state, len(spots), tmp_path / "l.gif", fps=5, colors=256, above=[legend])
+    fig.draw_artist = real_draw_artist
+    assert 2 <= sum(a is legend for a in drawn) <= 4  # once for its pixels, then in the frames it is crossed
+    with Image.open(tmp_path / "l.gif") as image:
+        frames = [np.asarray(f.convert("RGB")) for f in ImageSequence.Iterator(image)]
+    for k in (4, 2, 3, 5, 1):
+        state(k)
+        fig.canvas.draw()
+        whole = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
+        expected = np.asarray(whole.quantize(256, method=Image.Quantize.MAXCOVERAGE).convert("RGB"))
+        assert np.array_equal(frames[k], expected), k

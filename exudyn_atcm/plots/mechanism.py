@@ -357,7 +357,11 @@ def animate_mechanism(
         drawn[:] = [a for a in ax.get_children() if a not in before and a is not legend]
         return drawn + [ax.title] + ([legend] if legend is not None else [])
 
-    return save_gif(fig, draw, len(rows), target, fps=fps)
+    def legend() -> list:
+        found = ax.get_legend()
+        return [found] if found is not None else []
+
+    return save_gif(fig, draw, len(rows), target, fps=fps, above=legend)
 
 
 def plot_point_paths(
