@@ -51,6 +51,7 @@ from .mechanism_shapes import (
 )
 from .canvas import MechanismCanvas
 from .gif import save_gif
+from .legend_place import place_legend
 from .style import COLORS, axis_label, new_figure
 from .target import figure_axes, finish, legacy_path
 
@@ -293,7 +294,8 @@ def animate_mechanism(
 
     The grid, the reference pose and the axes are drawn once; each frame draws the mechanism, the
     traces, the title and the legend over them (:func:`~exudyn_atcm.plots.gif.save_gif`).  The legend
-    stays where ``loc="best"`` put it in the first frame.
+    stays in one place, the one that covers the least of all frames
+    (:func:`~exudyn_atcm.plots.legend_place.place_legend`).
 
     Parameters
     ----------
@@ -322,9 +324,11 @@ def animate_mechanism(
     if not os.path.isdir(directory):
         raise ValueError(f"path must be in an existing directory, got {target!r}")
     rows = np.unique(np.linspace(0, result.n_rows - 1, frames).round().astype(int))
-    # fixed limits from every frame's geometry
-    pts = np.concatenate([mechanism_shape(mechanism, result, int(r), scale=scale).all_points() for r in rows])
+    # fixed limits from every frame's geometry (and the legend's place: where it covers the least of it)
+    shapes = [mechanism_shape(mechanism, result, int(r), scale=scale) for r in rows]
+    pts = np.concatenate([shape.all_points() for shape in shapes])
     pts = np.vstack([pts, np.array([p for c in mechanism.components.values() for p in c.points.values()])])
+    filled = [poly * _MM for shape in shapes for poly in shape.links.values() if len(poly) > 2]
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     margin = 0.12 * float(max(hi - lo))
     fig, (ax,) = new_figure(1, 1, width=6.4, height=5.2)
@@ -338,11 +342,6 @@ def animate_mechanism(
     drawn: list = []  # the artists of the last frame, but the legend
 
     def draw(k: int) -> list:
-        legend = ax.get_legend()
-        if k == 1 and legend is not None:
-            # the first frame's legend, where loc="best" put it, for every frame (the legend no longer jumps)
-            corner = legend.get_window_extent(fig.canvas.get_renderer()).p0
-            legend.set_loc(tuple(ax.transAxes.inverted().transform(corner)))
         for artist in drawn:
             artist.remove()
         before = set(ax.get_children())
@@ -354,6 +353,9 @@ def animate_mechanism(
         ax.set_aspect("equal", adjustable="box")
         ax.set_title(f"{head} ({_scale_text(scale)})\n{_time_text(result, row)}", fontsize=8)
         legend = ax.get_legend()
+        if k == 0 and legend is not None:  # one place for every frame, chosen over all of them (laid out first)
+            fig.canvas.draw()
+            place_legend(fig, ax, legend, pts * _MM, filled)
         drawn[:] = [a for a in ax.get_children() if a not in before and a is not legend]
         return drawn + [ax.title] + ([legend] if legend is not None else [])
 
