@@ -95,11 +95,12 @@ def save_gif(fig: Figure, draw: Callable[[int], Sequence[Artist] | None], n_fram
             fig.set_layout_engine("none")
             background = None  # a frame drawn whole may have changed anything: the next blit copies anew
         else:
-            if k == 1 or not on_top:
-                on_top = list(above() if callable(above) else above)
-            changing = [a for a in changing if not any(a is b for b in on_top)]
-            if background is None:  # the figure without what changes, once
+            if background is None:  # the figure without what changes, once (again after a frame drawn whole)
+                on_top = _artists_above(above() if callable(above) else above)
+                changing = [a for a in changing if not any(a is b for b in on_top)]
                 background, kept = _background(fig, changing, on_top)
+            else:
+                changing = [a for a in changing if not any(a is b for b in on_top)]
             canvas.restore_region(background)
             for artist in sorted(changing, key=lambda a: a.get_zorder()):  # stable: equal zorders in order drawn
                 fig.draw_artist(artist)
@@ -123,6 +124,15 @@ def save_gif(fig: Figure, draw: Callable[[int], Sequence[Artist] | None], n_fram
         images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
                        duration=int(round(1000.0 / fps)), loop=0)
     return Path(target)
+
+
+def _artists_above(artists: Sequence[Artist]) -> list:
+    """``save_gif``'s ``above`` as a list, checked: artists that can be drawn and measured."""
+    artists = list(artists)
+    for artist in artists:
+        if not (hasattr(artist, "draw") and hasattr(artist, "get_window_extent")):
+            raise ValueError(f"above: expected matplotlib artists (a legend, ...), got {artist!r}")
+    return artists
 
 
 #: Pixels [px] by which a changing artist's extent is grown before it is tested against an ``above`` artist's.
