@@ -22,7 +22,7 @@ from exudyn_atcm.model.materials import Layer
 from exudyn_atcm.errors import AccuracyWarning, InputRangeWarning
 from exudyn_atcm.model.signals import PiecewiseLinear, Sine, Steps, Triangle
 from exudyn_atcm.mbs import builder
-from exudyn_atcm.solve import step_choice
+from exudyn_atcm.solve import mechanism_solve, step_choice
 from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
 from exudyn_atcm.solve.step_surrogate import alpha_response, exact_response
 
@@ -154,7 +154,7 @@ def test_a_built_system_runs_with_a_stated_accuracy():
     run = built.simulate(0.04, accuracy=1e-3)
     reference = atcm.simulate(mech, 0.04, step=run.info["step [s]"] / 8)
     assert relative_error(run, reference) <= 1e-3 and "probe at" in run.info["step_choice"]
-    assert built.builds == 1  # the probe and the run reuse the build
+    assert built.builds == 1  # the prediction's eigenvalue analysis, the probe and the run reuse the build
     with pytest.raises(ValueError, match="give step or accuracy, not both"):
         built.simulate(0.04, step=1e-4, accuracy=1e-3)
     assert built.simulate(0.01).info["step [s]"] == 1e-4
@@ -166,7 +166,8 @@ def test_a_missed_target_is_refined_once_and_then_met(monkeypatch):
     # against a fine reference
     predict = step_choice.predict_steps
     monkeypatch.setattr(step_choice, "predict_steps",
-                        lambda mech, t_end, acc, grid=1: dataclasses.replace(predict(mech, t_end, acc, grid), n_steps=40))
+                        lambda mech, t_end, acc, grid=1, built=None: dataclasses.replace(predict(mech, t_end, acc, grid, built),
+                                                                                         n_steps=40))
     run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
     assert run.info["accuracy"]["refined"] is True and "refined once" in run.info["step_choice"]
     assert run.info["step [s]"] < 0.04 / 40
@@ -272,18 +273,28 @@ def test_the_window_covers_the_sharpest_feature_and_its_estimate_bounds_the_whol
     assert achieved <= info["estimated_error"] * 1.03
 
 
-def test_the_probe_and_the_run_share_one_build_and_give_the_plain_runs_result(monkeypatch):
-    # the model is built once for the probe and the run (and once for the eigenfrequency): two builds, not three;
-    # the run from the restored built state equals a plain run at the chosen step (a fresh build) to round-off
+@pytest.mark.parametrize("program, tip_force", [
+    (Triangle(500.0, 500.0, 0.04), (0.0, 0.0)),      # starts at 0 V: the analysis about the reference pose
+    (Sine(500.0, 500.0, 0.04, 0.0), (0.0, -0.02)),   # starts at 500 V under a tip load: a deformed, loaded equilibrium
+])
+def test_the_prediction_probe_and_run_share_one_build_and_give_the_plain_runs_result(monkeypatch, program, tip_force):
+    # one build for the prediction's eigenvalue analysis, the probe and the run (until 0.3.0 the analysis built its
+    # own: two builds); the analysis leaves its equilibrium in the model, and the run from the restored built
+    # state still equals a plain run at the chosen step (a fresh build) to round-off; the frequency the prediction
+    # used is the one a fresh build gives about the same start state
     calls = []
     build = builder.build
     monkeypatch.setattr(builder, "build", lambda *a, **k: calls.append(1) or build(*a, **k))
-    run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
-    assert len(calls) == 2
+    run = atcm.simulate(lone(program), 0.04, accuracy=1e-3, tip_force=tip_force)
+    assert len(calls) == 1
     monkeypatch.setattr(builder, "build", build)
-    plain = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"])
+    plain = atcm.simulate(lone(program), 0.04, step=run.info["step [s]"], tip_force=tip_force)
     for name in plain.names:
         assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
+    mech = lone(program).as_mechanism(tip_force)
+    start = {name: drive.voltage_at(0.0) for name, drive in mech.drives.items()}
+    fresh = mechanism_solve.eigenfrequencies(mech, 1, start, loaded=bool(mech.forces))[0]
+    assert run.info["accuracy"]["lowest_frequency [Hz]"] == pytest.approx(fresh, rel=1e-9)
 
 
 def test_a_step_program_is_probed_over_the_whole_run():

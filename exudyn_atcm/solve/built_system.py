@@ -116,7 +116,8 @@ class BuiltSystem:
                                                   stroke_path=self.stroke_path, built=self._fresh())
                 check_benders(self.mechanism, result, stacklevel=5)
                 return result
-            return accurate_run(run, self.mechanism, t_end, float(accuracy), progress, record_every=record_every)
+            return accurate_run(run, self.mechanism, t_end, float(accuracy), progress, record_every=record_every,
+                                built=self._fresh)
         step = DEFAULT_STEP if step is None else step
         result = mechanism_solve.simulate(self.mechanism, t_end, step, settings, progress, record_every,
                                           stroke_path=self.stroke_path, built=self._fresh())

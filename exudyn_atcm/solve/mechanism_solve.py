@@ -303,7 +303,8 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
     return result
 
 
-def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, loaded: bool = False) -> np.ndarray:
+def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, loaded: bool = False, *,
+                     built: mb.MechanismModel | None = None) -> np.ndarray:
     """Lowest ``n`` eigenfrequencies [Hz] of a mechanism about its static equilibrium at ``voltage``.
 
     ``voltage=None`` linearises about the undeformed reference pose without loads (as for a
@@ -313,11 +314,13 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     motors), which Exudyn's own ``ComputeODE2Eigenvalues`` leaves out
     (:func:`exudyn_atcm.mbs.linear.eigenfrequencies`).  ``loaded=True`` with ``voltage=None``: about
     the equilibrium under the loads at zero strain (a lone actuator's ``tip_force``).
+    ``built``: a model of ``mech`` already built and in its built state (it is left at the
+    analysed state: :func:`~exudyn_atcm.mbs.solver_runs.restore_state` puts it back).
     """
     n = positive_int("n", n)
     announced = warn_if_large(mech, "eigenfrequencies", equilibria=int(voltage is not None or loaded), eigen=True,
                               quiet=is_announced(), stacklevel=5)
-    model = mb.build(mech)  # its coordinates, counted, make the eigenproblem's estimate exact
+    model = built if built is not None else mb.build(mech)  # its coordinates make the eigenproblem's estimate exact
     warn_if_eigen_long(len(model.coordinates()), describe(mech), quiet=announced or is_announced(), stacklevel=5)
     if voltage is None and loaded:
         zero = np.zeros(len(model.sources))

@@ -264,7 +264,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
     else:
         actuator = _check_actuator(system)
         mech = actuator.as_mechanism(tip_force)
-    model = mb.build(mech)  # once: the probe and the run start from its built state (as a BuiltSystem's solves)
+    model = mb.build(mech)  # once: the prediction, the probe and the run start from its built state (as a BuiltSystem's)
     initial = runs.save_state(model)
 
     def fresh() -> mb.MechanismModel:
@@ -281,7 +281,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
             with actuator_interrupts(actuator):
                 result = mechanism_solve.simulate(mech, t_stop, h, settings, prog, record_every, built=fresh())
             return _finish_actuator_run(actuator, mech, result, "prestep")
-    return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every)
+    return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every, built=fresh)
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",

@@ -162,14 +162,19 @@ class StepPrediction:
         return self.t_end / self.n_steps
 
 
-def _lowest_frequency(mech: Mechanism) -> tuple[float, str]:
-    """Lowest eigenfrequency [Hz] about the start voltages, or the clamped-free estimate, and its source."""
+#: ``built()``: a model of the mechanism in its built state, the one the runs will use (``None``: a build of its own).
+Built = Callable[[], Any]
+
+
+def _lowest_frequency(mech: Mechanism, built: Built | None = None) -> tuple[float, str]:
+    """Lowest eigenfrequency [Hz] about the start voltages, or the clamped-free estimate, and its source.
+    ``built``: where the analysis takes its model (the runs' one build: no second build of the system)."""
     volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a linearisation for the step only; the run says what matters
             f = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
-                                                 loaded=bool(mech.forces))
+                                                 loaded=bool(mech.forces), built=built() if built else None)
         if f.size and f[0] > 0.0 and math.isfinite(f[0]):
             return float(f[0]), "the lowest eigenfrequency about the start state"
     except Exception:  # noqa: BLE001 - any failure: the cheaper estimate below
@@ -234,11 +239,13 @@ def grid_unit(mech: Mechanism, t_end: float) -> int:
     return unit
 
 
-def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1) -> StepPrediction:
+def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
+                  built: Built | None = None) -> StepPrediction:
     """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s], and the probe's
     step factor (see module notes).  ``grid``: the step count must be a multiple of it too (a recording
-    interval of ``t_end / grid``, evenly spaced records)."""
-    frequency, source = _lowest_frequency(mech)
+    interval of ``t_end / grid``, evenly spaced records).  ``built``: the runs' model for the eigenvalue
+    analysis (:data:`Built`; default a build of its own)."""
+    frequency, source = _lowest_frequency(mech, built)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
     if any(isinstance(d.voltage, Steps) for d in _distinct_drives(mech)):
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
@@ -391,7 +398,7 @@ def _stage(progress: Any, label: str, share: float, weight: float, detail: str) 
 
 
 def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, progress: Any = None,
-                 stacklevel: int = 3, record_every: Any = None) -> Result:
+                 stacklevel: int = 3, record_every: Any = None, built: Built | None = None) -> Result:
     """Run ``run(step, progress, t_stop)`` at the step :func:`predict_steps` chooses for ``accuracy``, checked by two
     probes over a window.
 
@@ -399,8 +406,11 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     user's: a display with ``stage(label, share, detail)`` is told every run of the choice and
     the step chosen, a plain ``progress(t, t_end)`` sees the final run only.  ``record_every``: the
     run's recording interval; one in seconds that divides ``t_end`` is kept a multiple of the step.
+    ``built``: the model ``run`` uses, in its built state (:data:`Built`), for the prediction's eigenvalue
+    analysis; each run must put it back in its built state (as
+    :func:`~exudyn_atcm.mbs.solver_runs.restore_state` does).  Default: the analysis builds its own.
     """
-    prediction = predict_steps(mech, t_end, accuracy, _record_grid(record_every, t_end))
+    prediction = predict_steps(mech, t_end, accuracy, _record_grid(record_every, t_end), built)
     n, r = prediction.n_steps, prediction.probe_factor
     order = prediction.order - CHECK_ORDER_SLACK
     h, window = t_end / n, prediction.window
