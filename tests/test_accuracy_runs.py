@@ -66,6 +66,17 @@ def test_the_info_line_says_what_was_chosen_and_why():
     assert run.info["accuracy"]["target"] == 1e-3
 
 
+def test_a_program_given_as_a_function_is_said_to_have_no_known_feature():
+    # a plain callable has no shortest feature: the line says so (it said "shortest drive feature inf s"), and the
+    # run still meets its target against a run at an eighth of its step
+    program = lambda t: 1000.0 * math.sin(2.0 * math.pi * 25.0 * t) ** 2  # noqa: E731
+    run = atcm.simulate(lone(program), 0.04, accuracy=1e-3)
+    line = run.info["step_choice"]
+    assert "no drive feature before the run's end known" in line and "inf" not in line
+    reference = atcm.simulate(lone(program), 0.04, step=run.info["step [s]"] / 8)
+    assert relative_error(run, reference) <= 1e-3
+
+
 def test_a_display_with_stages_is_told_the_choice():
     seen = []
 

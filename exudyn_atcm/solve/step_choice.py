@@ -415,7 +415,10 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
     order = prediction.order - CHECK_ORDER_SLACK
     h, window = t_end / n, prediction.window
     chose = (f"step {h:.4g} s ({n} steps) for {accuracy:g} of the travel: {prediction.reason}"
-             f" ({prediction.frequency_source}); shortest drive feature {prediction.feature:.4g} s")
+             f" ({prediction.frequency_source}); " + (f"shortest drive feature {prediction.feature:.4g} s"
+                                                      if math.isfinite(prediction.feature) else
+                                                      "no drive feature before the run's end known (a constant "
+                                                      "program, or one given as a function)"))
     share = (window / t_end / r) / (1.0 + window / t_end / r)  # the probe's part of the work
     probe, _ = _quiet(run, r * h, _stage(progress, "accuracy probe", 0.0, share, f"step {r * h:.3g} s"), window,
                       "accuracy probe (a check at twice the chosen step; the run itself had not started)")
