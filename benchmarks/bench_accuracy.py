@@ -41,7 +41,7 @@ import exudyn_atcm as atcm
 from exudyn_atcm.casework import Parameters
 from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.model import Sine, Steps, Triangle
-from exudyn_atcm.solve.step_choice import grid_unit
+from exudyn_atcm.solve.corner_grid import grid_unit
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "cases"))
 import micro_gripper  # noqa: E402

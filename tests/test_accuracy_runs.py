@@ -23,7 +23,8 @@ from exudyn_atcm.errors import AccuracyWarning, InputRangeWarning
 from exudyn_atcm.model.signals import PiecewiseLinear, Sine, Steps, Triangle
 from exudyn_atcm.mbs import builder
 from exudyn_atcm.solve import mechanism_solve, step_choice
-from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, grid_unit, position_error, program_corners
+from exudyn_atcm.solve.corner_grid import grid_unit, program_corners
+from exudyn_atcm.solve.step_choice import ACCURACY_RANGE, check_accuracy, position_error
 from exudyn_atcm.solve.step_surrogate import alpha_response, exact_response
 
 CFC = Layer(0.2e-3, 70e9, 1550.0)

@@ -14,7 +14,7 @@ run's own error is measured:
    the run's generalized-alpha at a ladder of steps (ratio 2^(1/4)).  The chosen step is the
    coarsest of the ladder whose stand-in error is :data:`AIM` of the target, with at least
    :data:`STEPS_PER_FEATURE` steps per shortest drive feature, rounded so that the run's grid and
-   the probe's hold every corner of the drives' programs (:func:`grid_unit`: a corner between
+   the probe's hold every corner of the drives' programs (:func:`~exudyn_atcm.solve.corner_grid.grid_unit`: a corner between
    steps is a first-order error no probe can estimate).
 2. **Check** (one probe run at twice the step, its warnings not shown, over a window only:
    :func:`probe_window`, the first stretch of the run in which the stand-in's error reaches
@@ -42,7 +42,6 @@ from __future__ import annotations
 import math
 import re
 import warnings
-from fractions import Fraction
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -52,8 +51,9 @@ from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mechanism.damped import MaterialDamped
-from ..model.signals import Sine, Steps, Triangle
+from ..model.signals import Steps
 from . import mechanism_solve
+from .corner_grid import MAX_GRID_UNIT, distinct_drives, grid_unit
 from .interrupts import SimulationInterrupted
 from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
@@ -99,8 +99,6 @@ MIN_WINDOW_STEPS = 8
 #: tried and dropped: that pair is too coarse to be asymptotic, its order was 2 where the run's differences fell as
 #: ``h^1`` (the gripper under a step program: the estimate 2.2 times low) and 1 where they fell as ``h^2``.)
 PROBE_FACTOR = 2
-#: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`).
-MAX_GRID_UNIT = 10_000
 #: The ladder stops at this many steps per period of the lowest mode (the stand-in's error then ~1e-6).
 MAX_STEPS_PER_PERIOD = 2000
 #: Fewest steps of a run with a stated accuracy.
@@ -199,46 +197,6 @@ def _shortest_feature(mech: Mechanism, t_end: float) -> float:
     return min([f[0] for f in features if f is not None], default=math.inf)
 
 
-def program_corners(program: Any, t_end: float) -> np.ndarray | None:
-    """Times [s] in ``(0, t_end)`` where the program's slope jumps or it reverses: the triangle's peaks, the
-    sine's extrema, the step program's switches, a piecewise-linear program's corners; ``None`` for others."""
-    if isinstance(program, Steps):
-        change = np.flatnonzero(np.diff(program.values) != 0.0) + 1
-        times = program.times[change]
-    elif callable(getattr(program, "corner_times", None)):
-        times = np.asarray(program.corner_times(t_end), dtype=float)
-    elif isinstance(program, Triangle):
-        times = 0.5 * program.period * np.arange(1, math.floor(2.0 * t_end / program.period) + 1)
-    elif isinstance(program, Sine):
-        first = ((0.5 * math.pi - program.phase) / (2.0 * math.pi)) % 0.5 * program.period
-        times = first + 0.5 * program.period * np.arange(0, math.floor(2.0 * t_end / program.period) + 1)
-    else:
-        return None
-    return times[(times > 0.0) & (times < t_end)]
-
-
-def grid_unit(mech: Mechanism, t_end: float) -> int:
-    """Smallest step count putting every drive's corners (:func:`program_corners`) on the grid ``t_end / n``.
-
-    A corner between two steps is sampled up to a step late, a first-order error that a probe at
-    another step cannot estimate (and a hysteresis reversal off by a share of a step).  1 when a
-    program's corners are unknown or need more than :data:`MAX_GRID_UNIT` steps.
-    """
-    unit = 1
-    for drive in _distinct_drives(mech):
-        corners = program_corners(drive.voltage, t_end)
-        if corners is None:
-            continue
-        for c in corners:
-            fraction = Fraction(float(c / t_end)).limit_denominator(MAX_GRID_UNIT)
-            if abs(float(fraction) - c / t_end) > 1e-9:
-                return 1
-            unit = unit * fraction.denominator // math.gcd(unit, fraction.denominator)
-            if unit > MAX_GRID_UNIT:
-                return 1
-    return unit
-
-
 def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
                   built: Built | None = None) -> StepPrediction:
     """The number of steps the one-mode stand-in predicts for ``accuracy`` over ``t_end`` [s], and the probe's
@@ -247,7 +205,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     analysis (:data:`Built`; default a build of its own)."""
     frequency, source = _lowest_frequency(mech, built)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
-    if any(isinstance(d.voltage, Steps) for d in _distinct_drives(mech)):
+    if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
     feature = _shortest_feature(mech, t_end)
     per_feature = t_end / feature if math.isfinite(feature) else 0.0
@@ -262,7 +220,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min))
     n_ref = unit * math.ceil(n_ref / unit)
     dt = t_end / n_ref
-    strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in _distinct_drives(mech)) if s is not None]
+    strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in distinct_drives(mech)) if s is not None]
     if not strains:
         n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
@@ -279,7 +237,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     errors = stand_in.errors(n_used)
     predicted = float(np.max(errors))
     window, ratio = probe_window(errors, t_end, frequency, math.lcm(PROBE_FACTOR, n_used // grid if grid > 1 else 1))
-    if any(isinstance(d.voltage, Steps) for d in _distinct_drives(mech)):
+    if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
         # a jump on a grid instant was taken on the side the instant's round-off said (the window's grid t_stop / k
         # and the run's t_end / n differ in the last bit): the probe over a window took the gripper's switch a step
         # apart from the run, its estimate 2.7 times the whole run's.  Steps now samples a switch within round-off
@@ -326,14 +284,6 @@ def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int, grid: int = 
     if grid > 1 and grid <= n:
         unit = unit * grid // math.gcd(unit, grid)
     return unit * math.ceil(n / unit)
-
-
-def _distinct_drives(mech: Mechanism) -> list[Any]:
-    """Each PiezoDrive once (segments share one)."""
-    seen: dict[int, Any] = {}
-    for drive in mech.drives.values():
-        seen.setdefault(id(drive), drive)
-    return list(seen.values())
 
 
 def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:

@@ -1,0 +1,70 @@
+"""The drives' corners on the step grid: where a voltage program's slope jumps or it reverses, and the
+smallest step count whose grid holds them all (for :mod:`exudyn_atcm.solve.step_choice`).
+
+A corner between two steps is sampled up to a step late: a first-order error that no probe at
+another step can estimate, and a hysteresis reversal off by a share of a step.  The runs of
+``simulate(..., accuracy=...)`` and their probes therefore take step counts that are multiples of
+:func:`grid_unit`.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from ..mechanism import Mechanism
+from ..model.signals import Sine, Steps, Triangle
+
+__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners"]
+
+#: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`).
+MAX_GRID_UNIT = 10_000
+
+
+def distinct_drives(mech: Mechanism) -> list[Any]:
+    """Each PiezoDrive of ``mech`` once (segments share one)."""
+    seen: dict[int, Any] = {}
+    for drive in mech.drives.values():
+        seen.setdefault(id(drive), drive)
+    return list(seen.values())
+
+
+def program_corners(program: Any, t_end: float) -> np.ndarray | None:
+    """Times [s] in ``(0, t_end)`` where the program's slope jumps or it reverses: the triangle's peaks, the
+    sine's extrema, the step program's switches, a piecewise-linear program's corners; ``None`` for others."""
+    if isinstance(program, Steps):
+        change = np.flatnonzero(np.diff(program.values) != 0.0) + 1
+        times = program.times[change]
+    elif callable(getattr(program, "corner_times", None)):
+        times = np.asarray(program.corner_times(t_end), dtype=float)
+    elif isinstance(program, Triangle):
+        times = 0.5 * program.period * np.arange(1, math.floor(2.0 * t_end / program.period) + 1)
+    elif isinstance(program, Sine):
+        first = ((0.5 * math.pi - program.phase) / (2.0 * math.pi)) % 0.5 * program.period
+        times = first + 0.5 * program.period * np.arange(0, math.floor(2.0 * t_end / program.period) + 1)
+    else:
+        return None
+    return times[(times > 0.0) & (times < t_end)]
+
+
+def grid_unit(mech: Mechanism, t_end: float) -> int:
+    """Smallest step count putting every drive's corners (:func:`program_corners`) on the grid ``t_end / n``.
+
+    1 when a program's corners are unknown or need more than :data:`MAX_GRID_UNIT` steps.
+    """
+    unit = 1
+    for drive in distinct_drives(mech):
+        corners = program_corners(drive.voltage, t_end)
+        if corners is None:
+            continue
+        for c in corners:
+            fraction = Fraction(float(c / t_end)).limit_denominator(MAX_GRID_UNIT)
+            if abs(float(fraction) - c / t_end) > 1e-9:
+                return 1
+            unit = unit * fraction.denominator // math.gcd(unit, fraction.denominator)
+            if unit > MAX_GRID_UNIT:
+                return 1
+    return unit
