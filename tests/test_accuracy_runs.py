@@ -309,6 +309,22 @@ def test_the_prediction_probe_and_run_share_one_build_and_give_the_plain_runs_re
     assert run.info["accuracy"]["lowest_frequency [Hz]"] == pytest.approx(fresh, rel=1e-9)
 
 
+def test_an_analysis_that_fails_half_way_leaves_no_trace_in_the_runs(monkeypatch):
+    # the eigenvalue analysis on the runs' build fails after its equilibrium moved the model (a drive starting at
+    # 500 V under a tip load): the prediction falls back to the clamped-free estimate, and the run from the
+    # restored built state still equals a plain run at the step chosen (a fresh build)
+    def failing(model, n):
+        raise RuntimeError("eigen solver failed")
+    monkeypatch.setattr(mechanism_solve.linear, "eigenfrequencies", failing)
+    program, tip_force = Sine(500.0, 500.0, 0.04, 0.0), (0.0, -0.02)
+    run = atcm.simulate(lone(program), 0.04, accuracy=1e-3, tip_force=tip_force)
+    assert "the lowest eigenfrequency about the start state" not in run.info["step_choice"]
+    monkeypatch.undo()
+    plain = atcm.simulate(lone(program), 0.04, step=run.info["step [s]"], tip_force=tip_force)
+    for name in plain.names:
+        assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
+
+
 def test_a_step_program_is_probed_over_the_whole_run():
     # a voltage jump on a grid instant is taken on either side by the instant's round-off, which differs between the
     # window's grid and the run's: the window is left out for a step program (whole run, no scaling), kept for the
