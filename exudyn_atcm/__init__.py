@@ -5,7 +5,7 @@
 
 Top level (``__all__``): the building blocks (``Layer``, ``PiezoDrive``, ``BendingActuator``,
 ``Bender``, ``Segment``, ``Link``, ``Flexure``, ``Mechanism``, ``RayleighDamping``), solving (``simulate``,
-``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``mechanism_feedforward`` (a voltage program for a mechanism output), ``add_to``, ``BuiltSystem`` to solve one
+``solve_static``, ``static_sweep``, ``eigenfrequencies``, ``step_error``, ``choose_cells`` (cells for an accuracy), ``mechanism_feedforward`` (a voltage program for a mechanism output), ``add_to``, ``BuiltSystem`` to solve one
 build many times), results and files
 (``Result``, ``read_csv``, ``read_record``, ``preprocess``), displacement to strain (``record_to_strain``,
 ``model_to_strain``), closed loop (``PIDController``), the errors
@@ -62,6 +62,7 @@ _LAZY = {
     "solve_static": (".solve", "solve_static"),
     "static_sweep": (".solve", "static_sweep"),
     "step_error": (".solve", "step_error"),
+    "choose_cells": (".solve", "choose_cells"),
     "BuiltSystem": (".solve", "BuiltSystem"),
     "LinearModel": (".solve", "LinearModel"),
     "Modes": (".solve", "Modes"),
@@ -88,7 +89,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .io.result import Result
     from .solve import SimulationInterrupted
     from .solve import SolverError, eigenfrequencies, simulate, solve_static
-    from .solve import static_sweep, step_error
+    from .solve import static_sweep, step_error, choose_cells
     from .solve import BuiltSystem
     from .solve import LinearModel, Modes, linearise, modes
     from .solve import mechanism_feedforward
@@ -117,6 +118,7 @@ __all__ = [
     "register_cell_kind",
     "eigenfrequencies",
     "step_error",
+    "choose_cells",
     "modes",
     "mechanism_feedforward",
     "Modes",

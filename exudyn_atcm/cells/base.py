@@ -92,6 +92,11 @@ class CellKind:
         (generalized-alpha): a run at step ``h`` misses the exact motion of the model by about
         ``C h^p`` for smooth programs and loads.  :func:`~exudyn_atcm.step_error` assumes the lowest
         order among a system's cells in its estimate and its suggested step, and names them.
+    space_order : float
+        Order of the discretisation error in the count ``n``: about ``C n^-p`` (chains of cells:
+        2); ``inf`` where the count is a number of assumed modes, whose error falls by an order of
+        magnitude or more per mode (``benchmarks/bench_rod_vs_ritz.py``).  How
+        :func:`~exudyn_atcm.choose_cells` steps through counts and reads their differences.
     """
 
     name: ClassVar[str] = ""
@@ -110,6 +115,7 @@ class CellKind:
     # Exudyn's own items (rigid bodies, springs, beam and ANCF elements) and the assumed-mode cells, whose
     # items are written at the state of each step's end, are integrated by generalized-alpha as they are
     time_order: ClassVar[float] = 2.0
+    space_order: ClassVar[float] = 2.0
 
     def mechanism_refusal(self) -> str | None:
         """Why a bender of this kind cannot be part of a :class:`~exudyn_atcm.Mechanism` (``None``: it can)."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from ..theory import ritz_beam
@@ -21,6 +22,7 @@ class RitzCell(CellKind):
     """
 
     name = "ritz"
+    space_order = math.inf  # n assumed modes: the same errors as the rod's at equal n (bench_rod_vs_ritz.py)
     stroke_paths = ("prestep",)
     summary = "assumed modes of the rotation field (one dense system)"
     carries_tip_load = False

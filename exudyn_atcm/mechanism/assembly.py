@@ -423,6 +423,9 @@ class Mechanism:
         """
         if not self.components:
             raise MechanismError(f"mechanism {self.name!r} has no components; add benders, links or flexures")
+        for bender in self.benders:  # a discretisation left to the package: chosen by an accuracy run only
+            bender.n_cells  # noqa: B018 - raises, naming the bender and what to do
+            bender.cell  # noqa: B018
         if not grounded:
             check_assembly(self, ASSEMBLY_TOLERANCE)
             check_drives(self)

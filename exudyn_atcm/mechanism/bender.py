@@ -17,7 +17,7 @@ from ..model.materials import Layer
 from ..model.damping import DEFAULT_DAMPING_RATIO, RayleighDamping, check_damping
 from ..physical_bounds import MAX_CELLS, check_cell_count
 from .damped import MaterialDamped
-from .points import PointRef, check_name, unknown_point
+from .points import MechanismError, PointRef, check_name, unknown_point
 
 
 
@@ -39,6 +39,18 @@ ACTIVE_SIDES = ("right", "left")
 #: reach 3e-4 in f1, bent f1 and tip angle at 0.36 s per simulated second; rigid 16 cells 2e-3 at 0.47 s,
 #: six-bar 16 cells 9e-3 at 6.3 s; issue 30).  Before 0.3: "rigid" for a Bender, "six-bar" for an actuator.
 DEFAULT_CELL = "rod"
+#: ``n_cells`` or ``cell`` left to the package: chosen for a run's stated accuracy (``simulate(...,
+#: accuracy=...)`` or :func:`exudyn_atcm.choose_cells`).
+AUTO = "auto"
+#: The cell kinds ``cell="auto"`` chooses from, cheapest first at equal accuracy (benchmarks/bench_rod_vs_ritz.py:
+#: equal errors at equal count, ``ritz`` about 4x cheaper a step; ``ritz`` joins a mechanism as a cantilever
+#: without tip loads only, ``rod`` takes every end connection and load).
+AUTO_CELLS = ("ritz", "rod")
+
+
+def is_auto(value: Any) -> bool:
+    """Whether ``value`` (an ``n_cells`` or ``cell`` argument) leaves the choice to the package (:data:`AUTO`)."""
+    return isinstance(value, str) and value == AUTO
 
 
 @dataclass(frozen=True)
@@ -49,27 +61,33 @@ class Segment:
     ----------
     length : float
         Segment length [m], > 0.
-    n_cells : int
+    n_cells : int or "auto"
         Number of cells of the segment, >= 1 and at most
-        :data:`~exudyn_atcm.physical_bounds.MAX_CELLS` (1e5: more cannot change an answer).
+        :data:`~exudyn_atcm.physical_bounds.MAX_CELLS` (1e5: more cannot change an answer);
+        ``"auto"`` (a bender of this one segment only): chosen for a run's accuracy (see
+        :class:`Bender`).
     drive : PiezoDrive, optional
         Drive of the segment's active layer; ``None``: unpowered (zero free strain).
     """
 
     length: float
-    n_cells: int
+    n_cells: int | str
     drive: PiezoDrive | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "length", positive_float("length", self.length))
-        object.__setattr__(self, "n_cells", check_cell_count("n_cells", positive_int("n_cells", self.n_cells),
-                                                             "Segment"))
+        if not is_auto(self.n_cells):
+            object.__setattr__(self, "n_cells", check_cell_count("n_cells", positive_int("n_cells", self.n_cells),
+                                                                 "Segment"))
         if self.drive is not None and not isinstance(self.drive, PiezoDrive):
             raise ValueError(f"drive must be a PiezoDrive or None, got {self.drive!r}")
 
     @property
     def cell_length(self) -> float:
         """Length of one cell of the segment [m]."""
+        if is_auto(self.n_cells):
+            raise MechanismError(f"this segment's cell count is left to the package (n_cells={AUTO!r}); "
+                                 "it has no cell length until one is chosen (exudyn_atcm.choose_cells)")
         return self.length / self.n_cells
 
 
@@ -97,15 +115,21 @@ class Bender(MaterialDamped):
         must be ``None``.
     length, n_cells, drive : optional
         A one-segment bender: length [m], number of cells and drive.  Give either these or
-        ``segments``.
+        ``segments``.  ``n_cells="auto"``: the count is chosen for the accuracy of a run,
+        by ``simulate(..., accuracy=...)`` or :func:`~exudyn_atcm.choose_cells` (the lowest
+        eigenfrequency and the static poses at the next count, module
+        :mod:`exudyn_atcm.solve.cell_choice`); every other analysis refuses such a bender until
+        it is chosen.
     segments : sequence of Segment, optional
         Segments in series from the base, each with its own drive (all share the laminate).
     base : (float, float), optional
         Base point in the reference pose [m] (default the origin).
     angle : float, optional
         Direction from base to tip in the reference pose [rad] (default 0: along +x).
-    cell : {"rod", "rigid", "six-bar", "beam", "ancf", "ritz"} or CellKind, optional
-        Cell model by name or as a :class:`~exudyn_atcm.cells.CellKind` (see
+    cell : {"rod", "rigid", "six-bar", "beam", "ancf", "ritz", "auto"} or CellKind, optional
+        Cell model by name or as a :class:`~exudyn_atcm.cells.CellKind` (``"auto"``: chosen with
+        the count, the cheapest of :data:`AUTO_CELLS` that the bender's connections allow; see
+        ``n_cells``) (see
         :class:`~exudyn_atcm.BendingActuator`), default :data:`DEFAULT_CELL` (``"rod"``, the same as a
         lone actuator's: ``n_cells`` modes of a geometrically exact rod); ``"ancf"`` and ``"ritz"``
         join a mechanism as a cantilever only (base welded to the ground, tip free; other end
@@ -151,7 +175,7 @@ class Bender(MaterialDamped):
         passive: Layer,
         active: Layer | None = None,
         length: float | None = None,
-        n_cells: int | None = None,
+        n_cells: int | str | None = None,
         drive: PiezoDrive | None = None,
         segments: Sequence[Segment] | None = None,
         base: tuple[float, float] = (0.0, 0.0),
@@ -175,12 +199,16 @@ class Bender(MaterialDamped):
             segments = tuple(segments)
             if not segments or not all(isinstance(s, Segment) for s in segments):
                 raise ValueError(f"segments must be a non-empty sequence of Segment, got {segments!r}")
+            if len(segments) > 1 and any(is_auto(s.n_cells) for s in segments):
+                raise ValueError(f"bender {name!r}: n_cells={AUTO!r} is chosen for one-segment benders only; give "
+                                 f"each of its {len(segments)} segments its count")
         else:
             if length is None or n_cells is None:
                 raise ValueError(
                     f"bender {name!r}: give length [m] and n_cells (and a drive), or segments; "
                     f"got length={length!r}, n_cells={n_cells!r}")
-            check_cell_count("n_cells", n_cells, f"bender {name!r}")
+            if not is_auto(n_cells):
+                check_cell_count("n_cells", n_cells, f"bender {name!r}")
             segments = (Segment(length, n_cells, drive),)
         if active is None:
             powered = [k + 1 for k, s in enumerate(segments) if s.drive is not None]
@@ -200,7 +228,8 @@ class Bender(MaterialDamped):
         for axis, value in zip("xy", self.base_position):
             warn_implausible(f"base {axis}", value, "position", owner)
         warn_implausible("angle", self.angle, "angle", owner)
-        cell = cell_kind(cell)
+        open_kind = is_auto(cell)
+        cell = cell_kind(AUTO_CELLS[-1] if open_kind else cell)  # "auto": its checks are those of the kinds chosen from
         refusal = cell.mechanism_refusal()
         if refusal is not None:
             raise ValueError(f"cell={cell.name!r} cannot be a mechanism's bender: {refusal} "
@@ -209,12 +238,40 @@ class Bender(MaterialDamped):
                                       ("active_side", active_side, ACTIVE_SIDES)):
             if not isinstance(value, str) or value not in allowed:
                 raise ValueError(f"{pname} must be one of {allowed}, got {value!r}")
-        self.cell = cell
+        self._cell: CellKind | None = None if open_kind else cell
         self.stiffness = stiffness
         self.active_side = active_side
         self.damping: float | RayleighDamping = check_damping(damping, cell=cell, owner=owner)
-        if self.n_cells > MAX_CELLS:  # segments within the bound can sum beyond it
+        if not self.open_choices and self.n_cells > MAX_CELLS:  # segments within the bound can sum beyond it
             check_cell_count("n_cells (all segments)", self.n_cells, owner)
+
+    # ------------------------------------------------------------------ choices left to the package
+    @property
+    def open_choices(self) -> tuple[str, ...]:
+        """The discretisation choices left to the package (``"cell"``, ``"n_cells"``; empty when both are fixed)."""
+        return tuple(name for name, is_open in (("cell", self._cell is None),
+                                                ("n_cells", any(is_auto(s.n_cells) for s in self.segments)))
+                     if is_open)
+
+    def _refuse_open(self, what: str) -> None:
+        if self.open_choices:
+            given = ", ".join(f"{c}={AUTO!r}" for c in self.open_choices)
+            raise MechanismError(
+                f"bender {self.name!r} has no {what} yet: it leaves its discretisation to the package ({given}). "
+                "Only simulate(..., accuracy=...) chooses it, for the run's accuracy; for any other analysis fix "
+                "it (n_cells=..., cell=...) or take the choice of exudyn_atcm.choose_cells(mechanism, t_end, "
+                "accuracy)")
+
+    @property
+    def cell(self) -> CellKind:
+        """The cell kind (:class:`~exudyn_atcm.cells.CellKind`); refused while it is left to the package."""
+        if self._cell is None:
+            self._refuse_open("cell kind")
+        return self._cell
+
+    @cell.setter
+    def cell(self, value: str | CellKind) -> None:
+        self._cell = cell_kind(value)
 
     # ------------------------------------------------------------------ geometry
     @property
@@ -231,17 +288,21 @@ class Bender(MaterialDamped):
 
     @property
     def n_cells(self) -> int:
-        """Total number of cells."""
+        """Total number of cells (refused while the count is left to the package)."""
+        if "n_cells" in self.open_choices:
+            self._refuse_open("cell count")
         return int(sum(s.n_cells for s in self.segments))
 
     @property
     def cell_lengths(self) -> np.ndarray:
         """Length of every cell from the base [m]."""
+        self.n_cells  # noqa: B018 - refused while the count is left to the package
         return np.concatenate([np.full(s.n_cells, s.cell_length) for s in self.segments])
 
     @property
     def cell_segments(self) -> np.ndarray:
         """Index (0-based) of the segment of every cell from the base."""
+        self.n_cells  # noqa: B018 - refused while the count is left to the package
         return np.concatenate([np.full(s.n_cells, k) for k, s in enumerate(self.segments)])
 
     @property
@@ -293,7 +354,7 @@ class Bender(MaterialDamped):
         p = self.name
         out: dict[str, Any] = {
             f"{p}.type": "Bender",
-            f"{p}.cell": self.cell.name,
+            f"{p}.cell": AUTO if self._cell is None else self._cell.name,
             f"{p}.stiffness": self.stiffness,
             f"{p}.active_side": self.active_side,
             f"{p}.base [m]": self.base_position,
@@ -321,9 +382,10 @@ class Bender(MaterialDamped):
         return out
 
     def __repr__(self) -> str:
+        cell = repr(AUTO) if self._cell is None else self._cell.spelled()
         return (f"Bender({self.name!r}, width={self.width!r}, passive={self.passive!r}, active={self.active!r}, "
                 f"segments={self.segments!r}, base={self.base_position!r}, angle={self.angle!r}, "
-                f"cell={self.cell.spelled()}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
+                f"cell={cell}, stiffness={self.stiffness!r}, active_side={self.active_side!r}, "
                 f"damping={self.damping!r})")
 
 

@@ -66,6 +66,7 @@ def _parts(mech: Mechanism) -> list[tuple[CellKind, int]]:
     parts: list[tuple[CellKind, int]] = []
     for comp in mech.components.values():
         if isinstance(comp, Bender):
+            comp.n_cells  # noqa: B018 - refused while the count is left to the package
             parts += [(comp.cell, seg.n_cells) for seg in comp.segments]
         elif isinstance(comp, Flexure):
             parts.append((rigid, comp.n_cells if comp.model == "cells" else 2))

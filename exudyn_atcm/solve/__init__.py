@@ -25,6 +25,8 @@ _LAZY = {
     "static_sweep": (".simulation", "static_sweep"),
     "StepError": (".step_error", "StepError"),
     "step_error": (".step_error", "step_error"),
+    "choose_cells": (".cell_choice", "choose_cells"),
+    "CellChoice": (".cell_choice", "CellChoice"),
     "NoEquilibriumError": (".linear_state", "NoEquilibriumError"),
     "linearise": (".linearise", "linearise"),
     "Modes": (".modes", "Modes"),
@@ -45,6 +47,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .built_system import BuiltSystem
     from .simulation import eigenfrequencies, run_actuator, simulate, solve_static, static_sweep
     from .step_error import StepError, step_error
+    from .cell_choice import CellChoice, choose_cells
     from .linear_state import NoEquilibriumError
     from .linearise import linearise
     from .modes import Modes, modes
@@ -54,7 +57,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from .step_choice import ACCURACY_RANGE, accurate_run
 
 __all__ = ["simulate", "solve_static", "static_sweep", "eigenfrequencies", "DEFAULT_STEP", "SolverError",
-           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError",
+           "SimulationInterrupted", "run_actuator", "InStepStrain", "TableStrain", "step_error", "StepError", "choose_cells", "CellChoice",
            "BuiltSystem", "modes", "Modes", "linearise", "LinearModel", "NoEquilibriumError",
            "mechanism_feedforward", "FeedforwardReport", "OutputMap", "accurate_run", "ACCURACY_RANGE"]
 

@@ -97,7 +97,7 @@ def cost_parts(mech: Mechanism) -> tuple[CellKind, int]:
     cell, count = RigidCell(), 0
     for comp in mech.components.values():
         if isinstance(comp, Bender):
-            count += sum(seg.n_cells for seg in comp.segments)
+            count += comp.n_cells
             if _per_cell(comp.cell) > _per_cell(cell):
                 cell = comp.cell
         elif isinstance(comp, Flexure):

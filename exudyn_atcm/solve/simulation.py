@@ -31,6 +31,7 @@ from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
 from .run_setup import DEFAULT_STEP
+from .cell_choice import SPACE_SHARE, choose_cells, open_benders
 from .step_choice import accurate_run, check_accuracy, check_step_or_accuracy
 
 
@@ -175,7 +176,9 @@ def simulate(
         measures the run's error (Richardson), and a missed target refines the step once
         (:mod:`exudyn_atcm.solve.step_choice`).  ``result.info["step_choice"]`` says what was
         chosen and why, ``info["accuracy"]`` the numbers; a display with ``stage`` (the command
-        line's progress bar) shows it.
+        line's progress bar) shows it.  A mechanism's benders built with ``n_cells="auto"``
+        (or ``cell="auto"``) get their cells chosen first, for 0.3 of ``accuracy``
+        (:func:`~exudyn_atcm.choose_cells`; ``info["cell_choice"]``), and the step for the rest.
 
     Returns
     -------
@@ -258,13 +261,19 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
     t_end = positive_float("t_end", t_end)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+    choice = None
     if isinstance(system, Mechanism):
         _mechanism_only(tip_force)
+        if open_benders(system):  # the cells first, with their share of the accuracy; the step gets the rest
+            choice = choose_cells(system, t_end, accuracy, progress=progress)
+            system = choice.mechanism
         mech = system
     else:
         actuator = _check_actuator(system)
         mech = actuator.as_mechanism(tip_force)
-    model = mb.build(mech)  # once: the prediction, the probe and the run start from its built state (as a BuiltSystem's)
+    # once (the cells' choice's last build, or a new one): the prediction, the probe and the run start from its built
+    # state, as a BuiltSystem's
+    model = choice.built if choice is not None and choice.built is not None else mb.build(mech)
     initial = runs.save_state(model)
 
     def fresh() -> mb.MechanismModel:
@@ -281,7 +290,11 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
             with actuator_interrupts(actuator):
                 result = mechanism_solve.simulate(mech, t_stop, h, settings, prog, record_every, built=fresh())
             return _finish_actuator_run(actuator, mech, result, "prestep")
-    return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every, built=fresh)
+    if choice is None:
+        return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every, built=fresh)
+    result = accurate_run(run, mech, t_end, (1.0 - SPACE_SHARE) * accuracy, progress, stacklevel=4,
+                          record_every=record_every, built=fresh)
+    return choice.noted(result, accuracy)
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",

@@ -1,0 +1,212 @@
+"""Cell kinds and counts left to the package (``n_cells="auto"``, ``cell="auto"``), chosen for a run's accuracy.
+
+The validation runs the chosen mechanism against a spatially and temporally converged reference: ten
+modes of the rod (the count converges by an order of magnitude per mode: 4.7e-3, 2.8e-4, 1.7e-5 in
+the first frequency at 2, 3, 4 modes, ``benchmarks/bench_rod_vs_ritz.py``) at a quarter of the chosen
+step.  The discretisation's own error is measured as the chosen count against ten modes of the same
+kind at the same step, so the time error cancels.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import exudyn_atcm as atcm
+from exudyn_atcm.errors import AccuracyWarning
+from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+from exudyn_atcm.model.signals import Steps, Triangle
+from exudyn_atcm.solve import cell_choice
+from exudyn_atcm.solve.cell_choice import SPACE_SHARE, choose_cells, frequency_error_share
+from exudyn_atcm.solve.step_choice import position_error
+
+CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
+MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
+
+
+def four_bar(n_cells, cell="rod", program=None) -> atcm.Mechanism:
+    """The README's four-bar, its crank driven by a triangle 0 -> 1500 -> 0 V of period 0.1 s."""
+    program = Triangle(750.0, 750.0, 0.1) if program is None else program
+    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=n_cells, cell=cell,
+                        drive=atcm.PiezoDrive(program), angle=math.pi / 2)
+    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
+    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
+    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
+    m.ground(crank.base)
+    m.pin(crank.tip, coupler.point("A"))
+    m.pin("coupler.B", "rocker.B")
+    m.ground("rocker.O", joint="pin")
+    return m
+
+
+def cantilever(n_cells, cell="rod", tip_force=None, program=None) -> atcm.Mechanism:
+    """The paper's actuator as a cantilever bender with the paper's Preisach operator (a 0.5 s triangle)."""
+    program = Triangle(750.0, 750.0, 0.5) if program is None else program
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=n_cells, cell=cell,
+                    drive=atcm.PiezoDrive(program, hysteresis=paper_strain_preisach()))
+    m = atcm.Mechanism("lone").add(b).ground(b.base)
+    if tip_force is not None:
+        m.force(b.tip, tip_force)
+    return m
+
+
+# ---------------------------------------------------------------------- the open choices
+def test_a_bender_leaving_its_cells_open_is_refused_by_every_analysis_but_an_accuracy_run():
+    m = four_bar("auto")
+    for call in (lambda: atcm.simulate(m, 0.01), lambda: atcm.static_sweep(m, [0.0, 100.0]),
+                 lambda: atcm.eigenfrequencies(m, n=1), lambda: atcm.solve_static(m)):
+        with pytest.raises(atcm.MechanismError, match=r"bender 'crank' has no cell count yet.*n_cells='auto'.*"
+                                                      r"simulate\(\.\.\., accuracy=\.\.\.\).*choose_cells"):
+            call()
+    open_kind = four_bar(4, cell="auto")
+    with pytest.raises(atcm.MechanismError, match="bender 'crank' has no cell kind yet.*cell='auto'"):
+        atcm.simulate(open_kind, 0.01)
+
+
+def test_an_open_bender_says_so_in_its_parameters_and_repr():
+    b = four_bar("auto", cell="auto").components["crank"]
+    assert b.open_choices == ("cell", "n_cells")
+    assert "cell='auto'" in repr(b) and "n_cells='auto'" in repr(b)
+    p = b.parameters()
+    assert p["crank.cell"] == "auto" and p["crank.segment_1.n_cells"] == "auto"
+    with pytest.raises(atcm.MechanismError, match="cell count"):
+        b.cell_lengths  # noqa: B018
+    with pytest.raises(atcm.MechanismError, match="left to the package"):
+        b.segments[0].cell_length  # noqa: B018
+
+
+def test_open_counts_are_for_one_segment_benders_only():
+    segments = [atcm.Segment(0.02, "auto"), atcm.Segment(0.01, 3)]
+    with pytest.raises(ValueError, match="bender 'b': n_cells='auto' is chosen for one-segment benders only"):
+        atcm.Bender("b", width=1e-2, passive=CFC, active=MFC, segments=segments)
+    one = atcm.Bender("b", width=1e-2, passive=CFC, active=MFC, segments=[atcm.Segment(0.03, "auto")])
+    assert one.open_choices == ("n_cells",)
+    with pytest.raises(ValueError, match="n_cells"):
+        atcm.Segment(0.02, "many")
+
+
+def test_choose_cells_refuses_bad_input_and_leaves_a_fixed_mechanism_alone():
+    with pytest.raises(ValueError, match="mechanism: expected an exudyn_atcm Mechanism"):
+        choose_cells("four-bar", 0.1)
+    with pytest.raises(ValueError, match="t_end"):
+        choose_cells(four_bar("auto"), -1.0)
+    with pytest.raises(ValueError, match="accuracy"):
+        choose_cells(four_bar("auto"), 0.1, accuracy=0.5)
+    fixed = four_bar(3)
+    choice = choose_cells(fixed, 0.1)
+    assert choice.mechanism is fixed and choice.cells == {}
+
+
+def test_the_open_mechanism_is_not_changed_by_the_choice():
+    m = four_bar("auto", cell="auto")
+    choice = choose_cells(m, 0.1, 1e-2)
+    assert m.components["crank"].open_choices == ("cell", "n_cells")
+    crank = choice.mechanism.components["crank"]
+    assert crank.open_choices == () and crank.n_cells == choice.cells["crank"][1]
+    assert crank is not m.components["crank"] and choice.mechanism.connections == m.connections
+
+
+# ---------------------------------------------------------------------- the kind
+def test_the_kind_is_ritz_for_a_cantilever_and_rod_where_ritz_is_refused():
+    assert choose_cells(cantilever("auto", "auto"), 0.1, 1e-2).cells["b"][0] == "ritz"
+    # ritz takes no tip load, and joins a mechanism as a cantilever only
+    assert choose_cells(cantilever("auto", "auto", tip_force=(0.0, -0.02)), 0.1, 1e-2).cells["b"][0] == "rod"
+    assert choose_cells(four_bar("auto", "auto"), 0.1, 1e-2).cells["crank"][0] == "rod"
+
+
+def test_an_open_kind_with_a_fixed_count_keeps_the_count():
+    choice = choose_cells(cantilever(5, "auto"), 0.1)
+    assert choice.cells == {"b": ("ritz", 5)} and "ritz cells, the cheapest kind" in choice.line
+
+
+# ---------------------------------------------------------------------- the count against converged runs
+@pytest.mark.parametrize("make, t_end, accuracy", [
+    (lambda n, c: four_bar(n, c), 0.2, 1e-3),
+    (lambda n, c: cantilever(n, c), 0.5, 1e-2),
+], ids=["four-bar, triangle, 1e-3", "cantilever with hysteresis, triangle, 1e-2"])
+def test_a_run_with_open_cells_is_within_the_target_of_the_converged_solution(make, t_end, accuracy):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)  # neither the cells nor the step may miss
+        result = atcm.simulate(make("auto", "auto"), t_end, accuracy=accuracy)
+    info = result.info["accuracy"]
+    h = info["step [s]"]
+    (name, chosen), = info["cells"].items()
+    n, kind = int(chosen.split()[0]), chosen.split()[1]
+    assert result.info["cell_choice"].startswith(f"bender '{name}': {n} {kind} modes for {SPACE_SHARE * accuracy:g}")
+    assert info["target"] == accuracy and info["step_target"] == pytest.approx((1 - SPACE_SHARE) * accuracy)
+    assert result.parameters[f"{name}.segment_1.n_cells"] == n
+    reference = atcm.simulate(make(10, "rod"), t_end, step=h / 4)
+    assert position_error(reference, result, h) <= accuracy
+    # the discretisation alone (the same step: its error cancels) within its share, and the estimate close to it:
+    # the difference to the next count is the count's error where each mode cuts it by 10x or more (within 10 %)
+    spatial = position_error(atcm.simulate(make(10, kind), t_end, step=h), atcm.simulate(make(n, kind), t_end, step=h),
+                             h)
+    assert spatial <= SPACE_SHARE * accuracy
+    assert info["cells_estimated_error"] == pytest.approx(spatial, rel=0.3)
+
+
+def test_the_largest_count_tried_is_taken_with_a_warning_when_it_is_not_checked(monkeypatch):
+    monkeypatch.setattr(cell_choice, "MODAL_COUNTS", (2, 3))
+    with pytest.warns(AccuracyWarning, match=r"'crank' at the largest count tried, 3, not checked"):
+        choice = choose_cells(four_bar("auto"), 0.2, 1e-5)
+    assert choice.cells == {"crank": ("rod", 3)} and "not checked" in choice.line
+
+
+# ---------------------------------------------------------------------- the stand-in's frequency error
+def test_a_frequency_error_shifts_the_ringing_of_a_voltage_step_by_the_closed_form():
+    """A unit step of the strain at ``t0`` rings as ``1 - cos(omega (t - t0))`` undamped; at ``omega (1 + d)``
+    the difference is ``cos(omega tau) - cos(omega (1 + d) tau)``, its largest value up to ``t_end`` taken on a
+    fine grid (under the envelope ``2 sin(omega d T / 2)``, ``T = t_end - t0``).  The function samples the strain
+    40 times a period (the step a ramp over one sample) and takes the largest difference at the samples: within
+    1 % of it."""
+    m = cantilever(3, "rod", program=Steps([0.0, 0.01], [0.0, 1000.0]))
+    f, t_end, d = 36.0, 0.2, 0.01
+    got = frequency_error_share(m, t_end, f, d, 0.0)
+    omega, tau = 2.0 * math.pi * f, np.linspace(0.0, t_end - 0.01, 200_001)
+    expected = float(np.max(np.abs(np.cos(omega * tau) - np.cos(omega * (1.0 + d) * tau))))
+    assert expected <= 2.0 * math.sin(omega * d * (t_end - 0.01) / 2.0)  # the envelope
+    assert got == pytest.approx(expected, rel=0.01)
+    assert frequency_error_share(m, t_end, f, 0.0, 0.0) == 0.0
+    # a drive whose strain does not change (a constant program): the phase drift 2 pi f t_end d is the bound
+    held = cantilever(3, "rod", program=Steps([0.0], [1000.0]))
+    assert frequency_error_share(held, t_end, f, d, 0.0) == pytest.approx(2.0 * math.pi * f * t_end * d)
+
+
+def test_a_display_with_stages_is_told_each_count_tried():
+    class Display:
+        def __init__(self):
+            self.stages = []
+
+        def __call__(self, t, t_end):
+            pass
+
+        def stage(self, label, share, detail):
+            self.stages.append((label, detail))
+
+    display = Display()
+    result = atcm.simulate(four_bar("auto"), 0.05, accuracy=1e-2, progress=display)
+    tried = [detail for label, detail in display.stages if label == "cell choice"]
+    n = result.parameters["crank.segment_1.n_cells"]
+    assert tried[0].startswith("'crank': 2 rod modes") and tried[-1].startswith(f"'crank': {n + 1} rod modes")
+    assert len(tried) == n  # 2 ... n + 1: each count against the next
+
+
+@pytest.mark.parametrize("tip_force", [None, (0.0, -0.02)], ids=["unloaded", "tip load"])
+def test_the_run_takes_the_chosen_counts_build_and_gives_the_plain_runs_result(monkeypatch, tip_force):
+    # one build per count measured (its eigenvalue analysis and its static poses share it); the run takes the chosen
+    # count's build, put back in its built state: it equals a plain run at the chosen step from a fresh build of the
+    # fixed mechanism to round-off
+    from exudyn_atcm.mbs import builder
+    calls = []
+    build = builder.build
+    monkeypatch.setattr(builder, "build", lambda *a, **k: calls.append(1) or build(*a, **k))
+    run = atcm.simulate(cantilever("auto", "auto", tip_force=tip_force), 0.1, accuracy=1e-2)
+    (kind, n), = [tuple(v.split()[::-1]) for v in run.info["accuracy"]["cells"].values()]
+    assert len(calls) == int(n) - 2 + 2  # counts 2 ... n + 1
+    monkeypatch.setattr(builder, "build", build)
+    plain = atcm.simulate(cantilever(int(n), kind, tip_force=tip_force), 0.1, step=run.info["step [s]"])
+    for name in plain.names:
+        assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
