@@ -20,7 +20,13 @@ CPU times (``time.process_time``), best of ``--repeats``, measured side by side 
 (the machine is shared; compare within a run only).  ``--quick``: the lone actuator and the
 four-bar's triangle only, one repeat.  Writes JSON to ``benchmarks/results/`` (git-ignored).
 
-Usage: ``python benchmarks/bench_accuracy.py [--quick] [--repeats 2] [--only four-bar/steps ...]``.
+``--cells``: the same for benders whose cells are left open (``n_cells="auto", cell="auto"``: the
+four-bar's crank, the gripper's benders, and the paper actuator as a cantilever ``Bender``, which
+takes ``ritz``): the call chooses the cells and the step; its error is taken against ten ``rod``
+modes at a quarter of the finest step searched, and the search runs over the kinds the bender allows
+and 2 ... 5 modes, each on the ladder of steps (coarse to fine, the first count to pass its cheapest).
+
+Usage: ``python benchmarks/bench_accuracy.py [--quick] [--cells] [--repeats 2] [--only four-bar/steps ...]``.
 """
 
 from __future__ import annotations
@@ -61,6 +67,28 @@ def gripper(program) -> atcm.Mechanism:
 
 def lone(program) -> atcm.BendingActuator:
     return atcm.BendingActuator(3, 29e-3, 28e-3, CFC, MFC, atcm.PiezoDrive(program), cell="rod")
+
+
+def four_bar_cells(program, n_cells="auto", cell="auto") -> atcm.Mechanism:
+    return readme_four_bar(program, n_cells=n_cells, cell=cell)
+
+
+def gripper_cells(program, n_cells="auto", cell="auto") -> atcm.Mechanism:
+    values = {p.name: p.default for p in micro_gripper.PARAMETERS}
+    values.update(n_cells=n_cells, cell=cell)
+    return micro_gripper.build_mechanism(Parameters(micro_gripper.PARAMETERS, values), 200.0, program)
+
+
+def lone_cells(program, n_cells="auto", cell="auto") -> atcm.Mechanism:
+    """The paper actuator's laminate (29 mm wide ... as ``lone``) as a cantilever Bender of 3 x 29 mm."""
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, length=0.087, n_cells=n_cells, cell=cell,
+                    drive=atcm.PiezoDrive(program))
+    return atcm.Mechanism("lone").add(b).ground(b.base)
+
+
+#: the systems of ``--cells``: name -> builder(program, n_cells, cell) and the kinds its benders allow
+CELL_SYSTEMS = {"lone actuator": (lone_cells, ("ritz", "rod")), "four-bar": (four_bar_cells, ("rod",)),
+                "gripper": (gripper_cells, ("rod",))}
 
 
 #: (system, drive, builder, program, t_end [s], target)
@@ -137,10 +165,81 @@ def case(system, drive, build, program, t_end, target, repeats):
     return row
 
 
+def ladder_for(mech, program, t_end, finest: float) -> list[int]:
+    """Step counts on the drive's grid, warning-free for the program, up to ``t_end / finest``."""
+    unit = math.lcm(2, grid_unit(mech, t_end))
+    ladder = sorted({unit * math.ceil(20 * 2.0 ** (k / 4) / unit) for k in range(0, 80)})
+    feature = program.shortest_feature(t_end)[0]
+    return [n for n in ladder if 20 * t_end / feature - 1e-9 <= n <= t_end / finest + 1]
+
+
+def case_cells(system, drive, program, t_end, target, repeats):
+    """``--cells``: the call with open cells against a search over kinds, counts and steps."""
+    build, kinds = CELL_SYSTEMS[system]
+    c_acc, chosen = cpu(lambda: atcm.simulate(build(program), t_end, accuracy=target), repeats)
+    h_chosen = chosen.info["step [s]"]
+    cells = chosen.info["accuracy"]["cells"]
+    ladder = ladder_for(build(program, 3, "rod"), program, t_end, h_chosen / 4)
+    n_reference = 4 * max(round(t_end / h_chosen), ladder[-1])
+    reference = atcm.simulate(build(program, 10, "rod"), t_end, step=t_end / n_reference)
+    err_chosen = rel_error(chosen, reference)
+    cheapest = None
+    for kind in kinds:
+        for count in (2, 3, 4, 5):
+            for n in ladder:  # coarse to fine: the first that meets the target is this configuration's cheapest
+                r = atcm.simulate(build(program, count, kind), t_end, step=t_end / n)
+                if rel_error(r, reference) <= target:
+                    c_min, _ = cpu(lambda: atcm.simulate(build(program, count, kind), t_end, step=t_end / n),
+                                   repeats)
+                    if cheapest is None or c_min < cheapest[1]:
+                        cheapest = (t_end / n, c_min, rel_error(r, reference), f"{count} {kind}")
+                    break
+    row = {"system": system, "drive": drive, "target": target, "t_end [s]": t_end, "chosen step [s]": h_chosen,
+           "chosen cells": " ".join(cells.values()), "achieved error": err_chosen, "cpu [s]": c_acc,
+           "cell_choice": chosen.info["cell_choice"], "step_choice": chosen.info["step_choice"]}
+    if cheapest:
+        row.update({"cheapest step [s]": cheapest[0], "cheapest cpu [s]": cheapest[1], "cheapest error": cheapest[2],
+                    "cheapest cells": cheapest[3], "ratio": c_acc / cheapest[1]})
+    return row
+
+
+def selected(args) -> list[tuple]:
+    """The rows of :data:`CASES` that ``--quick`` and ``--only`` select."""
+    return [c for c in CASES if not (args.quick and c[:2] not in QUICK or args.only and f"{c[0]}/{c[1]}" not in args.only)]
+
+
+def write_rows(args, repeats: int, rows: list, name: str) -> None:
+    """The rows as JSON in ``args.out`` (atomically), named ``name`` and the time."""
+    os.makedirs(args.out, exist_ok=True)
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    path = os.path.join(args.out, f"{name}_{stamp}.json")
+    write_text(path, json.dumps({"machine": platform.platform(), "quick": args.quick, "repeats": repeats,
+                                 "rows": rows}, indent=2))
+    print(f"wrote {path}")
+
+
+def main_cells(args, repeats: int) -> None:
+    """The ``--cells`` table."""
+    rows = []
+    head = (f"{'system':>13} | {'drive':>8} | {'target':>6} | {'cells':>7} | {'chosen h':>9} | {'error':>8} | "
+            f"{'cpu':>7} | {'cheapest':>8} | {'its h':>9} | {'its cpu':>7} | {'ratio':>5}")
+    print(head)
+    print("-" * len(head))
+    for system, drive, _, program, t_end, target in selected(args):
+        r = case_cells(system, drive, program, t_end, target, repeats)
+        rows.append(r)
+        print(f"{system:>13} | {drive:>8} | {target:>6.0e} | {r['chosen cells']:>7} | {r['chosen step [s]']:>9.3g} | "
+              f"{r['achieved error']:>8.2e} | {r['cpu [s]']:>7.3f} | {r.get('cheapest cells', '-'):>8} | "
+              f"{r.get('cheapest step [s]', math.nan):>9.3g} | {r.get('cheapest cpu [s]', math.nan):>7.3f} | "
+              f"{r.get('ratio', math.nan):>5.2f}", flush=True)
+    write_rows(args, repeats, rows, "bench_accuracy_cells")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--cells", action="store_true", help="benders with open cells (n_cells/cell 'auto')")
     parser.add_argument("--only", action="append", default=[], metavar="SYSTEM/DRIVE",
                         help="run only these cases, e.g. 'four-bar/steps' (repeatable; for interleaved A/B runs)")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
@@ -150,26 +249,22 @@ def main() -> None:
     # start-up outside the timings: the first linearisation and the first accuracy= call (about 0.07 s once)
     atcm.eigenfrequencies(lone(Triangle(0, 1, 1)), n=1)
     atcm.simulate(lone(Triangle(500.0, 500.0, 0.02)), 0.02, accuracy=1e-2)
+    if args.cells:
+        main_cells(args, repeats)
+        return
     rows = []
     head = (f"{'system':>13} | {'drive':>8} | {'target':>6} | {'chosen h':>9} | {'error':>8} | {'cpu':>7} | "
             f"{'cheapest h':>10} | {'its cpu':>7} | {'ratio':>5} | {'run alone':>9} | {'steps':>5}")
     print(head)
     print("-" * len(head))
-    for system, drive, build, program, t_end, target in CASES:
-        if args.quick and (system, drive) not in QUICK or args.only and f"{system}/{drive}" not in args.only:
-            continue
+    for system, drive, build, program, t_end, target in selected(args):
         r = case(system, drive, build, program, t_end, target, repeats)
         rows.append(r)
         print(f"{system:>13} | {drive:>8} | {target:>6.0e} | {r['chosen step [s]']:>9.3g} | "
               f"{r['achieved error']:>8.2e} | {r['cpu [s]']:>7.3f} | {r.get('cheapest step [s]', math.nan):>10.3g} | "
               f"{r.get('cheapest cpu [s]', math.nan):>7.3f} | {r.get('ratio', math.nan):>5.2f} | "
               f"{r.get('run alone ratio', math.nan):>9.2f} | {r.get('steps ratio', math.nan):>5.2f}", flush=True)
-    os.makedirs(args.out, exist_ok=True)
-    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
-    path = os.path.join(args.out, f"bench_accuracy_{stamp}.json")
-    write_text(path, json.dumps({"machine": platform.platform(), "quick": args.quick, "repeats": repeats,
-                                 "rows": rows}, indent=2))
-    print(f"wrote {path}")
+    write_rows(args, repeats, rows, "bench_accuracy")
 
 
 if __name__ == "__main__":
