@@ -21,7 +21,8 @@ error, measured on the mechanism itself:
   each drive's program is highest and lowest over the run, under the mechanism's loads (one
   static sweep); the largest difference of a position column [m] relative to the travel
   between those poses;
-- the **lowest eigenfrequency** about the start state: its relative change ``delta``, turned into a
+- the **lowest eigenfrequency** about the reference pose (unloaded: its convergence in the count is the
+  discretisation's, and no equilibrium is needed): its relative change ``delta``, turned into a
   position error by the one-mode stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`:
   the drives' free strain drives the mode at ``omega`` and at ``omega (1 + delta)``, both solved
   exactly; the largest difference of the unit travel, as a period error shifts the ringing's phase).
@@ -54,6 +55,7 @@ from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mechanism.bender import AUTO_CELLS, Bender, Segment, is_auto
 from ..mechanism.points import MechanismError
+from ..model.signals import Signal
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs.layout import check_end_connections, rigid_groups
@@ -172,23 +174,26 @@ def _pose_points(mech: Mechanism, t_end: float) -> list[dict[str, float]] | None
     if any(getattr(d, "controller", None) is not None for d in drives.values()):
         return None  # a controller's voltage depends on the run
     times = np.linspace(0.0, t_end, VOLTAGE_SAMPLES)
-    volts = {name: np.array([d.voltage_at(float(t)) for t in times]) for name, d in drives.items()}
+    volts = {name: (np.asarray(d.voltage(times), dtype=float) if isinstance(d.voltage, Signal)  # arrays at once
+                    else np.array([d.voltage_at(float(t)) for t in times])) for name, d in drives.items()}
     picks = [0] + [int(f(v)) for v in volts.values() for f in (np.argmax, np.argmin)]
     return [{name: float(v[i]) for name, v in volts.items()} for i in sorted(set(picks))]
 
 
 def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[float, dict[str, np.ndarray], Any]:
-    """The lowest eigenfrequency [Hz] about the start state (``nan`` where the analysis fails), the position
-    columns [m] of the static equilibria at ``points`` (``{}`` without them), and the one build of ``mech`` both
-    used, put back in its built state (:func:`~exudyn_atcm.mbs.solver_runs.restore_state`)."""
+    """The lowest eigenfrequency [Hz] about the reference pose, unloaded (``nan`` where the analysis fails), the
+    position columns [m] of the static equilibria at ``points`` (``{}`` without them), and the one build of
+    ``mech`` both used, put back in its built state (:func:`~exudyn_atcm.mbs.solver_runs.restore_state`).
+
+    The frequency is compared between counts, so it is taken where it costs least: about the built state,
+    without the equilibrium and its stability check that a loaded start state needs (the poses carry the
+    loads); its convergence in the count is the discretisation's, whatever the state."""
     model = mb.build(mech)
     built = runs.save_state(model)
-    volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # analyses for the choice only; the run says what matters
         try:
-            f = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
-                                                 loaded=bool(mech.forces), built=model)
+            f = mechanism_solve.eigenfrequencies(mech, 1, None, loaded=False, built=model)
             frequency = float(f[0]) if f.size and f[0] > 0.0 and math.isfinite(f[0]) else math.nan
         except Exception:  # noqa: BLE001 - no frequency: the poses alone decide
             frequency = math.nan
@@ -202,16 +207,22 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[fl
     return frequency, poses, model
 
 
-def frequency_error_share(mech: Mechanism, t_end: float, frequency: float, delta: float, zeta: float) -> float:
+def frequency_error_share(mech: Mechanism, t_end: float, frequency: float, delta: float, zeta: float,
+                          strains: dict | None = None) -> float:
     """Largest position error [-] of the unit travel that a relative error ``delta`` of the lowest mode's
     ``frequency`` [Hz] causes over ``t_end`` [s] (the one-mode stand-in, both responses exact; the worst drive's).
-    Without a known strain (a controller) the phase drift ``2 pi f t_end delta``, at most 2."""
+    Without a known strain (a controller) the phase drift ``2 pi f t_end delta``, at most 2.  ``strains``: a dict
+    that keeps the drives' unit strains by sample count between calls for one mechanism's drives."""
     if delta == 0.0:
         return 0.0
     omega = 2.0 * math.pi * frequency
     n = int(min(MAX_SAMPLES, max(VOLTAGE_SAMPLES, math.ceil(t_end * frequency * SAMPLES_PER_PERIOD))))
+    n = VOLTAGE_SAMPLES * math.ceil(n / VOLTAGE_SAMPLES)  # close frequencies share their samples (and ``strains``)
     times = np.linspace(0.0, t_end, n + 1)
-    strains = [s for s in (unit_strain(d, times) for d in distinct_drives(mech)) if s is not None]
+    kept = {} if strains is None else strains
+    if n not in kept:
+        kept[n] = [s for s in (unit_strain(d, times) for d in distinct_drives(mech)) if s is not None]
+    strains = kept[n]
     if not strains:
         return min(2.0, 2.0 * math.pi * frequency * t_end * delta)
     dt = t_end / n
@@ -301,6 +312,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
     previous: tuple[int, float, dict, Any] | None = None
     chosen_n, estimate, delta = counts[-1], math.inf, math.nan
     stage = getattr(progress, "stage", None)
+    kept: dict = {}  # the drives' unit strains for the stand-in, by sample count
     for n in counts:
         if callable(stage):
             stage("cell choice", 0.0, f"{names}: {n} {what} {unit} (static poses, lowest eigenfrequency)")
@@ -317,7 +329,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
             known = math.isfinite(f) and math.isfinite(f0)
             delta = abs(f0 - f) / f if known else 0.0
             dynamic = (frequency_error_share(candidate, t_end, f0, factor * delta,
-                                             _damping_ratio(candidate, 2.0 * math.pi * f0)) if known else 0.0)
+                                             _damping_ratio(candidate, 2.0 * math.pi * f0), kept) if known else 0.0)
             estimate = factor * static + dynamic
             tried.append((n0, f0, static, estimate))
             if estimate <= accuracy:
