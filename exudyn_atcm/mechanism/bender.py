@@ -64,8 +64,8 @@ class Segment:
     n_cells : int or "auto"
         Number of cells of the segment, >= 1 and at most
         :data:`~exudyn_atcm.physical_bounds.MAX_CELLS` (1e5: more cannot change an answer);
-        ``"auto"`` (a bender of this one segment only): chosen for a run's accuracy (see
-        :class:`Bender`).
+        ``"auto"``: chosen for a run's accuracy (see :class:`Bender`; every open segment of a
+        mechanism takes the same count).
     drive : PiezoDrive, optional
         Drive of the segment's active layer; ``None``: unpowered (zero free strain).
     """
@@ -199,9 +199,6 @@ class Bender(MaterialDamped):
             segments = tuple(segments)
             if not segments or not all(isinstance(s, Segment) for s in segments):
                 raise ValueError(f"segments must be a non-empty sequence of Segment, got {segments!r}")
-            if len(segments) > 1 and any(is_auto(s.n_cells) for s in segments):
-                raise ValueError(f"bender {name!r}: n_cells={AUTO!r} is chosen for one-segment benders only; give "
-                                 f"each of its {len(segments)} segments its count")
         else:
             if length is None or n_cells is None:
                 raise ValueError(
