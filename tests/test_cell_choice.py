@@ -225,3 +225,19 @@ def test_the_run_takes_the_chosen_counts_build_and_gives_the_plain_runs_result(m
     plain = atcm.simulate(cantilever(int(n), kind, tip_force=tip_force), 0.1, step=run.info["step [s]"])
     for name in plain.names:
         assert np.allclose(run[name], plain[name], rtol=1e-10, atol=1e-13)
+
+
+def test_a_chain_of_rigid_cells_doubles_its_count_and_meets_the_target():
+    # chains converge at second order: counts 4, 8, 16, ... and the difference to the next count scaled by
+    # Richardson's 1 / (1 - 2^-2); the reference for the cells alone is four times the count (1/16 of the error left)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)
+        result = atcm.simulate(four_bar("auto", "rigid"), 0.2, accuracy=1e-2)
+    info = result.info["accuracy"]
+    h, n = info["step [s]"], int(info["cells"]["crank"].split()[0])
+    assert n in cell_choice.CHAIN_COUNTS and "rigid cells for 0.003 of the travel" in result.info["cell_choice"]
+    assert position_error(atcm.simulate(four_bar(10, "rod"), 0.2, step=h / 4), result, h) <= 1e-2
+    spatial = position_error(atcm.simulate(four_bar(4 * n, "rigid"), 0.2, step=h),
+                             atcm.simulate(four_bar(n, "rigid"), 0.2, step=h), h)
+    assert spatial <= SPACE_SHARE * 1e-2
+    assert 0.7 * spatial <= info["cells_estimated_error"] <= 2.0 * spatial
