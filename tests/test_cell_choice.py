@@ -148,7 +148,10 @@ def test_a_run_with_open_cells_is_within_the_target_of_the_converged_solution(ma
     (name, chosen), = info["cells"].items()
     n, kind = int(chosen.split()[0]), chosen.split()[1]
     assert result.info["cell_choice"].startswith(f"bender '{name}': {n} {kind} modes for {SPACE_SHARE * accuracy:g}")
-    assert info["target"] == accuracy and info["step_target"] == pytest.approx((1 - SPACE_SHARE) * accuracy)
+    # the step takes what twice the cells' estimate leaves, at least 0.7 of the target
+    assert info["target"] == accuracy
+    assert info["step_target"] == pytest.approx(max(1 - SPACE_SHARE, 1 - 2 * info["cells_estimated_error"] / accuracy)
+                                                * accuracy)
     assert result.parameters[f"{name}.segment_1.n_cells"] == n
     assert result.parameters.get(f"{name}.segment_2.n_cells", n) == n
     reference = atcm.simulate(make(10, "rod"), t_end, step=h / 4)

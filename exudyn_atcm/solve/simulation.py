@@ -31,7 +31,7 @@ from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
 from .run_setup import DEFAULT_STEP
-from .cell_choice import SPACE_SHARE, choose_cells, open_benders
+from .cell_choice import choose_cells, open_benders
 from .step_choice import accurate_run, check_accuracy, check_step_or_accuracy
 
 
@@ -178,7 +178,8 @@ def simulate(
         chosen and why, ``info["accuracy"]`` the numbers; a display with ``stage`` (the command
         line's progress bar) shows it.  A mechanism's benders built with ``n_cells="auto"``
         (or ``cell="auto"``) get their cells chosen first, for 0.3 of ``accuracy``
-        (:func:`~exudyn_atcm.choose_cells`; ``info["cell_choice"]``), and the step for the rest.
+        (:func:`~exudyn_atcm.choose_cells`; ``info["cell_choice"]``), and the step for what twice
+        their estimated error leaves (at least 0.7 of it).
 
     Returns
     -------
@@ -292,7 +293,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
             return _finish_actuator_run(actuator, mech, result, "prestep")
     if choice is None:
         return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every, built=fresh)
-    result = accurate_run(run, mech, t_end, (1.0 - SPACE_SHARE) * accuracy, progress, stacklevel=4,
+    result = accurate_run(run, mech, t_end, choice.step_target(accuracy), progress, stacklevel=4,
                           record_every=record_every, built=fresh)
     return choice.noted(result, accuracy)
 
