@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
@@ -183,6 +184,11 @@ def test_a_missed_target_is_refined_once_and_then_met(monkeypatch):
     run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
     assert run.info["accuracy"]["refined"] is True and "refined once" in run.info["step_choice"]
     assert run.info["step [s]"] < 0.04 / 40
+    # the factor: the fewest integer that brings the probe's estimate to REFINE_AIM of the target at the check's order
+    probe_estimate = float(re.search(r"probe at [0-9.e-]+ s: estimated error ([0-9.e-]+)", run.info["step_choice"])[1])
+    m = round(0.04 / 40 / run.info["step [s]"])
+    needed = (probe_estimate / (step_choice.REFINE_AIM * 1e-3)) ** (1.0 / 1.5)
+    assert m - 1 < needed <= m * (1 + 0.01)  # the estimate is printed to two digits
     reference = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"] / 8)
     assert relative_error(run, reference) <= 1e-3
 
