@@ -51,6 +51,7 @@ from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mechanism.damped import MaterialDamped
+from ..mbs.stability import one_blas_thread
 from ..model.signals import Steps
 from . import mechanism_solve
 from .corner_grid import MAX_GRID_UNIT, distinct_drives, grid_unit
@@ -233,14 +234,15 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
                               "the drive's strain is not known before the run (a controller): 20 steps per period", 2,
                               t_end)
     n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
-    stand_in = StandIn(strains, dt, t_end, omega, zeta)
-    n = n_min
-    predicted = stand_in.error(n)
-    while predicted > AIM * accuracy and n < n_max:
-        n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
+    with one_blas_thread():  # small block products: a threaded BLAS would leave its workers spinning (cell_choice)
+        stand_in = StandIn(strains, dt, t_end, omega, zeta)
+        n = n_min
         predicted = stand_in.error(n)
-    n_used = _on_corners(mech, t_end, n, PROBE_FACTOR, grid)
-    errors = stand_in.errors(n_used)
+        while predicted > AIM * accuracy and n < n_max:
+            n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
+            predicted = stand_in.error(n)
+        n_used = _on_corners(mech, t_end, n, PROBE_FACTOR, grid)
+        errors = stand_in.errors(n_used)
     predicted = float(np.max(errors))
     window, ratio = probe_window(errors, t_end, frequency, math.lcm(PROBE_FACTOR, n_used // grid if grid > 1 else 1))
     if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
