@@ -47,6 +47,7 @@ import numpy as np
 
 from ..errors import AccuracyWarning
 from .tangent import TangentPlan, static_settings
+from .blas_threads import one_blas_thread
 
 __all__ = ["constrained_eigenfrequencies", "exudyn_eigenfrequencies", "tangent_system"]
 
@@ -128,20 +129,21 @@ def constrained_eigenfrequencies(mbs, n: int, *, relative_step: float = 1e-7,
             f"{worst:.3g} N or N m, accepted {residual_tolerance:g}); the frequencies are those of the "
             "linearisation about a non-equilibrium state",
             AccuracyWarning, stacklevel=2)
-    if Cq.shape[0]:
-        U, sv, _ = svd(Cq.T)  # columns of U beyond the rank span the null space of Cq
-        rank = int(np.sum(sv > singular_values_tolerance * max(sv.max(), 1e-300)))
-        N = U[:, rank:]
-    else:
-        N = np.eye(n2)
-    n_free = N.shape[1]
-    if n > n_free:
-        raise ValueError(f"n must be <= the number of degrees of freedom ({n_free}), got {n}")
-    Kr = N.T @ K @ N
-    Kr = 0.5 * (Kr + Kr.T)
-    Mr = N.T @ M @ N
-    Mr = 0.5 * (Mr + Mr.T)
-    w2, vecs = eigh(Kr, Mr, subset_by_index=[0, n - 1])
+    with one_blas_thread():  # after the import: scipy's own BLAS limited too
+        if Cq.shape[0]:
+            U, sv, _ = svd(Cq.T)  # columns of U beyond the rank span the null space of Cq
+            rank = int(np.sum(sv > singular_values_tolerance * max(sv.max(), 1e-300)))
+            N = U[:, rank:]
+        else:
+            N = np.eye(n2)
+        n_free = N.shape[1]
+        if n > n_free:
+            raise ValueError(f"n must be <= the number of degrees of freedom ({n_free}), got {n}")
+        Kr = N.T @ K @ N
+        Kr = 0.5 * (Kr + Kr.T)
+        Mr = N.T @ M @ N
+        Mr = 0.5 * (Mr + Mr.T)
+        w2, vecs = eigh(Kr, Mr, subset_by_index=[0, n - 1])
     if np.any(w2 < 0.0):
         warnings.warn(
             f"constrained eigenfrequencies: {int(np.sum(w2 < 0))} of the lowest {n} eigenvalues of the "

@@ -38,6 +38,7 @@ from .eigen import tangent_system
 from .model import MechanismModel
 from .recording import make_result
 from .tangent import static_settings
+from .blas_threads import on_one_blas_thread
 
 __all__ = ["LinearMatrices", "linear_matrices", "null_space", "damping_matrix", "strain_forces", "output_columns",
            "output_jacobian", "point_jacobians"]
@@ -71,6 +72,7 @@ class LinearMatrices:
     residual: float
 
 
+@on_one_blas_thread
 def null_space(Cq: np.ndarray, n: int, tolerance: float = 1e-9) -> np.ndarray:
     """Orthonormal basis (n x n_free) of the null space of the constraint Jacobian ``Cq`` (m x n)."""
     if Cq.shape[0] == 0:
@@ -135,6 +137,7 @@ def damping_matrix(model: MechanismModel, velocity_step: float = 1e-4) -> np.nda
     return D
 
 
+@on_one_blas_thread
 def linear_matrices(model: MechanismModel, *, relative_step: float = 1e-7,
                     singular_values_tolerance: float = 1e-9, damping: bool = True) -> LinearMatrices:
     """:class:`LinearMatrices` of ``model`` at its current state (normally a static equilibrium);

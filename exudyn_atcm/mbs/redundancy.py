@@ -37,6 +37,7 @@ from ..mechanism.connections import joint_label
 from ..mechanism.points import MechanismError, PointRef
 from . import solver_runs as runs
 from .model import MechanismModel
+from .blas_threads import one_blas_thread
 
 __all__ = ["constraint_jacobian", "dependent_constraints", "refuse_redundant", "labelled", "end_label", "CELLS_LABEL"]
 
@@ -95,7 +96,8 @@ def dependent_constraints(model: MechanismModel) -> tuple[int, int, list[str]]:
     m = cq.shape[0]
     if m == 0:
         return 0, 0, []
-    _, sv, vt = svd(cq.T, full_matrices=True)
+    with one_blas_thread():  # after the import: scipy's own BLAS limited too
+        _, sv, vt = svd(cq.T, full_matrices=True)
     tol = (sv.max() if sv.size else 0.0) * max(cq.shape) * np.finfo(float).eps
     rank = int(np.sum(sv > tol))
     if rank == m:

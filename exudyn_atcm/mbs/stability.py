@@ -37,7 +37,6 @@ check, so that every point of a static sweep can be checked:
 
 from __future__ import annotations
 
-import contextlib
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -50,10 +49,7 @@ from .model import MechanismModel
 from .solver_jacobian import SolverJacobian
 from .tangent import TangentPlan
 
-try:  # a declared dependency; imported like this where the package limits BLAS threads elsewhere
-    from threadpoolctl import ThreadpoolController
-except ImportError:  # pragma: no cover
-    ThreadpoolController = None
+from .blas_threads import one_blas_thread
 
 __all__ = ["Stability", "STABLE", "StabilityProbe", "CRITICAL_MARGIN", "null_space", "one_blas_thread", "snapshot"]
 
@@ -119,33 +115,6 @@ def null_space(cq: np.ndarray, n: int, tolerance: float = 1e-9) -> np.ndarray:
     diagonal = np.abs(np.diag(r))
     rank = int(np.sum(diagonal > tolerance * max(float(diagonal[0]) if diagonal.size else 0.0, 1e-300)))
     return q[:, rank:]
-
-
-_BLAS: list = []  # the BLAS libraries' thread controllers, found once
-
-
-@contextlib.contextmanager
-def one_blas_thread():
-    """Context manager: the BLAS calls inside on one thread.  The libraries are found once (threadpoolctl's
-    controller); each use then only reads and sets their thread counts (a few us; threadpoolctl's ``limit``
-    scans the libraries again on every call: about 60 us, measured, a fifth of a continuation point's check).
-    Inside another use it only reads them (a sweep holds one around all its points' checks)."""
-    if ThreadpoolController is None:
-        yield
-        return
-    if not _BLAS:
-        _BLAS.append(ThreadpoolController().select(user_api="blas").lib_controllers)
-    libraries = _BLAS[0]
-    saved = [lib.get_num_threads() for lib in libraries]
-    try:
-        for lib, n in zip(libraries, saved):
-            if n != 1:
-                lib.set_num_threads(1)
-        yield
-    finally:
-        for lib, n in zip(libraries, saved):
-            if n != 1:
-                lib.set_num_threads(n)
 
 
 class StabilityProbe:

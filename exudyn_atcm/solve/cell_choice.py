@@ -60,7 +60,7 @@ from ..model.signals import Signal
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs.layout import check_end_connections, rigid_groups
-from ..mbs.stability import one_blas_thread
+from ..mbs.blas_threads import one_blas_thread
 from . import mechanism_solve
 from .corner_grid import distinct_drives
 from .step_choice import check_accuracy

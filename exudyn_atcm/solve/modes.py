@@ -22,6 +22,7 @@ from ..mbs import linear_model as lm
 from ..mechanism.points import MechanismError, closest
 from .linear_state import as_mechanism, equilibrium_state
 from .mechanism_static import VoltageSpec
+from ..mbs.blas_threads import one_blas_thread
 
 __all__ = ["Modes", "modes", "modes_of_state", "modes_state"]
 
@@ -157,9 +158,10 @@ def modes_of_state(state: Any, n: int) -> Modes:
     N = mats.N
     if n > N.shape[1]:
         raise ValueError(f"n must be <= the number of degrees of freedom ({N.shape[1]}), got {n}")
-    Kr = N.T @ mats.K @ N
-    Mr = N.T @ mats.M @ N
-    w2, vecs = eigh(0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T), subset_by_index=[0, n - 1])
+    with one_blas_thread():  # after the import: scipy's own BLAS limited too
+        Kr = N.T @ mats.K @ N
+        Mr = N.T @ mats.M @ N
+        w2, vecs = eigh(0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T), subset_by_index=[0, n - 1])
     if np.any(w2 < 0.0):
         warnings.warn(f"modes: {int(np.sum(w2 < 0))} of the lowest {n} eigenvalues of the tangent stiffness are "
                       f"negative at {state.description}: the equilibrium is unstable; those modes have negative "

@@ -272,8 +272,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
     else:
         actuator = _check_actuator(system)
         mech = actuator.as_mechanism(tip_force)
-    # once (the cells' choice's last build, or a new one): the prediction, the probe and the run start from its built
-    # state, as a BuiltSystem's
+    # one build (the cells' choice's, or a new one): the prediction, the probe and the run start from its built state
     model = choice.built if choice is not None and choice.built is not None else mb.build(mech)
     initial = runs.save_state(model)
 

@@ -51,7 +51,7 @@ from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mechanism.damped import MaterialDamped
-from ..mbs.stability import one_blas_thread
+from ..mbs.blas_threads import one_blas_thread
 from ..model.signals import Steps
 from . import mechanism_solve
 from .corner_grid import MAX_GRID_UNIT, distinct_drives, grid_unit

@@ -26,7 +26,8 @@ import numpy as np
 
 from ..mbs import solver_runs as runs
 from ..mbs.model import MechanismModel
-from ..mbs.stability import Stability, StabilityProbe, one_blas_thread
+from ..mbs.blas_threads import one_blas_thread
+from ..mbs.stability import Stability, StabilityProbe
 from ..mbs.stepping import Stepping
 from ..mbs.sweep_solve import set_state, solve_points, system_state
 from ..mechanism.assembly import Mechanism
