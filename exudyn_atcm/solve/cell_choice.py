@@ -21,7 +21,7 @@ error, measured on the mechanism itself:
 - the **static poses**: the equilibria at the drives' start voltages and at the voltages where
   each drive's program is highest and lowest over the run, under the mechanism's loads (one
   static sweep); the largest difference of a position column [m] relative to the travel
-  between those poses;
+  between those poses (where they do not move: relative to their distance from the reference pose);
 - the **lowest eigenfrequency** about the reference pose (unloaded: its convergence in the count is the
   discretisation's, and no equilibrium is needed): its relative change ``delta``, turned into a
   position error by the one-mode stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`:
@@ -217,12 +217,26 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[fl
     return frequency, poses, model
 
 
+def _travel(mech: Mechanism, poses: dict[str, np.ndarray]) -> float:
+    """The largest range [m] of a position column over the static poses (a run starts from the first: under the
+    loads, at the drives' start voltages).  Where they do not move (no drive, or a constant program), the largest
+    distance of a pose from the reference pose instead: the deflection is then the only scale of a pose's error."""
+    travel = max((float(np.ptp(v)) for v in poses.values()), default=0.0)
+    if travel > 0.0 and all(v.size > 1 for v in poses.values()):
+        return travel
+    reference = {f"{name}.{point}_{axis}": xy[k] for name, comp in mech.components.items()
+                 for point, xy in comp.points.items() for k, axis in enumerate("xy")}
+    return max((float(np.max(np.abs(v - reference[c]))) for c, v in poses.items() if c in reference), default=0.0)
+
+
 def frequency_error_share(mech: Mechanism, t_end: float, frequency: float, delta: float, zeta: float,
                           strains: dict | None = None) -> float:
     """Largest position error [-] of the unit travel that a relative error ``delta`` of the lowest mode's
     ``frequency`` [Hz] causes over ``t_end`` [s] (the one-mode stand-in, both responses exact; the worst drive's).
-    Without a known strain (a controller) the phase drift ``2 pi f t_end delta``, at most 2.  ``strains``: a dict
-    that keeps the drives' unit strains by sample count between calls for one mechanism's drives."""
+    Without a strain that changes: 0 where nothing else excites the mode (the run starts at rest in its
+    equilibrium under constant loads), else (a controller's drive, a load given as a function of time) the
+    phase drift ``2 pi f t_end delta``, at most 2.  ``strains``: a dict that keeps the drives' unit strains by
+    sample count between calls for one mechanism's drives."""
     if delta == 0.0:
         return 0.0
     omega = 2.0 * math.pi * frequency
@@ -234,7 +248,10 @@ def frequency_error_share(mech: Mechanism, t_end: float, frequency: float, delta
         kept[n] = [s for s in (unit_strain(d, times) for d in distinct_drives(mech)) if s is not None]
     strains = kept[n]
     if not strains:
-        return min(2.0, 2.0 * math.pi * frequency * t_end * delta)
+        excited = (any(getattr(d, "controller", None) is not None for d in mech.drives.values())
+                   or any(callable(getattr(load, name, None)) for load in (*mech.forces, *mech.torques)
+                          for name in ("force", "torque")))
+        return min(2.0, 2.0 * math.pi * frequency * t_end * delta) if excited else 0.0
     dt = t_end / n
     worst = 0.0
     # one BLAS thread: the responses' block products are small, and a threaded BLAS (OpenBLAS) leaves its
@@ -336,7 +353,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
         f, poses, model = _measure(candidate, points)
         if previous is not None:
             n0, f0, poses0, model0 = previous
-            travel = max((float(np.ptp(v)) for v in poses.values()), default=0.0)
+            travel = _travel(mech, poses)
             common = [c for c in poses if c in poses0]
             static = (max(float(np.max(np.abs(poses[c] - poses0[c]))) for c in common) / travel
                       if common and travel > 0.0 else 0.0)
