@@ -8,15 +8,15 @@ SVD in scipy's own OpenBLAS, which the limit missed when numpy's was found first
 
 from __future__ import annotations
 
-import os
 import sys
-import time
 
 import numpy as np
 import pytest
 
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import blas_threads, builder
+
+from _spinning_threads import HAS_PROC, ticks_after
 
 threadpoolctl = pytest.importorskip("threadpoolctl")
 
@@ -56,26 +56,11 @@ def cantilever_chain(n_cells: int) -> atcm.Mechanism:
     return m.weld(a.tip, link.point("A")).pin(b.tip, link.point("B"))
 
 
-@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="reads the threads' CPU time from Linux's /proc")
+@pytest.mark.skipif(not HAS_PROC, reason="reads the threads' CPU time from Linux's /proc")
 def test_a_build_and_an_eigenvalue_analysis_leave_no_blas_worker_spinning():
     if all(n <= 1 for n in blas_threads_now()):
         pytest.skip("a single-threaded BLAS: nothing can spin")
-
-    def others() -> int:
-        ticks = 0
-        for tid in os.listdir("/proc/self/task"):
-            if int(tid) != os.getpid():
-                with open(f"/proc/self/task/{tid}/stat") as f:
-                    fields = f.read().rsplit(")", 1)[1].split()
-                ticks += int(fields[11]) + int(fields[12])
-        return ticks
-
     mech = cantilever_chain(48)  # 2 x 48 rigid cells: a constraint Jacobian of about 290 x 300
     for analysis in (lambda: builder.build(mech), lambda: atcm.eigenfrequencies(mech, n=2)):
-        analysis()  # warm
-        time.sleep(0.3)
-        before = others()
-        analysis()
-        time.sleep(0.3)  # a spinning worker would run on meanwhile
-        assert others() - before <= 2  # clock ticks of 10 ms: what other threads may take by chance
+        assert ticks_after(analysis) <= 2  # clock ticks of 10 ms: what other threads may take by chance
     assert np.all(np.isfinite(atcm.eigenfrequencies(mech, n=2)))

@@ -10,8 +10,6 @@ kind at the same step, so the time error cancels.
 from __future__ import annotations
 
 import math
-import os
-import time
 import warnings
 
 import numpy as np
@@ -24,6 +22,8 @@ from exudyn_atcm.model.signals import Sine, Steps, Triangle
 from exudyn_atcm.solve import cell_choice
 from exudyn_atcm.solve.cell_choice import SPACE_SHARE, choose_cells, frequency_error_share
 from exudyn_atcm.solve.step_choice import position_error
+
+from _spinning_threads import HAS_PROC, ticks_after
 
 CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
 MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
@@ -251,30 +251,15 @@ def test_a_chain_of_rigid_cells_doubles_its_count_and_meets_the_target():
     assert 0.7 * spatial <= info["cells_estimated_error"] <= 2.0 * spatial
 
 
-@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="reads the threads' CPU time from Linux's /proc")
+@pytest.mark.skipif(not HAS_PROC, reason="reads the threads' CPU time from Linux's /proc")
 def test_the_choice_leaves_no_blas_thread_spinning():
     # OpenBLAS's workers spin about 0.1 s of CPU after a threaded product (a tenth of a core taken from a parallel
     # study's other worker); the stand-in's small block products run on one thread.  Measured before: 13 ticks
     threadpoolctl = pytest.importorskip("threadpoolctl")
     if all(lib["num_threads"] <= 1 for lib in threadpoolctl.threadpool_info() if lib["user_api"] == "blas"):
         pytest.skip("a single-threaded BLAS: nothing can spin")
-
-    def others() -> int:
-        ticks = 0
-        for tid in os.listdir("/proc/self/task"):
-            if int(tid) != os.getpid():
-                with open(f"/proc/self/task/{tid}/stat") as f:
-                    fields = f.read().rsplit(")", 1)[1].split()
-                ticks += int(fields[11]) + int(fields[12])
-        return ticks
-
     m = four_bar("auto", program=Triangle(750.0, 750.0, 0.5))
-    choose_cells(m, 0.5, 1e-3)  # warm (imports, compiled kernels)
-    time.sleep(0.3)
-    before = others()
-    choose_cells(m, 0.5, 1e-3)
-    time.sleep(0.3)  # a spinning worker would run on meanwhile
-    assert others() - before <= 2  # clock ticks of 10 ms: what other threads of the process may take by chance
+    assert ticks_after(lambda: choose_cells(m, 0.5, 1e-3)) <= 2  # clock ticks of 10 ms: what may be taken by chance
 
 
 def loaded_strip(n_cells, cell="rigid") -> atcm.Mechanism:

@@ -11,7 +11,7 @@ import numpy as np
 
 import exudyn_atcm as atcm
 from exudyn_atcm.mbs import builder as mb
-from exudyn_atcm.mbs import stability
+from exudyn_atcm.mbs import blas_threads, stability
 from exudyn_atcm.mbs.continuation_settings import DENSE_SIZE, continuation_settings
 from exudyn_atcm.solve import sweep_continuation
 
@@ -53,8 +53,8 @@ def test_a_smooth_sweep_continues_in_one_static_solve(monkeypatch):
 
 
 def test_one_blas_thread_inside_and_the_counts_restored_after():
-    with stability.one_blas_thread():
-        libraries = stability._BLAS[0]
+    with stability.one_blas_thread():  # still importable from stability; it lives in mbs.blas_threads
+        libraries = blas_threads._BLAS[0]
         assert all(lib.get_num_threads() == 1 for lib in libraries)
     outside = [lib.get_num_threads() for lib in libraries]
     with stability.one_blas_thread():
