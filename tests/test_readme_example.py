@@ -25,12 +25,17 @@ def test_readme_python_example_runs_and_keeps_the_coupler_rigid():
         warnings.simplefilter("error")  # the example must not warn on its own parameters
         exec(compile(blocks[0], "README.md", "exec"), namespace)  # noqa: S102 - the README's example
     r = namespace["result"]
-    # accuracy=1e-3: the step it chose divides 0.1 s, every step is recorded, and the run's own
-    # error estimate (a probe run at twice the step, Richardson) is within the target
+    # accuracy=1e-3 with the crank's cells left open (n_cells="auto"): the cells chosen within 0.3 of the
+    # target, the step it chose divides 0.1 s, every step is recorded, and the run's own error estimate (a
+    # probe run at twice the step, Richardson) is within the step's share
     step = r.info["step [s]"]
+    accuracy = r.info["accuracy"]
     assert r.n_rows == round(0.1 / step) + 1
-    assert r.info["accuracy"]["estimated_error"] <= 1e-3
-    assert "for 0.001 of the travel" in r.info["step_choice"]
+    assert accuracy["target"] == 1e-3 and accuracy["cells_estimated_error"] <= 0.3e-3
+    assert accuracy["estimated_error"] <= accuracy["step_target"] <= 1e-3
+    assert r.info["cell_choice"].startswith(f"bender 'crank': {r.parameters['crank.segment_1.n_cells']} rod modes "
+                                            "for 0.0003 of the travel")
+    assert "of 0.001" in r.info["step_choice"]
     point = {k: np.column_stack([r[f"coupler.{k}_x"], r[f"coupler.{k}_y"]]) for k in "ABP"}
     for a, b, ref in (("A", "B", 0.04), ("A", "P", math.hypot(0.02, 0.02)), ("B", "P", math.hypot(0.02, 0.02))):
         np.testing.assert_allclose(np.linalg.norm(point[a] - point[b], axis=1), ref, rtol=0, atol=1e-9)
