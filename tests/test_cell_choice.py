@@ -121,6 +121,14 @@ def test_the_kind_is_ritz_for_a_cantilever_and_rod_where_ritz_is_refused():
     assert choose_cells(four_bar("auto", "auto"), 0.1, 1e-2).cells["crank"][0] == "rod"
 
 
+def test_a_cantilever_of_two_segments_takes_rod_cells():
+    # ritz models one uniform segment (refused at the build): the open kind falls to rod
+    segments = [atcm.Segment(0.05, "auto", atcm.PiezoDrive(Triangle(750.0, 750.0, 0.2))), atcm.Segment(0.037, "auto")]
+    b = atcm.Bender("b", width=28e-3, passive=CFC, active=MFC, segments=segments, cell="auto")
+    choice = choose_cells(atcm.Mechanism("two").add(b).ground(b.base), 0.2, 1e-2)
+    assert choice.cells["b"][0] == "rod"
+
+
 def test_an_open_kind_with_a_fixed_count_keeps_the_count():
     choice = choose_cells(cantilever(5, "auto"), 0.1)
     assert choice.cells == {"b": ("ritz", 5)} and "ritz cells, the cheapest kind" in choice.line
@@ -220,7 +228,7 @@ def test_a_display_with_stages_is_told_each_count_tried():
 @pytest.mark.parametrize("tip_force", [None, (0.0, -0.02)], ids=["unloaded", "tip load"])
 def test_the_run_takes_the_chosen_counts_build_and_gives_the_plain_runs_result(monkeypatch, tip_force):
     # one build per count measured (its eigenvalue analysis and its static poses share it); the run takes the chosen
-    # count's build, put back in its built state: it equals a plain run at the chosen step from a fresh build of the
+    # count's build (the kind's trial build aside), put back in its built state: it equals a plain run at the chosen step from a fresh build of the
     # fixed mechanism to round-off
     from exudyn_atcm.mbs import builder
     calls = []
@@ -228,7 +236,8 @@ def test_the_run_takes_the_chosen_counts_build_and_gives_the_plain_runs_result(m
     monkeypatch.setattr(builder, "build", lambda *a, **k: calls.append(1) or build(*a, **k))
     run = atcm.simulate(cantilever("auto", "auto", tip_force=tip_force), 0.1, accuracy=1e-2)
     (kind, n), = [tuple(v.split()[::-1]) for v in run.info["accuracy"]["cells"].values()]
-    assert len(calls) == int(n) - 2 + 2  # counts 2 ... n + 1
+    # counts 2 ... n + 1, and unloaded the trial build that finds ritz possible (a tip load refuses it before)
+    assert len(calls) == int(n) - 2 + 2 + (tip_force is None)
     monkeypatch.setattr(builder, "build", build)
     plain = atcm.simulate(cantilever(int(n), kind, tip_force=tip_force), 0.1, step=run.info["step [s]"])
     for name in plain.names:

@@ -9,8 +9,8 @@ estimated error leaves of ``a`` (at least ``1 - SPACE_SHARE`` of it), so that th
 **The kind** (``cell="auto"``): the cheapest of :data:`~exudyn_atcm.mechanism.bender.AUTO_CELLS`
 that the bender's connections and loads allow (the kinds' own refusals,
 :meth:`~exudyn_atcm.cells.CellKind.end_refusal` and
-:meth:`~exudyn_atcm.cells.CellKind.tip_load_refusal`): ``ritz`` for a cantilever without tip
-loads, ``rod`` otherwise.  Both span the same assumed modes and have equal errors at equal
+:meth:`~exudyn_atcm.cells.CellKind.tip_load_refusal`, and a trial build): ``ritz`` for a
+one-segment cantilever without tip loads, ``rod`` otherwise.  Both span the same assumed modes and have equal errors at equal
 count; ``ritz`` costs about a quarter of ``rod`` a step (``benchmarks/bench_rod_vs_ritz.py``).
 
 **The count** (``n_cells="auto"``): every open bender takes the same count, tried in a ladder
@@ -154,7 +154,8 @@ def with_cells(mech: Mechanism, cells: dict[str, tuple[str, int]]) -> Mechanism:
 
 
 def _kind_of(mech: Mechanism, bender: Bender) -> str:
-    """The cheapest kind of :data:`AUTO_CELLS` whose refusals ``bender``'s connections and loads in ``mech`` pass."""
+    """The cheapest kind of :data:`AUTO_CELLS` that ``bender`` in ``mech`` can be made of: its connections and loads
+    pass the kind's refusals, and a build of it succeeds (``ritz`` models one uniform segment: said at the build)."""
     if "cell" not in bender.open_choices:
         return bender.cell.name
     for kind in AUTO_CELLS[:-1]:
@@ -162,6 +163,7 @@ def _kind_of(mech: Mechanism, bender: Bender) -> str:
         try:
             groups, group_of = rigid_groups(trial)
             check_end_connections(trial, groups, group_of)
+            mb.build(trial)
         except MechanismError:
             continue
         return kind
