@@ -10,7 +10,9 @@ kind at the same step, so the time error cancels.
 from __future__ import annotations
 
 import math
+import sys
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -25,23 +27,14 @@ from exudyn_atcm.solve.step_choice import position_error
 
 from _spinning_threads import HAS_PROC, ticks_after
 
-CFC = atcm.Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
-MFC = atcm.Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+from readme_systems import CFC, MFC, readme_four_bar  # noqa: E402 - the README's materials and four-bar
 
 
 def four_bar(n_cells, cell="rod", program=None) -> atcm.Mechanism:
-    """The README's four-bar, its crank driven by a triangle 0 -> 1500 -> 0 V of period 0.1 s."""
-    program = Triangle(750.0, 750.0, 0.1) if program is None else program
-    crank = atcm.Bender("crank", width=10e-3, passive=CFC, active=MFC, length=0.03, n_cells=n_cells, cell=cell,
-                        drive=atcm.PiezoDrive(program), angle=math.pi / 2)
-    coupler = atcm.Link("coupler", {"A": (0.0, 0.03), "B": (0.04, 0.03), "P": (0.02, 0.05)}, mass=1e-4, inertia=1e-8)
-    rocker = atcm.Link("rocker", {"B": (0.04, 0.03), "O": (0.04, 0.0)}, mass=1e-4, inertia=1e-8)
-    m = atcm.Mechanism("four_bar").add(crank, coupler, rocker)
-    m.ground(crank.base)
-    m.pin(crank.tip, coupler.point("A"))
-    m.pin("coupler.B", "rocker.B")
-    m.ground("rocker.O", joint="pin")
-    return m
+    """The README's four-bar (``benchmarks/readme_systems.py``), its crank driven by a triangle 0 -> 1500 -> 0 V of
+    period 0.1 s."""
+    return readme_four_bar(Triangle(750.0, 750.0, 0.1) if program is None else program, n_cells=n_cells, cell=cell)
 
 
 def cantilever(n_cells, cell="rod", tip_force=None, program=None) -> atcm.Mechanism:

@@ -76,6 +76,9 @@ class Segment:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "length", positive_float("length", self.length))
+        if isinstance(self.n_cells, str) and not is_auto(self.n_cells):
+            raise ValueError(f"n_cells must be an integer >= 1 or {AUTO!r} (chosen for a run's accuracy), got "
+                             f"{self.n_cells!r}")
         if not is_auto(self.n_cells):
             object.__setattr__(self, "n_cells", check_cell_count("n_cells", positive_int("n_cells", self.n_cells),
                                                                  "Segment"))

@@ -56,15 +56,14 @@ from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mechanism.bender import AUTO_CELLS, Bender, Segment, is_auto
 from ..mechanism.points import MechanismError
-from ..model.signals import Signal
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs.layout import check_end_connections, rigid_groups
 from ..mbs.blas_threads import one_blas_thread
 from . import mechanism_solve
 from .corner_grid import distinct_drives
-from .step_choice import check_accuracy
-from .step_surrogate import ExactResponse, unit_strain
+from .step_choice import check_accuracy, lowest_damping_ratio
+from .step_surrogate import ExactResponse, program_voltages, unit_strain
 
 __all__ = ["SPACE_SHARE", "CellChoice", "open_benders", "with_cells", "choose_cells", "frequency_error_share"]
 
@@ -186,8 +185,7 @@ def _pose_points(mech: Mechanism, t_end: float) -> list[dict[str, float]] | None
     if any(getattr(d, "controller", None) is not None for d in drives.values()):
         return None  # a controller's voltage depends on the run
     times = np.linspace(0.0, t_end, VOLTAGE_SAMPLES)
-    volts = {name: (np.asarray(d.voltage(times), dtype=float) if isinstance(d.voltage, Signal)  # arrays at once
-                    else np.array([d.voltage_at(float(t)) for t in times])) for name, d in drives.items()}
+    volts = {name: program_voltages(d, times) for name, d in drives.items()}
     picks = [0] + [int(f(v)) for v in volts.values() for f in (np.argmax, np.argmin)]
     return [{name: float(v[i]) for name, v in volts.items()} for i in sorted(set(picks))]
 
@@ -265,12 +263,6 @@ def frequency_error_share(mech: Mechanism, t_end: float, frequency: float, delta
             b = ExactResponse(s, dt, omega * (1.0 + delta), zeta)(times)
             worst = max(worst, float(np.max(np.abs(a - b))))
     return worst
-
-
-def _damping_ratio(mech: Mechanism, omega: float) -> float:
-    """Smallest damping ratio of the mechanism's benders at ``omega`` [rad/s] (0 without any)."""
-    ratios = [b.rayleigh_damping.alpha / (2.0 * omega) + b.rayleigh_damping.beta * omega / 2.0 for b in mech.benders]
-    return max(min(ratios), 0.0) if ratios else 0.0
 
 
 def choose_cells(mechanism: Mechanism, t_end: float, accuracy: float = 1e-3, *, progress: Any = None) -> CellChoice:
@@ -362,7 +354,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
             known = math.isfinite(f) and math.isfinite(f0)
             delta = abs(f0 - f) / f if known else 0.0
             dynamic = (frequency_error_share(candidate, t_end, f0, factor * delta,
-                                             _damping_ratio(candidate, 2.0 * math.pi * f0), kept) if known else 0.0)
+                                             lowest_damping_ratio(candidate, 2.0 * math.pi * f0), kept) if known else 0.0)
             estimate = factor * static + dynamic
             tried.append((n0, f0, static, estimate))
             if estimate <= accuracy:

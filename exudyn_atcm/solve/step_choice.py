@@ -61,7 +61,7 @@ from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
 from .step_surrogate import StandIn, unit_strain
 
 __all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "check_step_or_accuracy", "StepPrediction", "predict_steps",
-           "position_error", "accurate_run", "probe_window"]
+           "position_error", "accurate_run", "probe_window", "lowest_damping_ratio"]
 
 #: Order of the time integration of a system without cells (generalized-alpha; as in :mod:`~exudyn_atcm.solve.step_error`).
 NOMINAL_ORDER = 2.0
@@ -188,7 +188,7 @@ def _lowest_frequency(mech: Mechanism, built: Built | None = None) -> tuple[floa
     return f, which
 
 
-def _damping_ratio(mech: Mechanism, omega: float) -> float:
+def lowest_damping_ratio(mech: Mechanism, omega: float) -> float:
     """Smallest damping ratio of the mechanism's laminate parts at ``omega`` [rad/s] (0 without any)."""
     ratios = []
     for comp in mech.components.values():
@@ -222,7 +222,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
         return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
                               "no mode to resolve: the drive's features decide", 2, t_end)
     omega = 2.0 * math.pi * frequency
-    zeta = _damping_ratio(mech, omega)
+    zeta = lowest_damping_ratio(mech, omega)
     unit = grid_unit(mech, t_end)  # the strain's corners on its samples too
     n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min))
     n_ref = unit * math.ceil(n_ref / unit)

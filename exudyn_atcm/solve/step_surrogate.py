@@ -35,10 +35,19 @@ import numpy as np
 from ..model.signals import Signal
 from .linear_recurrence import first_component, first_order
 
-__all__ = ["SPECTRAL_RADIUS", "unit_strain", "exact_response", "alpha_response", "ExactResponse", "StandIn"]
+__all__ = ["SPECTRAL_RADIUS", "program_voltages", "unit_strain", "exact_response", "alpha_response", "ExactResponse", "StandIn"]
 
 #: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
 SPECTRAL_RADIUS = 0.8
+
+
+def program_voltages(drive: Any, times: np.ndarray) -> np.ndarray:
+    """The drive's voltage program [V] at ``times`` [s] (the package's programs take arrays at once; any other
+    callable is asked sample by sample)."""
+    program = drive.voltage
+    if isinstance(program, Signal):
+        return np.asarray(program(times), dtype=float)
+    return np.array([drive.voltage_at(float(t)) for t in times])
 
 
 def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
@@ -51,11 +60,7 @@ def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
     """
     if getattr(drive, "controller", None) is not None:
         return None
-    program = drive.voltage
-    if isinstance(program, Signal):
-        volts = np.asarray(program(times), dtype=float)  # the package's programs take arrays
-    else:
-        volts = np.array([drive.voltage_at(float(t)) for t in times])
+    volts = program_voltages(drive, times)
     operator = drive.hysteresis
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the run itself says what is out of range
