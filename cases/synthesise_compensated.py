@@ -21,7 +21,8 @@ on the rising branch; on the falling branch hysteresis puts the coupler point el
    (-500 ... 1500 V) are reported.
 
 **Check.**  A dynamic simulation of the synthesised mechanism with its program (hysteresis in every
-step): the distances of the coupler point to the precision points at the wanted times, on the rising
+step; the time step chosen for ``accuracy``, default 1e-4 of the coupler point's travel: the distances
+are micrometres against a travel of millimetres; ``--set step=...`` fixes it instead): the distances of the coupler point to the precision points at the wanted times, on the rising
 and on the falling branch (``rms_both``), against the same design driven through the voltages of the
 points on the rising branch, both ways, quasi-statically (``uncompensated_rms_both``: hysteresis alone).
 
@@ -38,8 +39,10 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import least_squares
 
-from exudyn_atcm import Result, mechanism_feedforward, simulate, static_sweep
-from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext, case_module
+from exudyn_atcm import Result, mechanism_feedforward, static_sweep
+from exudyn_atcm.casework import (Case, CaseOutput, Parameter, Parameters, RunContext, case_dynamic_run, case_module,
+                                  step_notes)
+from exudyn_atcm.solve import ACCURACY_RANGE
 from exudyn_atcm.plots import axis_label, new_figure, save_figure
 
 
@@ -50,6 +53,9 @@ FOUR_BAR = case_module(Path(__file__).with_name("compliant_four_bar.py"))
 BOUNDS = {"rocker_pivot_height": (0.005, 0.045), "coupler_point_x": (0.0, 0.06), "coupler_point_y": (0.005, 0.045)}
 DESIGN = tuple(BOUNDS)
 RATING = (-500.0, 1500.0)  # V, the MFC P1's rated range
+#: Default ``accuracy`` [-] of the check (relative to the recorded positions' travel, millimetres): the distances it
+#: measures are micrometres.
+DEFAULT_ACCURACY = 1e-4
 
 PARAMETERS = [
     Parameter("n_cells", 3, "-", "rigid cells of the crank bender", minimum=1),
@@ -66,7 +72,10 @@ PARAMETERS = [
               exclusive_minimum=0.0),
     Parameter("dwell", 0.1, "s", "hold at the last precision point before going back", minimum=0.0),
     Parameter("settle", 0.3, "s", "rest after the motion", minimum=0.0),
-    Parameter("step", 2e-4, "s", "time step of the check", exclusive_minimum=0.0),
+    Parameter("step", 0.0, "s", "time step of the check (0: chosen for accuracy)", minimum=0.0),
+    Parameter("accuracy", DEFAULT_ACCURACY, "-", "largest error of the check's recorded positions relative to their "
+              "travel, for which the step is chosen when step = 0", minimum=ACCURACY_RANGE[0],
+              maximum=ACCURACY_RANGE[1]),
 ]
 
 
@@ -127,7 +136,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     times, xs, visits = schedule(p, targets)
     program, report = mechanism_feedforward(build(p, design), "coupler.P_x", times, xs)
     ctx.progress(2, 3)
-    result = simulate(build(p, design, program), float(times[-1]), step=p.step)
+    result = case_dynamic_run(build(p, design, program), float(times[-1]), step=p.step, accuracy=p.accuracy,
+                              default_accuracy=DEFAULT_ACCURACY)
     ctx.progress(3, 3)
     every = result.every_step
     wanted = np.concatenate([targets, targets[-2::-1]])
@@ -165,7 +175,8 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
                     {"time": "s", "target_x": "m", "target_y": "m", "reached_x": "m", "reached_y": "m",
                      "distance": "m"})
     notes = {"feedforward": report.summary(), "design": design, "least_squares": {"status": int(fit.status),
-                                                                                  "message": str(fit.message)}}
+                                                                                  "message": str(fit.message)},
+             **step_notes(result)}
     return CaseOutput(series, scalars, tables={"points": points}, notes=notes)
 
 

@@ -298,7 +298,7 @@ def test_bounds_of_ints_and_lists_and_their_declaration():
 def test_a_case_refuses_a_value_outside_its_declared_range_before_it_runs():
     # the four-bar's step is used only after its static sweep: the bound refuses it when it is read
     case = load_case(CASES / "compliant_four_bar.py")
-    with pytest.raises(CaseError, match=r"case compliant_four_bar: step must be > 0 \[s\], got -1.0; valid parameters"):
+    with pytest.raises(CaseError, match=r"case compliant_four_bar: step must be >= 0 \[s\], got -1.0; valid parameters"):
         case.resolve(["step=-1"])
     with pytest.raises(CaseError, match=r"dynamic_period must be >= 0 \[s\], got -0.5"):  # 0: none; < 0 was a silent none
         case.resolve({"dynamic_period": -0.5})

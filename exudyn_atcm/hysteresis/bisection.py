@@ -77,6 +77,16 @@ class BisectionInverse(HysteresisOperator):
     -----
     Initial state (after :meth:`reset`): the forward model reset.  :attr:`output` is the
     last committed input ``u`` (``nan`` after a reset).
+
+    **A wanted output that holds keeps its input.**  Where the model's output is flat in the input
+    (the paper's continuous Preisach loop leaves a reversal horizontally: after a rise to -149 V, its
+    output stays within 1e-12 of its value down to -414 V), many inputs give the wanted output, and
+    bisection picks an end of that stretch by the last bit of the output's rounding: a constant
+    wanted output, committed three times, gave -149 V, -414 V, -149 V (a spurious 265 V pulse of one
+    sample in a feedforward program, which a step chosen for accuracy then resolved with 22 steps per
+    millisecond).  When the wanted output equals the one committed last (within ``1e-12`` of the
+    reachable range) and that was reached, the last input is committed again: re-applying an input
+    leaves a rate-independent memory as it was, so the output is the same.
     """
 
     def __init__(self, model: Any, input_range: tuple[float, float] | None = None, tolerance: float | None = None) -> None:
@@ -102,18 +112,19 @@ class BisectionInverse(HysteresisOperator):
         """Reset the forward model; clip counters to zero."""
         self.model.reset()
         self._u = math.nan
+        self._y = math.nan  # the wanted output committed last, if it was reached (nan: none, or clipped)
         self.clip_count = 0
         self.largest_clip = 0.0
 
     def checkpoint(self) -> tuple:
-        """Snapshot of the forward memory and the last input."""
-        return (self.model.checkpoint(), self._u)
+        """Snapshot of the forward memory, the last input and the last wanted output."""
+        return (self.model.checkpoint(), self._u, self._y)
 
     def restore(self, snapshot: Any) -> None:
         """Put back a memory returned by :meth:`checkpoint`."""
-        memory, u = snapshot
+        memory, u, y = snapshot
         self.model.restore(memory)
-        self._u = u
+        self._u, self._y = u, y
 
     @property
     def output(self) -> float:
@@ -132,6 +143,8 @@ class BisectionInverse(HysteresisOperator):
         # an output beyond the reachable ones by rounding only (e.g. a saturated output returned by a
         # lag's inverse) is reached, not clipped
         rounding = 1e-12 * max(y_hi - y_lo, abs(y_hi), abs(y_lo))
+        if abs(y - self._y) <= rounding:  # a hold: the last input again (see the class notes)
+            return self._u, 0.0
         if y >= y_hi:
             return hi, (0.0 if y - y_hi <= rounding else y - y_hi)
         if y <= y_lo:
@@ -176,7 +189,7 @@ class BisectionInverse(HysteresisOperator):
                 stacklevel=2,
             )
         self.model.commit(u)
-        self._u = u
+        self._u, self._y = u, (y if excess == 0.0 else math.nan)
         return u
 
     def __repr__(self) -> str:

@@ -79,6 +79,11 @@ VOLTAGE_SAMPLES = 2001
 SAMPLES_PER_PERIOD = 40
 #: Largest sample count of the stand-in.
 MAX_SAMPLES = 400_000
+#: Static poses whose travel (or deflection) is below this share of the mechanism's size (the span of its parts'
+#: points in the reference pose) do not move: their differences between counts are round-off, not a count's error
+#: (a straight column under an axial load: its inextensible rod stays within 1e-17 m, and the differences of two
+#: counts were 1 and 5 times that "travel").
+STILL_POSES = 1e-9
 
 
 @dataclass
@@ -217,6 +222,20 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[fl
     return frequency, poses, model
 
 
+def _reference_points(mech: Mechanism) -> dict[str, float]:
+    """The position columns' values [m] in the reference pose, by column name."""
+    return {f"{name}.{point}_{axis}": xy[k] for name, comp in mech.components.items()
+            for point, xy in comp.points.items() for k, axis in enumerate("xy")}
+
+
+def _size(mech: Mechanism) -> float:
+    """The span [m] of the mechanism's points in the reference pose (its largest extent along x or y)."""
+    reference = _reference_points(mech)
+    spans = [max(v) - min(v) for v in ([x for c, x in reference.items() if c.endswith(axis)] for axis in ("_x", "_y"))
+             if v]
+    return max(spans, default=0.0)
+
+
 def _travel(mech: Mechanism, poses: dict[str, np.ndarray]) -> float:
     """The largest range [m] of a position column over the static poses (a run starts from the first: under the
     loads, at the drives' start voltages).  Where they do not move (no drive, or a constant program), the largest
@@ -224,8 +243,7 @@ def _travel(mech: Mechanism, poses: dict[str, np.ndarray]) -> float:
     travel = max((float(np.ptp(v)) for v in poses.values()), default=0.0)
     if travel > 0.0 and all(v.size > 1 for v in poses.values()):
         return travel
-    reference = {f"{name}.{point}_{axis}": xy[k] for name, comp in mech.components.items()
-                 for point, xy in comp.points.items() for k, axis in enumerate("xy")}
+    reference = _reference_points(mech)
     return max((float(np.max(np.abs(v - reference[c]))) for c, v in poses.items() if c in reference), default=0.0)
 
 
@@ -338,6 +356,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
     chosen_n, estimate, delta = counts[-1], math.inf, math.nan
     stage = getattr(progress, "stage", None)
     kept: dict = {}  # the drives' unit strains for the stand-in, by sample count
+    size, still, dynamic = _size(mech), False, 0.0
     for n in counts:
         if callable(stage):
             stage("cell choice", 0.0, f"{names}: {n} {what} {unit} (static poses, lowest eigenfrequency)")
@@ -348,9 +367,10 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
         if previous is not None:
             n0, f0, poses0, model0 = previous
             travel = _travel(mech, poses)
+            still = not travel > STILL_POSES * size
             common = [c for c in poses if c in poses0]
             static = (max(float(np.max(np.abs(poses[c] - poses0[c]))) for c in common) / travel
-                      if common and travel > 0.0 else 0.0)
+                      if common and not still else 0.0)
             known = math.isfinite(f) and math.isfinite(f0)
             delta = abs(f0 - f) / f if known else 0.0
             dynamic = (frequency_error_share(candidate, t_end, f0, factor * delta,
@@ -367,8 +387,13 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
     head = f"bender{'s' if len(benders) > 1 else ''} {names}: {chosen_n} {what} {unit} for {accuracy:g} of the travel"
     if estimate <= accuracy:
         n0, f0, static, _ = tried[-1]
-        line = (f"{head}: the next count moves the lowest eigenfrequency ({f0:.4g} Hz) by {delta:.2g} and the "
-                f"static poses by {static:.2g} of their travel (estimated error {estimate:.2g})")
+        frequency = f"the next count moves the lowest eigenfrequency ({f0:.4g} Hz) by {delta:.2g}"
+        if delta > 0.0 and dynamic == 0.0:
+            frequency += " (nothing in the run excites that mode: it starts at rest under constant loads)"
+        poses_said = (f"the static poses by {static:.2g} of their travel" if not still else
+                      f"the static poses do not move (by less than {STILL_POSES:g} of the mechanism's size: "
+                      "no scale to compare the counts' poses with)")
+        line = f"{head}: {frequency} and {poses_said} (estimated error {estimate:.2g})"
     else:
         line = (f"{head}: the most tried, not checked (the count below it still differs from it by an estimated "
                 f"{estimate:.2g})")
