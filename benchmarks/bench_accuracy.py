@@ -2,13 +2,16 @@
 
 For each system (the README four-bar with a 3-mode rod crank, the micro gripper of
 ``cases/micro_gripper.py`` with 4-mode rod benders and the paper's Preisach operator, the lone
-paper actuator as a 3-mode rod) and drive (triangle, sine, step program), one period:
+paper actuator as a 3-mode rod) and drive (triangle, sine, step program; for the lone actuator and the four-bar
+also a measured voltage record: a sine sampled every millisecond with 5 V of noise, reversing at nearly
+every sample), one period:
 
 * ``simulate(..., accuracy=target)``: the step it chose, its error against a time-converged
   reference (a run at a quarter of the finest step searched, or of the chosen step if finer), and
   its CPU time, the prediction and the probe runs included;
 * a search over steps ``t_end / n`` (``n`` on a ladder of ratio 2^(1/4), at least 20 steps per shortest
-  feature of the drive, as ``accuracy=`` keeps: no warning about the program's resolution): the
+  feature of the drive, or for a record the grid of its samples, as ``accuracy=`` keeps: no warning about
+  the program's resolution, :func:`exudyn_atcm.solve.corner_grid.feature_steps`): the
   coarsest step whose run meets the target against the same reference, and its CPU time (one run);
 * the ratio of the two CPU times (goal: at most 1.5), ``run alone``: the ratio for the run at the
   chosen step without the prediction and the probe (what the choice of the step itself costs), and
@@ -47,7 +50,8 @@ import exudyn_atcm as atcm
 from exudyn_atcm.casework import Parameters
 from exudyn_atcm.io.atomic import write_text
 from exudyn_atcm.model import Sine, Steps, Triangle
-from exudyn_atcm.solve.corner_grid import grid_unit
+from exudyn_atcm.model.sampled_program import SampledProgram
+from exudyn_atcm.solve.corner_grid import feature_steps, grid_unit
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "cases"))
 import micro_gripper  # noqa: E402
@@ -86,6 +90,14 @@ def lone_cells(program, n_cells="auto", cell="auto") -> atcm.Mechanism:
     return atcm.Mechanism("lone").add(b).ground(b.base)
 
 
+def record(mean: float, amplitude: float, period: float, sample: float = 1e-3, noise: float = 5.0) -> SampledProgram:
+    """A measured voltage record [V] of one period: ``mean - amplitude cos`` sampled every ``sample`` [s] with Gaussian
+    noise of ``noise`` [V] (seeded): it reverses at nearly every sample."""
+    t = np.arange(0.0, period + 0.5 * sample, sample)
+    v = mean - amplitude * np.cos(2.0 * math.pi * t / period) + np.random.default_rng(1).normal(0.0, noise, t.size)
+    return SampledProgram(t, v)
+
+
 #: the systems of ``--cells``: name -> builder(program, n_cells, cell) and the kinds its benders allow
 CELL_SYSTEMS = {"lone actuator": (lone_cells, ("ritz", "rod")), "four-bar": (four_bar_cells, ("rod",)),
                 "gripper": (gripper_cells, ("rod",))}
@@ -96,9 +108,11 @@ CASES = [
     ("lone actuator", "triangle", lone, Triangle(500.0, 500.0, 0.1), 0.1, 1e-3),
     ("lone actuator", "sine", lone, Sine(500.0, 500.0, 0.1, -math.pi / 2), 0.1, 1e-3),
     ("lone actuator", "steps", lone, Steps([0.0, 0.02, 0.06], [0.0, 1000.0, 0.0]), 0.1, 1e-2),
+    ("lone actuator", "record", lone, record(500.0, 500.0, 0.1), 0.1, 1e-3),
     ("four-bar", "triangle", four_bar, Triangle(750.0, 750.0, 0.5), 0.5, 1e-3),
     ("four-bar", "sine", four_bar, Sine(750.0, 750.0, 0.5, -math.pi / 2), 0.5, 1e-3),
     ("four-bar", "steps", four_bar, Steps([0.0, 0.05, 0.15], [0.0, 1500.0, 0.0]), 0.2, 1e-2),
+    ("four-bar", "record", four_bar, record(750.0, 750.0, 0.5), 0.5, 1e-3),
     ("gripper", "triangle", gripper, Triangle(500.0, 1000.0, 0.5), 0.5, 1e-3),
     ("gripper", "sine", gripper, Sine(500.0, 1000.0, 0.5, -math.pi / 2), 0.5, 1e-3),
     ("gripper", "steps", gripper, Steps([0.0, 0.05, 0.15], [-500.0, 1500.0, -500.0]), 0.2, 1e-2),
@@ -138,11 +152,8 @@ def case(system, drive, build, program, t_end, target, repeats):
     # inside a step is a first-order error that varies from one count to the next, so the first count off the grid
     # to pass can be a lucky one; until 2026-11-29 the search took any even count)
     system_ = build(program)
-    unit = math.lcm(2, grid_unit(system_ if isinstance(system_, atcm.Mechanism) else system_.as_mechanism(), t_end))
-    ladder = sorted({unit * math.ceil(20 * 2.0 ** (k / 4) / unit) for k in range(0, 80)})
-    # warning-free for the program (at least 20 steps per shortest feature, as accuracy= keeps), up to 4x the chosen count
-    feature = program.shortest_feature(t_end)[0]
-    ladder = [n for n in ladder if 20 * t_end / feature - 1e-9 <= n <= 4 * t_end / h_chosen + 1]
+    mech = system_ if isinstance(system_, atcm.Mechanism) else system_.as_mechanism()
+    ladder = ladder_for(mech, t_end, 0.25 * h_chosen)  # warning-free for the program, up to 4x the chosen count
     n_reference = 4 * max(round(t_end / h_chosen), ladder[-1])  # a multiple of the grid's unit too
     reference = atcm.simulate(build(program), t_end, step=t_end / n_reference)
     err_chosen = rel_error(chosen, reference)
@@ -165,12 +176,13 @@ def case(system, drive, build, program, t_end, target, repeats):
     return row
 
 
-def ladder_for(mech, program, t_end, finest: float) -> list[int]:
-    """Step counts on the drive's grid, warning-free for the program, up to ``t_end / finest``."""
+def ladder_for(mech, t_end, finest: float) -> list[int]:
+    """Step counts on the drive's grid, warning-free for the program (at least 20 steps per shortest feature, or
+    the grid of a record's samples, as accuracy= keeps), up to ``t_end / finest``."""
     unit = math.lcm(2, grid_unit(mech, t_end))
     ladder = sorted({unit * math.ceil(20 * 2.0 ** (k / 4) / unit) for k in range(0, 80)})
-    feature = program.shortest_feature(t_end)[0]
-    return [n for n in ladder if 20 * t_end / feature - 1e-9 <= n <= t_end / finest + 1]
+    floor = feature_steps(mech, t_end, 20, 1)[0]
+    return [n for n in ladder if floor <= n <= t_end / finest + 1]
 
 
 def case_cells(system, drive, program, t_end, target, repeats):
@@ -179,7 +191,7 @@ def case_cells(system, drive, program, t_end, target, repeats):
     c_acc, chosen = cpu(lambda: atcm.simulate(build(program), t_end, accuracy=target), repeats)
     h_chosen = chosen.info["step [s]"]
     cells = chosen.info["accuracy"]["cells"]
-    ladder = ladder_for(build(program, 3, "rod"), program, t_end, h_chosen / 4)
+    ladder = ladder_for(build(program, 3, "rod"), t_end, h_chosen / 4)
     n_reference = 4 * max(round(t_end / h_chosen), ladder[-1])
     reference = atcm.simulate(build(program, 10, "rod"), t_end, step=t_end / n_reference)
     err_chosen = rel_error(chosen, reference)

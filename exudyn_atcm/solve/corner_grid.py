@@ -17,8 +17,9 @@ import numpy as np
 
 from ..mechanism import Mechanism
 from ..model.signals import Sine, Steps, Triangle
+from .run_checks import corners_on_grid, program_feature
 
-__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners"]
+__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners", "feature_steps"]
 
 #: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`).
 MAX_GRID_UNIT = 10_000
@@ -68,3 +69,31 @@ def grid_unit(mech: Mechanism, t_end: float) -> int:
             if unit > MAX_GRID_UNIT:
                 return 1
     return unit
+
+
+def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int) -> tuple[int, float]:
+    """Fewest steps over ``t_end`` [s] the drives' programs ask for, and the shortest feature [s] that asks.
+
+    ``per_feature`` steps per shortest feature (``program_feature``) of each program, except for a
+    piecewise-linear program (one with ``corner_times``: a table, a measured record, a feedforward
+    program) whose corners all lie on the grid of :func:`grid_unit`: sampled exactly at every
+    corner and linear between them, it loses nothing between two steps (the run checks exempt it
+    too, :func:`~exudyn_atcm.solve.run_checks.corners_on_grid`), so it asks only for that grid, and
+    the probe's (``factor`` times coarser) to hold it as well.  A measured voltage record has a
+    reversal at nearly every sample: at ``per_feature`` steps per sample its accuracy run took a
+    step 10 times finer than the accuracy needed (``tests/test_accuracy_runs.py``).  ``(0, inf)``
+    without a feature.
+    """
+    unit = grid_unit(mech, t_end)
+    steps, feature = 0, math.inf
+    for drive in distinct_drives(mech):
+        known = program_feature(drive.voltage, t_end)
+        if known is None:
+            continue
+        if callable(getattr(drive.voltage, "corner_times", None)) and corners_on_grid(drive.voltage, t_end / unit,
+                                                                                       t_end):
+            steps = max(steps, unit * factor)
+            continue
+        feature = min(feature, known[0])
+        steps = max(steps, math.ceil(t_end / known[0] * per_feature - 1e-9))
+    return steps, feature

@@ -13,7 +13,8 @@ run's own error is measured:
    stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`), integrated exactly and by
    the run's generalized-alpha at a ladder of steps (ratio 2^(1/4)).  The chosen step is the
    coarsest of the ladder whose stand-in error is :data:`AIM` of the target, with at least
-   :data:`STEPS_PER_FEATURE` steps per shortest drive feature, rounded so that the run's grid and
+   :data:`STEPS_PER_FEATURE` steps per shortest drive feature (a piecewise-linear program whose corners
+   the grid holds asks only for that grid: :func:`~exudyn_atcm.solve.corner_grid.feature_steps`), rounded so that the run's grid and
    the probe's hold every corner of the drives' programs (:func:`~exudyn_atcm.solve.corner_grid.grid_unit`: a corner between
    steps is a first-order error no probe can estimate).
 2. **Check** (one probe run at twice the step, its warnings not shown, over a window only:
@@ -54,7 +55,7 @@ from ..mechanism.damped import MaterialDamped
 from ..mbs.blas_threads import one_blas_thread
 from ..model.signals import Steps
 from . import mechanism_solve
-from .corner_grid import MAX_GRID_UNIT, distinct_drives, grid_unit
+from .corner_grid import MAX_GRID_UNIT, distinct_drives, feature_steps, grid_unit
 from .interrupts import SimulationInterrupted
 from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
@@ -216,7 +217,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
     feature = _shortest_feature(mech, t_end)
     per_feature = t_end / feature if math.isfinite(feature) else 0.0
-    n_min = max(MIN_STEPS, math.ceil(per_feature * STEPS_PER_FEATURE - 1e-9))
+    n_min = max(MIN_STEPS, feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR)[0])
     if not (frequency > 0.0 and math.isfinite(frequency)):
         n = _on_corners(mech, t_end, n_min, PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
