@@ -410,3 +410,28 @@ def test_a_measured_voltage_record_is_stepped_for_the_accuracy_not_for_its_noise
     assert round(1e-3 / step) * step == pytest.approx(1e-3, rel=1e-9)  # every sample on the grid
     reference = atcm.simulate(actuator(), 0.5, step=1e-3 / 32)
     assert relative_error(run, reference) <= 1e-3
+
+
+def test_a_long_record_keeps_its_samples_on_the_grid():
+    # 20 s sampled every millisecond: 20,000 steps put every sample on the grid.  The largest grid was 10,000
+    # until 2026-11-29: such a record fell off the grid, and the prediction asked for 20 steps per sample
+    # (400,002 steps) with the samples between steps.  The prediction only (a run of 20 s is a long test)
+    from exudyn_atcm.model.sampled_program import SampledProgram
+    from exudyn_atcm.solve.corner_grid import feature_steps
+    t = np.arange(0.0, 20.0 + 5e-4, 1e-3)
+    volts = 500.0 - 500.0 * np.cos(2.0 * np.pi * t / 0.5) + np.random.default_rng(2).normal(0.0, 5.0, t.size)
+    mech = lone(SampledProgram(t, volts)).as_mechanism()
+    assert grid_unit(mech, 20.0) == 20000
+    assert feature_steps(mech, 20.0, 20, 2) == (40000, math.inf)
+    prediction = step_choice.predict_steps(mech, 20.0, 1e-3)
+    assert prediction.n_steps % 40000 == 0 and prediction.n_steps <= 160000
+
+
+def test_a_corner_whose_grid_costs_more_than_its_feature_asks_keeps_the_feature_rule():
+    # one corner at 500000/999983 of the run: its grid would need 2 x 999,983 steps, far more than 20 steps per
+    # feature (the two ramps of about 0.5 s): the program keeps the 20-steps-per-feature floor, as before
+    from exudyn_atcm.solve.corner_grid import feature_steps
+    corner = 500000 / 999983
+    mech = lone(PiecewiseLinear([0.0, corner, 1.0], [0.0, 1000.0, 0.0])).as_mechanism()
+    assert grid_unit(mech, 1.0) == 999983
+    assert feature_steps(mech, 1.0, 20, 2) == (math.ceil(20 / (1.0 - corner)), pytest.approx(1.0 - corner))

@@ -21,8 +21,12 @@ from .run_checks import corners_on_grid, program_feature
 
 __all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners", "feature_steps"]
 
-#: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`).
-MAX_GRID_UNIT = 10_000
+#: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`): a measured voltage record
+#: of 20 s sampled every millisecond needs 20,000 (10,000 until 2026-11-29: such a record fell off the grid, and its
+#: run took 20 steps per sample with the samples between steps).
+MAX_GRID_UNIT = 1_000_000
+#: A corner lies on a grid of ``n`` steps when ``corner / t_end`` is within this of a multiple of ``1 / n``.
+ON_GRID = 1e-9
 
 
 def distinct_drives(mech: Mechanism) -> list[Any]:
@@ -59,11 +63,16 @@ def grid_unit(mech: Mechanism, t_end: float) -> int:
     unit = 1
     for drive in distinct_drives(mech):
         corners = program_corners(drive.voltage, t_end)
-        if corners is None:
+        if corners is None or corners.size == 0:
             continue
-        for c in corners:
-            fraction = Fraction(float(c / t_end)).limit_denominator(MAX_GRID_UNIT)
-            if abs(float(fraction) - c / t_end) > 1e-9:
+        x = np.asarray(corners, dtype=float) / t_end
+        while True:  # the first corner off the grid refines it (a few rounds: the corners share denominators)
+            off = np.abs(x * unit - np.rint(x * unit)) > ON_GRID * unit
+            if not off.any():
+                break
+            c = float(x[int(np.argmax(off))])
+            fraction = Fraction(c).limit_denominator(MAX_GRID_UNIT)
+            if abs(float(fraction) - c) > ON_GRID:
                 return 1
             unit = unit * fraction.denominator // math.gcd(unit, fraction.denominator)
             if unit > MAX_GRID_UNIT:
@@ -79,7 +88,8 @@ def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int
     program) whose corners all lie on the grid of :func:`grid_unit`: sampled exactly at every
     corner and linear between them, it loses nothing between two steps (the run checks exempt it
     too, :func:`~exudyn_atcm.solve.run_checks.corners_on_grid`), so it asks only for that grid, and
-    the probe's (``factor`` times coarser) to hold it as well.  A measured voltage record has a
+    the probe's (``factor`` times coarser) to hold it as well, where that is no more.  The feature
+    returned is the shortest of the other programs (``inf`` without one).  A measured voltage record has a
     reversal at nearly every sample: at ``per_feature`` steps per sample its accuracy run took a
     step 10 times finer than the accuracy needed (``tests/test_accuracy_runs.py``).  ``(0, inf)``
     without a feature.
@@ -90,10 +100,11 @@ def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int
         known = program_feature(drive.voltage, t_end)
         if known is None:
             continue
-        if callable(getattr(drive.voltage, "corner_times", None)) and corners_on_grid(drive.voltage, t_end / unit,
-                                                                                       t_end):
+        asked = math.ceil(t_end / known[0] * per_feature - 1e-9)
+        if (callable(getattr(drive.voltage, "corner_times", None)) and unit * factor <= asked
+                and corners_on_grid(drive.voltage, t_end / unit, t_end)):
             steps = max(steps, unit * factor)
             continue
         feature = min(feature, known[0])
-        steps = max(steps, math.ceil(t_end / known[0] * per_feature - 1e-9))
+        steps = max(steps, asked)
     return steps, feature

@@ -55,7 +55,7 @@ from ..mechanism.damped import MaterialDamped
 from ..mbs.blas_threads import one_blas_thread
 from ..model.signals import Steps
 from . import mechanism_solve
-from .corner_grid import MAX_GRID_UNIT, distinct_drives, feature_steps, grid_unit
+from .corner_grid import distinct_drives, feature_steps, grid_unit
 from .interrupts import SimulationInterrupted
 from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
@@ -116,6 +116,8 @@ LADDER = 2.0 ** 0.25
 #: The stand-in's strain is sampled this many times per shortest feature (at least 16 times per chosen step at the
 #: fewest steps; the stand-in's exact response is exact between samples, so they need only follow the strain).
 REFERENCE_SAMPLES = 200
+#: Largest step count a recording interval in seconds may impose (a finer interval is kept without a grid).
+MAX_RECORD_GRID = 10_000
 #: Largest sample count of the stand-in's reference (memory and time stay at milliseconds).
 MAX_REFERENCE_SAMPLES = 2_000_000
 # the run's warning about a step coarse for the lowest mode, replaced by the measured error
@@ -216,8 +218,11 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
     feature = _shortest_feature(mech, t_end)
-    per_feature = t_end / feature if math.isfinite(feature) else 0.0
-    n_min = max(MIN_STEPS, feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR)[0])
+    n_features, sampled = feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR)
+    n_min = max(MIN_STEPS, n_features)
+    # the stand-in's strain follows the features that fall between steps; a program with its corners on the grid
+    # is sampled at each corner (n_min holds them) and is smooth between them
+    per_feature = t_end / sampled if math.isfinite(sampled) else 0.0
     if not (frequency > 0.0 and math.isfinite(frequency)):
         n = _on_corners(mech, t_end, n_min, PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
@@ -328,7 +333,7 @@ def _record_grid(record_every: Any, t_end: float) -> int:
     """Step-count multiple for a recording interval in seconds that divides ``t_end`` (1 otherwise)."""
     if isinstance(record_every, float) and record_every > 0.0 and math.isfinite(record_every):
         k = t_end / record_every
-        if abs(k - round(k)) <= 1e-9 * k and round(k) <= MAX_GRID_UNIT:
+        if abs(k - round(k)) <= 1e-9 * k and round(k) <= MAX_RECORD_GRID:
             return max(1, int(round(k)))
     return 1
 

@@ -65,7 +65,7 @@ def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the run itself says what is out of range
         if operator is None:
-            strain = np.array([drive.linear_strain(u) for u in volts])
+            strain = np.asarray(drive.linear_strain(volts), dtype=float)  # d33 U / t_IDE, elementwise
         else:
             operator = copy.deepcopy(operator)
             takes_time = "t" in inspect.signature(operator.apply).parameters
