@@ -435,3 +435,12 @@ def test_a_corner_whose_grid_costs_more_than_its_feature_asks_keeps_the_feature_
     mech = lone(PiecewiseLinear([0.0, corner, 1.0], [0.0, 1000.0, 0.0])).as_mechanism()
     assert grid_unit(mech, 1.0) == 999983
     assert feature_steps(mech, 1.0, 20, 2) == (math.ceil(20 / (1.0 - corner)), pytest.approx(1.0 - corner))
+
+
+def test_irrational_corners_lie_on_no_grid_and_the_stand_in_stays_small():
+    # a triangle of period pi/30 s: its corners are irrational fractions of the run.  A grid of up to 1e6 steps
+    # comes within 1e-9 of the run of any number (one of 364,913 steps did here), so a corner must lie within
+    # 1e-9 of a *step* of a grid instant
+    mech = lone(Triangle(500.0, 500.0, math.pi / 30.0)).as_mechanism()
+    assert grid_unit(mech, 0.1) == 1
+    assert grid_unit(lone(Triangle(500.0, 500.0, 0.07)).as_mechanism(), 0.1) == 20  # corners at k * 0.035 s
