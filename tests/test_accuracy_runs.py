@@ -444,3 +444,20 @@ def test_irrational_corners_lie_on_no_grid_and_the_stand_in_stays_small():
     mech = lone(Triangle(500.0, 500.0, math.pi / 30.0)).as_mechanism()
     assert grid_unit(mech, 0.1) == 1
     assert grid_unit(lone(Triangle(500.0, 500.0, 0.07)).as_mechanism(), 0.1) == 20  # corners at k * 0.035 s
+
+
+def test_the_ladder_tries_each_count_on_the_grid_the_run_will_take():
+    # a square wave (0 / 1000 V, switching every 5 ms) drives the lone actuator.  The ladder's rungs used to be
+    # tried off the switches' grid, where each switch falls inside a step: an error of first order that jumps from
+    # rung to rung (0.0086, 0.014, 0.0069, 0.014 at the rungs 1351 ... 2274); the first rung to pass (2705) was
+    # then rounded onto the grid (2720).  On the grid the errors fall steadily and 1360 steps pass.  References: a
+    # run at 1/16 of the chosen step, and a search over the grid's counts (1600 steps, 6.1e-3, is the coarsest
+    # of 200 * 2^k to pass 1e-2: the chosen count is not finer than it)
+    switches = np.arange(0.0, 0.1, 0.005)
+    program = Steps(switches.tolist(), [0.0 if k % 2 == 0 else 1000.0 for k in range(switches.size)])
+    prediction = step_choice.predict_steps(lone(program).as_mechanism(), 0.1, 1e-2)
+    assert prediction.predicted <= step_choice.AIM * 1e-2  # the count run is the count whose error was predicted
+    assert prediction.n_steps <= 1600
+    run = atcm.simulate(lone(program), 0.1, accuracy=1e-2)
+    reference = atcm.simulate(lone(program), 0.1, step=run.info["step [s]"] / 16)
+    assert relative_error(run, reference) <= 1e-2
