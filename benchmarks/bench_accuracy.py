@@ -4,7 +4,7 @@ For each system (the README four-bar with a 3-mode rod crank, the micro gripper 
 ``cases/micro_gripper.py`` with 4-mode rod benders and the paper's Preisach operator, the lone
 paper actuator as a 3-mode rod) and drive (triangle, sine, step program; for the lone actuator and the four-bar
 also a measured voltage record: a sine sampled every millisecond with 5 V of noise, reversing at nearly
-every sample), one period:
+every sample; for the lone actuator also a square wave switching every 5 ms), one period:
 
 * ``simulate(..., accuracy=target)``: the step it chose, its error against a time-converged
   reference (a run at a quarter of the finest step searched, or of the chosen step if finer), and
@@ -109,6 +109,7 @@ CASES = [
     ("lone actuator", "sine", lone, Sine(500.0, 500.0, 0.1, -math.pi / 2), 0.1, 1e-3),
     ("lone actuator", "steps", lone, Steps([0.0, 0.02, 0.06], [0.0, 1000.0, 0.0]), 0.1, 1e-2),
     ("lone actuator", "record", lone, record(500.0, 500.0, 0.1), 0.1, 1e-3),
+    ("lone actuator", "square", lone, Steps(np.arange(0.0, 0.1, 0.005).tolist(), [0.0, 1000.0] * 10), 0.1, 1e-2),
     ("four-bar", "triangle", four_bar, Triangle(750.0, 750.0, 0.5), 0.5, 1e-3),
     ("four-bar", "sine", four_bar, Sine(750.0, 750.0, 0.5, -math.pi / 2), 0.5, 1e-3),
     ("four-bar", "steps", four_bar, Steps([0.0, 0.05, 0.15], [0.0, 1500.0, 0.0]), 0.2, 1e-2),
