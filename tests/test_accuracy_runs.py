@@ -461,3 +461,28 @@ def test_the_ladder_tries_each_count_on_the_grid_the_run_will_take():
     run = atcm.simulate(lone(program), 0.1, accuracy=1e-2)
     reference = atcm.simulate(lone(program), 0.1, step=run.info["step [s]"] / 16)
     assert relative_error(run, reference) <= 1e-2
+
+
+def test_a_mechanism_that_stays_at_rest_takes_the_fewest_steps_and_says_why():
+    # the drive switched to 1000 V at t = 0: the run starts in that equilibrium and nothing moves it.  The tip's
+    # 7e-12 m of round-off were taken for a travel, against which a run and its probe differed by 0.3 %: the
+    # "error" missed 1e-2 and the run was refined to 6.8e-5 s (until 2026-11-29).  Reference: the static
+    # equilibrium at 1000 V, where the run must stay
+    program = Steps([0.0], [1000.0])
+    run = atcm.simulate(lone(program), 0.1, accuracy=1e-2)
+    assert run.info["step [s]"] == pytest.approx(0.1 / step_choice.MIN_STEPS)
+    assert run.info["accuracy"]["refined"] is False and run.info["accuracy"]["estimated_error"] == 0.0
+    assert "stays at rest in its start equilibrium" in run.info["step_choice"]
+    static = atcm.solve_static(lone(program), voltage=1000.0)
+    for column in ("actuator.tip_x", "actuator.tip_y"):
+        assert np.max(np.abs(run[column] - static[column][-1])) < 1e-9 * 0.087
+
+
+def test_position_error_takes_round_off_for_no_travel():
+    t = np.linspace(0.0, 1.0, 5)
+    still = atcm.Result({"time": t, "p_y": 0.087 + 1e-12 * np.sin(7 * t)}, {"time": "s", "p_y": "m"})
+    other = atcm.Result({"time": t, "p_y": 0.087 + 1e-12 * np.cos(7 * t)}, {"time": "s", "p_y": "m"})
+    assert position_error(still, other, 0.25) == 0.0
+    moving = atcm.Result({"time": t, "p_y": 0.087 + 1e-6 * t}, {"time": "s", "p_y": "m"})
+    assert position_error(moving, other, 0.25) == pytest.approx(
+        np.max(np.abs(1e-6 * t - 1e-12 * np.cos(7 * t))) / 1e-6)

@@ -63,7 +63,7 @@ from ..mbs.blas_threads import one_blas_thread
 from . import mechanism_solve
 from .corner_grid import distinct_drives
 from .step_choice import check_accuracy, lowest_damping_ratio
-from .step_surrogate import ExactResponse, program_voltages, unit_strain
+from .step_surrogate import ExactResponse, other_excitation, program_voltages, unit_strain
 
 __all__ = ["SPACE_SHARE", "CellChoice", "open_benders", "with_cells", "choose_cells", "frequency_error_share"]
 
@@ -266,9 +266,7 @@ def frequency_error_share(mech: Mechanism, t_end: float, frequency: float, delta
         kept[n] = [s for s in (unit_strain(d, times) for d in distinct_drives(mech)) if s is not None]
     strains = kept[n]
     if not strains:
-        excited = (any(getattr(d, "controller", None) is not None for d in mech.drives.values())
-                   or any(callable(getattr(load, name, None)) for load in (*mech.forces, *mech.torques)
-                          for name in ("force", "torque")))
+        excited = other_excitation(mech) is not None
         return min(2.0, 2.0 * math.pi * frequency * t_end * delta) if excited else 0.0
     dt = t_end / n
     worst = 0.0

@@ -59,7 +59,7 @@ from .corner_grid import distinct_drives, feature_steps, grid_unit
 from .interrupts import SimulationInterrupted
 from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
-from .step_surrogate import StandIn, unit_strain
+from .step_surrogate import StandIn, other_excitation, unit_strain
 
 __all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "check_step_or_accuracy", "StepPrediction", "predict_steps",
            "position_error", "accurate_run", "probe_window", "lowest_damping_ratio"]
@@ -116,6 +116,10 @@ LADDER = 2.0 ** 0.25
 #: The stand-in's strain is sampled this many times per shortest feature (at least 16 times per chosen step at the
 #: fewest steps; the stand-in's exact response is exact between samples, so they need only follow the strain).
 REFERENCE_SAMPLES = 200
+#: Positions whose largest range is within this share of their largest magnitude do not move (:func:`position_error`:
+#: the paper actuator switched to 1000 V at ``t = 0`` starts in that equilibrium, and its tip's 7e-12 m of round-off
+#: were taken for a travel, against which the runs at two steps differed by 0.3 %: a refinement for nothing).
+STILL_TRAVEL = 1e-9
 #: Largest step count a recording interval in seconds may impose (a finer interval is kept without a grid).
 MAX_RECORD_GRID = 10_000
 #: Largest sample count of the stand-in's reference (memory and time stay at milliseconds).
@@ -235,10 +239,15 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     dt = t_end / n_ref
     strains = [s for s in (unit_strain(d, np.arange(n_ref + 1) * dt) for d in distinct_drives(mech)) if s is not None]
     if not strains:
+        other = other_excitation(mech)
+        if other is None:  # nothing moves it: the run stays at rest in the equilibrium it starts from
+            return StepPrediction(_on_corners(mech, t_end, n_min, PROBE_FACTOR, grid), t_end, frequency, source, zeta,
+                                  feature, 0.0, order, "no drive's strain changes during the run and the loads are "
+                                  f"constant: the mechanism stays at rest in its start equilibrium, its lowest mode "
+                                  f"({frequency:.4g} Hz) not excited", 2, t_end)
         n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
-                              "the drive's strain is not known before the run (a controller): 20 steps per period", 2,
-                              t_end)
+                              f"{other} (its response is not known before the run): 20 steps per period", 2, t_end)
     n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
     with one_blas_thread():  # small block products: a threaded BLAS would leave its workers spinning (cell_choice)
         stand_in = StandIn(strains, dt, t_end, omega, zeta)
@@ -308,14 +317,16 @@ def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int, grid: int = 
 
 def position_error(fine: Result, coarse: Result, coarse_step: float) -> float:
     """Largest difference of the position columns [m] between two runs at the coarse grid's common instants,
-    relative to the largest range of those columns in ``fine`` (0 when none moves).
+    relative to the largest range of those columns in ``fine`` (0 when none moves: a range within
+    :data:`STILL_TRAVEL` of the columns' largest magnitude is round-off).
 
     Both runs are compared at every accepted step (:attr:`Result.every_step <exudyn_atcm.Result.every_step>`), not at
     the recorded instants only: a coarse ``record_every`` neither hides the error nor shrinks the travel."""
     fine, coarse = fine.every_step, coarse.every_step
     names = [n for n in fine.names if n != "time" and fine.unit(n) == "m"]
     travel = max((float(np.ptp(fine[n])) for n in names), default=0.0)
-    if not names or not travel > 0.0:
+    size = max((float(np.max(np.abs(fine[n]))) for n in names), default=0.0)
+    if not names or not travel > STILL_TRAVEL * size:  # round-off is no travel to compare with
         return 0.0
     keys = []
     for run in (fine, coarse):

@@ -35,7 +35,8 @@ import numpy as np
 from ..model.signals import Signal
 from .linear_recurrence import first_component, first_order
 
-__all__ = ["SPECTRAL_RADIUS", "program_voltages", "unit_strain", "exact_response", "alpha_response", "ExactResponse", "StandIn"]
+__all__ = ["SPECTRAL_RADIUS", "program_voltages", "unit_strain", "other_excitation", "exact_response", "alpha_response",
+           "ExactResponse", "StandIn"]
 
 #: Spectral radius at infinity of the generalized-alpha integration (the package's solver setting).
 SPECTRAL_RADIUS = 0.8
@@ -74,6 +75,17 @@ def unit_strain(drive: Any, times: np.ndarray) -> np.ndarray | None:
     if not span > 0.0 or not math.isfinite(span):
         return None
     return (strain - strain[0]) / span
+
+
+def other_excitation(mech: Any) -> str | None:
+    """What moves a mechanism besides its drives' programs, in words, or ``None``: a controller setting a drive's
+    voltage during the run, or a load given as a function of time.  Without either, a mechanism whose drives'
+    strains do not change stays at rest in the equilibrium it starts from."""
+    if any(getattr(d, "controller", None) is not None for d in mech.drives.values()):
+        return "a controller sets a drive's voltage during the run"
+    if any(callable(getattr(load, name, None)) for load in (*mech.forces, *mech.torques) for name in ("force", "torque")):
+        return "a load changes with time"
+    return None
 
 
 def exact_response(s: np.ndarray, dt: float, omega: float, zeta: float = 0.0,
