@@ -180,3 +180,21 @@ def test_step_is_keyword_only_and_the_positional_form_warns_for_one_release():
         step_error(actuator, 0.02, 2e-3, step=1e-3)
     with pytest.raises(TypeError, match="extra positional arguments"):
         step_error(actuator, 0.02, 2e-3, True)
+
+
+def test_a_run_that_does_not_move_has_no_relative_error_and_no_order_warning():
+    # the drive switched to 1000 V at t = 0 and held: the run starts in that equilibrium and stays there.  The
+    # columns' ranges are round-off (the tip's angle: 4e-11 rad), against which the runs' round-off differences
+    # were "8.8e-2 of its range" at an "order 0.77", with a warning and a suggested step of 1e-4 s for 1e-3
+    # (until 2026-11-29).  Reference: the static equilibrium, where every run stays (solve_static)
+    from exudyn_atcm import solve_static
+    from exudyn_atcm.model.signals import Steps
+    actuator = BendingActuator(3, 29e-3, 28e-3, CFC, MFC, PiezoDrive(Steps([0.0], [1000.0])), cell="rod")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)
+        report = step_error(actuator, 0.05, step=1e-3)
+    assert all(math.isnan(report.columns[name].relative) for name in report.summary)
+    with pytest.raises(ValueError, match="none of the columns varies"):
+        report.worst()
+    static = solve_static(actuator, voltage=1000.0)
+    assert np.max(np.abs(report.finest["actuator.tip_y"] - static["actuator.tip_y"][-1])) < 1e-9 * 0.087  # round-off

@@ -40,6 +40,7 @@ from .keywords import keyword_signature, legacy_positional
 from .run_checks import time_grid
 from .run_setup import DEFAULT_STEP
 from .simulation import simulate
+from .step_choice import STILL_TRAVEL
 
 __all__ = ["step_error", "StepError", "ColumnStepError", "richardson", "time_orders", "NOMINAL_ORDER",
            "MOTION_UNITS"]
@@ -90,7 +91,9 @@ class ColumnStepError:
         Estimated largest error of the run at ``step`` [unit]: ``difference`` x ``2^p / (2^p - 1)``
         (4/3 for the order ``p = 2`` of every cell kind, :attr:`StepError.order`).
     relative : float
-        ``error`` / the column's range over the finest run [-] (``nan`` for a constant column).
+        ``error`` / the column's range over the finest run [-] (``nan`` for a constant column, and for a
+        position or angle whose range is within ``STILL_TRAVEL`` (1e-9) of the mechanism's extent or of
+        a radian: round-off, not motion).
     order : float
         Observed order ``log2(difference / difference of step/2 against step/4)``; ``nan`` without
         the third run or when the differences are round-off.
@@ -331,11 +334,18 @@ def step_error(system: Any, t_end: float, *legacy: Any, step: float = DEFAULT_ST
         raise ValueError(f"the runs at steps {steps} s share {compared} recorded instants; a run whose steps were "
                          "reduced everywhere (Newton failures) cannot be compared: use a smaller step")
     finest = runs[-1]
+    # what a position's or an angle's range is compared with to tell motion from round-off: the mechanism's extent
+    # (the largest magnitude of a position column) [m], a whole angle [rad]
+    extent = max((float(np.max(np.abs(finest[c]), initial=0.0)) for c in finest.names if finest.unit(c) == "m"),
+                 default=0.0)
+    scales = {"m": extent, "rad": 1.0}
     out: dict[str, ColumnStepError] = {}
     for name in names:
         values = [np.asarray(run[name], dtype=float)[r] for run, r in zip(runs, rows)]
         differences = [float(np.max(np.abs(a - b))) for a, b in zip(values, values[1:])]
         span = float(np.ptp(finest[name])) if finest.n_rows else 0.0
+        if span <= STILL_TRAVEL * scales.get(finest.unit(name), 0.0):
+            span = 0.0  # a column that does not move: its range is round-off, no scale for an error
         error, observed = richardson(differences, NOISE * span if span > 0.0 else math.inf, order)
         relative = error / span if span > 0.0 else math.nan
         out[name] = ColumnStepError(name, finest.unit(name), differences[0], error, relative, observed)
