@@ -27,7 +27,7 @@ evaluated in the solver step, is checked against the same rigid four-bar at ever
 instant (``reference_error_dynamic``: the coupler and rocker are rigid, the pivots pins, so
 the loop closure holds in dynamics too); the GIF shows it.  Its time step is chosen for
 ``accuracy`` (default 1e-3 of the recorded positions' travel, :func:`exudyn_atcm.simulate` with
-``accuracy=``; about 1.4e-4 s by default); ``--set step=1e-4`` fixes it instead.  The JSON's notes give
+``accuracy=``; about 2.5e-4 s by default); ``--set step=1e-4`` fixes it instead.  The JSON's notes give
 the step used and why (``step [s]``, ``step_choice``).
 
 Outputs: the sweep (coupler point, pivots, voltages, strains, reference point) as CSV; plots

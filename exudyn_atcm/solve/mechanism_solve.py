@@ -304,7 +304,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
 
 
 def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, loaded: bool = False, *,
-                     built: mb.MechanismModel | None = None) -> np.ndarray:
+                     built: mb.MechanismModel | None = None, damping: bool = False) -> Any:
     """Lowest ``n`` eigenfrequencies [Hz] of a mechanism about its static equilibrium at ``voltage``.
 
     ``voltage=None`` linearises about the undeformed reference pose without loads (as for a
@@ -316,6 +316,8 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     the equilibrium under the loads at zero strain (a lone actuator's ``tip_force``).
     ``built``: a model of ``mech`` already built and in its built state (it is left at the
     analysed state: :func:`~exudyn_atcm.mbs.solver_runs.restore_state` puts it back).
+    ``damping=True`` returns ``(frequencies, damping ratios)``: each mode's ratio of the damping
+    the simulation has (:func:`exudyn_atcm.mbs.linear.damped_modes`).
     """
     n = positive_int("n", n)
     announced = warn_if_large(mech, "eigenfrequencies", equilibria=int(voltage is not None or loaded), eigen=True,
@@ -340,6 +342,8 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     if voltage is not None or loaded:
         warn_few_modes(mech, model.truncation_errors())
     model.before_linearisation()
+    if damping:
+        return linear.damped_modes(model, n)
     freqs = linear.eigenfrequencies(model, n)
     if freqs.size < n:
         raise ValueError(f"n must be <= the number of degrees of freedom ({freqs.size}), got {n}")

@@ -178,21 +178,24 @@ class StepPrediction:
 Built = Callable[[], Any]
 
 
-def _lowest_frequency(mech: Mechanism, built: Built | None = None) -> tuple[float, str]:
-    """Lowest eigenfrequency [Hz] about the start voltages, or the clamped-free estimate, and its source.
-    ``built``: where the analysis takes its model (the runs' one build: no second build of the system)."""
+def _lowest_mode(mech: Mechanism, built: Built | None = None) -> tuple[float, float, str]:
+    """Lowest eigenfrequency [Hz] about the start voltages and its mode's damping ratio (the mechanism's parts
+    together: :func:`~exudyn_atcm.mbs.linear.damped_modes`), or the clamped-free estimate with the parts' smallest
+    ratio (:func:`lowest_damping_ratio`), and the source.  ``built``: where the analysis takes its model (the
+    runs' one build: no second build of the system)."""
     volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a linearisation for the step only; the run says what matters
-            f = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
-                                                 loaded=bool(mech.forces), built=built() if built else None)
-        if f.size and f[0] > 0.0 and math.isfinite(f[0]):
-            return float(f[0]), "the lowest eigenfrequency about the start state"
+            f, zeta = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
+                                                       loaded=bool(mech.forces), built=built() if built else None,
+                                                       damping=True)
+        if f.size and f[0] > 0.0 and math.isfinite(f[0]) and math.isfinite(zeta[0]):
+            return float(f[0]), max(float(zeta[0]), 0.0), "the lowest eigenfrequency about the start state and its mode's damping"
     except Exception:  # noqa: BLE001 - any failure: the cheaper estimate below
         pass
     f, which = lowest_first_frequency(mech)
-    return f, which
+    return f, lowest_damping_ratio(mech, 2.0 * math.pi * f), which
 
 
 def lowest_damping_ratio(mech: Mechanism, omega: float) -> float:
@@ -217,7 +220,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     step factor (see module notes).  ``grid``: the step count must be a multiple of it too (a recording
     interval of ``t_end / grid``, evenly spaced records).  ``built``: the runs' model for the eigenvalue
     analysis (:data:`Built`; default a build of its own)."""
-    frequency, source = _lowest_frequency(mech, built)
+    frequency, zeta, source = _lowest_mode(mech, built)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
     if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
@@ -232,7 +235,6 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
         return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
                               "no mode to resolve: the drive's features decide", 2, t_end)
     omega = 2.0 * math.pi * frequency
-    zeta = lowest_damping_ratio(mech, omega)
     unit = grid_unit(mech, t_end)  # the strain's corners on its samples too
     n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min))
     n_ref = unit * math.ceil(n_ref / unit)
