@@ -75,3 +75,28 @@ def test_the_step_choice_takes_the_modes_damping_and_meets_the_target():
     assert run.info["step [s]"] >= 2e-4
     reference = atcm.simulate(compliant_four_bar(), 0.5, step=run.info["step [s]"] / 8)
     assert step_choice.position_error(reference, run, run.info["step [s]"]) <= 1e-3
+
+
+def test_the_cell_choice_rings_its_stand_in_with_the_modes_damping_too(monkeypatch):
+    # the compliant four-bar with its crank's rod modes left open: each count's frequency error is turned into a
+    # position error by the stand-in, damped as the count's lowest mode (the flexures' 1.6e-4 before 2026-11-29)
+    from exudyn_atcm.casework import Parameters
+    from exudyn_atcm.solve import cell_choice
+    four_bar = case_module(CASES / "compliant_four_bar.py")
+    values = {p.name: p.default for p in four_bar.PARAMETERS}
+    values.update(n_cells="auto", cell="rod")
+    mech = four_bar.build_mechanism(Parameters(four_bar.PARAMETERS, values), four_bar.strain_laws("exact")["hysteresis"],
+                                    Triangle(500.0, 1000.0, 0.5))
+    seen = []
+    original = cell_choice.frequency_error_share
+
+    def spy(mech_, t_end, frequency, delta, zeta, strains=None):
+        seen.append(zeta)
+        return original(mech_, t_end, frequency, delta, zeta, strains)
+    monkeypatch.setattr(cell_choice, "frequency_error_share", spy)
+    choice = atcm.choose_cells(mech, 0.5, 1e-3)
+    n = choice.cells["crank"][1]
+    reference = mechanism_solve.eigenfrequencies(cell_choice.with_cells(mech, {"crank": ("rod", n)}), 1, None,
+                                                 damping=True)[1][0]
+    assert seen and seen[-1] == pytest.approx(reference, rel=1e-6)
+    assert seen[-1] > 20.0 * step_choice.lowest_damping_ratio(mech, 2.0 * math.pi * 55.0)

@@ -25,7 +25,8 @@ error, measured on the mechanism itself:
 - the **lowest eigenfrequency** about the reference pose (unloaded: its convergence in the count is the
   discretisation's, and no equilibrium is needed): its relative change ``delta``, turned into a
   position error by the one-mode stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`:
-  the drives' free strain drives the mode at ``omega`` and at ``omega (1 + delta)``, both solved
+  the drives' free strain drives the mode at ``omega`` and at ``omega (1 + delta)``, damped as the
+  count's lowest mode (:func:`~exudyn_atcm.mbs.linear.damped_modes`), both solved
   exactly; the largest difference of the unit travel, as a period error shifts the ringing's phase).
 
 The difference to the next count is the count's error for the modal kinds; for the chains it is
@@ -195,10 +196,12 @@ def _pose_points(mech: Mechanism, t_end: float) -> list[dict[str, float]] | None
     return [{name: float(v[i]) for name, v in volts.items()} for i in sorted(set(picks))]
 
 
-def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[float, dict[str, np.ndarray], Any]:
-    """The lowest eigenfrequency [Hz] about the reference pose, unloaded (``nan`` where the analysis fails), the
+def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[float, float, dict[str, np.ndarray],
+                                                                            Any]:
+    """The lowest eigenfrequency [Hz] about the reference pose, unloaded, and its mode's damping ratio [-]
+    (:func:`~exudyn_atcm.mbs.linear.damped_modes`; both ``nan`` where the analysis fails), the
     position columns [m] of the static equilibria at ``points`` (``{}`` without them), and the one build of
-    ``mech`` both used, put back in its built state (:func:`~exudyn_atcm.mbs.solver_runs.restore_state`).
+    ``mech`` they used, put back in its built state (:func:`~exudyn_atcm.mbs.solver_runs.restore_state`).
 
     The frequency is compared between counts, so it is taken where it costs least: about the built state,
     without the equilibrium and its stability check that a loaded start state needs (the poses carry the
@@ -208,10 +211,11 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[fl
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # analyses for the choice only; the run says what matters
         try:
-            f = mechanism_solve.eigenfrequencies(mech, 1, None, loaded=False, built=model)
+            f, zeta = mechanism_solve.eigenfrequencies(mech, 1, None, loaded=False, built=model, damping=True)
             frequency = float(f[0]) if f.size and f[0] > 0.0 and math.isfinite(f[0]) else math.nan
+            damping = max(float(zeta[0]), 0.0) if math.isfinite(frequency) and math.isfinite(zeta[0]) else math.nan
         except Exception:  # noqa: BLE001 - no frequency: the poses alone decide
-            frequency = math.nan
+            frequency = damping = math.nan
         runs.restore_state(model, built)
         poses: dict[str, np.ndarray] = {}
         if points is not None:
@@ -219,7 +223,7 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[fl
             result: Result = mechanism_solve.static_sweep(mech, voltages, built=model)
             poses = {c: np.asarray(result[c], dtype=float) for c in result.names if result.unit(c) == "m"}
             runs.restore_state(model, built)
-    return frequency, poses, model
+    return frequency, damping, poses, model
 
 
 def _reference_points(mech: Mechanism) -> dict[str, float]:
@@ -350,7 +354,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
     unit = "modes" if factor == 1.0 else "cells"
     points = None
     tried: list[tuple[int, float, float, float]] = []
-    previous: tuple[int, float, dict, Any] | None = None
+    previous: tuple[int, float, float, dict, Any] | None = None
     chosen_n, estimate, delta = counts[-1], math.inf, math.nan
     stage = getattr(progress, "stage", None)
     kept: dict = {}  # the drives' unit strains for the stand-in, by sample count
@@ -361,9 +365,9 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
         candidate = with_cells(mech, {b.name: (kinds[b.name], n) for b in benders})
         if points is None:
             points = _pose_points(candidate, t_end)
-        f, poses, model = _measure(candidate, points)
+        f, zeta, poses, model = _measure(candidate, points)
         if previous is not None:
-            n0, f0, poses0, model0 = previous
+            n0, f0, zeta0, poses0, model0 = previous
             travel = _travel(mech, poses)
             still = not travel > STILL_POSES * size
             common = [c for c in poses if c in poses0]
@@ -372,13 +376,14 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
             known = math.isfinite(f) and math.isfinite(f0)
             delta = abs(f0 - f) / f if known else 0.0
             dynamic = (frequency_error_share(candidate, t_end, f0, factor * delta,
+                                             zeta0 if math.isfinite(zeta0) else
                                              lowest_damping_ratio(candidate, 2.0 * math.pi * f0), kept) if known else 0.0)
             estimate = factor * static + dynamic
             tried.append((n0, f0, static, estimate))
             if estimate <= accuracy:
                 chosen_n, built = n0, model0
                 break
-        previous = (n, f, poses, model)
+        previous = (n, f, zeta, poses, model)
     else:
         built = model
     cells = {b.name: (kinds[b.name], chosen_n) for b in benders}
