@@ -84,21 +84,6 @@ class PiezoDrive:
         hysteresis: Any = None,
         rated_range: tuple[float, float] | None = MFC_P1_RATED_RANGE,
     ) -> None:
-        self.controller = None
-        if _is_controller(voltage):
-            self.controller = voltage
-            self._voltage_fn = voltage.voltage_at
-        elif callable(voltage):
-            self._voltage_fn = voltage
-        elif isinstance(voltage, numbers.Real) and not isinstance(voltage, bool):
-            value = float(voltage)
-            if not math.isfinite(value):
-                raise ValueError(f"voltage must be a finite number [V] or a callable of time, got {voltage!r}")
-            self._voltage_fn = None
-        else:
-            raise ValueError(
-                f"voltage must be a finite number [V] or a callable of time t [s], got {voltage!r}"
-            )
         self.voltage = voltage
         self.d33 = check_physical("d33", positive_float("d33", d33), "PiezoDrive")
         self.electrode_spacing = check_physical("electrode_spacing", positive_float("electrode_spacing", electrode_spacing),
@@ -124,6 +109,31 @@ class PiezoDrive:
             if not low < high:
                 raise ValueError(f"rated_range must have U_min < U_max, got {rated_range!r}")
             self.rated_range = (low, high)
+
+    @property
+    def voltage(self) -> VoltageProgram:
+        """The voltage program [V]: a number, a callable of time ``t`` [s] (a signal of
+        :mod:`exudyn_atcm.model.signals`, a function) or a controller.  It may be set again after
+        construction (checked as at construction; the runs and the step choice all read it)."""
+        return self._voltage
+
+    @voltage.setter
+    def voltage(self, voltage: VoltageProgram) -> None:
+        if _is_controller(voltage):
+            controller, function = voltage, voltage.voltage_at
+        elif callable(voltage):
+            controller, function = None, voltage
+        elif isinstance(voltage, numbers.Real) and not isinstance(voltage, bool):
+            if not math.isfinite(float(voltage)):
+                raise ValueError(f"voltage must be a finite number [V] or a callable of time, got {voltage!r}")
+            controller, function = None, None
+        else:
+            raise ValueError(
+                f"voltage must be a finite number [V] or a callable of time t [s], got {voltage!r}"
+            )
+        # until 2026-11-29 ``voltage`` was a plain attribute and ``voltage_at`` kept the program given at
+        # construction: a program set afterwards reached the step choice's stand-in but not the run
+        self._voltage, self._voltage_fn, self.controller = voltage, function, controller
 
     def voltage_at(self, t: float) -> float:
         """Voltage [V] at time ``t`` [s] from the program (or the controller).

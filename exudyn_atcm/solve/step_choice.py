@@ -5,10 +5,10 @@ relative to their travel (the largest range among those columns), against the ti
 solution of the same model.  The step is chosen from what is known before the run, then the
 run's own error is measured:
 
-1. **Prediction** (:func:`predict_steps`, cheap: milliseconds).  The mechanism's lowest
-   eigenfrequency about its start state (:func:`~exudyn_atcm.eigenfrequencies`; the
-   clamped-free estimate of its benders if that fails), the damping ratio of its laminate parts
-   at that frequency, and every drive's free strain over the run (the voltage program through
+1. **Prediction** (:func:`predict_steps`, cheap: milliseconds).  The mode the drives ring about
+   the start state, with its own damping ratio (:func:`~exudyn_atcm.solve.rung_mode.rung_mode`: the
+   lowest mode, unless the drives' forces on it cancel; the clamped-free estimate of the benders
+   and their smallest damping ratio if the analysis fails), and every drive's free strain over the run (the voltage program through
    its hysteresis operator: the Preisach slope jumps at every reversal) drive a one-mode
    stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`), integrated exactly and by
    the run's generalized-alpha at a ladder of steps (ratio 2^(1/4)).  The chosen step is the
@@ -51,14 +51,12 @@ import numpy as np
 from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
-from ..mechanism.damped import MaterialDamped
 from ..mbs.blas_threads import one_blas_thread
 from ..model.signals import Steps
-from . import mechanism_solve
 from .corner_grid import distinct_drives, feature_steps, grid_unit
 from .interrupts import SimulationInterrupted
-from .mechanism_checks import lowest_first_frequency
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
+from .rung_mode import lowest_damping_ratio, rung_mode
 from .step_surrogate import StandIn, other_excitation, unit_strain
 
 __all__ = ["ACCURACY_RANGE", "AIM", "STEPS_PER_FEATURE", "check_accuracy", "check_step_or_accuracy", "StepPrediction", "predict_steps",
@@ -178,36 +176,6 @@ class StepPrediction:
 Built = Callable[[], Any]
 
 
-def _lowest_mode(mech: Mechanism, built: Built | None = None) -> tuple[float, float, str]:
-    """Lowest eigenfrequency [Hz] about the start voltages and its mode's damping ratio (the mechanism's parts
-    together: :func:`~exudyn_atcm.mbs.linear.damped_modes`), or the clamped-free estimate with the parts' smallest
-    ratio (:func:`lowest_damping_ratio`), and the source.  ``built``: where the analysis takes its model (the
-    runs' one build: no second build of the system)."""
-    volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # a linearisation for the step only; the run says what matters
-            f, zeta = mechanism_solve.eigenfrequencies(mech, 1, volts if len(volts) == len(mech.drives) else None,
-                                                       loaded=bool(mech.forces), built=built() if built else None,
-                                                       damping=True)
-        if f.size and f[0] > 0.0 and math.isfinite(f[0]) and math.isfinite(zeta[0]):
-            return float(f[0]), max(float(zeta[0]), 0.0), "the lowest eigenfrequency about the start state and its mode's damping"
-    except Exception:  # noqa: BLE001 - any failure: the cheaper estimate below
-        pass
-    f, which = lowest_first_frequency(mech)
-    return f, lowest_damping_ratio(mech, 2.0 * math.pi * f), which
-
-
-def lowest_damping_ratio(mech: Mechanism, omega: float) -> float:
-    """Smallest damping ratio of the mechanism's laminate parts at ``omega`` [rad/s] (0 without any)."""
-    ratios = []
-    for comp in mech.components.values():
-        if isinstance(comp, MaterialDamped):
-            r = comp.rayleigh_damping
-            ratios.append(r.alpha / (2.0 * omega) + r.beta * omega / 2.0)
-    return max(min(ratios), 0.0) if ratios else 0.0
-
-
 def _shortest_feature(mech: Mechanism, t_end: float) -> float:
     """Shortest feature [s] of the drives' programs before ``t_end`` (``inf`` without one)."""
     features = [program_feature(d.voltage, t_end) for d in mech.drives.values()]
@@ -220,7 +188,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     step factor (see module notes).  ``grid``: the step count must be a multiple of it too (a recording
     interval of ``t_end / grid``, evenly spaced records).  ``built``: the runs' model for the eigenvalue
     analysis (:data:`Built`; default a build of its own)."""
-    frequency, zeta, source = _lowest_mode(mech, built)
+    frequency, zeta, source = rung_mode(mech, t_end, built)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
     if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
