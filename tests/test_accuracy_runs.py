@@ -185,11 +185,13 @@ def test_a_missed_target_is_refined_once_and_then_met(monkeypatch):
     run = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, accuracy=1e-3)
     assert run.info["accuracy"]["refined"] is True and "refined once" in run.info["step_choice"]
     assert run.info["step [s]"] < 0.04 / 40
-    # the factor: the fewest integer that brings the probe's estimate to REFINE_AIM of the target at the check's order
+    # the factor: the smallest of 3/2, 2, 5/2, 3, ... that brings the probe's estimate to REFINE_AIM of the target at
+    # the check's order (an integer until 2026-11-29)
     probe_estimate = float(re.search(r"probe at [0-9.e-]+ s: estimated error ([0-9.e-]+)", run.info["step_choice"])[1])
-    m = round(0.04 / 40 / run.info["step [s]"])
+    m = 0.04 / 40 / run.info["step [s]"]
+    assert 2.0 * m == pytest.approx(round(2.0 * m), rel=1e-9) and m >= 1.5
     needed = (probe_estimate / (step_choice.REFINE_AIM * 1e-3)) ** (1.0 / 1.5)
-    assert m - 1 < needed <= m * (1 + 0.01)  # the estimate is printed to two digits
+    assert m - 0.5 < needed * (1 + 0.01) and needed <= m * (1 + 0.01)  # the estimate is printed to two digits
     reference = atcm.simulate(lone(Triangle(500.0, 500.0, 0.04)), 0.04, step=run.info["step [s]"] / 8)
     assert relative_error(run, reference) <= 1e-3
 
@@ -487,3 +489,20 @@ def test_position_error_takes_round_off_for_no_travel():
     moving = atcm.Result({"time": t, "p_y": 0.087 + 1e-6 * t}, {"time": "s", "p_y": "m"})
     assert position_error(moving, other, 0.25) == pytest.approx(
         np.max(np.abs(1e-6 * t - 1e-12 * np.cos(7 * t))) / 1e-6)
+
+
+
+@pytest.mark.parametrize("n, needed, unit, grid, factor", [
+    (100, 1.2, 1, 1, "3/2"),     # a run missing its target by a little: two thirds of its step, not half
+    (100, 1.6, 1, 1, "2"),
+    (100, 2.1, 1, 1, "5/2"),
+    (100, 2.1, 4, 1, "3"),       # 250 steps would put the drives' corners (every 4th step of 4) off the grid
+    (30, 1.2, 10, 1, "2"),       # 45 steps: not a multiple of the corners' 10
+    (100, 1.2, 1, 8, "2"),       # the recording grid of 8 steps (150 is none of its multiples)
+])
+def test_the_refinement_factor_keeps_the_grids(n, needed, unit, grid, factor):
+    from fractions import Fraction
+    from exudyn_atcm.solve.corner_grid import refinement
+    r = refinement(n, needed, unit, grid)
+    assert r == Fraction(factor)
+    assert (n * r).denominator == 1 and (n * r) % unit == 0 and (n * r) % grid == 0

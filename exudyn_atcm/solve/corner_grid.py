@@ -19,7 +19,7 @@ from ..mechanism import Mechanism
 from ..model.signals import Sine, Steps, Triangle
 from .run_checks import corners_on_grid, program_feature
 
-__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners", "feature_steps"]
+__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners", "feature_steps", "refinement"]
 
 #: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`): a measured voltage record
 #: of 20 s sampled every millisecond needs 20,000 (10,000 until 2026-11-29: such a record fell off the grid, and its
@@ -111,3 +111,17 @@ def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int
         feature = min(feature, known[0])
         steps = max(steps, asked)
     return steps, feature
+
+
+def refinement(n: int, needed: float, unit: int, grid: int = 1) -> Fraction:
+    """The factor ``r`` by which a run of ``n`` steps is refined: the smallest of 3/2, 2, 5/2, 3, ... that is at
+    least ``needed`` and keeps ``n r`` steps a multiple of the drives' ``unit`` (:func:`grid_unit`) and of the
+    recording ``grid``.  A half-integer factor shares every other step of the coarse run (the check compares the
+    two runs there); an integer one, every step.  (Until 2026-11-29 the factor was an integer, at least 2: a
+    run that missed its target by a fifth was refined to half its step, where two thirds sufficed.)"""
+    for k in range(3, 2 * MAX_GRID_UNIT):
+        r = Fraction(k, 2)
+        m = n * r
+        if r >= needed and m.denominator == 1 and m % unit == 0 and (grid <= 1 or m % grid == 0):
+            return r
+    raise ValueError(f"no refinement of {n} steps by a factor >= {needed:g} keeps the grid of {unit} steps")

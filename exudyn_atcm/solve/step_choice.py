@@ -53,7 +53,7 @@ from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mbs.blas_threads import one_blas_thread
 from ..model.signals import Steps
-from .corner_grid import distinct_drives, feature_steps, grid_unit
+from .corner_grid import distinct_drives, feature_steps, grid_unit, refinement
 from .interrupts import SimulationInterrupted
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
 from .rung_mode import lowest_damping_ratio, rung_mode
@@ -71,7 +71,8 @@ ACCURACY_RANGE = (1e-6, 0.1)
 #: The prediction aims the stand-in's error at this share of the target (room for the modes it leaves out and
 #: for the check's cautious order, :data:`CHECK_ORDER_SLACK`).
 AIM = 0.6
-#: A refinement divides the step by the fewest integer ``m`` that brings the estimate to this share of the target
+#: A refinement divides the step by the smallest factor ``m`` of 3/2, 2, 5/2, 3, ...
+#: (:func:`~exudyn_atcm.solve.corner_grid.refinement`) that brings the estimate to this share of the target
 #: (assuming the check's order): its check compares with the run at the former step, ``m`` times coarser, whose
 #: difference the order slack overstates less than the probe's.  (0.6, as the prediction's aim, until 2026-11-29: the
 #: gripper's triangle asked for ``m`` = 2.01 and took 3, a run 1.5 times dearer than ``m`` = 2, whose estimate is
@@ -383,14 +384,16 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
               f"{why})"]
     refined = False
     if estimate > accuracy:
-        m = max(2, math.ceil((estimate / (REFINE_AIM * accuracy)) ** (1.0 / order)))
+        m = refinement(n, (estimate / (REFINE_AIM * accuracy)) ** (1.0 / order), grid_unit(mech, t_end),
+                       _record_grid(record_every, t_end))
         coarse, coarse_h = result, h
-        h = coarse_h / m
+        h = coarse_h / float(m)
         result, caught = _quiet(run, h, _stage(progress, "accuracy refinement", 1.0, 0.0, f"step {h:.3g} s")
                                 or progress, t_end, f"accuracy refinement (the run at {coarse_h:.4g} s missed the "
                                 "target and was complete)")
-        estimate = position_error(result, coarse, coarse_h) / (m ** order - 1.0)
-        checks.append(f"missed {accuracy:g}: refined once to {h:.4g} s ({m * n} steps), estimated error "
+        # compared where both runs have steps: every coarse step (m an integer) or every other one (m = k/2)
+        estimate = position_error(result, coarse, coarse_h * m.denominator) / (float(m) ** order - 1.0)
+        checks.append(f"missed {accuracy:g}: refined once by {m} to {h:.4g} s ({int(m * n)} steps), estimated error "
                       f"{estimate:.2g} against the run at {coarse_h:.4g} s")
         refined = True
     for w in caught:  # the result's own warnings, at the caller's line (the coarse-mode rule replaced by the check)
