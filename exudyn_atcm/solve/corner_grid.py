@@ -19,7 +19,8 @@ from ..mechanism import Mechanism
 from ..model.signals import Sine, Steps, Triangle
 from .run_checks import corners_on_grid, program_feature
 
-__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners", "feature_steps", "refinement"]
+__all__ = ["MAX_GRID_UNIT", "distinct_drives", "grid_unit", "program_corners", "controller_samples", "jumps",
+           "feature_steps", "refinement"]
 
 #: Largest step count that puts the drives' corners on the grid (:func:`grid_unit`): a measured voltage record
 #: of 20 s sampled every millisecond needs 20,000 (10,000 until 2026-11-29: such a record fell off the grid, and its
@@ -40,9 +41,31 @@ def distinct_drives(mech: Mechanism) -> list[Any]:
     return list(seen.values())
 
 
+def controller_samples(program: Any, t_end: float) -> np.ndarray | None:
+    """A controller's sample instants [s] in ``(0, t_end)`` (it holds its output between them: a jump at each),
+    ``None`` for a program that is no sampled controller."""
+    sample = getattr(program, "sample_time", None)
+    if not callable(getattr(program, "observe", None)) or not isinstance(sample, float) or not sample > 0.0:
+        return None
+    return sample * np.arange(1, math.ceil(t_end / sample - 1e-9))
+
+
+def jumps(mech: Mechanism, t_end: float) -> bool:
+    """Whether a drive's voltage jumps during the run: a step program (:class:`~exudyn_atcm.model.signals.Steps`), or
+    a sampled controller, whose output is held between samples (the PID's zero-order hold).  The run's error then
+    falls as the step, not its square (measured on the control_lever case's bender with a PID sampled every
+    0.5 ms: 5.4e-3, 2.6e-3, 1.3e-3 of the travel at 5e-4, 2.5e-4, 1.25e-4 s)."""
+    return any(isinstance(d.voltage, Steps) or controller_samples(d.voltage, t_end) is not None
+               for d in distinct_drives(mech))
+
+
 def program_corners(program: Any, t_end: float) -> np.ndarray | None:
     """Times [s] in ``(0, t_end)`` where the program's slope jumps or it reverses: the triangle's peaks, the
-    sine's extrema, the step program's switches, a piecewise-linear program's corners; ``None`` for others."""
+    sine's extrema, the step program's switches, a piecewise-linear program's corners, a sampled controller's
+    samples; ``None`` for others."""
+    samples = controller_samples(program, t_end)
+    if samples is not None:
+        return samples
     if isinstance(program, Steps):
         change = np.flatnonzero(np.diff(program.values) != 0.0) + 1
         times = program.times[change]
@@ -70,7 +93,7 @@ def grid_unit(mech: Mechanism, t_end: float) -> int:
             continue
         x = np.asarray(corners, dtype=float) / t_end
         while True:  # the first corner off the grid refines it (a few rounds: the corners share denominators)
-            off = np.abs(x * unit - np.rint(x * unit)) > ON_GRID
+            off = ~_on_grid(x, unit, each=True)
             if not off.any():
                 break
             c = float(x[int(np.argmax(off))])
@@ -81,6 +104,12 @@ def grid_unit(mech: Mechanism, t_end: float) -> int:
             if unit > MAX_GRID_UNIT:
                 return 1
     return unit
+
+
+def _on_grid(x: np.ndarray, unit: int, each: bool = False) -> Any:
+    """Whether the fractions ``x`` of the run lie on the grid of ``unit`` steps (each, or all of them)."""
+    on = np.abs(x * unit - np.rint(x * unit)) <= ON_GRID
+    return on if each else bool(on.all())
 
 
 def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int) -> tuple[int, float]:
@@ -100,6 +129,12 @@ def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int
     unit = grid_unit(mech, t_end)
     steps, feature = 0, math.inf
     for drive in distinct_drives(mech):
+        samples = controller_samples(drive.voltage, t_end)
+        if samples is not None and samples.size and unit > 1 and _on_grid(samples / t_end, unit):
+            # a sampled controller: its samples on the run's steps and the probe's (a sample between steps comes late,
+            # and the controller's integral and derivative assume its sample time)
+            steps = max(steps, unit * factor)
+            continue
         known = program_feature(drive.voltage, t_end)
         if known is None:
             continue

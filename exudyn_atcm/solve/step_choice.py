@@ -52,8 +52,7 @@ from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mbs.blas_threads import one_blas_thread
-from ..model.signals import Steps
-from .corner_grid import distinct_drives, feature_steps, grid_unit, refinement
+from .corner_grid import distinct_drives, feature_steps, grid_unit, jumps, refinement
 from .interrupts import SimulationInterrupted
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
 from .rung_mode import lowest_damping_ratio, rung_mode
@@ -191,7 +190,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     analysis (:data:`Built`; default a build of its own)."""
     frequency, zeta, source = rung_mode(mech, t_end, built)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
-    if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
+    if jumps(mech, t_end):
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
     feature = _shortest_feature(mech, t_end)
     n_features, sampled = feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR)
@@ -218,7 +217,8 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
                                   f"({frequency:.4g} Hz) not excited", 2, t_end)
         n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
-                              f"{other} (its response is not known before the run): 20 steps per period", 2, t_end)
+                              f"{other} (its response is not known before the run): 20 steps per period"
+                              + (", and its samples on the step grid" if "controller" in other else ""), 2, t_end)
     n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
     with one_blas_thread():  # small block products: a threaded BLAS would leave its workers spinning (cell_choice)
         stand_in = StandIn(strains, dt, t_end, omega, zeta)
@@ -237,7 +237,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
         errors = stand_in.errors(n_used)
     predicted = float(np.max(errors))
     window, ratio = probe_window(errors, t_end, frequency, math.lcm(PROBE_FACTOR, n_used // grid if grid > 1 else 1))
-    if any(isinstance(d.voltage, Steps) for d in distinct_drives(mech)):
+    if jumps(mech, t_end):
         # a jump on a grid instant was taken on the side the instant's round-off said (the window's grid t_stop / k
         # and the run's t_end / n differ in the last bit): the probe over a window took the gripper's switch a step
         # apart from the run, its estimate 2.7 times the whole run's.  Steps now samples a switch within round-off
