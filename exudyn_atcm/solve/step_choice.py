@@ -190,7 +190,8 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     analysis (:data:`Built`; default a build of its own)."""
     frequency, zeta, source = rung_mode(mech, t_end, built)
     order = min((float(b.cell.time_order) for b in mech.benders), default=NOMINAL_ORDER)
-    if jumps(mech, t_end):
+    jumping = jumps(mech, t_end)
+    if jumping:
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
     feature = _shortest_feature(mech, t_end)
     n_features, sampled = feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR)
@@ -237,7 +238,7 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
         errors = stand_in.errors(n_used)
     predicted = float(np.max(errors))
     window, ratio = probe_window(errors, t_end, frequency, math.lcm(PROBE_FACTOR, n_used // grid if grid > 1 else 1))
-    if jumps(mech, t_end):
+    if jumping:
         # a jump on a grid instant was taken on the side the instant's round-off said (the window's grid t_stop / k
         # and the run's t_end / n differ in the last bit): the probe over a window took the gripper's switch a step
         # apart from the run, its estimate 2.7 times the whole run's.  Steps now samples a switch within round-off
