@@ -284,7 +284,7 @@ def test_the_window_covers_the_sharpest_feature_and_its_estimate_bounds_the_whol
     program = PiecewiseLinear([0.0, 0.02, 0.04, 0.2], [0.0, 1000.0, 0.0, 0.0])
     run = atcm.simulate(lone(program), 0.2, accuracy=1e-3)
     info = run.info["accuracy"]
-    assert 0.04 + 1.0 / info["lowest_frequency [Hz]"] <= info["probe_window [s]"] < 0.2
+    assert 0.04 + 1.0 / info["mode_frequency [Hz]"] <= info["probe_window [s]"] < 0.2
     assert "over the first" in run.info["step_choice"]
     reference = atcm.simulate(lone(program), 0.2, step=run.info["step [s]"] / 8)
     achieved = relative_error(run, reference)
@@ -315,7 +315,7 @@ def test_the_prediction_probe_and_run_share_one_build_and_give_the_plain_runs_re
     mech = lone(program).as_mechanism(tip_force)
     start = {name: drive.voltage_at(0.0) for name, drive in mech.drives.items()}
     fresh = mechanism_solve.eigenfrequencies(mech, 1, start, loaded=bool(mech.forces))[0]
-    assert run.info["accuracy"]["lowest_frequency [Hz]"] == pytest.approx(fresh, rel=1e-9)
+    assert run.info["accuracy"]["mode_frequency [Hz]"] == pytest.approx(fresh, rel=1e-9)
 
 
 def test_an_analysis_that_fails_half_way_leaves_no_trace_in_the_runs(monkeypatch):

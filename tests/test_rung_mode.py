@@ -67,7 +67,7 @@ def test_the_gripper_meets_its_target_without_a_refinement():
     mech = gripper(Triangle(500.0, 1000.0, 0.5))
     run = atcm.simulate(mech, 0.3, accuracy=1e-3)
     assert run.info["accuracy"]["refined"] is False
-    assert run.info["accuracy"]["lowest_frequency [Hz]"] == pytest.approx(211.5, rel=1e-2)
+    assert run.info["accuracy"]["mode_frequency [Hz]"] == pytest.approx(211.5, rel=1e-2)
     reference = atcm.simulate(gripper(Triangle(500.0, 1000.0, 0.5)), 0.3, step=run.info["step [s]"] / 4)
     assert step_choice.position_error(reference, run, run.info["step [s]"]) <= 1e-3
 

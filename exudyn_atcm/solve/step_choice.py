@@ -406,7 +406,7 @@ def accurate_run(run: Runner, mech: Mechanism, t_end: float, accuracy: float, pr
                                "predicted_error": prediction.predicted, "refined": refined,
                                "probe_step [s]": r * prediction.step, "probe_window [s]": window,
                                "window_ratio": prediction.window_ratio,
-                               "lowest_frequency [Hz]": prediction.frequency, "damping_ratio": prediction.damping_ratio}
+                               "mode_frequency [Hz]": prediction.frequency, "damping_ratio": prediction.damping_ratio}
     stage = getattr(progress, "stage", None)
     if callable(stage):
         stage("accuracy run", 1.0, line)
