@@ -324,8 +324,7 @@ def test_an_analysis_that_fails_half_way_leaves_no_trace_in_the_runs(monkeypatch
     # restored built state still equals a plain run at the step chosen (a fresh build)
     def failing(model, n):
         raise RuntimeError("eigen solver failed")
-    from exudyn_atcm.solve import rung_mode
-    monkeypatch.setattr(rung_mode, "modes_of_state", failing)
+    monkeypatch.setattr(mechanism_solve.linear, "damped_modes", failing)
     program, tip_force = Sine(500.0, 500.0, 0.04, 0.0), (0.0, -0.02)
     run = atcm.simulate(lone(program), 0.04, accuracy=1e-3, tip_force=tip_force)
     assert "the lowest eigenfrequency about the start state" not in run.info["step_choice"]

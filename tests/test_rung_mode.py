@@ -107,3 +107,27 @@ def test_a_drives_program_set_after_construction_reaches_the_run():
                     active=atcm.Layer(0.3e-3, 30.336e9, 5440.0), length=0.087, n_cells=3, cell="rod", drive=drive)
     run = atcm.simulate(atcm.Mechanism("m").add(b).ground(b.base), 0.1, step=1e-3)
     assert run["b.voltage"][50] == pytest.approx(1000.0)
+
+
+def test_the_cell_choice_follows_the_mode_the_drives_ring(monkeypatch):
+    # the gripper's benders with their counts left open: the frequency whose convergence the choice turns into a
+    # position error is the symmetric mode's (about 211 Hz), not the antisymmetric lowest's (113 Hz)
+    from exudyn_atcm.solve import cell_choice
+    case = case_module(CASES / "micro_gripper.py")
+    values = {p.name: p.default for p in case.PARAMETERS}
+    values.update(n_cells="auto", cell="rod")
+    mech = case.build_mechanism(Parameters(case.PARAMETERS, values), 200.0, Triangle(500.0, 1000.0, 0.5))
+    seen = []
+    original = cell_choice.frequency_error_share
+
+    def spy(mech_, t_end, frequency, delta, zeta, strains=None):
+        seen.append(frequency)
+        return original(mech_, t_end, frequency, delta, zeta, strains)
+    monkeypatch.setattr(cell_choice, "frequency_error_share", spy)
+    choice = atcm.choose_cells(mech, 0.5, 1e-3)
+    n = choice.cells["upper"][1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        modes = atcm.modes(cell_choice.with_cells(mech, {"upper": ("rod", n), "lower": ("rod", n)}), 2)
+    assert seen and seen[-1] == pytest.approx(modes.frequencies[1], rel=1e-9)
+    assert modes.frequencies[1] > 1.5 * modes.frequencies[0]

@@ -23,7 +23,8 @@ error, measured on the mechanism itself:
   static sweep); the largest difference of a position column [m] relative to the travel
   between those poses (where they do not move: relative to their distance from the reference pose);
 - the **lowest eigenfrequency** about the reference pose (unloaded: its convergence in the count is the
-  discretisation's, and no equilibrium is needed): its relative change ``delta``, turned into a
+  discretisation's, and no equilibrium is needed; the mode the drives ring where their forces on the
+  lowest cancel, :func:`~exudyn_atcm.solve.rung_mode.rung_of_state`): its relative change ``delta``, turned into a
   position error by the one-mode stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`:
   the drives' free strain drives the mode at ``omega`` and at ``omega (1 + delta)``, damped as the
   count's lowest mode (:func:`~exudyn_atcm.mbs.linear.damped_modes`), both solved
@@ -64,6 +65,8 @@ from ..mbs.blas_threads import one_blas_thread
 from . import mechanism_solve
 from .corner_grid import distinct_drives
 from .step_choice import check_accuracy, lowest_damping_ratio
+from .modes import modes_state
+from .rung_mode import driven_alike, rung_of_state, strain_groups
 from .step_surrogate import ExactResponse, other_excitation, program_voltages, unit_strain
 
 __all__ = ["SPACE_SHARE", "CellChoice", "open_benders", "with_cells", "choose_cells", "frequency_error_share"]
@@ -196,10 +199,11 @@ def _pose_points(mech: Mechanism, t_end: float) -> list[dict[str, float]] | None
     return [{name: float(v[i]) for name, v in volts.items()} for i in sorted(set(picks))]
 
 
-def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[float, float, dict[str, np.ndarray],
-                                                                            Any]:
-    """The lowest eigenfrequency [Hz] about the reference pose, unloaded, and its mode's damping ratio [-]
-    (:func:`~exudyn_atcm.mbs.linear.damped_modes`; both ``nan`` where the analysis fails), the
+def _measure(mech: Mechanism, points: list[dict[str, float]] | None,
+             groups: list[list[str]]) -> tuple[float, float, dict[str, np.ndarray], Any]:
+    """The frequency [Hz] about the reference pose, unloaded, of the mode the drive ``groups`` ring (the lowest,
+    unless their forces on it cancel: :func:`~exudyn_atcm.solve.rung_mode.rung_of_state`) and its damping ratio [-]
+    (both ``nan`` where the analysis fails), the
     position columns [m] of the static equilibria at ``points`` (``{}`` without them), and the one build of
     ``mech`` they used, put back in its built state (:func:`~exudyn_atcm.mbs.solver_runs.restore_state`).
 
@@ -211,9 +215,12 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None) -> tuple[fl
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # analyses for the choice only; the run says what matters
         try:
-            f, zeta = mechanism_solve.eigenfrequencies(mech, 1, None, loaded=False, built=model, damping=True)
-            frequency = float(f[0]) if f.size and f[0] > 0.0 and math.isfinite(f[0]) else math.nan
-            damping = max(float(zeta[0]), 0.0) if math.isfinite(frequency) and math.isfinite(zeta[0]) else math.nan
+            if driven_alike(groups):
+                frequency, damping, _ = rung_of_state(modes_state(mech, None, False, model=model), groups)
+            else:
+                f, zeta = mechanism_solve.eigenfrequencies(mech, 1, None, loaded=False, built=model, damping=True)
+                frequency = float(f[0]) if f.size and f[0] > 0.0 and math.isfinite(f[0]) else math.nan
+                damping = max(float(zeta[0]), 0.0) if math.isfinite(frequency) and math.isfinite(zeta[0]) else math.nan
         except Exception:  # noqa: BLE001 - no frequency: the poses alone decide
             frequency = damping = math.nan
         runs.restore_state(model, built)
@@ -359,13 +366,14 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
     stage = getattr(progress, "stage", None)
     kept: dict = {}  # the drives' unit strains for the stand-in, by sample count
     size, still, dynamic = _size(mech), False, 0.0
+    groups = strain_groups(mech, t_end)  # drives driven alike: their forces may cancel on the lowest mode
     for n in counts:
         if callable(stage):
             stage("cell choice", 0.0, f"{names}: {n} {what} {unit} (static poses, lowest eigenfrequency)")
         candidate = with_cells(mech, {b.name: (kinds[b.name], n) for b in benders})
         if points is None:
             points = _pose_points(candidate, t_end)
-        f, zeta, poses, model = _measure(candidate, points)
+        f, zeta, poses, model = _measure(candidate, points, groups)
         if previous is not None:
             n0, f0, zeta0, poses0, model0 = previous
             travel = _travel(mech, poses)

@@ -33,11 +33,13 @@ from ..mbs import linear
 from ..mbs import linear_model as lm
 from ..mechanism import Mechanism
 from ..mechanism.damped import MaterialDamped
+from . import mechanism_solve
 from .mechanism_checks import lowest_first_frequency
 from .modes import modes_of_state, modes_state
 from .step_surrogate import unit_strain
 
-__all__ = ["MODES_EXAMINED", "CANCELLED", "rung_mode", "lowest_damping_ratio", "strain_groups"]
+__all__ = ["MODES_EXAMINED", "CANCELLED", "rung_mode", "rung_of_state", "driven_alike", "lowest_damping_ratio",
+           "strain_groups"]
 
 #: Modes examined for the one the drives ring (the lowest ones).
 MODES_EXAMINED = 4
@@ -75,24 +77,47 @@ def strain_groups(mech: Mechanism, t_end: float) -> list[list[str]]:
     return [members for _, members in groups]
 
 
+def rung_of_state(state: Any, groups: list[list[str]]) -> tuple[float, float, int]:
+    """Frequency [Hz], damping ratio [-] and index (0: the lowest) of the mode the drive ``groups``
+    (:func:`strain_groups`) ring about a :class:`~exudyn_atcm.solve.linear_state.LinearState`; ``nan`` frequency
+    where that mode is unstable or has none."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a linearisation for the choices only; the run says what matters
+        modes = modes_of_state(state, max(1, min(MODES_EXAMINED, linear.degrees_of_freedom(state.model).dof)))
+    freqs = modes.frequencies
+    j = _rung(modes, groups) if freqs[0] > 0.0 else 0
+    f = float(freqs[j])
+    if not (f > 0.0 and math.isfinite(f)):
+        return math.nan, math.nan, j
+    phi = modes.coordinates[:, j]
+    damping = float(phi @ lm.damping_matrix(state.model) @ phi)
+    return f, max(damping / (2.0 * (2.0 * math.pi * f) * float(modes.modal_masses[j])), 0.0), j
+
+
+def driven_alike(groups: list[list[str]]) -> bool:
+    """Whether two or more drives follow one strain history (only then can their forces on a mode cancel; else the
+    lowest mode is the one rung, and the cheaper eigenvalue analysis gives it)."""
+    return any(len(members) > 1 for members in groups)
+
+
 def rung_mode(mech: Mechanism, t_end: float, built: Callable[[], Any] | None = None) -> tuple[float, float, str]:
     """Frequency [Hz] and damping ratio [-] of the mode the drives ring about the start state, and in words where
     they come from (see the module notes).  ``built()``: the model to analyse, in its built state (the runs' one
     build); default a build of its own."""
     volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
+    start = volts if len(volts) == len(mech.drives) else None
+    groups = strain_groups(mech, t_end)
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # a linearisation for the step only; the run says what matters
-            state = modes_state(mech, volts if len(volts) == len(mech.drives) else None, bool(mech.forces),
-                                model=built() if built else None)
-            modes = modes_of_state(state, max(1, min(MODES_EXAMINED, linear.degrees_of_freedom(state.model).dof)))
-        freqs = modes.frequencies
-        j = _rung(modes, strain_groups(mech, t_end)) if freqs[0] > 0.0 else 0
-        f = float(freqs[j])
-        if f > 0.0 and math.isfinite(f):
-            phi = modes.coordinates[:, j]
-            damping = float(phi @ lm.damping_matrix(state.model) @ phi)
-            zeta = max(damping / (2.0 * (2.0 * math.pi * f) * float(modes.modal_masses[j])), 0.0)
+        if driven_alike(groups):
+            state = modes_state(mech, start, bool(mech.forces), model=built() if built else None)
+            f, zeta, j = rung_of_state(state, groups)
+        else:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                freqs, zetas = mechanism_solve.eigenfrequencies(mech, 1, start, loaded=bool(mech.forces),
+                                                               built=built() if built else None, damping=True)
+            f, zeta, j = float(freqs[0]), max(float(zetas[0]), 0.0), 0
+        if f > 0.0 and math.isfinite(f) and math.isfinite(zeta):
             if j == 0:
                 return f, zeta, "the lowest eigenfrequency about the start state and its mode's damping"
             return f, zeta, (f"mode {j + 1} about the start state and its damping: the drives' forces on the "
