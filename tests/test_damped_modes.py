@@ -20,6 +20,8 @@ from exudyn_atcm.casework import case_module
 from exudyn_atcm.model import Triangle
 from exudyn_atcm.solve import mechanism_solve, step_choice
 
+from _choice_spy import spy_frequency_error_share
+
 CASES = Path(__file__).resolve().parents[1] / "cases"
 CFC = atcm.Layer(0.2e-3, 70e9, 1550.0)
 MFC = atcm.Layer(0.3e-3, 30.336e9, 5440.0)
@@ -87,16 +89,11 @@ def test_the_cell_choice_rings_its_stand_in_with_the_modes_damping_too(monkeypat
     values.update(n_cells="auto", cell="rod")
     mech = four_bar.build_mechanism(Parameters(four_bar.PARAMETERS, values), four_bar.strain_laws("exact")["hysteresis"],
                                     Triangle(500.0, 1000.0, 0.5))
-    seen = []
-    original = cell_choice.frequency_error_share
-
-    def spy(mech_, t_end, frequency, delta, zeta, strains=None):
-        seen.append(zeta)
-        return original(mech_, t_end, frequency, delta, zeta, strains)
-    monkeypatch.setattr(cell_choice, "frequency_error_share", spy)
+    calls = spy_frequency_error_share(monkeypatch)
     choice = atcm.choose_cells(mech, 0.5, 1e-3)
     n = choice.cells["crank"][1]
     reference = mechanism_solve.eigenfrequencies(cell_choice.with_cells(mech, {"crank": ("rod", n)}), 1, None,
                                                  damping=True)[1][0]
+    seen = [zeta for _, zeta in calls]
     assert seen and seen[-1] == pytest.approx(reference, rel=1e-6)
     assert seen[-1] > 20.0 * step_choice.lowest_damping_ratio(mech, 2.0 * math.pi * 55.0)

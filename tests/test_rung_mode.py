@@ -20,6 +20,8 @@ from exudyn_atcm.casework import Parameters, case_module
 from exudyn_atcm.model import Constant, Triangle
 from exudyn_atcm.solve import rung_mode, step_choice
 
+from _choice_spy import spy_frequency_error_share
+
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
 
@@ -117,17 +119,12 @@ def test_the_cell_choice_follows_the_mode_the_drives_ring(monkeypatch):
     values = {p.name: p.default for p in case.PARAMETERS}
     values.update(n_cells="auto", cell="rod")
     mech = case.build_mechanism(Parameters(case.PARAMETERS, values), 200.0, Triangle(500.0, 1000.0, 0.5))
-    seen = []
-    original = cell_choice.frequency_error_share
-
-    def spy(mech_, t_end, frequency, delta, zeta, strains=None):
-        seen.append(frequency)
-        return original(mech_, t_end, frequency, delta, zeta, strains)
-    monkeypatch.setattr(cell_choice, "frequency_error_share", spy)
+    calls = spy_frequency_error_share(monkeypatch)
     choice = atcm.choose_cells(mech, 0.5, 1e-3)
     n = choice.cells["upper"][1]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         modes = atcm.modes(cell_choice.with_cells(mech, {"upper": ("rod", n), "lower": ("rod", n)}), 2)
+    seen = [frequency for frequency, _ in calls]
     assert seen and seen[-1] == pytest.approx(modes.frequencies[1], rel=1e-9)
     assert modes.frequencies[1] > 1.5 * modes.frequencies[0]
