@@ -24,7 +24,7 @@ error, measured on the mechanism itself:
   between those poses (where they do not move: relative to their distance from the reference pose);
 - the **lowest eigenfrequency** about the reference pose (unloaded: its convergence in the count is the
   discretisation's, and no equilibrium is needed; the mode the drives ring where their forces on the
-  lowest cancel, :func:`~exudyn_atcm.solve.rung_mode.rung_of_state`): its relative change ``delta``, turned into a
+  lowest cancel, :func:`~exudyn_atcm.solve.rung_mode.rung_analysis`): its relative change ``delta``, turned into a
   position error by the one-mode stand-in of the run (:mod:`exudyn_atcm.solve.step_surrogate`:
   the drives' free strain drives the mode at ``omega`` and at ``omega (1 + delta)``, damped as the
   count's lowest mode (:func:`~exudyn_atcm.mbs.linear.damped_modes`), both solved
@@ -65,8 +65,7 @@ from ..mbs.blas_threads import one_blas_thread
 from . import mechanism_solve
 from .corner_grid import distinct_drives
 from .step_choice import check_accuracy, lowest_damping_ratio
-from .modes import modes_state
-from .rung_mode import driven_alike, rung_of_state, strain_groups
+from .rung_mode import rung_analysis, strain_groups
 from .step_surrogate import ExactResponse, other_excitation, program_voltages, unit_strain
 
 __all__ = ["SPACE_SHARE", "CellChoice", "open_benders", "with_cells", "choose_cells", "frequency_error_share"]
@@ -202,7 +201,7 @@ def _pose_points(mech: Mechanism, t_end: float) -> list[dict[str, float]] | None
 def _measure(mech: Mechanism, points: list[dict[str, float]] | None,
              groups: list[list[str]]) -> tuple[float, float, dict[str, np.ndarray], Any]:
     """The frequency [Hz] about the reference pose, unloaded, of the mode the drive ``groups`` ring (the lowest,
-    unless their forces on it cancel: :func:`~exudyn_atcm.solve.rung_mode.rung_of_state`) and its damping ratio [-]
+    unless their forces on it cancel: :func:`~exudyn_atcm.solve.rung_mode.rung_analysis`) and its damping ratio [-]
     (both ``nan`` where the analysis fails), the
     position columns [m] of the static equilibria at ``points`` (``{}`` without them), and the one build of
     ``mech`` they used, put back in its built state (:func:`~exudyn_atcm.mbs.solver_runs.restore_state`).
@@ -215,12 +214,7 @@ def _measure(mech: Mechanism, points: list[dict[str, float]] | None,
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # analyses for the choice only; the run says what matters
         try:
-            if driven_alike(groups):
-                frequency, damping, _ = rung_of_state(modes_state(mech, None, False, model=model), groups)
-            else:
-                f, zeta = mechanism_solve.eigenfrequencies(mech, 1, None, loaded=False, built=model, damping=True)
-                frequency = float(f[0]) if f.size and f[0] > 0.0 and math.isfinite(f[0]) else math.nan
-                damping = max(float(zeta[0]), 0.0) if math.isfinite(frequency) and math.isfinite(zeta[0]) else math.nan
+            frequency, damping, _ = rung_analysis(mech, None, False, model, groups)
         except Exception:  # noqa: BLE001 - no frequency: the poses alone decide
             frequency = damping = math.nan
         runs.restore_state(model, built)

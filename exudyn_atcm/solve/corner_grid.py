@@ -127,7 +127,8 @@ def _on_grid(x: np.ndarray, unit: int, each: bool = False) -> Any:
     return on if each else bool(on.all())
 
 
-def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int) -> tuple[int, float]:
+def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int,
+                  unit: int | None = None) -> tuple[int, float]:
     """Fewest steps over ``t_end`` [s] the drives' programs ask for, and the shortest feature [s] that asks.
 
     ``per_feature`` steps per shortest feature (``program_feature``) of each program, except for a
@@ -139,9 +140,9 @@ def feature_steps(mech: Mechanism, t_end: float, per_feature: float, factor: int
     returned is the shortest of the other programs (``inf`` without one).  A measured voltage record has a
     reversal at nearly every sample: at ``per_feature`` steps per sample its accuracy run took a
     step 10 times finer than the accuracy needed (``tests/test_accuracy_runs.py``).  ``(0, inf)``
-    without a feature.
+    without a feature.  ``unit``: :func:`grid_unit` of the mechanism, if known.
     """
-    unit = grid_unit(mech, t_end)
+    unit = grid_unit(mech, t_end) if unit is None else unit
     steps, feature = 0, math.inf
     for drive in distinct_drives(mech):
         samples = controller_samples(drive.voltage, t_end)

@@ -38,8 +38,8 @@ from .mechanism_checks import lowest_first_frequency
 from .modes import modes_of_state, modes_state
 from .step_surrogate import unit_strain
 
-__all__ = ["MODES_EXAMINED", "CANCELLED", "rung_mode", "rung_of_state", "driven_alike", "lowest_damping_ratio",
-           "strain_groups"]
+__all__ = ["MODES_EXAMINED", "CANCELLED", "rung_mode", "rung_analysis", "rung_of_state", "driven_alike",
+           "lowest_damping_ratio", "strain_groups"]
 
 #: Modes examined for the one the drives ring (the lowest ones).
 MODES_EXAMINED = 4
@@ -100,24 +100,32 @@ def driven_alike(groups: list[list[str]]) -> bool:
     return any(len(members) > 1 for members in groups)
 
 
+def rung_analysis(mech: Mechanism, voltage: Any, loaded: bool, model: Any,
+                  groups: list[list[str]]) -> tuple[float, float, int]:
+    """Frequency [Hz], damping ratio [-] and index of the mode the drive ``groups`` ring about the equilibrium at
+    ``voltage`` (``None``, ``loaded``: as :func:`exudyn_atcm.eigenfrequencies`) of ``model`` (a build of ``mech`` in
+    its built state; ``None``: a build of its own): :func:`rung_of_state` where drives are driven alike, else the
+    lowest mode by the cheaper eigenvalue analysis.  ``nan`` frequency where the mode is unstable or has none."""
+    if driven_alike(groups):
+        return rung_of_state(modes_state(mech, voltage, loaded, model=model), groups)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a linearisation for the choices only; the run says what matters
+        freqs, zetas = mechanism_solve.eigenfrequencies(mech, 1, voltage, loaded=loaded, built=model, damping=True)
+    f = float(freqs[0])
+    if not (f > 0.0 and math.isfinite(f) and math.isfinite(zetas[0])):
+        return math.nan, math.nan, 0
+    return f, max(float(zetas[0]), 0.0), 0
+
+
 def rung_mode(mech: Mechanism, t_end: float, built: Callable[[], Any] | None = None) -> tuple[float, float, str]:
     """Frequency [Hz] and damping ratio [-] of the mode the drives ring about the start state, and in words where
     they come from (see the module notes).  ``built()``: the model to analyse, in its built state (the runs' one
     build); default a build of its own."""
     volts = {n: d.voltage_at(0.0) for n, d in mech.drives.items() if getattr(d, "controller", None) is None}
-    start = volts if len(volts) == len(mech.drives) else None
-    groups = strain_groups(mech, t_end)
     try:
-        if driven_alike(groups):
-            state = modes_state(mech, start, bool(mech.forces), model=built() if built else None)
-            f, zeta, j = rung_of_state(state, groups)
-        else:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                freqs, zetas = mechanism_solve.eigenfrequencies(mech, 1, start, loaded=bool(mech.forces),
-                                                               built=built() if built else None, damping=True)
-            f, zeta, j = float(freqs[0]), max(float(zetas[0]), 0.0), 0
-        if f > 0.0 and math.isfinite(f) and math.isfinite(zeta):
+        f, zeta, j = rung_analysis(mech, volts if len(volts) == len(mech.drives) else None, bool(mech.forces),
+                                   built() if built else None, strain_groups(mech, t_end))
+        if math.isfinite(f):
             if j == 0:
                 return f, zeta, "the lowest eigenfrequency about the start state and its mode's damping"
             return f, zeta, (f"mode {j + 1} about the start state and its damping: the drives' forces on the "

@@ -52,7 +52,7 @@ from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mbs.blas_threads import one_blas_thread
-from .corner_grid import distinct_drives, feature_steps, grid_unit, jumps, refinement
+from .corner_grid import controller_samples, distinct_drives, feature_steps, grid_unit, jumps, refinement
 from .interrupts import SimulationInterrupted
 from .run_checks import COMFORTABLE_STEPS_PER_FEATURE, program_feature
 from .rung_mode import lowest_damping_ratio, rung_mode
@@ -194,17 +194,17 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     if jumping:
         order = min(order, JUMP_ORDER + CHECK_ORDER_SLACK)  # a jump in the forcing: first order, however it is sampled
     feature = _shortest_feature(mech, t_end)
-    n_features, sampled = feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR)
+    unit = grid_unit(mech, t_end)  # the drives' corners on the run's grid, the probe's and the stand-in's samples
+    n_features, sampled = feature_steps(mech, t_end, STEPS_PER_FEATURE, PROBE_FACTOR, unit)
     n_min = max(MIN_STEPS, n_features)
     # the stand-in's strain follows the features that fall between steps; a program with its corners on the grid
     # is sampled at each corner (n_min holds them) and is smooth between them
     per_feature = t_end / sampled if math.isfinite(sampled) else 0.0
     if not (frequency > 0.0 and math.isfinite(frequency)):
-        n = _on_corners(mech, t_end, n_min, PROBE_FACTOR, grid)
+        n = _on_corners(unit, n_min, PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, 0.0, feature, math.nan, order,
                               "no mode to resolve: the drive's features decide", 2, t_end)
     omega = 2.0 * math.pi * frequency
-    unit = grid_unit(mech, t_end)  # the strain's corners on its samples too
     n_ref = min(MAX_REFERENCE_SAMPLES, max(math.ceil(per_feature * REFERENCE_SAMPLES), 16 * n_min))
     n_ref = unit * math.ceil(n_ref / unit)
     dt = t_end / n_ref
@@ -212,14 +212,16 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
     if not strains:
         other = other_excitation(mech)
         if other is None:  # nothing moves it: the run stays at rest in the equilibrium it starts from
-            return StepPrediction(_on_corners(mech, t_end, n_min, PROBE_FACTOR, grid), t_end, frequency, source, zeta,
+            return StepPrediction(_on_corners(unit, n_min, PROBE_FACTOR, grid), t_end, frequency, source, zeta,
                                   feature, 0.0, order, "no drive's strain changes during the run and the loads are "
                                   f"constant: the mechanism stays at rest in its start equilibrium, its lowest mode "
                                   f"({frequency:.4g} Hz) not excited", 2, t_end)
-        n = _on_corners(mech, t_end, max(n_min, math.ceil(t_end * frequency * 20.0)), PROBE_FACTOR, grid)
+        n = _on_corners(unit, max(n_min, math.ceil(t_end * frequency * 20.0)), PROBE_FACTOR, grid)
         return StepPrediction(n, t_end, frequency, source, zeta, feature, math.nan, order,
                               f"{other} (its response is not known before the run): 20 steps per period"
-                              + (", and its samples on the step grid" if "controller" in other else ""), 2, t_end)
+                              + (", and its samples on the step grid" if any(controller_samples(d.voltage, t_end) is not None
+                                                                           for d in distinct_drives(mech)) else ""),
+                              2, t_end)
     n_max = max(n_min, math.ceil(t_end * frequency * MAX_STEPS_PER_PERIOD))
     with one_blas_thread():  # small block products: a threaded BLAS would leave its workers spinning (cell_choice)
         stand_in = StandIn(strains, dt, t_end, omega, zeta)
@@ -228,12 +230,13 @@ def predict_steps(mech: Mechanism, t_end: float, accuracy: float, grid: int = 1,
         # stand-in missed 0.0086, 0.014, 0.0069, 0.014 at the rungs 1351 ... 2274, its rungs on the grid fall
         # steadily), and the first to pass off the grid said little about the count on it
         n = n_min
-        n_used = _on_corners(mech, t_end, n, PROBE_FACTOR, grid)
+        n_used = _on_corners(unit, n, PROBE_FACTOR, grid)
         predicted = stand_in.error(n_used)
         while predicted > AIM * accuracy and n < n_max:
             n = min(n_max, max(n + 1, math.ceil(n * LADDER)))
-            if _on_corners(mech, t_end, n, PROBE_FACTOR, grid) != n_used:
-                n_used = _on_corners(mech, t_end, n, PROBE_FACTOR, grid)
+            rung = _on_corners(unit, n, PROBE_FACTOR, grid)
+            if rung != n_used:
+                n_used = rung
                 predicted = stand_in.error(n_used)
         errors = stand_in.errors(n_used)
     predicted = float(np.max(errors))
@@ -275,11 +278,10 @@ def probe_window(errors: np.ndarray, t_end: float, frequency: float, block: int)
     return k * h, float(running[-1] / running[k])
 
 
-def _on_corners(mech: Mechanism, t_end: float, n: int, factor: int, grid: int = 1) -> int:
-    """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners (and
-    that is a multiple of ``grid``)."""
-    unit = grid_unit(mech, t_end)
-    unit = unit * factor  # the probe takes every factor-th instant: n / factor a multiple of the corners' unit
+def _on_corners(corner_unit: int, n: int, factor: int, grid: int = 1) -> int:
+    """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners (a multiple
+    of ``corner_unit``, :func:`~exudyn_atcm.solve.corner_grid.grid_unit`; and a multiple of ``grid``)."""
+    unit = corner_unit * factor  # the probe takes every factor-th instant: n / factor a multiple of the corners' unit
     if unit > n:  # a grid finer than the run needs for the corners alone: only the probe's factor
         unit = factor
     if grid > 1 and grid <= n:
