@@ -33,7 +33,7 @@ import math
 from typing import Callable
 
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..mechanism.assembly import Mechanism
 from .node_chain import actuation_torques, reference_curvatures

@@ -19,7 +19,7 @@ from typing import Any
 
 import exudyn as exu
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..errors import AtcmDeprecationWarning
 from ..mechanism.assembly import Mechanism

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import exudyn as exu
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender, passive_strip_cells

@@ -6,7 +6,7 @@ import math
 from typing import Any
 
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from .model import Body
 

@@ -10,7 +10,7 @@ import warnings
 from typing import Any
 
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..mechanism.points import PointRef
 from .items import NOVIS, position_marker, rigid_marker

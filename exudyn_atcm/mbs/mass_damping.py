@@ -17,7 +17,7 @@ coordinate.  Static solves and eigenfrequencies do not see them.
 
 from __future__ import annotations
 
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..mechanism.bender import Bender
 from .items import NOVIS, position_marker, rotation_marker

@@ -21,7 +21,7 @@ from typing import Any, Union
 
 import exudyn as exu
 import numpy as np
-from exudyn import itemInterface as ii
+from .exudyn_items import ii
 
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender

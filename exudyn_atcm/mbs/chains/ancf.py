@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from exudyn import itemInterface as ii
+from ..exudyn_items import ii
 
 from ...cells import AncfCell
 from ...mechanism.bender import Bender

@@ -34,7 +34,7 @@ the clamp).
 
 from __future__ import annotations
 
-from exudyn import itemInterface as ii
+from ..exudyn_items import ii
 import numpy as np
 
 from ...cells import BeamCell

@@ -19,7 +19,7 @@ from collections.abc import Callable
 
 import exudyn as exu
 import numpy as np
-from exudyn import itemInterface as ii
+from ..exudyn_items import ii
 
 from ...cells import SixBarCell
 from ...mechanism.bender import Bender
