@@ -67,11 +67,12 @@ class RowLayout:
     def every_step_result(self, columns: np.ndarray, info: dict) -> Result:
         """The :class:`Result` of the stacked :meth:`every_step_columns`."""
         names, units = self._every_names or [], self._every_units or []
-        for k, name in enumerate(names):
+        finite = bool(np.isfinite(columns).all()) if len(names) else True
+        for k, name in enumerate(() if finite else names):  # the first non-finite column, named
             if not np.all(np.isfinite(columns[:, k])):
                 bad = int(np.argmax(~np.isfinite(columns[:, k])))
                 raise SolverError(f"the solution contains a non-finite {name} at accepted step {bad} "
-                                  f"(t = {columns[bad, 0]!r} s); the solver diverged. Try a smaller step or more cells.")
+                                  f"(t = {float(columns[bad, 0]):.6g} s); the solver diverged. Try a smaller step or more cells.")
         return Result({n: columns[:, k] for k, n in enumerate(names)}, dict(zip(names, units)),
                       parameters=self.model.mechanism.parameters(), info=info)
 
@@ -162,8 +163,9 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
     for name, k in model.drive_source.items():
         series[f"{name}.voltage"], units[f"{name}.voltage"] = volts[:, k], "V"
         series[f"{name}.strain"], units[f"{name}.strain"] = strains[:, k], "-"
-    poses = model.poses(q)
-    points = model.point_positions(poses)
+    with np.errstate(invalid="ignore", over="ignore"):  # a diverged state is refused below, by its column and row
+        poses = model.poses(q)
+        points = model.point_positions(poses)
     benders = {b.name: b for b in mech.benders}
     for comp in mech.components.values():
         for pname in comp.points:
@@ -196,11 +198,13 @@ def make_result(model: MechanismModel, times: np.ndarray, volts: np.ndarray, str
     info = dict(info)
     info.setdefault("exudyn_version", runs.exudyn_version())
     result = Result(series, units, parameters=mech.parameters(), info=info, every_step=every_step)
-    for name in (result if check_finite else ()):
+    names = list(result) if check_finite else []
+    finite = not names or bool(np.isfinite(np.stack([result[name] for name in names])).all())
+    for name in (() if finite else names):  # the first non-finite column, named
         values = result[name]
         if values.size and not np.all(np.isfinite(values)):
             bad = int(np.argmax(~np.isfinite(values)))
-            where = f"t = {times[bad]!r} s" if base[0] == "time" else f"{base[0]} {times[bad]!r}"
+            where = f"t = {float(times[bad]):.6g} s" if base[0] == "time" else f"{base[0]} {float(times[bad]):.6g}"
             raise SolverError(f"the solution contains a non-finite {name} at row {bad} ({where}); "
                               "the solver diverged. Try a smaller step or more cells.")
     return result
