@@ -5,6 +5,12 @@ non-uniform Preisach model with major and minor loops plus 0.4 µm noise, see it
 read with :func:`exudyn_atcm.io.measurements.read_record` and split by time: the part before
 ``split_fraction`` of the duration is fitted, the rest is held out and predicted (the model
 runs over the whole record, so the held-out part starts from the memory the fitted part left).
+A record whose amplitude grows (the usual identification excitation) has held-out inputs beyond
+the fitted part's: ``split=cycles`` holds out interleaved whole cycles instead, ``split=auto``
+chooses (:func:`exudyn_atcm.hysteresis.identify`).  A family the record cannot identify (Eq. 12
+needs a whole major loop) is left out of the comparison, with the reason in the notes
+(``not_fitted``); if the Preisach fit itself fails, the chosen family's model is the main result
+(``main_model`` in the notes).
 
 Fitted: a Preisach density on an ``n_levels`` grid by non-negative least squares (variable
 gains; ``prior``: ``"pi"`` by default, as for the fits, 1.02 x the noise held out on the
@@ -58,7 +64,11 @@ PARAMETERS = [
     Parameter("time_column", "time", "-", "column of the time [s]"),
     Parameter("input_column", "voltage", "-", "column of the input (voltage)"),
     Parameter("output_column", "displacement", "-", "column of the output (displacement)"),
-    Parameter("split_fraction", 0.6, "-", "fraction of the duration fitted; the rest is held out", exclusive_minimum=0.0, maximum=1.0),
+    Parameter("split", "time", "-", "which samples are held out: time (the part after split_fraction of the duration), "
+              "cycles (interleaved whole cycles: records whose amplitude grows or changes) or auto (time when the fitted "
+              "part covers the held-out inputs, else cycles; exudyn_atcm.hysteresis.identify)",
+              choices=("time", "cycles", "auto")),
+    Parameter("split_fraction", 0.6, "-", "split=time: fraction of the duration fitted; the rest is held out", exclusive_minimum=0.0, maximum=1.0),
     Parameter("n_levels", 40, "-", "grid levels of the Preisach fit", minimum=1),
     Parameter("smoothing", 1e-3, "-", "smoothness regularisation of the Preisach fit", minimum=0.0),
     Parameter("prior", "pi", "-", "prior of the Preisach fits where the record says nothing: pi (cross-validated; "
@@ -70,6 +80,38 @@ PARAMETERS = [
 ]
 
 
+#: The families compared, by :func:`~exudyn_atcm.hysteresis.identify`'s names: their reports' keys in the notes and
+#: their held-out error's scalar.
+FAMILIES = {
+    "everett": ("preisach_fit", "held_out_rms_preisach"),
+    "discrete": ("relay_grid_fit", "held_out_rms_relay_grid"),
+    "prandtl_ishlinskii": ("prandtl_ishlinskii_fit", "held_out_rms_prandtl_ishlinskii"),
+    "continuous": ("continuous_fit", "held_out_rms_continuous"),
+    "equal_gain": ("equal_gain_eq12", "held_out_rms_equal_gain"),
+}
+
+
+def fit_families(p: Parameters, u: np.ndarray, y: np.ndarray, n_fit: int, unit: str):
+    """Every family fitted to all samples (no held-out part): ``(models, reports, failures)`` by family."""
+    fits = {
+        "everett": lambda: EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                               prior=p.prior),
+        "discrete": lambda: DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
+                                                 prior=p.prior),
+        "prandtl_ishlinskii": lambda: PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit),
+        "continuous": lambda: ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit),
+        "equal_gain": lambda: DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12, reversal_tolerance=0.02,
+                                                         report=True, output_unit=unit),
+    }
+    models, reports, failures = {}, {}, {}
+    for family, fit in fits.items():
+        try:
+            models[family], reports[family] = fit()
+        except ValueError as exc:  # a family the record cannot identify (e.g. Eq. 12 without a whole loop)
+            failures[family] = str(exc)
+    return models, reports, failures
+
+
 def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     path = Path(p.record) if p.record else SHIPPED
     record = read_record(path, time=p.time_column, input=p.input_column, output=p.output_column)
@@ -77,57 +119,66 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
         record = preprocess(record, trim_start=p.trim_start, decimate=p.decimate)
     t, u, y = record.time, record.input, record.output
     unit = record.units["output"]
-    n_fit = t.size if p.split_fraction == 1.0 else record.split_index(t[0] + p.split_fraction * (t[-1] - t[0]))
+    by_time = p.split == "time"
+    n_fit = t.size if by_time and p.split_fraction == 1.0 else \
+        record.split_index(t[0] + p.split_fraction * (t[-1] - t[0]))
+    if not by_time and p.split_fraction != 0.6:
+        raise ValueError(f"split_fraction applies to split='time' only, got split_fraction={p.split_fraction:g} with "
+                         f"split={p.split!r} (which chooses the held-out samples itself)")
 
     choice = None
-    if n_fit < t.size:  # every family on the same split, ranked on the held-out part
-        choice = identify(u, y, n_fit=n_fit, output_unit=unit,
+    fit_mask = None
+    if not by_time or n_fit < t.size:  # every family on the same split, ranked on the held-out part
+        split = {"n_fit": n_fit} if by_time else {"split": p.split}
+        choice = identify(u, y, **split, output_unit=unit,
                           options=IdentifyOptions(n_levels=p.n_levels, smoothing=p.smoothing, prior=p.prior,
                                                   n_plays=p.n_plays, n_relays=p.n_relays_eq12, reversal_tolerance=0.02))
         print(choice.to_text())
-        model = choice.candidate("everett").model
-        report = choice.candidate("everett").report
-        grid_report = choice.candidate("discrete").report
-        pi_report = choice.candidate("prandtl_ishlinskii").report
-        cont_report = choice.candidate("continuous").report
-        eq12 = choice.candidate("equal_gain")
-        eq12_report = make_report(eq12.model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
-                                  notes=eq12.report.notes, output_unit=unit)
+        n_fit = choice.n_fit
+        fit_mask = None if by_time else choice.fit_mask
+        fitted = {c.family: c for c in choice.candidates if not c.failure}
+        failures = {c.family: c.failure for c in choice.candidates if c.failure}
+        models = {family: c.model for family, c in fitted.items()}
+        reports = {family: c.report for family, c in fitted.items()}
+        main = "everett" if "everett" in fitted else choice.chosen.family
+        if "equal_gain" in fitted:  # compared from the main fit's first sample, as the other reports
+            eq12 = fitted["equal_gain"]
+            reports["equal_gain"] = make_report(eq12.model, u, y, n_fit, reports[main].fit_start,
+                                                "DiscretePreisach.from_loop (Eq. 12)", notes=eq12.report.notes,
+                                                output_unit=unit, fit_mask=fit_mask)
     else:
-        model, report = EverettPreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
-                                            prior=p.prior)
-        _, grid_report = DiscretePreisach.fit(u, y, p.n_levels, smoothing=p.smoothing, n_fit=n_fit, output_unit=unit,
-                                              prior=p.prior)
-        _, pi_report = PrandtlIshlinskii.fit(u, y, p.n_plays, n_fit=n_fit, output_unit=unit)
-        _, cont_report = ContinuousPreisach.fit(u, y, n_fit=n_fit, output_unit=unit)
-        eq12_model, eq12_fit = DiscretePreisach.from_loop(u[:n_fit], y[:n_fit], p.n_relays_eq12,
-                                                          reversal_tolerance=0.02, report=True, output_unit=unit)
-        eq12_report = make_report(eq12_model, u, y, n_fit, report.fit_start, "DiscretePreisach.from_loop (Eq. 12)",
-                                  notes=eq12_fit.notes, output_unit=unit)
-    reports = {"preisach_fit": report, "relay_grid_fit": grid_report, "prandtl_ishlinskii_fit": pi_report,
-               "continuous_fit": cont_report, "equal_gain_eq12": eq12_report}
-
+        models, reports, failures = fit_families(p, u, y, n_fit, unit)
+        if "everett" not in models:
+            raise ValueError(f"the Preisach fit failed on the whole record: {failures['everett']}")
+        main = "everett"
+        reports["equal_gain"] = make_report(models["equal_gain"], u, y, n_fit, reports[main].fit_start,
+                                            "DiscretePreisach.from_loop (Eq. 12)", notes=reports["equal_gain"].notes,
+                                            output_unit=unit) if "equal_gain" in models else None
+        reports = {f: r for f, r in reports.items() if r is not None}
+    model, report = models[main], reports[main]
+    fitted_part = fit_mask if fit_mask is not None else np.arange(t.size) < n_fit
     result = Result(
         {"time": t, "voltage": u, "measured": y, "predicted": report.predicted,
-         "error": report.predicted - y, "fitted": (np.arange(t.size) < n_fit).astype(float)},
+         "error": report.predicted - y, "fitted": np.asarray(fitted_part, dtype=float)},
         {"time": record.units["time"], "voltage": record.units["input"] or "-", "measured": unit or "-",
          "predicted": unit or "-", "error": unit or "-", "fitted": "-"},
         parameters={"record": str(path), "processing": "; ".join(record.processing)},
     )
-    scalars = {
-        "held_out_rms_preisach": (report.model_errors["held_out"]["rms"], unit),
-        "held_out_rms_relay_grid": (grid_report.model_errors["held_out"]["rms"], unit),
-        "held_out_rms_linear": (report.linear_errors["held_out"]["rms"], unit),
-        "held_out_rms_prandtl_ishlinskii": (pi_report.model_errors["held_out"]["rms"], unit),
-        "held_out_rms_continuous": (cont_report.model_errors["held_out"]["rms"], unit),
-        "held_out_rms_equal_gain": (eq12_report.model_errors["held_out"]["rms"], unit),
-        "fit_rms_preisach": (report.model_errors["fit"]["rms"], unit),
-        "linear_over_preisach_held_out": (report.improvement_over_linear("held_out"), "-"),
-        "fit_time_preisach": (report.fit_time, "s"),
-    }
-    if path.resolve() == SHIPPED:
+    scalars = {FAMILIES[family][1]: (r.model_errors["held_out"]["rms"], unit) for family, r in reports.items()}
+    scalars["held_out_rms_linear"] = (report.linear_errors["held_out"]["rms"], unit)
+    if main == "everett":
+        scalars.update({
+            "fit_rms_preisach": (report.model_errors["fit"]["rms"], unit),
+            "linear_over_preisach_held_out": (report.improvement_over_linear("held_out"), "-"),
+            "fit_time_preisach": (report.fit_time, "s"),
+        })
+    if path.resolve() == SHIPPED and main == "everett":
         scalars["held_out_rms_per_noise"] = (report.model_errors["held_out"]["rms"] / REFERENCE["noise [m]"], "-")
+    reports = {FAMILIES[family][0]: r for family, r in reports.items()}
     notes = {name: r.to_dict() for name, r in reports.items()}
+    notes["main_model"] = main
+    if failures:  # the families the record could not identify, and why
+        notes["not_fitted"] = failures
     tables = {}
     if choice is not None:
         notes["model_choice"] = choice.to_dict()
@@ -151,11 +202,13 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
 def plot(output: CaseOutput, p: Parameters, out_dir: Path) -> list[Path]:
     r = output.result
     n_fit = int(np.sum(r["fitted"]))
-    report = SimpleNamespace(**{k: v for k, v in output.notes["preisach_fit"].items()})
+    main = output.notes.get("main_model", "everett")
+    report = SimpleNamespace(**{k: v for k, v in output.notes[FAMILIES[main][0]].items()})
     report.predicted = r["predicted"]
     report.n_fit = n_fit
     files = [out_dir / f"{output.case}_loop.png", out_dir / f"{output.case}_time.png"]
-    labels = {"labels": AxisLabels(output_unit=r.unit("measured")), "title": f"Preisach fit, {p.n_levels} levels"}
+    title = f"Preisach fit, {p.n_levels} levels" if main == "everett" else f"{main} fit (the Preisach fit failed)"
+    labels = {"labels": AxisLabels(output_unit=r.unit("measured")), "title": title}
     plot_fit(report, r["voltage"], r["measured"], path=files[0], **labels)
     plot_fit_series(report, r["voltage"], r["measured"], time=r["time"], path=files[1], **labels)
     if "model_choice" in output.notes:  # the ranked table of hysteresis.identify as a figure
