@@ -4,18 +4,34 @@ The description layer (:mod:`exudyn_atcm.mechanism`) never imports the Exudyn la
 (:mod:`exudyn_atcm.mbs`).  The two conveniences of the description that need a built model,
 :meth:`Mechanism.degrees_of_freedom <exudyn_atcm.Mechanism.degrees_of_freedom>` and the check of
 dependent joints in :meth:`Mechanism.check <exudyn_atcm.Mechanism.check>`, call the functions that
-:mod:`exudyn_atcm.mbs` registers here when it is imported (``import exudyn_atcm`` imports it), so
-the only import arrow runs from ``mbs`` to ``mechanism``.
+:mod:`exudyn_atcm.mbs` registers here when it is imported, so the only import arrow runs from
+``mbs`` to ``mechanism``.  ``import exudyn_atcm`` loads its parts on first use (a fast start),
+so the first call here that finds nothing registered imports the registering module,
+:data:`PROVIDER`, by name (until 2026-11-30 :meth:`Mechanism.check <exudyn_atcm.Mechanism.check>`
+then skipped the check of dependent joints silently, and ``degrees_of_freedom`` asked the user to
+``import exudyn_atcm``, which they had done).
 """
 
 from __future__ import annotations
 
+import importlib
 from typing import Any, Callable
 
-__all__ = ["register_dof_counter", "count_degrees_of_freedom", "register_redundancy_check", "check_redundancy"]
+__all__ = ["register_dof_counter", "count_degrees_of_freedom", "register_redundancy_check", "check_redundancy", "PROVIDER"]
 
 _COUNTERS: list[Callable[[Any], Any]] = []
 _REDUNDANCY_CHECKS: list[Callable[[Any], None]] = []
+#: The module whose import registers the functions (the package's Exudyn layer).
+PROVIDER = "exudyn_atcm.mbs"
+
+
+def _registered(functions: list, what: str) -> Callable:
+    """The registered function of ``functions``, the :data:`PROVIDER` imported first if none is."""
+    if not functions:
+        importlib.import_module(PROVIDER)
+    if not functions:
+        raise RuntimeError(f"no {what} registered: importing {PROVIDER} should have registered it")
+    return functions[0]
 
 
 def register_dof_counter(counter: Callable[[Any], Any]) -> None:
@@ -31,13 +47,9 @@ def count_degrees_of_freedom(mechanism: Any) -> Any:
     Raises
     ------
     RuntimeError
-        If no counter is registered (only when :mod:`exudyn_atcm.mechanism` was imported without
-        the package's Exudyn layer; ``import exudyn_atcm`` registers it).
+        If importing :data:`PROVIDER` registered no counter.
     """
-    if not _COUNTERS:
-        raise RuntimeError("no degrees-of-freedom counter registered: import exudyn_atcm (its Exudyn layer, "
-                           "exudyn_atcm.mbs, registers it)")
-    return _COUNTERS[0](mechanism)
+    return _registered(_COUNTERS, "degrees-of-freedom counter")(mechanism)
 
 
 def register_redundancy_check(check: Callable[[Any], None]) -> None:
@@ -47,14 +59,14 @@ def register_redundancy_check(check: Callable[[Any], None]) -> None:
     _REDUNDANCY_CHECKS[:] = [check]
 
 
-def check_redundancy(mechanism: Any) -> bool:
+def check_redundancy(mechanism: Any) -> None:
     """Refuse ``mechanism`` when its joints are dependent in the reference pose (the registered check).
 
-    Returns ``False`` without checking when no check is registered: only when the description
-    layer is used without the package's Exudyn layer (``import exudyn_atcm`` registers it, and
-    every solve checks the model it builds in any case).
+    Raises
+    ------
+    MechanismError
+        For dependent joints.
+    RuntimeError
+        If importing :data:`PROVIDER` registered no check.
     """
-    if not _REDUNDANCY_CHECKS:
-        return False
-    _REDUNDANCY_CHECKS[0](mechanism)
-    return True
+    _registered(_REDUNDANCY_CHECKS, "check of dependent joints")(mechanism)
