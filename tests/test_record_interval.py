@@ -61,3 +61,24 @@ def test_the_issue_example_now_warns():
     case = load_case(CASES / "paper_bending_actuator.py")
     with pytest.warns(RuntimeWarning, match=r"record_every = 10\.0 s keeps only 0\.05 recorded instants"):
         case.run({"cell": "rigid", "cycles": 1, "record_every": 10.0})
+
+
+# ----------------------------------------------------------------------------- intervals that are not whole steps
+def test_an_interval_that_is_not_a_whole_number_of_steps_warns_and_says_how_far_apart_the_records_are():
+    """0.7 ms at steps of 0.5 ms: the first step at or after each multiple of 0.7 ms is recorded, so the rows are
+    0.5 or 1 ms apart (counted here from the recorded times); the metadata said "every 0.0007 s"."""
+    with pytest.warns(atcm.SetupWarning, match=r"record_every = 0\.0007 s is not a whole number of steps of 0\.0005 s"
+                                               r".*e\.g\. 0\.0005 s"):
+        r = atcm.simulate(actuator(), 0.05, step=5e-4, record_every=7e-4)
+    gaps = np.unique(np.round(np.diff(r["time"]), 12))
+    assert set(gaps) == {5e-4, 1e-3}
+    assert r.info["recorded"] == ("the first step at or after every 0.0007 s (steps of 0.0005 s: records 0.0005 or "
+                                  "0.001 s apart)")
+
+
+def test_an_interval_of_whole_steps_is_even_and_silent():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = atcm.simulate(actuator(), 0.045, step=5e-4, record_every=1.5e-3)
+    np.testing.assert_allclose(np.diff(r["time"]), 1.5e-3, rtol=1e-9)
+    assert r.info["recorded"] == "every 0.0015 s"

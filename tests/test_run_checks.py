@@ -433,3 +433,21 @@ def test_interrupt_that_surfaces_as_system_error_is_still_an_interrupt():
 
     with pytest.raises(SystemError, match="genuine fault"):
         run_checks.InterruptGuard().wrap(broken)(0.0)
+
+
+# ----------------------------------------------------------------------------- the steps the warning suggests
+@pytest.mark.parametrize("t_end, step", [(1.0, 3e-4), (1.0, 3.0001e-4), (2.0, 1.3e-4), (0.37, 1.0001e-4), (5.0, 7e-5),
+                                         (1.0, 0.7), (0.1, 0.03)])
+def test_the_steps_the_warning_suggests_divide_the_run(t_end, step):
+    """Following the advice silences the warning: the suggestions were the quotients to 6 digits (0.00029994 for
+    1 s / 3334), which divide nothing, so ``--set step=0.00029994`` warned again."""
+    import re
+    with pytest.warns(AccuracyWarning) as record:
+        time_grid(t_end, step)
+    finer, coarser = (float(v) for v in re.search(r"e\.g\. (\S+) or (\S+) s\)", str(record[0].message)).groups())
+    assert finer < step < coarser
+    for suggested in (finer, coarser):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            grid = time_grid(t_end, suggested)
+        assert grid.step == suggested and grid.n_steps * suggested == pytest.approx(t_end, rel=1e-12)

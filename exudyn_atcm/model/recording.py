@@ -50,13 +50,28 @@ class RecordingSchedule:
         """True when every accepted step is recorded."""
         return self.steps == 1 or (self.interval is not None and self.interval <= self.step * (1 + 1e-9))
 
+    @property
+    def even(self) -> bool:
+        """True when the records are evenly spaced: every ``n``-th step, or an interval that is a whole number of
+        steps (within 1e-9 of it)."""
+        if self.steps is not None or self.every_step:
+            return True
+        ratio = self.interval / self.step
+        return abs(ratio - round(ratio)) <= 1e-9 * ratio
+
     def describe(self) -> str:
-        """``"every step"``, ``"every 10 steps"`` or ``"every 0.001 s"`` (for metadata)."""
+        """``"every step"``, ``"every 10 steps"`` or ``"every 0.001 s"`` (for metadata); an interval that is not a
+        whole number of steps says how far apart the records are (``"the first step at or after every 0.0007 s
+        (steps of 0.0005 s: records 0.0005 or 0.001 s apart)"``)."""
         if self.every_step:
             return "every step"
         if self.steps is not None:
             return f"every {self.steps} steps"
-        return f"every {self.interval!r} s"
+        if not self.even:
+            low = math.floor(self.interval / self.step) * self.step
+            return (f"the first step at or after every {self.interval:.6g} s (steps of {self.step:.6g} s: records "
+                    f"{low:.6g} or {low + self.step:.6g} s apart)")
+        return f"every {self.interval:.6g} s"
 
     def take(self, t: float) -> bool:
         """Whether the accepted step ending at ``t`` [s] is recorded (call once per accepted step, in order)."""

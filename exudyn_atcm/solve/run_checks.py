@@ -4,7 +4,7 @@ Every function here is independent of Exudyn and of the model type, so any solve
 bending actuator's :func:`~exudyn_atcm.solve.simulation.simulate`, a mechanism) can call them:
 
 * :func:`time_grid` -- the step actually used for ``t_end`` (warns when the requested step
-  does not divide the run);
+  does not divide the run; from :mod:`exudyn_atcm.solve.time_grid`, with :func:`snap_time`);
 * :func:`check_step_against_program` -- refuses a step that cannot resolve the voltage
   program, warns when it resolves it only coarsely;
 * :func:`check_step_against_frequency` -- warns when the step resolves the first
@@ -51,7 +51,6 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -62,12 +61,14 @@ from ..mechanism.build_cost import LARGE_MODEL_BYTES, build_detail
 from .drive_cost import drive_share
 from .long_runs import is_announced, long_run_message
 from ..errors import AccuracyWarning, InputRangeWarning, RunCostWarning
+from .time_grid import SUGGESTION_COUNTS, TimeGrid, dividing_steps, snap_time, snap_times, time_grid
 
 __all__ = [
     "MIN_STEPS_PER_FEATURE", "COMFORTABLE_STEPS_PER_FEATURE", "MIN_STEPS_PER_MODE_PERIOD", "SLOW_PROGRAM_FACTOR",
     "LONG_RUN_SECONDS", "COST_PER_STEP", "TimeGrid", "time_grid", "snap_time", "snap_times",
     "check_step_against_program", "check_record_interval", "program_feature", "MIN_RECORDS_PER_FEATURE",
-    "corners_on_grid", "check_step_against_frequency", "estimate_run_time", "warn_if_long",
+    "corners_on_grid", "check_step_against_frequency", "estimate_run_time", "warn_if_long", "dividing_steps",
+    "SUGGESTION_COUNTS",
     "InterruptGuard", "SimulationInterrupted", "WallClock", "is_interrupt",
 ]
 
@@ -94,30 +95,7 @@ LONG_RUN_SECONDS = 60.0
 #: (``COST_PER_STEP`` is a module attribute read from the registry when asked.)
 _LIVE = {"COST_PER_STEP": lambda: {name: kind.cost_per_step for name, kind in CELL_KINDS.items()
                                    if kind.cost_per_step is not None}}
-# ------------------------------------------------------------------------------ time grid
-
-@dataclass(frozen=True)
-class TimeGrid:
-    """The time steps of a run: ``n_steps`` equal steps of ``step`` [s] up to ``t_end`` [s]."""
-
-    t_end: float
-    step: float
-    n_steps: int
-    requested_step: float
-
-    @property
-    def adjusted(self) -> bool:
-        """True when the step used differs from the requested one."""
-        return self.step != self.requested_step
-
-    def describe(self) -> str:
-        """The step for messages, as the user gave it: ``step = 0.3 s (used: 0.25 s, so that it
-        divides t_end = 1 s)`` when adjusted, else ``step = 0.25 s``."""
-        if not self.adjusted:
-            return f"step = {self.step:.6g} s"
-        return (f"step = {self.requested_step!r} s (used: {self.step:.6g} s, so that it divides "
-                f"t_end = {self.t_end:.6g} s)")
-
+# ------------------------------------------------------------------------------ step checks
 
 def _step_used(step: float | TimeGrid) -> tuple[float, str]:
     """The step used [s] and its text in messages (the requested step too, for a grid)."""
@@ -125,92 +103,6 @@ def _step_used(step: float | TimeGrid) -> tuple[float, str]:
         return step.step, step.describe()
     return step, f"step = {step:.6g} s"
 
-
-def time_grid(t_end: float, step: float, *, warn: bool = True, stacklevel: int = 4) -> TimeGrid:
-    """Equal steps that end exactly at ``t_end``.
-
-    ``n = ceil(t_end/step)`` steps of ``t_end/n`` (what the solver does with a step that does
-    not divide the run).  If that differs from ``step`` by more than round-off, a
-    ``RuntimeWarning`` says so, and the returned :attr:`TimeGrid.step` is the one to record.
-
-    Parameters
-    ----------
-    t_end : float
-        End time [s], > 0.
-    step : float
-        Requested step [s], ``0 < step <= t_end``.
-    warn : bool, optional
-        Issue the warning (default True).
-    stacklevel : int, optional
-        Passed to ``warnings.warn`` (the frame the warning points at); the same in the
-        other checks.
-    """
-    ratio = t_end / step
-    n = max(1, int(math.ceil(ratio - 1e-9)))
-    used = t_end / n
-    if abs(used - step) <= 1e-9 * step:
-        return TimeGrid(t_end, step, n, step)
-    if warn:
-        warnings.warn(
-            f"step = {step!r} s does not divide t_end = {t_end!r} s ({ratio:.6g} steps); the run uses "
-            f"{n} steps of {used:.6g} s, and that step is recorded (info 'step [s]'). Choose a step "
-            f"that divides t_end (e.g. {t_end / n:.6g} or {t_end / max(n - 1, 1):.6g} s) to silence this",
-            AccuracyWarning,
-            stacklevel=stacklevel,
-        )
-    return TimeGrid(t_end, used, n, step)
-
-
-def snap_time(t: float, step: float) -> float:
-    """``t`` [s] put on the grid ``k * step`` when it is within round-off of it.
-
-    Solver times accumulate round-off (``1.9998999999997962`` for ``19999 * 1e-4``).  A time
-    within ``1e-6`` steps of a grid point becomes that grid point, written with 15
-    significant digits so that its shortest representation is short (``1.9999``).  Times off
-    the grid (steps the solver halved) are returned unchanged.
-    """
-    k = round(t / step)
-    grid = k * step
-    if abs(t - grid) <= 1e-6 * step:
-        return float(f"{grid:.15g}")
-    return t
-
-
-def snap_times(times, step: float) -> np.ndarray:
-    """:func:`snap_time` applied to every element of ``times`` [s] (vectorised, same values).
-
-    A grid time ``g`` becomes ``rint(g 10^d) / 10^d`` with ``d = 14 - floor(log10 |g|)`` (15
-    significant digits, the nearest double to that decimal, as ``float(f"{g:.15g}")``); where
-    that could differ (``g 10^d`` near a rounding tie, ``|g|`` near a power of ten, or
-    ``10^d`` not exact) the element is formatted as :func:`snap_time` does.
-    """
-    t = np.array(times, dtype=float).ravel()
-    grid = np.round(t / step) * step
-    on = np.abs(t - grid) <= 1e-6 * step
-    out = t.copy()
-    g = grid[on]
-    snapped = g.copy()  # zeros stay zero
-    nz = g != 0.0
-    gn = g[nz]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        exponent = np.floor(np.log10(np.abs(gn)))
-    digits = 14.0 - exponent
-    exact = (digits >= 0.0) & (digits <= 22.0)  # 10^d exact in double precision
-    scale = 10.0 ** np.where(exact, digits, 0.0)
-    scaled = gn * scale
-    rounded = np.rint(scaled)
-    value = rounded / scale
-    mantissa = np.abs(gn) / 10.0 ** exponent
-    safe = (exact & (np.abs(np.abs(scaled - rounded) - 0.5) > 1e-3)
-            & (mantissa > 1.0 + 1e-9) & (mantissa < 10.0 - 1e-8) & (np.abs(rounded) < 2.0**53))
-    for i in np.flatnonzero(~safe):
-        value[i] = float(f"{gn[i]:.15g}")
-    snapped[nz] = value
-    out[on] = snapped
-    return out.reshape(np.shape(times))
-
-
-# ------------------------------------------------------------------------------ step checks
 
 def program_feature(program: Any, t_end: float) -> tuple[float, str] | None:
     """``(duration [s], description)`` of the program's shortest feature before ``t_end``.

@@ -22,7 +22,7 @@ from typing import Any
 from .._checks import positive_float
 from ..model.recording import RecordingSchedule, recording_schedule
 from .run_checks import TimeGrid, time_grid
-from ..errors import OutOfReachWarning
+from ..errors import OutOfReachWarning, SetupWarning
 
 __all__ = ["DEFAULT_STEP", "prepare_run", "run_info", "report_controller"]
 
@@ -46,6 +46,9 @@ def prepare_run(t_end: Any, step: Any, settings: Any, progress: Any,
     -----
     RuntimeWarning
         When ``step`` does not divide ``t_end`` (see :func:`~exudyn_atcm.solve.run_checks.time_grid`).
+    SetupWarning
+        When ``record_every`` is an interval that is not a whole number of steps: the records are then not
+        evenly spaced (the first step at or after each multiple of the interval is recorded).
     """
     t_end = positive_float("t_end", t_end)
     step = positive_float("step", step)
@@ -56,7 +59,19 @@ def prepare_run(t_end: Any, step: Any, settings: Any, progress: Any,
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
     grid = time_grid(t_end, step, stacklevel=5)  # the caller of simulate
-    return t_end, grid, recording_schedule(record_every, grid.step)
+    schedule = recording_schedule(record_every, grid.step)
+    if not schedule.even:
+        warnings.warn(f"record_every = {schedule.interval!r} s is not a whole number of steps of {grid.step:.6g} s: the "
+                      f"records are not evenly spaced ({schedule.describe()}; info 'recorded' says so). Give a "
+                      f"multiple of the step (e.g. {multiple_of(grid.step, schedule.interval)!r} s) for evenly "
+                      "spaced records", SetupWarning, stacklevel=5)
+    return t_end, grid, schedule
+
+
+def multiple_of(step: float, interval: float) -> float:
+    """The whole multiple of ``step`` [s] nearest ``interval`` [s] (at least one step), written short."""
+    multiple = max(round(interval / step), 1) * step
+    return float(f"{multiple:.12g}")
 
 
 def run_info(grid: TimeGrid, accepted: int, schedule: RecordingSchedule, stats: dict | None,
