@@ -41,6 +41,7 @@ def test_list_run_and_sweep_do_not_execute_the_current_directorys_cases(tmp_path
     assert "stroke_max = 4e-05 [m]" in run.stdout  # the built-in case ran (the paper's 40 µm), not the local file
     sweep = cli(["sweep", "paper_stroke_table", "--grid", "period=1,2", "--workers", "1", "--out", "s", "--no-plot"], tmp_path)
     assert sweep.returncode == 0, sweep.stderr
+    assert "(1 worker)" in sweep.stdout  # it said "(1 workers)"
     missing = cli(["run", "their_case"], tmp_path)
     assert missing.returncode == 2
     assert missing.stderr.strip().endswith(

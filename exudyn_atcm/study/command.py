@@ -177,7 +177,7 @@ def sweep_command(args: argparse.Namespace) -> int:
         files += plot_study(result.table, result.varied, scalars, args.out, f"{case.name}_sweep_", grid=args.samples is None)
     total = len(result.records)
     print(f"{case.name}: {total} runs ({result.executed} executed, {result.reused} from the store, "
-          f"{result.failed} failed) in {result.wall_time:.3g} s on {result.engine} ({result.workers} workers)")
+          f"{result.failed} failed) in {result.wall_time:.3g} s on {result.engine} ({result.workers} worker{'s' if result.workers != 1 else ''})")
     if result.stale:
         reasons = Counter(r["stale"] for r in {r["key"]: r for r in result.records if r["stale"]}.values())
         print(f"  {result.stale} stale run{'s' if result.stale > 1 else ''} executed again (the store held results "

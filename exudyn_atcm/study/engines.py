@@ -39,6 +39,7 @@ from typing import Any
 from ..casework import Case, CaseError
 from ..casework.termination import STOP_SIGNALS
 from .parent_watch import end_with_parent
+from .case_modules import forget_modules, module_hashes
 from .store import case_fingerprint
 
 __all__ = ["CaseSpec", "case_spec", "execute_run", "SerialEngine", "ProcessEngine", "DaskEngine", "make_engine"]
@@ -61,12 +62,16 @@ class CaseSpec:
         The full text of the case file.
     fingerprint : str
         :func:`~exudyn_atcm.study.store.case_fingerprint` of name and text.
+    modules : tuple of (str, str)
+        The user's own Python files the case reads, with the SHA-256 of their text (a process loads the case
+        again, those files read again, when they change: :func:`~exudyn_atcm.study.case_modules.module_hashes`).
     """
 
     name: str
     path: str
     source: str
     fingerprint: str
+    modules: tuple = ()
 
 
 def case_spec(case: Case) -> CaseSpec:
@@ -83,18 +88,20 @@ def case_spec(case: Case) -> CaseSpec:
     if case.source is None or not Path(case.source).is_file():
         raise CaseError(f"case {case.name}: studies need the case's source file (got {case.source!r}); define the case in a file and load it with load_case")
     text = Path(case.source).read_text(encoding="utf-8")
-    return CaseSpec(case.name, str(case.source), text, case_fingerprint(case.name, text))
+    modules = tuple(sorted(module_hashes(case.source).items()))
+    return CaseSpec(case.name, str(case.source), text, case_fingerprint(case.name, text), modules)
 
 
 # ------------------------------------------------------------------------- worker side
-_LOADED: dict[str, Case] = {}
+_LOADED: dict[tuple[str, tuple], Case] = {}
 
 
 def load_spec(spec: CaseSpec) -> Case:
-    """The case of ``spec``, executed from its source text once per process (cached)."""
-    case = _LOADED.get(spec.fingerprint)
+    """The case of ``spec``, executed from its source text once per process and version of its own modules (cached)."""
+    case = _LOADED.get((spec.fingerprint, spec.modules))
     if case is not None:
         return case
+    forget_modules(path for path, _ in spec.modules)  # imported again by the case as they are now
     module_name = f"exudyn_atcm_study_case_{spec.name}_{spec.fingerprint[:12]}"
     module = types.ModuleType(module_name)
     module.__file__ = spec.path
@@ -108,7 +115,7 @@ def load_spec(spec: CaseSpec) -> Case:
     if not isinstance(case, Case):
         raise CaseError(f"{spec.path}: defines no CASE = exudyn_atcm.casework.Case(...)")
     case.source = Path(spec.path)
-    _LOADED[spec.fingerprint] = case
+    _LOADED[(spec.fingerprint, spec.modules)] = case
     return case
 
 

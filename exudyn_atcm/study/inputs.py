@@ -13,6 +13,9 @@ it (:func:`~exudyn_atcm.study.store.run_key`), so that a changed input is a new 
   yet) has no hash, so a file that appears later is a changed input too.  Empty values are
   left out.
 * ``case``: the case fingerprint (name and source text).
+* ``modules``: the SHA-256 of every Python file of the user's own that the case reads (its
+  helpers, a case it loads: :func:`~exudyn_atcm.study.case_modules.module_hashes`), by absolute
+  path; left out when there is none (the keys of such runs are those of earlier releases).
 * ``versions``: of ``exudyn_atcm`` and of Exudyn (a new version recomputes everything).
 
 :func:`run_identity` is the run *without* these contents (case, source file, parameter values,
@@ -39,8 +42,10 @@ from typing import Any
 from .._version import __version__
 from ..casework import Case
 from ..mbs.solver_runs import exudyn_version
+from .case_modules import module_hashes
 
-__all__ = ["RACY_SECONDS", "plain_values", "file_sha256", "input_files", "run_inputs", "run_identity", "changes", "environment"]
+__all__ = ["RACY_SECONDS", "plain_values", "file_sha256", "input_files", "run_inputs", "run_identity", "changes",
+           "environment"]
 
 #: (path, size, mtime_ns, ctime_ns, inode) -> SHA-256 of the contents
 _HASHES: dict[tuple[str, int, int, int, int], str] = {}
@@ -121,11 +126,15 @@ def run_inputs(case: Case, fingerprint: str, values: Mapping[str, Any], versions
     versions : mapping, optional
         :func:`environment` (computed once per study by the caller; default: now).
     """
-    return {
+    inputs = {
         "case": fingerprint,
         "versions": dict(versions if versions is not None else environment()),
         "files": input_files(case, values),
     }
+    modules = module_hashes(case.source)
+    if modules:
+        inputs["modules"] = modules
+    return inputs
 
 
 def _plain(value: Any) -> Any:
@@ -168,6 +177,14 @@ def changes(old: Mapping[str, Any], new: Mapping[str, Any]) -> list[str]:
             said.append(f"{name} file {path!r} no longer exists")
         elif before != after:
             said.append(f"{name} file {path!r} changed")
+    old_modules, new_modules = old.get("modules", {}), new.get("modules", {})
+    for path in sorted(set(old_modules) | set(new_modules)):
+        if path not in old_modules:
+            said.append(f"the case now reads {path!r}")
+        elif path not in new_modules:
+            said.append(f"the case no longer reads {path!r}")
+        elif old_modules[path] != new_modules[path]:
+            said.append(f"{path!r}, which the case reads, changed")
     if old.get("case") != new.get("case"):
         said.append("the case's source changed")
     old_versions, new_versions = old.get("versions", {}), new.get("versions", {})

@@ -3,7 +3,8 @@
 A run is determined by the case (its name and the full text of its source file), the
 values of *all* its parameters (defaults included, so changing a default in the case file
 is a new run), the contents of every file a parameter names (a record, a saved model: see
-:mod:`exudyn_atcm.study.inputs`) and the versions of the package and of Exudyn.
+:mod:`exudyn_atcm.study.inputs`), of every Python file of the user's own that the case imports
+or loads (:mod:`exudyn_atcm.study.case_modules`) and the versions of the package and of Exudyn.
 :func:`run_key` hashes these with SHA-256; the record of a finished run is written atomically
 to ``STORE/<key[:2]>/<key>.json`` the moment it finishes.  A study that is interrupted
 (Ctrl-C, a killed job, a crashed machine) and started again finds the finished runs there and
@@ -97,17 +98,16 @@ def run_key(fingerprint: str, values: Mapping[str, Any], version: str = __versio
         Package version (a new version recomputes everything).
     inputs : mapping, optional
         :func:`~exudyn_atcm.study.inputs.run_inputs` of the run: the SHA-256 of every file a
-        parameter names and Exudyn's version are hashed too.  Default: no files, Exudyn's
+        parameter names, of the user's own modules the case reads and Exudyn's version are hashed too.  Default: no files, Exudyn's
         version now.
     """
     inputs = inputs if inputs is not None else {"versions": environment(), "files": {}}
-    payload = json.dumps(
-        {"case": fingerprint, "values": plain_values(values), "version": version,
-         "versions": {str(k): str(v) for k, v in inputs.get("versions", {}).items()},
-         "files": {name: entry["sha256"] for name, entry in inputs.get("files", {}).items()}},
-        sort_keys=True,
-        separators=(",", ":"),
-    )
+    content = {"case": fingerprint, "values": plain_values(values), "version": version,
+               "versions": {str(k): str(v) for k, v in inputs.get("versions", {}).items()},
+               "files": {name: entry["sha256"] for name, entry in inputs.get("files", {}).items()}}
+    if inputs.get("modules"):  # only then: a case without helpers keeps the keys of earlier releases
+        content["modules"] = dict(inputs["modules"])
+    payload = json.dumps(content, sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(payload.encode("utf-8")).hexdigest()
 
 
