@@ -14,7 +14,8 @@ Global options (before or after the command): ``--cases-dir DIR`` (where cases a
 up by name first; the current directory's ``cases/`` is searched only when given here) and
 ``--debug`` (show tracebacks).  Exit status: 0 on success; 1 if a run
 fails, a benchmark metric fails or ``list`` finds no case; 2 for a usage error (unknown case
-or parameter, value of the wrong type, missing ``--reason``); 130 on Ctrl-C and 143 on
+or parameter, value of the wrong type, a parameter set twice, a ``--cases-dir`` that is not an
+existing folder, missing ``--reason``); 130 on Ctrl-C and 143 on
 ``SIGTERM`` (a run writes what it computed until then, marked partial; a sweep says how many
 runs are stored and the command that resumes it).  Errors are one line on stderr; a misspelt
 case or parameter name is answered with the closest valid one.
@@ -188,6 +189,11 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 
 def _dispatch(args: argparse.Namespace, debug: bool) -> int:
     """Run the command of ``args``; its exit status."""
+    cases_dir = getattr(args, "cases_dir", None)
+    if cases_dir is not None and not Path(cases_dir).is_dir():
+        what = "is a file, not a folder" if Path(cases_dir).exists() else "does not exist"
+        return _error(f"--cases-dir {cases_dir}: {what} (resolved: {Path(cases_dir).resolve()}); give an "
+                      f"existing folder of case files", debug, 2)
     if args.command == "list":
         return _list(args.cases_dir, args.table)
     if args.command == "run":

@@ -171,10 +171,12 @@ class Case:
         Raises
         ------
         CaseError
-            For a malformed assignment, an unknown name or a value of the wrong type; the
+            For a malformed assignment, an unknown name, a name given twice (``--set period=1 --set
+            period=3`` would otherwise silently use one of them) or a value of the wrong type; the
             message lists the valid parameters.
         """
         values: dict[str, Any] = {}
+        texts: dict[str, str] = {}
         declared = {p.name: p for p in self.parameters}
         for text in assignments:
             name, sep, value = text.partition("=")
@@ -184,6 +186,10 @@ class Case:
             if name not in declared:
                 raise CaseError(f"unknown parameter {name!r} for case {self.name}{closest(name, list(declared))}; "
                                 f"valid parameters: {self.parameter_list()}")
+            if name in texts:
+                raise CaseError(f"case {self.name}: parameter {name!r} is given twice (--set {texts[name]} and "
+                                f"--set {text}); give each parameter once")
+            texts[name] = text
             try:
                 values[name] = declared[name].parse(value)
             except ValueError as exc:

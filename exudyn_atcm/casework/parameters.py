@@ -6,6 +6,8 @@ loaded or configured.
 from __future__ import annotations
 
 import math
+import numbers
+import sys
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -30,6 +32,36 @@ def closest(name: str, candidates: Sequence[str]) -> str:
     """`` (did you mean 'x'?)`` for the candidate closest to a misspelt ``name``, else ``""``."""
     match = close_names(name, candidates, cutoff=0.6, ignore_case=True)
     return f" (did you mean {match[0]!r}?)" if match else ""
+
+
+def _is_bool(value: Any) -> bool:
+    """A Python or a NumPy bool (refused where a number is expected); NumPy is not imported for this."""
+    if isinstance(value, bool):
+        return True
+    np = sys.modules.get("numpy")
+    return np is not None and isinstance(value, np.bool_)
+
+
+def _is_integer(value: Any) -> bool:
+    """A Python or a NumPy integer, not a bool (a whole float is not an integer)."""
+    return isinstance(value, numbers.Integral) and not _is_bool(value)
+
+
+def _is_real(value: Any) -> bool:
+    """A Python or a NumPy int or float, not a bool."""
+    return isinstance(value, numbers.Real) and not _is_bool(value)
+
+
+def _shown(value: Any) -> str:
+    """``value`` for a message: the repr, with NumPy scalars as their Python values (``2``, not ``np.int64(2)``)."""
+    if isinstance(value, (tuple, list)):
+        items = ", ".join(_shown(v) for v in value)
+        return f"({items},)" if isinstance(value, tuple) and len(value) == 1 else (
+            f"({items})" if isinstance(value, tuple) else f"[{items}]")
+    item = getattr(value, "item", None)
+    if type(value).__module__ == "numpy" and callable(item) and getattr(value, "ndim", None) == 0:
+        value = item()
+    return repr(value)
 
 
 # ----------------------------------------------------------------------------- parameters
@@ -100,21 +132,24 @@ class Parameter:
         object.__setattr__(self, "kind", _infer_type(self.default))
         if self.kind == "floats":
             object.__setattr__(self, "default", tuple(float(v) for v in self.default))
+        elif self.kind == "float":
+            object.__setattr__(self, "default", float(self.default))  # a NumPy float is a float: shown as 0.5
         if self.choices is not None:
             if not callable(self.choices):
                 object.__setattr__(self, "choices", tuple(self.choices))
             if self.default not in self.allowed():
-                raise ValueError(f"default of {self.name!r} must be one of {self.allowed()}, got {self.default!r}")
+                raise ValueError(f"default of {self.name!r} must be one of {self.allowed()}, got {_shown(self.default)}")
         bounds = {key: getattr(self, key) for key in _BOUNDS}
         given = {key: value for key, value in bounds.items() if value is not None}
         if given and self.kind not in ("float", "int", "floats"):
             raise ValueError(f"{', '.join(given)} of {self.name!r}: bounds need a number parameter (float, int or "
                              f"a list of floats), it is a {self.kind} parameter")
         for key, value in given.items():
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value):
-                raise ValueError(f"{key} of {self.name!r} must be a number, got {value!r}")
+            if not _is_real(value) or math.isnan(value):
+                raise ValueError(f"{key} of {self.name!r} must be a number, got {_shown(value)}")
+            object.__setattr__(self, key, int(value) if _is_integer(value) else float(value))
         if given and not self._in_bounds(self.default):
-            raise ValueError(f"default of {self.name!r} must be {self._bounds_text()}, got {self.default!r}")
+            raise ValueError(f"default of {self.name!r} must be {self._bounds_text()}, got {_shown(self.default)}")
 
     def allowed(self) -> tuple | None:
         """The allowed values, read now (``None``: any value of the type)."""
@@ -132,12 +167,24 @@ class Parameter:
     def parse(self, text: str) -> Any:
         """Convert the text of ``--set NAME=TEXT`` to the parameter's type.
 
+        Numbers are read as by Python's ``float`` and ``int`` (``1e-3``, ``inf`` is then refused as not
+        finite; digit-group underscores such as ``1_000`` are accepted, as in Python source).  A list
+        (``floats``) is comma-separated; an empty item (``1,,2``, ``1,2,``) is refused, and only a list
+        parameter whose default is ``()`` accepts an entirely empty text (meaning its default).
+
         Raises
         ------
         ValueError
             If the text is not a value of the parameter's type (or not one of the choices).
         """
         raw = text.strip()
+        if self.kind == "floats" and raw != "":
+            items = [v.strip() for v in raw.split(",")]
+            empty = [str(i) for i, v in enumerate(items, start=1) if v == ""]
+            if empty:
+                where = f"item {empty[0]} is" if len(empty) == 1 else f"items {', '.join(empty)} are"
+                raise ValueError(f"{self.name} must be {self._kind_text()}, got {text!r}: {where} empty "
+                                 f"(of {len(items)})")
         try:
             if self.kind == "float":
                 value: Any = float(raw)
@@ -149,9 +196,7 @@ class Parameter:
                     raise ValueError
                 value = low in _TRUE
             elif self.kind == "floats":
-                value = tuple(float(v) for v in raw.split(",") if v.strip() != "")
-                if not value and not self._empty_allowed():
-                    raise ValueError
+                value = () if raw == "" and self._empty_allowed() else tuple(float(v) for v in raw.split(","))
             else:
                 value = text
         except ValueError:
@@ -159,27 +204,35 @@ class Parameter:
         return self.check(value)
 
     def check(self, value: Any) -> Any:
-        """Check a Python value for this parameter and return it (ints accepted for floats)."""
+        """Check a Python value for this parameter and return it (ints accepted for floats).
+
+        NumPy numbers are accepted as the Python ones (``np.int64(2)`` for an int, ``np.float64(0.5)`` or an
+        integer for a float) and returned as Python ``int`` or ``float``; bools (Python or NumPy) are not
+        numbers, and a float is not an int even if whole (``2.0`` and ``np.float64(2.0)`` are refused for an
+        int parameter).
+        """
         ok = True
         if self.kind == "float":
-            ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+            ok = _is_real(value) and math.isfinite(value)
             value = float(value) if ok else value
         elif self.kind == "int":
-            ok = isinstance(value, int) and not isinstance(value, bool)
+            ok = _is_integer(value)
+            value = int(value) if ok else value
         elif self.kind == "bool":
             ok = isinstance(value, bool)
         elif self.kind == "str":
             ok = isinstance(value, str)
         elif self.kind == "floats":
             try:
-                value = tuple(float(v) for v in value)
-                ok = all(math.isfinite(v) for v in value) and (len(value) > 0 or self._empty_allowed())
-            except (TypeError, ValueError):
+                items = tuple(value)
+                ok = all(_is_real(v) and math.isfinite(v) for v in items) and (len(items) > 0 or self._empty_allowed())
+                value = tuple(float(v) for v in items) if ok else value
+            except TypeError:
                 ok = False
         if not ok:
-            raise ValueError(f"{self.name} must be {self._kind_text()}, got {value!r}")
+            raise ValueError(f"{self.name} must be {self._kind_text()}, got {_shown(value)}")
         if self.choices is not None and value not in self.allowed():
-            raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.allowed()))}, got {value!r}")
+            raise ValueError(f"{self.name} must be one of {', '.join(map(str, self.allowed()))}, got {_shown(value)}")
         self.check_range(value)
         return value
 
@@ -190,7 +243,7 @@ class Parameter:
             if not self._in_bounds(value):
                 unit = "" if self.unit == "-" else f" [{self.unit}]"
                 items = " (every item)" if isinstance(value, tuple) else ""
-                raise ValueError(f"{self.name} must be {self._bounds_text()}{unit}{items}, got {value!r}")
+                raise ValueError(f"{self.name} must be {self._bounds_text()}{unit}{items}, got {_shown(value)}")
 
     def _in_bounds(self, value: Any) -> bool:
         values = value if isinstance(value, tuple) else (value,)
