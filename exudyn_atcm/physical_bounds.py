@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-__all__ = ["PHYSICAL_LIMITS", "MAX_OPERATOR_ELEMENTS", "MAX_CELLS", "MFC_P1_RATED_RANGE", "KV_SUSPECT_FRACTION",
+__all__ = ["PHYSICAL_LIMITS", "MAX_OPERATOR_ELEMENTS", "MAX_CELLS", "MFC_P1_RATED_RANGE", "KV_SUSPECT_FRACTION", "PLAUSIBLE_STRAIN",
            "DAMPING_RATIO_SUSPECT", "check_physical", "check_element_count", "check_cell_count"]
 
 #: Rated operating voltage of the MFC P1 type [V] (d33 mode, -500 ... +1500 V; Smart Material
@@ -27,6 +27,10 @@ MFC_P1_RATED_RANGE = (-500.0, 1500.0)
 #: small-signal program of the package (a 1 % triangle, -5 ... 15 V); at 3 V the MFC's free
 #: strain is about 3e-6, 0.2 % of its full stroke.
 KV_SUSPECT_FRACTION = 2e-3
+
+#: Free strains [-] above this magnitude are implausible for a piezo layer (MFC P1 reaches
+#: about 1.4e-3 at 1500 V, piezo ceramics about 2e-3): most likely a unit mistake.
+PLAUSIBLE_STRAIN = 1e-2
 
 #: A modal damping ratio (the ``damping=`` of a bender, an actuator or a flexure) at or above this
 #: is most likely a percentage written as a number (``damping=5`` for 5 %, ``damping=1`` for 1 %):

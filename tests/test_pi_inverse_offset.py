@@ -11,7 +11,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from exudyn_atcm.errors import OutOfReachWarning
 from exudyn_atcm.hysteresis import ContinuousPreisach, PrandtlIshlinskii, inverse_operator
+from exudyn_atcm.hysteresis.prandtl_ishlinskii import ShiftedPIInverse
 
 PAPER = ContinuousPreisach.from_points(-500, 1500, -4e-6, 40e-6, 500, 12e-6, 28e-6)
 
@@ -52,9 +54,15 @@ def test_fitted_model_inverts_with_its_offset():
     inverse = model.inverse()
     # inputs span 2000 V: 1e-9 V is 5e-13 of the range (measured 3e-11 V at most)
     np.testing.assert_allclose(inverse.apply(model.apply(u)), u, rtol=0, atol=1e-9)
-    # any wanted stroke history from the output at rest (a PI operator with p0 > 0 reaches every output)
+    # any wanted stroke history from the output at rest through the analytic inverse (a PI operator with p0 > 0
+    # reaches every output); a fitted model's inverse() stays in the fitted input range and says what it clipped
     wanted = model.offset + np.cumsum(np.random.default_rng(1).normal(0.0, 3e-6, 400))
-    np.testing.assert_allclose(model.apply(inverse.apply(wanted)), wanted, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(model.apply(ShiftedPIInverse(model).apply(wanted)), wanted, rtol=0, atol=1e-15)
+    beyond = np.abs(ShiftedPIInverse(model).apply(wanted) - 0.5 * (u.min() + u.max())) > 0.5 * np.ptp(u)
+    assert beyond.any()  # the history leaves the record's range
+    with pytest.warns(OutOfReachWarning, match=r"wanted outputs are outside the range reachable"):
+        bounded = inverse.apply(wanted)
+    assert u.min() <= bounded.min() and bounded.max() <= u.max()
 
 
 def test_inverse_of_the_inverse_is_the_model():

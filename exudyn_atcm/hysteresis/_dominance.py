@@ -32,6 +32,7 @@ from itertools import product
 from typing import Callable
 
 import numpy as np
+from .._checks import shown
 
 #: largest two-level table (entries); a larger point set gets three levels
 TWO_LEVEL_ENTRIES = 1 << 22
@@ -110,7 +111,7 @@ class DominanceSums:
         elif levels in (2, 3):
             shifts = _best_shifts(n, levels)
         else:
-            raise ValueError(f"levels must be 2, 3 or None (automatic), got {levels!r}")
+            raise ValueError(f"levels must be 2, 3 or None (automatic), got {shown(levels)}")
         n_pad = _padded(n, shifts)
 
         order = np.argsort(alpha, kind="stable")

@@ -12,11 +12,23 @@ from typing import Any
 import numpy as np
 
 from .model_files import SavableModel  # the save() method of every operator
-from .._checks import finite_array
+from .._checks import finite_array, shown
 from ..errors import InputRangeWarning
+from ..io.units import SI_SCALE
 
 #: Output units read as a length (a displacement or stroke), in SI and the usual sub-units.
 LENGTH_UNITS = frozenset({"m", "mm", "um", "µm", "μm", "nm", "cm", "micron", "microns"})
+
+#: What a fitted model's output may be (``output_quantity``): a free strain [-], a displacement
+#: or a stroke (a length).
+OUTPUT_QUANTITIES = ("strain", "displacement", "stroke")
+
+
+def known_output_units() -> tuple[str, ...]:
+    """Output units the package knows: the lengths (:data:`LENGTH_UNITS`) and the strains the record
+    readers convert (:data:`~exudyn_atcm.io.units.SI_SCALE`), ``"-"`` and ``""`` (not stated)."""
+    strains = [unit for unit, (_, si) in SI_SCALE.items() if si == "-"]
+    return ("", *sorted(LENGTH_UNITS), *strains)
 
 
 def quantity_from_unit(unit: str, quantity: str | None = None) -> str | None:
@@ -24,22 +36,23 @@ def quantity_from_unit(unit: str, quantity: str | None = None) -> str | None:
 
     A length unit (``"m"``, ``"mm"``, ``"um"``, ...) gives ``"displacement"``; any other unit,
     ``"-"`` or ``""`` gives ``None`` (not stated: a dimensionless output may be a strain or a
-    normalised output).  A stated ``quantity`` must be a non-empty string, and ``"strain"`` (a
-    dimensionless quantity) is refused with a length unit.
+    normalised output).  A stated ``quantity`` must be one of :data:`OUTPUT_QUANTITIES`, and
+    ``"strain"`` (a dimensionless quantity) is refused with a length unit.
 
     Raises
     ------
     ValueError
-        For a ``quantity`` that is not ``None`` or a non-empty string, or a strain in a length unit.
+        For a ``quantity`` that is not ``None`` or one of :data:`OUTPUT_QUANTITIES`, or a strain in a
+        length unit.
     """
     if not isinstance(unit, str):
-        raise ValueError(f"output_unit must be a string such as 'm', '-' or '', got {unit!r}")
+        raise ValueError(f"output_unit must be a string such as 'm', '-' or '', got {shown(unit)}")
     length = unit.strip() in LENGTH_UNITS
     if quantity is None:
         return "displacement" if length else None
-    if not isinstance(quantity, str) or not quantity.strip():
-        raise ValueError(f"output_quantity must be None or a non-empty string such as 'strain' or 'displacement', "
-                         f"got {quantity!r}")
+    if quantity not in OUTPUT_QUANTITIES:
+        raise ValueError(f"output_quantity must be None or one of {', '.join(repr(q) for q in OUTPUT_QUANTITIES)}, "
+                         f"got {shown(quantity)}")
     if quantity == "strain" and length:
         raise ValueError(f"output_quantity 'strain' is dimensionless, but output_unit is the length {unit!r}: a "
                          "displacement measured over a length is a strain only after dividing by that length")
@@ -67,10 +80,10 @@ def json_safe(value: Any) -> Any:
 def check_input(u: Any) -> float:
     """Return the operator input ``u`` as a float; raise ``ValueError`` if it is not finite."""
     if isinstance(u, (bool, np.bool_)) or not isinstance(u, (numbers.Real, np.floating, np.integer)):
-        raise ValueError(f"u must be a finite real number, got {u!r}")
+        raise ValueError(f"u must be a finite real number, got {shown(u)}")
     value = float(u)
     if not math.isfinite(value):
-        raise ValueError(f"u must be a finite real number, got {u!r}")
+        raise ValueError(f"u must be a finite real number, got {shown(u)}")
     return value
 
 
@@ -116,7 +129,7 @@ class HysteresisOperator(SavableModel, abc.ABC):
         quantity (:func:`quantity_from_unit`) and ``fit_info``; returns the operator."""
         low, high = (float(v) for v in fitted_range)
         if not (math.isfinite(low) and math.isfinite(high) and high >= low):
-            raise ValueError(f"fitted_range must be finite with high >= low, got {fitted_range!r}")
+            raise ValueError(f"fitted_range must be finite with high >= low, got {shown(fitted_range)}")
         quantity = quantity_from_unit(output_unit, output_quantity)
         self.fitted_range = (low, high)
         self.output_unit = output_unit
@@ -148,7 +161,7 @@ class HysteresisOperator(SavableModel, abc.ABC):
     def with_output_quantity(self, quantity: str | None) -> "HysteresisOperator":
         """Set :attr:`output_quantity` (e.g. ``"strain"`` or ``"stroke"``) and return the operator."""
         if quantity is not None and (not isinstance(quantity, str) or not quantity.strip()):
-            raise ValueError(f"quantity must be None or a non-empty string such as 'strain', got {quantity!r}")
+            raise ValueError(f"quantity must be None or a non-empty string such as 'strain', got {shown(quantity)}")
         self.output_quantity = quantity
         return self
 

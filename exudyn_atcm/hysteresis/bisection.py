@@ -12,7 +12,9 @@ import math
 import warnings
 from typing import Any
 
-from .._checks import finite_float
+import numpy as np
+
+from .._checks import finite_array, finite_float, shown
 from ..errors import OutOfReachWarning
 from .base import HysteresisOperator, check_input, forward_model
 
@@ -99,13 +101,13 @@ class BisectionInverse(HysteresisOperator):
         try:
             u_lo, u_hi = (finite_float("input_range", v) for v in input_range)
         except TypeError:
-            raise ValueError(f"input_range must be a pair (u_lo, u_hi), got {input_range!r}") from None
+            raise ValueError(f"input_range must be a pair (u_lo, u_hi), got {shown(input_range)}") from None
         if not u_hi > u_lo:
-            raise ValueError(f"input_range must have u_hi > u_lo, got {input_range!r}")
+            raise ValueError(f"input_range must have u_hi > u_lo, got {shown(input_range)}")
         self.u_lo, self.u_hi = u_lo, u_hi
         self.tolerance = 1e-9 * (u_hi - u_lo) if tolerance is None else finite_float("tolerance", tolerance)
         if self.tolerance <= 0.0:
-            raise ValueError(f"tolerance must be > 0, got {tolerance!r}")
+            raise ValueError(f"tolerance must be > 0, got {shown(tolerance)}")
         self.reset()
 
     def reset(self) -> None:
@@ -115,6 +117,8 @@ class BisectionInverse(HysteresisOperator):
         self._y = math.nan  # the wanted output committed last, if it was reached (nan: none, or clipped)
         self.clip_count = 0
         self.largest_clip = 0.0
+        self.worst_clip: tuple[float, float] | None = None  # (wanted output, input returned) of largest_clip
+        self._quiet = False
 
     def checkpoint(self) -> tuple:
         """Snapshot of the forward memory, the last input and the last wanted output."""
@@ -150,6 +154,9 @@ class BisectionInverse(HysteresisOperator):
         if y <= y_lo:
             return lo, (0.0 if y_lo - y <= rounding else y - y_lo)
         # invariant: f(lo) < y <= f(hi)
+        exact = getattr(self.model, "input_for_output", None)
+        if callable(exact):  # an operator that solves its own output exactly (piecewise linear: PI)
+            return min(max(float(exact(y, lo, hi)), lo), hi), 0.0
         while hi - lo > self.tolerance:
             mid = 0.5 * (lo + hi)
             y_mid = float(f(mid))
@@ -180,7 +187,12 @@ class BisectionInverse(HysteresisOperator):
         if excess != 0.0:
             y_lo, y_hi = self.reachable()
             self.clip_count += 1
-            self.largest_clip = max(self.largest_clip, abs(excess))
+            if abs(excess) > self.largest_clip:
+                self.largest_clip, self.worst_clip = abs(excess), (y, u)
+            if self._quiet:  # apply() says it once for the series
+                self.model.commit(u)
+                self._u, self._y = u, math.nan
+                return u
             warnings.warn(
                 f"wanted output {y!r} is outside the range [{y_lo!r}, {y_hi!r}] reachable with inputs in "
                 f"[{self.u_lo!r}, {self.u_hi!r}] from the present memory: clipped by {abs(excess):.6g} "
@@ -191,6 +203,32 @@ class BisectionInverse(HysteresisOperator):
         self.model.commit(u)
         self._u, self._y = u, (y if excess == 0.0 else math.nan)
         return u
+
+    def apply(self, u_series: Any, *, check_range: bool = True) -> np.ndarray:
+        """Inputs [input units] for a whole series of wanted outputs, starting from the reset state.
+
+        As :meth:`HysteresisOperator.apply` (the memory is left as it was); unreachable wanted
+        outputs are clipped as by :meth:`commit`, with one
+        :class:`~exudyn_atcm.errors.OutOfReachWarning` for the series (how many were clipped, the
+        largest amount and the wanted output it was for) instead of one per sample.  Afterwards
+        :attr:`clip_count`, ``largest_clip`` and ``worst_clip`` are the series'.
+        """
+        wanted = finite_array("u_series", u_series, min_length=0)
+        saved = self.checkpoint()
+        try:
+            self.reset()
+            self._quiet = True
+            inputs = np.array([self.commit(v) for v in wanted.tolist()], dtype=float)
+        finally:
+            self._quiet = False
+            self.restore(saved)
+        if self.clip_count:
+            y, u = self.worst_clip
+            warnings.warn(
+                f"{self.clip_count} of {wanted.size} wanted outputs are outside the range reachable with inputs in "
+                f"[{self.u_lo!r}, {self.u_hi!r}] and were clipped; the largest by {self.largest_clip:.6g} (output "
+                f"units): the wanted output {y!r}, given the input {u!r}", OutOfReachWarning, stacklevel=2)
+        return inputs
 
     def __repr__(self) -> str:
         return f"BisectionInverse({self.model!r}, input_range=({self.u_lo!r}, {self.u_hi!r}))"

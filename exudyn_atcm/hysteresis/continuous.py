@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .._checks import finite_float
+from .._checks import finite_float, shown
 from .families import FamilyFit, FitRequest, register_family
 from .staircase import StaircasePreisach
 from .identification import fit_continuous
@@ -52,7 +52,7 @@ class ContinuousPreisach(StaircasePreisach):
         for name, r in (("r1", r1), ("r2", r2)):
             if r < 1.0:
                 raise ValueError(
-                    f"{name} must be >= 1, got {r!r}: with {name} < 1 the ascending branch "
+                    f"{name} must be >= 1, got {shown(r)}: with {name} < 1 the ascending branch "
                     "lies above the descending one near the "
                     f"{'lower' if name == 'r1' else 'upper'} end of the range, which is not a "
                     "hysteresis loop"
@@ -93,11 +93,11 @@ class ContinuousPreisach(StaircasePreisach):
         y_m1 = finite_float("y_m1", y_m1)
         y_m2 = finite_float("y_m2", y_m2)
         if not u_min < u_m < u_max:
-            raise ValueError(f"u_m must lie strictly between u_min = {u_min!r} and u_max = {u_max!r}, got {u_m!r}")
+            raise ValueError(f"u_m must lie strictly between u_min = {u_min!r} and u_max = {u_max!r}, got {shown(u_m)}")
         for name, y in (("y_m1", y_m1), ("y_m2", y_m2)):
             if not y_min < y < y_max:
                 raise ValueError(
-                    f"{name} must lie strictly between y_min = {y_min!r} and y_max = {y_max!r}, got {y!r}"
+                    f"{name} must lie strictly between y_min = {y_min!r} and y_max = {y_max!r}, got {shown(y)}"
                 )
         du, dy = u_max - u_min, y_max - y_min
         r1 = math.log((y_m1 - y_min) / dy) / math.log((u_m - u_min) / du)
@@ -190,9 +190,9 @@ def _ranges(u_min: float, u_max: float, y_min: float, y_max: float) -> tuple[flo
     y_min = finite_float("y_min", y_min)
     y_max = finite_float("y_max", y_max)
     if u_max <= u_min:
-        raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
+        raise ValueError(f"u_max must be > u_min = {u_min!r}, got {shown(u_max)}")
     if y_max <= y_min:
-        raise ValueError(f"y_max must be > y_min = {y_min!r}, got {y_max!r}")
+        raise ValueError(f"y_max must be > y_min = {y_min!r}, got {shown(y_max)}")
     return u_min, u_max, y_min, y_max
 
 

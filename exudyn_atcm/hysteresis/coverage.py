@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..errors import AccuracyWarning
 
 __all__ = ["TriangleCoverage", "reversal_curves", "runs"]
@@ -87,9 +88,9 @@ class TriangleCoverage:
 
     def __init__(self, u: Any, u_lo: float, u_hi: float, n_levels: int) -> None:
         if not (np.isfinite(u_lo) and np.isfinite(u_hi) and u_hi > u_lo):
-            raise ValueError(f"u_lo, u_hi must be finite with u_hi > u_lo, got {u_lo!r}, {u_hi!r}")
+            raise ValueError(f"u_lo, u_hi must be finite with u_hi > u_lo, got {shown(u_lo)}, {u_hi!r}")
         if isinstance(n_levels, bool) or not isinstance(n_levels, (int, np.integer)) or n_levels < 1:
-            raise ValueError(f"n_levels must be an integer >= 1, got {n_levels!r}")
+            raise ValueError(f"n_levels must be an integer >= 1, got {shown(n_levels)}")
         self.u_lo, self.u_hi, self.n_levels = float(u_lo), float(u_hi), int(n_levels)
         self.seen = self.cells(u)
 

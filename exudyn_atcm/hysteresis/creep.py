@@ -35,7 +35,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import finite_array, same_length, sample_times
+from .._checks import finite_array, same_length, sample_times, shown
 from ..errors import AtcmDeprecationWarning
 from .base import forward_model
 from .inverse import inverse_operator
@@ -133,7 +133,7 @@ class Creep(SavableModel):
         t_a = sample_times("t", t, h_a.size)
         if tau is None:
             if isinstance(n_lags, bool) or not isinstance(n_lags, int) or n_lags < 1:
-                raise ValueError(f"n_lags must be an integer >= 1, got {n_lags!r}")
+                raise ValueError(f"n_lags must be an integer >= 1, got {shown(n_lags)}")
             low, high = 4.0 * float(np.median(np.diff(t_a))), (t_a[-1] - t_a[0]) / 3.0
             if not high > low:
                 raise ValueError(f"t: a record of {t_a[-1] - t_a[0]:.3g} s is too short for creep time constants")
@@ -208,7 +208,7 @@ class CreepHysteresis(SavableModel):
         same_length(("u", "y"), (u_a, y_a))
         t_a = sample_times("t", t, u_a.size)
         if isinstance(rounds, bool) or not isinstance(rounds, int) or rounds < 1:
-            raise ValueError(f"rounds must be an integer >= 1, got {rounds!r}")
+            raise ValueError(f"rounds must be an integer >= 1, got {shown(rounds)}")
         creep = Creep([1.0], [0.0])
         history = []
         hysteresis = None

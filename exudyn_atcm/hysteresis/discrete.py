@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, same_length
+from .._checks import finite_array, finite_float, same_length, shown
 from ..physical_bounds import check_element_count
 from ._dominance import DominanceSums
 from .families import FamilyFit, FitRequest, register_family
@@ -81,7 +81,7 @@ class DiscretePreisach(StaircasePreisach):
         self._y_reset = self.offset
         self._beta_low = float(beta_a.min())
         if isinstance(max_table_entries, bool) or not isinstance(max_table_entries, (int, np.integer)) or max_table_entries < 0:
-            raise ValueError(f"max_table_entries must be an integer >= 0, got {max_table_entries!r}")
+            raise ValueError(f"max_table_entries must be an integer >= 0, got {shown(max_table_entries)}")
         self.max_table_entries = int(max_table_entries)
 
         order = np.lexsort((beta_a, alpha_a))  # by alpha, ties by beta

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_float, sample_times
+from .._checks import finite_array, finite_float, positive_float, sample_times, shown
 from .base import HysteresisOperator, check_input
 from ..errors import AtcmDeprecationWarning
 from .creep import Creep
@@ -291,7 +291,7 @@ class WithDynamics(HysteresisOperator):
         t_f = finite_float("t", t)
         dt = 0.0 if self._t is None else t_f - self._t
         if dt < 0.0:
-            raise ValueError(f"t must not precede the committed time {self._t!r} s, got {t_f!r}")
+            raise ValueError(f"t must not precede the committed time {self._t!r} s, got {shown(t_f)}")
         z = lag_step(self._z, self._h, h, dt, self.lags.tau)
         return z, self.lags.d * h + float(self.lags.g @ z), t_f
 

@@ -19,7 +19,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_int
+from .._checks import finite_array, finite_float, positive_int, shown
 from .creep import Creep
 from .dynamics import LagSum, RateLag, WithDynamics
 from .prandtl_ishlinskii import PrandtlIshlinskii
@@ -186,7 +186,7 @@ def _lagged(columns: np.ndarray, t: np.ndarray, lags: LagSum, rest: np.ndarray) 
 
 def _check_records(records: Any) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     if not isinstance(records, Sequence) or len(records) < 1:
-        raise ValueError(f"records must be a non-empty sequence of (t, u, y) records, got {records!r}")
+        raise ValueError(f"records must be a non-empty sequence of (t, u, y) records, got {shown(records)}")
     checked = []
     for i, rec in enumerate(records):
         try:
@@ -244,7 +244,7 @@ def fit_rate_lag(records: Any, n_plays: int, *, creep: Creep | None = None,
     recs = _check_records(records)
     n = positive_int("n_plays", n_plays)
     if n < 2:
-        raise ValueError(f"n_plays must be >= 2, got {n_plays!r}")
+        raise ValueError(f"n_plays must be >= 2, got {shown(n_plays)}")
     if creep is not None and not isinstance(creep, Creep):
         raise ValueError(f"creep must be a Creep or None, got {type(creep).__name__}")
     u_all = np.concatenate([u for _, u, _ in recs])

@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from .._checks import shown
 
 __all__ = ["INVERSE_KINDS", "FitRequest", "FamilyFit", "Family", "register_family", "unregister_family",
            "registered_families", "family_named"]
@@ -155,13 +156,13 @@ def register_family(name: str, fit: Callable[[FitRequest], FamilyFit], *, invers
         registered already (without ``replace``).
     """
     if not isinstance(name, str) or not re.fullmatch(r"[a-z][a-z0-9_]*", name):
-        raise ValueError(f"name must be lower case letters, digits and '_' starting with a letter, got {name!r}")
+        raise ValueError(f"name must be lower case letters, digits and '_' starting with a letter, got {shown(name)}")
     if not callable(fit):
-        raise ValueError(f"fit must be callable as fit(request) -> FamilyFit, got {fit!r}")
+        raise ValueError(f"fit must be callable as fit(request) -> FamilyFit, got {shown(fit)}")
     if inverse not in INVERSE_KINDS:
-        raise ValueError(f"inverse must be one of {INVERSE_KINDS}, got {inverse!r}")
+        raise ValueError(f"inverse must be one of {INVERSE_KINDS}, got {shown(inverse)}")
     if operator is not None and not isinstance(operator, type):
-        raise ValueError(f"operator must be a class or None, got {operator!r}")
+        raise ValueError(f"operator must be a class or None, got {shown(operator)}")
     if name in _FAMILIES and not replace:
         raise ValueError(f"name {name!r} is registered already (for {_FAMILIES[name].fit!r}); choose another name "
                          "or pass replace=True")
@@ -179,7 +180,7 @@ def unregister_family(name: str) -> Family:
         If no family is registered as ``name``.
     """
     if name not in _FAMILIES:
-        raise ValueError(f"name must be a registered family, one of {tuple(_FAMILIES)}, got {name!r}")
+        raise ValueError(f"name must be a registered family, one of {tuple(_FAMILIES)}, got {shown(name)}")
     return _FAMILIES.pop(name)
 
 
@@ -199,4 +200,4 @@ def family_named(name: str) -> Family:
     try:
         return _FAMILIES[name]
     except (KeyError, TypeError):
-        raise ValueError(f"family must be one of the registered families {tuple(_FAMILIES)}, got {name!r}") from None
+        raise ValueError(f"family must be one of the registered families {tuple(_FAMILIES)}, got {shown(name)}") from None

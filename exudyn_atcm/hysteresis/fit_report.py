@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..io.atomic import write_json
 from .base import HysteresisOperator
 from .coverage import TriangleCoverage, runs
@@ -131,7 +132,7 @@ class FitReport:
     def improvement_over_linear(self, part: str = "held_out") -> float:
         """Linear model's RMS error divided by the model's, on ``part`` (``"fit"`` or ``"held_out"``)."""
         if part not in ("fit", "held_out"):
-            raise ValueError(f"part must be 'fit' or 'held_out', got {part!r}")
+            raise ValueError(f"part must be 'fit' or 'held_out', got {shown(part)}")
         model, linear = self.model_errors[part]["rms"], self.linear_errors[part]["rms"]
         if not (model > 0.0) or math.isnan(linear):
             return math.nan if math.isnan(linear) or math.isnan(model) else math.inf

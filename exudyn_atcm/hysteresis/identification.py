@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, same_length
+from .._checks import finite_array, same_length, shown
 from ..physical_bounds import check_element_count
 from .base import quantity_from_unit
 from .fit_cost import check_cost, continuous_fit_cost, finite_squares, grid_fit_cost
@@ -66,7 +66,7 @@ def check_record(u: Any, y: Any, n_fit: int | None = None, *, min_samples: int =
         n_fit = u_a.size
     elif isinstance(n_fit, bool) or not isinstance(n_fit, (int, np.integer)) or not min_samples <= n_fit <= u_a.size:
         raise ValueError(
-            f"n_fit (samples fitted, the rest held out) must be an integer in [{min_samples}, {u_a.size}], got {n_fit!r}"
+            f"n_fit (samples fitted, the rest held out) must be an integer in [{min_samples}, {u_a.size}], got {shown(n_fit)}"
         )
     n_fit = int(n_fit)
     finite_squares("u", u_a)
@@ -121,9 +121,9 @@ def grid_range(input_range: Any, u_fit: np.ndarray) -> tuple[float, float]:
     try:
         u_lo, u_hi = (float(v) for v in input_range)
     except (TypeError, ValueError):
-        raise ValueError(f"input_range must be a pair (u_lo, u_hi) of numbers, got {input_range!r}") from None
+        raise ValueError(f"input_range must be a pair (u_lo, u_hi) of numbers, got {shown(input_range)}") from None
     if not (math.isfinite(u_lo) and math.isfinite(u_hi) and u_hi > u_lo):
-        raise ValueError(f"input_range must be finite with u_hi > u_lo, got {input_range!r}")
+        raise ValueError(f"input_range must be finite with u_hi > u_lo, got {shown(input_range)}")
     slack = 1e-9 * (high - low)
     if u_lo > low + slack or u_hi < high - slack:
         raise ValueError(f"input_range ({u_lo:g}, {u_hi:g}) cuts the fitted samples, whose input spans {low:g} ... "
@@ -151,7 +151,7 @@ def record_fit(model: Any, report: FitReport, mask: np.ndarray, start: int, u_fi
 
 def levels_int(name: str, value: Any, minimum: int = 2) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     return int(value)
 
 
@@ -161,7 +161,7 @@ def nonnegative_float(name: str, value: Any) -> float:
     except (TypeError, ValueError):
         number = math.nan
     if not math.isfinite(number) or number < 0.0:
-        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+        raise ValueError(f"{name} must be a finite number >= 0, got {shown(value)}")
     return number
 
 
@@ -182,7 +182,7 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
     the relay fit identifies the spread cells' weights and realises them as the finer relay grid
     of :func:`~exudyn_atcm.hysteresis.relay_gram.refined_relays`."""
     if basis not in ("relays", "cells"):
-        raise ValueError(f"basis must be 'relays' or 'cells', got {basis!r}")
+        raise ValueError(f"basis must be 'relays' or 'cells', got {shown(basis)}")
     refine = levels_int("relays_per_cell", relays_per_cell, minimum=1)
     if basis == "cells" and refine != 1:
         raise ValueError(f"relays_per_cell applies to DiscretePreisach.fit only (EverettPreisach spreads each weight "
@@ -203,12 +203,12 @@ def fit_discrete(cls: type, u: Any, y: Any, n_levels: int, *, smoothing: float =
                         "relays")
     smoothing = nonnegative_float("smoothing", smoothing)
     if prior not in PRIORS:
-        raise ValueError(f"prior must be one of {', '.join(repr(p) for p in PRIORS)}, got {prior!r}")
+        raise ValueError(f"prior must be one of {', '.join(repr(p) for p in PRIORS)}, got {shown(prior)}")
     if prior_weight is not None:
         prior_weight = nonnegative_float("prior_weight", prior_weight)
     cross_validate = prior == "pi" and prior_weight is None
     if cross_validate and (isinstance(cv_folds, bool) or not isinstance(cv_folds, (int, np.integer)) or cv_folds < 2):
-        raise ValueError(f"cv_folds must be an integer >= 2, got {cv_folds!r}")
+        raise ValueError(f"cv_folds must be an integer >= 2, got {shown(cv_folds)}")
     u_fit = u_a[mask]
     u_lo, u_hi = grid_range(input_range, u_fit)
     # distinct relay states: a state changes only at a sample whose input crossed a threshold

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, positive_int, same_length
+from .._checks import finite_array, positive_int, same_length, shown
 from ..physical_bounds import check_element_count
 from .fit_cost import check_cost, finite_squares, loop_fit_cost
 from .fit_report import make_report
@@ -118,7 +118,7 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     started = time.perf_counter()
     quantity_from_unit(output_unit, output_quantity)
     if levels not in LEVEL_RULES:
-        raise ValueError(f"levels must be one of {', '.join(repr(k) for k in LEVEL_RULES)}, got {levels!r}")
+        raise ValueError(f"levels must be one of {', '.join(repr(k) for k in LEVEL_RULES)}, got {shown(levels)}")
     u_a = finite_array("u", u, min_length=2)
     y_a = finite_array("y", y, min_length=2)
     same_length(("u", "y"), (u_a, y_a))
@@ -136,7 +136,7 @@ def identify_from_loop(cls: type, u: Any, y: Any, n: int, *, reversal_tolerance:
     reversal_tolerance = nonnegative_float("reversal_tolerance", reversal_tolerance)
     coverage = nonnegative_float("coverage", coverage)
     if coverage > 1.0:
-        raise ValueError(f"coverage must lie in [0, 1], got {coverage!r}")
+        raise ValueError(f"coverage must lie in [0, 1], got {shown(coverage)}")
     span = float(np.ptp(u_a[mask]))
     segments = monotone_segments(u_a, reversal_tolerance * span)
     if fit_mask is not None:  # segments whose inner samples are all fitted (the ends are shared)

@@ -40,11 +40,11 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import hide_keywords, option_values, options_from_keywords
+from .._checks import hide_keywords, option_values, options_from_keywords, shown
 from ..io.atomic import write_json
 from .families import FitRequest, family_named, registered_families
 from .fit_report import FitReport
-from .base import quantity_from_unit
+from .base import known_output_units, quantity_from_unit
 from .identification import check_record
 from .identify_options import IdentifyOptions
 from .record_split import choose_split
@@ -176,7 +176,7 @@ class ModelChoice:
         for c in self.candidates:
             if c.family == family:
                 return c
-        raise ValueError(f"family must be one of {[c.family for c in self.candidates]}, got {family!r}")
+        raise ValueError(f"family must be one of {[c.family for c in self.candidates]}, got {shown(family)}")
 
     def to_text(self) -> str:
         """The ranked table as fixed-width text."""
@@ -286,23 +286,23 @@ def identify(u: Any, y: Any = None, *, split: float | str = "auto", n_fit: int |
         held-out part, an unknown family or split, or no family that could be fitted.
     """
     (options,) = options_from_keywords("identify", legacy, options=(IdentifyOptions, options))
+    options.check()  # a bad option is refused here, not turned into "not fitted" for every family
     (n_levels, n_plays, n_relays, smoothing, prior, reversal_tolerance, levels, relays_per_cell, simpler_margin,
      linear_margin) = option_values(options)
     u_in, y_in, unit, t = _record_arrays(u, y)
     unit = unit if output_unit is None else output_unit
     quantity = quantity_from_unit(unit, output_quantity)
+    if unit.strip() not in known_output_units():
+        warnings.warn(f"identify: output_unit {unit!r} is not a unit the package knows "
+                      f"({', '.join(repr(k) for k in known_output_units())}), so it cannot tell what the output is"
+                      + ("" if output_quantity else " (output_quantity is left unstated: None)")
+                      + "; give one of these units (SI: 'm' or '-')", SetupWarning, stacklevel=2)
     u_a, y_a, _ = check_record(u_in, y_in)
     known = registered_families()
     families = tuple(known) if families is None else families
     if isinstance(families, str) or not families or any(f not in known for f in families):
         raise ValueError(f"families must be a non-empty selection of the registered families {tuple(known)}, "
-                         f"got {families!r}")
-    if isinstance(relays_per_cell, bool) or not isinstance(relays_per_cell, (int, np.integer)) or relays_per_cell < 1:
-        raise ValueError(f"relays_per_cell must be an integer >= 1, got {relays_per_cell!r}")
-    if not (isinstance(simpler_margin, (int, float)) and 0.0 <= simpler_margin < 10.0):
-        raise ValueError(f"simpler_margin must be a number in [0, 10), got {simpler_margin!r}")
-    if not (isinstance(linear_margin, (int, float)) and 0.0 <= linear_margin < 100.0):
-        raise ValueError(f"linear_margin must be a number in [0, 100), got {linear_margin!r}")
+                         f"got {shown(families)}")
     mask, how = choose_split(u_a, t, split, n_fit, fit_mask)
     contiguous = how.startswith("the first")
     n_fit = int(np.argmin(mask)) if contiguous else int(u_a.size)

@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from .._version import __version__
 from ..suggestions import close_names
 from .model_registry import FLOAT, RANGE, ParameterType, kind_named, kind_of, registered_kinds
@@ -101,11 +102,11 @@ def _encode_value(value: Any, ptype: ParameterType, where: str) -> Any:
         return _encode_model(value, where)
     if ptype.name == "string":
         if not isinstance(value, str):
-            raise ValueError(f"cannot save {where}: allowed {ptype.describe()}, got {value!r}")
+            raise ValueError(f"cannot save {where}: allowed {ptype.describe()}, got {shown(value)}")
         return value
     if ptype.name == "int":
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-            raise ValueError(f"cannot save {where}: allowed {ptype.describe()}, got {value!r}")
+            raise ValueError(f"cannot save {where}: allowed {ptype.describe()}, got {shown(value)}")
         return int(value)
     array = np.asarray(value, dtype=float)
     if ptype.name == "float":
@@ -127,9 +128,9 @@ def _encode_metadata(model: Any, where: str) -> dict:
     quantity = getattr(model, "output_quantity", None)
     unit = getattr(model, "output_unit", "")
     if quantity is not None and not isinstance(quantity, str):
-        raise ValueError(f"cannot save {where}.output_quantity: allowed a string or None, got {quantity!r}")
+        raise ValueError(f"cannot save {where}.output_quantity: allowed a string or None, got {shown(quantity)}")
     if not isinstance(unit, str):
-        raise ValueError(f"cannot save {where}.output_unit: allowed a string, got {unit!r}")
+        raise ValueError(f"cannot save {where}.output_unit: allowed a string, got {shown(unit)}")
     fitted = getattr(model, "fitted_range", None)
     fitted = None if fitted is None else _encode_value(fitted, RANGE, where + ".fitted_range")
     info = getattr(model, "fit_info", None)
@@ -151,7 +152,7 @@ def _json_data(value: Any, where: str) -> Any:
         out = {}
         for key, item in value.items():
             if not isinstance(key, str):
-                raise ValueError(f"cannot save {where}: its keys must be strings, got {key!r}")
+                raise ValueError(f"cannot save {where}: its keys must be strings, got {shown(key)}")
             out[key] = _json_data(item, f"{where}.{key}")
         return out
     if isinstance(value, np.ndarray):
@@ -260,7 +261,7 @@ def _decode_model(obj: Any, where: str, kinds: tuple[str, ...] | None, loc: _Whe
         raise loc.error(f"{where}.kind", f"is an unknown model kind {_kind_of(name)}; this exudyn_atcm ({__version__}) "
                         f"knows {', '.join(known)}" + (f" (did you mean {hint[0]!r}?)" if hint else ""))
     if kinds is not None and name not in kinds:
-        raise loc.error(f"{where}.kind", f"must be {' or '.join(repr(k) for k in kinds)} here, got {name!r}")
+        raise loc.error(f"{where}.kind", f"must be {' or '.join(repr(k) for k in kinds)} here, got {shown(name)}")
     params = obj["params"]
     if not isinstance(params, dict):
         raise loc.error(f"{where}.params", f"must be an object, got {_kind_of(params)}")
@@ -309,7 +310,7 @@ def _number(value: Any, where: str, ptype: ParameterType, loc: _Where) -> float:
     except OverflowError:
         number = math.inf
     if not math.isfinite(number):
-        raise loc.error(where, f"must be a finite number, got {value!r}")
+        raise loc.error(where, f"must be a finite number, got {shown(value)}")
     return number
 
 
@@ -343,4 +344,4 @@ def _check_finite(value: Any, where: str, loc: _Where) -> None:
         for i, item in enumerate(value):
             _check_finite(item, f"{where}[{i}]", loc)
     elif isinstance(value, float) and not math.isfinite(value):
-        raise loc.error(where, f"must be finite, got {value!r}")
+        raise loc.error(where, f"must be finite, got {shown(value)}")

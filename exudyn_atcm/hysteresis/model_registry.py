@@ -29,6 +29,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from .._checks import shown
+
 __all__ = ["FLOAT", "FLOATS", "INT", "RANGE", "STRING", "ParameterType", "ModelKind", "nested",
            "register_model_kind", "unregister_model_kind", "registered_kinds", "kind_named", "kind_of"]
 
@@ -113,13 +115,13 @@ def register_model_kind(name: str, cls: type, parameters: Mapping[str, Parameter
         another class or name (registering the same class under the same name again replaces it).
     """
     if not isinstance(name, str) or not re.fullmatch(r"[a-z][a-z0-9_]*", name):
-        raise ValueError(f"name must be lower case letters, digits and '_' starting with a letter, got {name!r}")
+        raise ValueError(f"name must be lower case letters, digits and '_' starting with a letter, got {shown(name)}")
     if not isinstance(cls, type):
-        raise ValueError(f"cls must be a class, got {cls!r}")
+        raise ValueError(f"cls must be a class, got {shown(cls)}")
     for key, kind in parameters.items():
         if not isinstance(kind, ParameterType):
             raise ValueError(f"parameters[{key!r}] must be a ParameterType (FLOAT, FLOATS, INT, RANGE, STRING or "
-                             f"nested(...)), got {kind!r}")
+                             f"nested(...)), got {shown(kind)}")
     old = _KINDS.get(name)
     if old is not None and _qualified(old.cls) != _qualified(cls):
         raise ValueError(f"name {name!r} is registered already for {_qualified(old.cls)}; choose another name")
@@ -147,7 +149,7 @@ def unregister_model_kind(name: str) -> ModelKind:
     """
     kind = _KINDS.pop(name, None) if isinstance(name, str) else None
     if kind is None:
-        raise ValueError(f"name must be a registered kind, one of {tuple(_KINDS)}, got {name!r}")
+        raise ValueError(f"name must be a registered kind, one of {tuple(_KINDS)}, got {shown(name)}")
     _BY_CLASS.pop(kind.cls, None)
     return kind
 

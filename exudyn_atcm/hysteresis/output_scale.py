@@ -23,9 +23,14 @@ range, anything else set on it after it was made) is carried over; the scaling i
 from __future__ import annotations
 
 import copy
+import warnings
 from typing import Any
 
-from .._checks import positive_float
+import numpy as np
+
+from .._checks import positive_float, shown
+from ..errors import InputRangeWarning
+from ..physical_bounds import PLAUSIBLE_STRAIN
 from .continuous import ContinuousPreisach
 from .creep import CreepHysteresis
 from .discrete import DiscretePreisach
@@ -97,15 +102,34 @@ def scaled_output(model: Any, factor: float, *, quantity: str | None = None, uni
             setattr(new, name, copy.deepcopy(value))
     if quantity is not None:
         if not isinstance(quantity, str) or not quantity.strip():
-            raise ValueError(f"quantity must be None or a non-empty string such as 'strain', got {quantity!r}")
+            raise ValueError(f"quantity must be None or a non-empty string such as 'strain', got {shown(quantity)}")
         new.output_quantity = quantity
     if unit is not None:
         if not isinstance(unit, str):
-            raise ValueError(f"unit must be None or a unit string such as '-', got {unit!r}")
+            raise ValueError(f"unit must be None or a unit string such as '-', got {shown(unit)}")
         new.output_unit = unit
     info = getattr(model, "fit_info", None)
     if isinstance(info, dict):
         new.fit_info = {**copy.deepcopy(info), "output_scale": {
             "factor": factor, "from_unit": getattr(model, "output_unit", ""), "to_unit": getattr(new, "output_unit", ""),
             "note": note or ""}}
+    if quantity == "strain":
+        _warn_implausible_strain(new, note)
     return new
+
+
+def _warn_implausible_strain(model: Any, note: str | None) -> None:
+    """Warn (:class:`~exudyn_atcm.errors.InputRangeWarning`) when a model scaled to a strain reaches,
+    over a major loop of its input range, more than the drive's plausible free strain
+    (:data:`~exudyn_atcm.physical_bounds.PLAUSIBLE_STRAIN`): a displacement in µm declared as m, say."""
+    bounds = getattr(model, "input_range", None)
+    if bounds is None or getattr(model, "time_dependent", False):  # a lag's output needs the time: not checked
+        return
+    ramp = np.linspace(float(bounds[0]), float(bounds[1]), 101)
+    largest = float(np.max(np.abs(model.apply(np.concatenate([ramp, ramp[::-1]]), check_range=False))))
+    if largest > PLAUSIBLE_STRAIN:
+        warnings.warn(
+            f"the model converted to a free strain ({note or 'scaled output'}) reaches a strain of {largest:.3g} "
+            f"over its input range {float(bounds[0]):g} ... {float(bounds[1]):g}, more than {PLAUSIBLE_STRAIN:g} "
+            "(1 %); an MFC reaches about 1e-3 (the paper's: 1.38e-3 at 1500 V). Check the output unit (a displacement "
+            "in µm declared as m?) and the length it is divided by", InputRangeWarning, stacklevel=3)

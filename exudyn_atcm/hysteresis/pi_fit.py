@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..physical_bounds import check_element_count
 from .base import quantity_from_unit
 from .fit_cost import check_cost, play_fit_cost
@@ -87,7 +88,7 @@ def fit_prandtl_ishlinskii(cls: type, u: Any, y: Any, n: int, *, n_fit: int | No
     """Body of :meth:`PrandtlIshlinskii.fit` (see there and the module)."""
     started = time.perf_counter()
     if initial not in INITIAL_STATES:
-        raise ValueError(f"initial must be one of {', '.join(repr(s) for s in INITIAL_STATES)}, got {initial!r}")
+        raise ValueError(f"initial must be one of {', '.join(repr(s) for s in INITIAL_STATES)}, got {shown(initial)}")
     quantity_from_unit(output_unit, output_quantity)
     u_a, y_a, mask, stop = fit_samples(u, y, n_fit, fit_mask)
     n = check_element_count("n", levels_int("n", n), "plays")

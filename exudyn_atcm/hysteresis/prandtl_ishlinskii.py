@@ -97,13 +97,35 @@ class PrandtlIshlinskii(HysteresisOperator):
         self._y = self.offset + self.p0 * v + float(self.weights @ self._z)
         return self._y
 
-    def inverse(self, input_range: tuple[float, float] | None = None) -> HysteresisOperator:
-        r"""The analytic inverse, again a Prandtl-Ishlinskii operator (a :class:`ShiftedPIInverse`).
+    def input_for_output(self, y: float, u_lo: float, u_hi: float) -> float:
+        """The input in ``[u_lo, u_hi]`` whose output from the committed plays is ``y`` (exact).
 
-        Without ``input_range`` the analytic inverse (every output is reachable: a PI operator with
-        ``p0 > 0`` is unbounded).  With ``input_range`` (e.g. a drive's voltage limits [V]) a
+        From a fixed memory the output is piecewise linear in the input (each play follows the
+        input beyond ``z_j ± r_j``), so the root is found between two breakpoints and
+        interpolated: exact to rounding.  :class:`~exudyn_atcm.hysteresis.bisection.BisectionInverse`
+        uses it instead of bisection; it expects ``output(u_lo) < y <= output(u_hi)``.
+        """
+        lo, hi = u_lo - self.input_offset, u_hi - self.input_offset
+        knots = np.concatenate(([lo, hi], self._z - self.radii, self._z + self.radii))
+        v = np.unique(knots[(knots >= lo) & (knots <= hi)])
+        plays = np.maximum(v[:, None] - self.radii, np.minimum(v[:, None] + self.radii, self._z))
+        out = self.offset + self.p0 * v + plays @ self.weights
+        k = min(max(int(np.searchsorted(out, y)), 1), v.size - 1)
+        y0, y1 = float(out[k - 1]), float(out[k])
+        s = 0.0 if y1 == y0 else (y - y0) / (y1 - y0)
+        return float(v[k - 1] + s * (v[k] - v[k - 1])) + self.input_offset
+
+    def inverse(self, input_range: tuple[float, float] | None = None) -> HysteresisOperator:
+        r"""The inverse: the analytic one (a :class:`ShiftedPIInverse`), or one bounded to an input range.
+
+        A model that was not fitted, without ``input_range``: the analytic inverse, again a
+        Prandtl-Ishlinskii operator (every output is reachable: a PI operator with ``p0 > 0`` is
+        unbounded).  With ``input_range`` (e.g. a drive's voltage limits [V]), and for a fitted
+        model without it (then its :attr:`fitted_range`, as the Preisach fits' inverses use
+        theirs: :func:`~exudyn_atcm.hysteresis.bisection.default_input_range`), a
         :class:`~exudyn_atcm.hysteresis.bisection.BisectionInverse` on that range, which clips
-        unreachable outputs with a warning.
+        unreachable outputs with an :class:`~exudyn_atcm.errors.OutOfReachWarning` (the input is
+        solved exactly inside the range, :meth:`input_for_output`).
 
         With ``P_j = p0 + Σ_{i<=j} p_i`` (plays of radius 0 are merged into ``p0``):
         :math:`\hat p_0 = 1/p_0`,
@@ -119,7 +141,7 @@ class PrandtlIshlinskii(HysteresisOperator):
         ValueError
             If some ``P_j <= 0`` (the operator is not strictly increasing, so not invertible).
         """
-        if input_range is not None:
+        if input_range is not None or self.fitted_range is not None:
             self.inverse_parameters()  # refuses an operator that is not strictly increasing
             return BisectionInverse(self, input_range)
         return ShiftedPIInverse(self)

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_float
+from .._checks import finite_float, positive_float, shown
 from ..physical_bounds import check_element_count
 from .creep import Creep
 from .dynamics import LagSum, RateLag, WithDynamics
@@ -76,7 +76,7 @@ def rate_fit_cost(n_levels: int, n_samples: int, n_lags: int, evaluations: int) 
 
 def _levels(value: Any) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 2 <= value <= MAX_FIT_LEVELS:
-        raise ValueError(f"n_levels must be an integer in [2, {MAX_FIT_LEVELS}], got {value!r}")
+        raise ValueError(f"n_levels must be an integer in [2, {MAX_FIT_LEVELS}], got {shown(value)}")
     return int(value)
 
 
@@ -269,13 +269,13 @@ def fit_rate_preisach(records: Any, n_levels: int, *, creep: Creep | None = None
         LagSum.series(creep, RateLag(T))  # refuses a T equal to a creep time constant
     smoothing = finite_float("smoothing", smoothing)
     if smoothing < 0.0:
-        raise ValueError(f"smoothing must be >= 0, got {smoothing!r}")
+        raise ValueError(f"smoothing must be >= 0, got {shown(smoothing)}")
     if prior_weight is not None:
         prior_weight = finite_float("prior_weight", prior_weight)
         if prior_weight < 0.0:
-            raise ValueError(f"prior_weight must be >= 0, got {prior_weight!r}")
+            raise ValueError(f"prior_weight must be >= 0, got {shown(prior_weight)}")
     elif isinstance(cv_folds, bool) or not isinstance(cv_folds, (int, np.integer)) or cv_folds < 2:
-        raise ValueError(f"cv_folds must be an integer >= 2, got {cv_folds!r}")
+        raise ValueError(f"cv_folds must be an integer >= 2, got {shown(cv_folds)}")
     u_lo = min(float(u.min()) for _, u, _ in recs)
     u_hi = max(float(u.max()) for _, u, _ in recs)
     known = u_lo + KNOWN_MEMORY_TOLERANCE * (u_hi - u_lo)

@@ -33,7 +33,9 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..errors import AccuracyWarning
+from .identification import MIN_SAMPLES
 from .loop_identification import monotone_segments
 
 __all__ = ["AUTO_FRACTION", "COVER_TOLERANCE", "SPLITS", "cycle_bounds", "interleaved_cycles", "uncovered",
@@ -114,6 +116,16 @@ def _interval_text(intervals: list[tuple[float, float]]) -> str:
     return " and ".join(f"{lo:g} ... {hi:g}" for lo, hi in intervals)
 
 
+def _check_fitted(mask: np.ndarray, how: str) -> None:
+    """Refuse a split that fits fewer samples than a fit needs (once, before any family is fitted)."""
+    fitted = int(mask.sum())
+    if fitted < MIN_SAMPLES:
+        raise ValueError(
+            f"u, y: the record has {mask.size} samples and the split ({how}) fits {fitted} of them, but every family "
+            f"needs at least {MIN_SAMPLES} fitted samples (and some held out): give a longer record (at least "
+            f"{MIN_SAMPLES + 1} samples), a larger split fraction or n_fit")
+
+
 def choose_split(u: np.ndarray, t: Any, split: Any, n_fit: Any, fit_mask: Any, *, stacklevel: int = 3) -> tuple:
     """The fitted samples of :func:`identify`: ``(mask, description)`` (see the module).
 
@@ -136,12 +148,12 @@ def choose_split(u: np.ndarray, t: Any, split: Any, n_fit: Any, fit_mask: Any, *
     elif n_fit is None:
         if isinstance(split, str):
             if split not in SPLITS:
-                raise ValueError(f"split must be a fraction in (0, 1) (the rest is held out), 'auto' or 'cycles', got {split!r}")
+                raise ValueError(f"split must be a fraction in (0, 1) (the rest is held out), 'auto' or 'cycles', got {shown(split)}")
             fraction = AUTO_FRACTION
         elif isinstance(split, (int, float)) and not isinstance(split, bool) and 0.0 < split < 1.0:
             fraction = float(split)
         else:
-            raise ValueError(f"split must be a fraction in (0, 1) (the rest is held out), 'auto' or 'cycles', got {split!r}")
+            raise ValueError(f"split must be a fraction in (0, 1) (the rest is held out), 'auto' or 'cycles', got {shown(split)}")
         if t is not None:
             n_fit = int(np.searchsorted(t, t[0] + fraction * (t[-1] - t[0]), side="left"))
         else:
@@ -152,17 +164,19 @@ def choose_split(u: np.ndarray, t: Any, split: Any, n_fit: Any, fit_mask: Any, *
             covered = not uncovered(u, by_time, ~by_time)
             cycles = None if (split == "auto" and covered) else interleaved_cycles(u)
             if cycles is not None:
+                _check_fitted(cycles, "interleaved cycles")
                 return cycles, (f"interleaved cycles ({int((~cycles).sum())} samples in whole cycles held out "
                                 "inside the fitted input range)")
             if split == "cycles":
-                raise ValueError(f"split='cycles': the record has fewer than three cycles (cut at its reversal minima) "
-                                 f"or none can be held out inside the fitted range; give split as a fraction or n_fit")
+                raise ValueError("split='cycles': the record has fewer than three cycles (cut at its reversal minima) "
+                                 "or none can be held out inside the fitted range; give split as a fraction or n_fit")
     if not how:
         if isinstance(n_fit, bool) or not isinstance(n_fit, (int, np.integer)) or not 10 <= n_fit < size:
-            raise ValueError(f"n_fit must be an integer in [10, {size - 1}] (a held-out part is needed), got {n_fit!r}")
+            raise ValueError(f"n_fit must be an integer in [10, {size - 1}] (a held-out part is needed), got {shown(n_fit)}")
         how = f"the first {int(n_fit)} samples"
     if fit_mask is None:
         mask = np.arange(size) < int(n_fit)
+    _check_fitted(mask, how)
     outside = uncovered(u, mask, ~mask)
     if outside:
         warnings.warn(

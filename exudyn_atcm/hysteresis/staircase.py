@@ -26,6 +26,7 @@ import abc
 import math
 from typing import Any
 
+from .._checks import shown
 from .base import HysteresisOperator, check_input
 from .bisection import BisectionInverse
 
@@ -50,7 +51,7 @@ def _staircase_step(store: bool):
         if type(u) is not float:
             u = check_input(u)
         elif not -_INF < u < _INF:  # nan compares false, too
-            raise ValueError(f"u must be a finite real number, got {u!r}")
+            raise ValueError(f"u must be a finite real number, got {shown(u)}")
         u_now = self._u
         if u == u_now:
             return self._y
@@ -163,7 +164,7 @@ class StaircasePreisach(HysteresisOperator):
             values, outputs, u, y, rising = snapshot
         except (TypeError, ValueError):
             raise ValueError(
-                f"snapshot must come from checkpoint() of a Preisach operator, got {snapshot!r}"
+                f"snapshot must come from checkpoint() of a Preisach operator, got {shown(snapshot)}"
             ) from None
         self._values = list(values)
         self._outputs = list(outputs)

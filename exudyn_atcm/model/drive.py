@@ -9,8 +9,8 @@ from typing import Any, Callable, Union
 
 import numpy as np
 
-from .._checks import finite_float, positive_float
-from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE, check_physical
+from .._checks import finite_float, positive_float, shown
+from ..physical_bounds import KV_SUSPECT_FRACTION, MFC_P1_RATED_RANGE, PLAUSIBLE_STRAIN, check_physical
 from ..errors import InputRangeWarning, SetupWarning, annotate
 from ..io.units import is_length
 
@@ -19,9 +19,6 @@ VoltageProgram = Union[float, Callable[[float], float]]
 _OPERATOR_METHODS = ("evaluate", "commit", "reset", "apply", "checkpoint", "restore")
 
 
-#: Free strains [-] above this magnitude are implausible for a piezo layer (MFC P1 reaches
-#: about 1.4e-3 at 1500 V, piezo ceramics about 2e-3): most likely a unit mistake.
-PLAUSIBLE_STRAIN = 1e-2
 
 
 
@@ -104,10 +101,10 @@ class PiezoDrive:
             try:
                 low, high = rated_range
             except (TypeError, ValueError):
-                raise ValueError(f"rated_range must be None or a pair (U_min, U_max) [V], got {rated_range!r}") from None
+                raise ValueError(f"rated_range must be None or a pair (U_min, U_max) [V], got {shown(rated_range)}") from None
             low, high = finite_float("rated_range[0]", low), finite_float("rated_range[1]", high)
             if not low < high:
-                raise ValueError(f"rated_range must have U_min < U_max, got {rated_range!r}")
+                raise ValueError(f"rated_range must have U_min < U_max, got {shown(rated_range)}")
             self.rated_range = (low, high)
 
     @property
@@ -125,11 +122,11 @@ class PiezoDrive:
             controller, function = None, voltage
         elif isinstance(voltage, numbers.Real) and not isinstance(voltage, bool):
             if not math.isfinite(float(voltage)):
-                raise ValueError(f"voltage must be a finite number [V] or a callable of time, got {voltage!r}")
+                raise ValueError(f"voltage must be a finite number [V] or a callable of time, got {shown(voltage)}")
             controller, function = None, None
         else:
             raise ValueError(
-                f"voltage must be a finite number [V] or a callable of time t [s], got {voltage!r}"
+                f"voltage must be a finite number [V] or a callable of time t [s], got {shown(voltage)}"
             )
         # until 2026-11-29 ``voltage`` was a plain attribute and ``voltage_at`` kept the program given at
         # construction: a program set afterwards reached the step choice's stand-in but not the run

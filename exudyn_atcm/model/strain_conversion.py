@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, positive_float
+from .._checks import finite_array, positive_float, warn_implausible
 from ..errors import AccuracyWarning
 from ..hysteresis.output_scale import scaled_output
 from ..io.record import Record
@@ -311,6 +311,7 @@ def model_to_strain(model: Any, *, gauge_length: float | None = None, laminate: 
     to_metres = _output_metres(unit, "model")
     if _conversion(gauge_length, laminate, length) == "patch":
         metres_per_strain = positive_float("gauge_length", gauge_length)
+        warn_implausible("gauge_length", metres_per_strain, "length", "model_to_strain")  # 60 for 60 mm: strains /1000
         note = f"displacement [{unit}] over gauge length {metres_per_strain:g} m"
     else:
         per_strain, s = _geometry(laminate, length)
