@@ -14,8 +14,20 @@ import numpy as np
 from .errors import AtcmDeprecationWarning, InputRangeWarning
 
 
+def shown(value: Any) -> str:
+    """``value`` for a message: its repr, a NumPy scalar as its Python value (``-1.0``, not ``np.float64(-1.0)``,
+    which NumPy 2 writes), in a tuple or list too."""
+    if isinstance(value, np.generic):
+        return repr(value.item())
+    if isinstance(value, (tuple, list)) and any(isinstance(v, np.generic) for v in value):
+        items = [v.item() if isinstance(v, np.generic) else v for v in value]
+        return repr(tuple(items) if isinstance(value, tuple) else items)
+    return repr(value)
+
+
 def _short(value: Any) -> str:
-    text = repr(value)
+    """:func:`shown`, cut at 80 characters."""
+    text = shown(value)
     return text if len(text) <= 80 else text[:77] + "..."
 
 

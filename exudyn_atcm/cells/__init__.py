@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from .._checks import shown
 from ..suggestions import close_names
 from .ancf import AncfCell
 from .base import CELL_KINDS, END_BODY, END_CHAIN, END_NODE, CellKind
@@ -62,7 +63,7 @@ def register_cell_kind(kind: CellKind | type[CellKind], *, replace: bool = False
         kind, or another class without ``replace=True``).
     """
     if not (isinstance(kind, CellKind) or (isinstance(kind, type) and issubclass(kind, CellKind))):
-        raise ValueError(f"kind must be a CellKind instance or subclass, got {kind!r}")
+        raise ValueError(f"kind must be a CellKind instance or subclass, got {shown(kind)}")
     kind = cell_kind(kind, "kind")
     taken = CELL_KINDS.get(kind.name)
     if taken is not None and type(taken) is not type(kind):
@@ -101,6 +102,6 @@ def cell_kind(value: Any, parameter: str = "cell") -> CellKind:
         return CELL_KINDS[value]
     hint = close_names(value, CELL_KINDS, ignore_case=True) if isinstance(value, str) else []
     # the registered names, read now (kinds registered with register_cell_kind included)
-    raise ValueError(f"{parameter} must be one of {tuple(CELL_KINDS)} or a CellKind, got {value!r}"
+    raise ValueError(f"{parameter} must be one of {tuple(CELL_KINDS)} or a CellKind, got {shown(value)}"
                      + (f" (did you mean {hint[0]!r}?)" if hint else "")
                      + "; register a kind of your own by name with exudyn_atcm.register_cell_kind")

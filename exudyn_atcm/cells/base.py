@@ -11,6 +11,7 @@ layer (:mod:`exudyn_atcm.mbs`), registered per class, so that a subclass of a ce
 from __future__ import annotations
 
 from typing import Any, ClassVar
+from .._checks import shown
 
 __all__ = ["CellKind", "CELL_KINDS", "END_BODY", "END_CHAIN", "END_NODE", "CONNECTIONS", "cantilever_refusal"]
 
@@ -134,7 +135,7 @@ class CellKind:
         """Refuse a ``stroke_path`` this kind cannot realise (``ValueError`` naming the allowed ones)."""
         if stroke_path not in self.stroke_paths:
             allowed = " or ".join(repr(p) for p in self.stroke_paths)
-            raise ValueError(f"stroke_path must be {allowed} for the {self.name} cell, got {stroke_path!r}")
+            raise ValueError(f"stroke_path must be {allowed} for the {self.name} cell, got {shown(stroke_path)}")
 
     def add_to_refusal(self) -> str | None:
         """Why a bender of this kind cannot be added to a user's own Exudyn system with

@@ -26,6 +26,7 @@ import re
 from typing import Any
 
 import numpy as np
+from .._checks import shown
 
 __all__ = [
     "COLUMN",
@@ -143,7 +144,7 @@ def comment_line(key: Any, value: Any, *, prefix: str = "", what: str = "paramet
         beginning with ``info.``), or if the value would not read back as itself.
     """
     if not isinstance(key, str):
-        raise ValueError(f"{what} names must be strings to be written to CSV, got {key!r}")
+        raise ValueError(f"{what} names must be strings to be written to CSV, got {shown(key)}")
     full = prefix + key
     problems = []
     if not key.strip():

@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from .matlab_hdf5 import load_hdf5
 from .record_columns import Columns
 
@@ -237,7 +238,7 @@ def _choose(channels: list[Channel], choice: Any, default: int, parameter: str, 
     elif isinstance(choice, (int, np.integer)) and not isinstance(choice, bool) and choice >= 0:
         index = int(choice)
     else:
-        raise ValueError(f"{parameter} must be a channel name or an index >= 0, got {choice!r}")
+        raise ValueError(f"{parameter} must be a channel name or an index >= 0, got {shown(choice)}")
     if index >= len(channels):
         raise ValueError(f"{parameter} = {choice!r}: {path} has only {len(channels)} channel(s): {listing()}")
     return index

@@ -24,7 +24,7 @@ from typing import Any, Union
 
 import numpy as np
 
-from .._checks import positive_int
+from .._checks import positive_int, shown
 from .preprocessing import preprocess
 from .record import Record
 from .record_columns import Columns, build_record
@@ -124,7 +124,7 @@ def _column(header: list[str] | None, choice: Any, default: int, parameter: str,
     elif isinstance(choice, (int, np.integer)) and not isinstance(choice, bool) and choice >= 0:
         index = int(choice)
     else:
-        raise ValueError(f"{parameter} must be a column name or an index >= 0, got {choice!r}")
+        raise ValueError(f"{parameter} must be a column name or an index >= 0, got {shown(choice)}")
     if index >= n_columns:
         raise ValueError(f"{parameter} = {choice!r}: {path} has only {n_columns} column(s)")
     return index
@@ -280,7 +280,7 @@ def _text_columns(path: Path, time: Any, input: Any, output: Any, comment: str) 
             try:
                 data[r, c] = float(cell)
             except ValueError:
-                raise ValueError(f"{path}: line {number}, column {k} ({key}) must be a number, got {cell!r}") from None
+                raise ValueError(f"{path}: line {number}, column {k} ({key}) must be a number, got {shown(cell)}") from None
     names, file_units = {}, {}
     for key, k in indices.items():
         if header is not None and k < len(header):

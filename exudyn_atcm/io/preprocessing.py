@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_int
+from .._checks import finite_float, positive_int, shown
 from ..errors import AccuracyWarning
 from .record import Record
 
@@ -88,7 +88,7 @@ def preprocess(
         raise ValueError(f"record must be a Record (see read_record), got {type(record).__name__}")
     trim_start = finite_float("trim_start", trim_start)
     if trim_start < 0.0:
-        raise ValueError(f"trim_start must be >= 0 s, got {trim_start!r}")
+        raise ValueError(f"trim_start must be >= 0 s, got {shown(trim_start)}")
     decimate = positive_int("decimate", decimate)
     if offset_samples is not None and offset_window is not None:
         raise ValueError(
@@ -151,10 +151,10 @@ def _offset_samples(t: np.ndarray, offset_samples: Any, offset_window: Any) -> t
     try:
         t0, t1 = offset_window
     except (TypeError, ValueError):
-        raise ValueError(f"offset_window must be a pair (t0, t1) of times [s], got {offset_window!r}") from None
+        raise ValueError(f"offset_window must be a pair (t0, t1) of times [s], got {shown(offset_window)}") from None
     t0, t1 = finite_float("offset_window[0]", t0), finite_float("offset_window[1]", t1)
     if not t0 < t1:
-        raise ValueError(f"offset_window must have t0 < t1, got {offset_window!r}")
+        raise ValueError(f"offset_window must have t0 < t1, got {shown(offset_window)}")
     inside = np.flatnonzero((t >= t0) & (t <= t1))
     if inside.size == 0:
         raise ValueError(

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float
+from .._checks import finite_float, shown
 
 __all__ = ["Record"]
 
@@ -73,7 +73,7 @@ class Record:
         if not self.time[0] < t_split <= self.time[-1]:
             raise ValueError(
                 f"t_split must lie in ({float(self.time[0])!r}, {float(self.time[-1])!r}] s (inside the record), "
-                f"got {t_split!r}"
+                f"got {shown(t_split)}"
             )
         return int(np.searchsorted(self.time, t_split, side="left"))
 

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..errors import SuspectFileWarning
 from .file_checks import check_volt_column
 from .record import Record
@@ -80,7 +81,7 @@ def build_record(columns: Columns, *, source: str, units: Any, si: bool, min_sam
         When rows are dropped (count and first positions), or a ``[V]`` column peaks below 3 V.
     """
     if not isinstance(si, bool):
-        raise ValueError(f"si must be True or False, got {si!r}")
+        raise ValueError(f"si must be True or False, got {shown(si)}")
     data, names, file_units = columns.data, columns.names, columns.file_units
     positions, position_word, row_word = columns.positions, columns.position_word, columns.row_word
     processing = list(columns.notes)

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..errors import AtcmDeprecationWarning
 from ..suggestions import close_names
 from .atomic import write_atomic
@@ -77,7 +78,7 @@ class Result(Mapping):
         length = None
         for name, values in series.items():
             if not isinstance(name, str) or not name or any(c in name for c in ",[]\n#"):
-                raise ValueError(f"series names must be non-empty strings without ',', '[', ']', '#', got {name!r}")
+                raise ValueError(f"series names must be non-empty strings without ',', '[', ']', '#', got {shown(name)}")
             array = np.asarray(values, dtype=float)
             if array.ndim != 1:
                 raise ValueError(f"series {name!r} must be 1-D, got shape {array.shape}")
@@ -100,7 +101,7 @@ class Result(Mapping):
         old = dict(old_names or {})
         wrong = {o: n for o, n in old.items() if n not in data or o in data}
         if wrong:
-            raise ValueError(f"old_names must map names that are not series to series of this result, got {wrong!r} "
+            raise ValueError(f"old_names must map names that are not series to series of this result, got {shown(wrong)} "
                              f"(series: {', '.join(data)})")
         self._old_names = old
 
@@ -320,7 +321,7 @@ def _version_text(version: Any) -> str:
     text = version if isinstance(version, str) else None
     if (text is None or not text.strip() or text != text.strip() or "\n" in text or "\r" in text
             or invisible_characters(text)):
-        raise ValueError(f"info['exudyn_version'] must be a one-line version string (or None), got {version!r}")
+        raise ValueError(f"info['exudyn_version'] must be a one-line version string (or None), got {shown(version)}")
     return text
 
 

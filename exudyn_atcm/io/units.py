@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from typing import Any
+from .._checks import shown
 
 __all__ = ["ROLES", "SI_SCALE", "si_scale", "same_unit", "is_length", "is_time", "merge_units"]
 
@@ -61,18 +62,18 @@ def _given_units(units: Any) -> dict[str, str]:
     if units is None:
         return {}
     if not isinstance(units, Mapping):
-        raise ValueError(f"units must be a mapping such as {{'output': 'um'}}, got {units!r}")
+        raise ValueError(f"units must be a mapping such as {{'output': 'um'}}, got {shown(units)}")
     given = {}
     for role, unit in units.items():
         if role not in ROLES:
             raise ValueError(f"units: {role!r} is not a column of a record; the keys are {', '.join(ROLES)}")
         if not isinstance(unit, str) or not unit.strip() or any(c in unit for c in "[]"):
-            raise ValueError(f"units[{role!r}] must be a non-empty unit string such as 'um' (no brackets), got {unit!r}")
+            raise ValueError(f"units[{role!r}] must be a non-empty unit string such as 'um' (no brackets), got {shown(unit)}")
         given[role] = unit.strip()
     time_unit = given.get("time")
     if time_unit is not None and not is_time(time_unit):
         known = ", ".join(u for u, (_, base) in SI_SCALE.items() if base == "s")
-        raise ValueError(f"units['time'] must be a unit of time ({known}), got {time_unit!r}")
+        raise ValueError(f"units['time'] must be a unit of time ({known}), got {shown(time_unit)}")
     return given
 
 

@@ -19,6 +19,7 @@ from typing import Any
 
 import exudyn as exu
 import numpy as np
+from .._checks import shown
 from .exudyn_items import ii
 
 from ..errors import AtcmDeprecationWarning
@@ -360,13 +361,13 @@ class BuildContext:
         ``exudyn.OutputVariableType`` name such as ``"Force"``) in the current state."""
         kind = getattr(exu.OutputVariableType, variable, None)
         if kind is None:
-            raise ValueError(f"variable must be an exudyn.OutputVariableType name such as 'Force', got {variable!r}")
+            raise ValueError(f"variable must be an exudyn.OutputVariableType name such as 'Force', got {shown(variable)}")
         return partial(self.mbs.GetObjectOutput, item, kind)
 
     def add_readout(self, readout: Readout, read: Callable[[], Any]) -> None:
         """Record ``read()`` (a float in ``readout.unit``) as the result column ``readout.column``."""
         if not isinstance(readout, Readout) or not callable(read):
-            raise ValueError(f"add_readout takes a Readout and a callable, got {readout!r} and {read!r}")
+            raise ValueError(f"add_readout takes a Readout and a callable, got {shown(readout)} and {read!r}")
         self.model.readouts.append((readout, read))
 
     def recorded(self) -> tuple[Readout, ...]:

@@ -29,6 +29,7 @@ For an unsymmetric ``A`` (a follower load's tangent) the same proof bounds every
 from __future__ import annotations
 
 import numpy as np
+from .._checks import shown
 
 __all__ = ["PenaltyProof", "positive_definite_on_null_space"]
 
@@ -56,7 +57,7 @@ def positive_definite_on_null_space(a: np.ndarray, cq: np.ndarray, rho: float) -
         ``True`` is a proof; ``False`` proves nothing.
     """
     if not rho >= 0.0:
-        raise ValueError(f"rho: expected a penalty >= 0, got {rho!r}")
+        raise ValueError(f"rho: expected a penalty >= 0, got {shown(rho)}")
     return _penalised_cholesky(a, cq.T @ cq if cq.shape[0] else None, rho)
 
 

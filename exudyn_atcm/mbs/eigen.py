@@ -45,6 +45,7 @@ import warnings
 import exudyn as exu
 import numpy as np
 
+from .._checks import shown
 from ..errors import AccuracyWarning
 from .tangent import TangentPlan, static_settings
 from .blas_threads import one_blas_thread
@@ -118,7 +119,7 @@ def constrained_eigenfrequencies(mbs, n: int, *, relative_step: float = 1e-7,
     """
     from scipy.linalg import eigh, svd  # noqa: PLC0415 - lazy: scipy.linalg is slow to import
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n!r}")
+        raise ValueError(f"n must be an integer >= 1, got {shown(n)}")
     ts = tangent_system(mbs, relative_step)
     M, K, Cq, res = ts["M"], ts["K"], ts["Cq"], ts["residual"]
     n2 = M.shape[0]

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
+from .._checks import shown
 from ..errors import annotate
 
 StepFunction = Callable[[Any, float], bool]
@@ -116,7 +117,7 @@ def add_pre_step(mbs, function: StepFunction) -> None:
         ``function(mbs, t)`` with ``t`` the end time of the step being attempted [s].
     """
     if not callable(function):
-        raise ValueError(f"function must be a callable f(mbs, t) -> bool, got {function!r}")
+        raise ValueError(f"function must be a callable f(mbs, t) -> bool, got {shown(function)}")
     hooks = step_hooks(mbs)
     hooks.pre.append(function)
     hooks.install(mbs)
@@ -133,7 +134,7 @@ def add_post_step(mbs, function: StepFunction) -> None:
         ``function(mbs, t)`` with ``t`` the time reached [s].
     """
     if not callable(function):
-        raise ValueError(f"function must be a callable f(mbs, t) -> bool, got {function!r}")
+        raise ValueError(f"function must be a callable f(mbs, t) -> bool, got {shown(function)}")
     hooks = step_hooks(mbs)
     hooks.post.append(function)
     hooks.install(mbs)
@@ -161,7 +162,7 @@ def add_post_newton(mbs, check: Callable[[Any, float], float]) -> None:
         returns a float >= 0.
     """
     if not callable(check):
-        raise ValueError(f"check must be a callable check(mbs, t) -> float, got {check!r}")
+        raise ValueError(f"check must be a callable check(mbs, t) -> float, got {shown(check)}")
     checks = mbs.variables.get(POST_NEWTON_VARIABLE)
     if not isinstance(checks, list):
         checks = mbs.variables[POST_NEWTON_VARIABLE] = []

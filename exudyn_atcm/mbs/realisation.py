@@ -36,6 +36,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from .._checks import shown
 from ..cells import CellKind
 from ..mechanism.bender import Bender
 from ..mechanism.points import MechanismError
@@ -185,12 +186,12 @@ def register_realisation(kind: type[CellKind]) -> Callable[[type[CellRealisation
         :class:`CellRealisation` subclass.
     """
     if not (isinstance(kind, type) and issubclass(kind, CellKind)):
-        raise TypeError(f"register_realisation: kind must be a CellKind subclass, got {kind!r}")
+        raise TypeError(f"register_realisation: kind must be a CellKind subclass, got {shown(kind)}")
 
     def decorate(realisation: type[CellRealisation]) -> type[CellRealisation]:
         if not (isinstance(realisation, type) and issubclass(realisation, CellRealisation)):
             raise TypeError(f"register_realisation({kind.__name__}): the decorated class must subclass "
-                            f"CellRealisation, got {realisation!r}")
+                            f"CellRealisation, got {shown(realisation)}")
         _REALISATIONS[kind] = realisation
         return realisation
     return decorate

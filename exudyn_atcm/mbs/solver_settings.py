@@ -11,6 +11,7 @@ import math
 from typing import Any
 
 import exudyn as exu
+from .._checks import shown
 
 #: Default absolute Newton tolerance in SI units (measured with Exudyn 1.13: 1e-10 fails from 10 cells).
 NEWTON_ABSOLUTE_TOLERANCE = 1e-8
@@ -26,10 +27,10 @@ def apply_user_settings(settings, user: Any) -> None:
     if not isinstance(user, dict):
         raise ValueError(
             f"settings must be None, a callable receiving exudyn.SimulationSettings, or a dict of "
-            f"dotted names such as {{'timeIntegration.newton.maxIterations': 10}}; got {user!r}")
+            f"dotted names such as {{'timeIntegration.newton.maxIterations': 10}}; got {shown(user)}")
     for key, value in user.items():
         if not isinstance(key, str) or not key:
-            raise ValueError(f"settings keys must be dotted attribute names, got {key!r}")
+            raise ValueError(f"settings keys must be dotted attribute names, got {shown(key)}")
         obj = settings
         parts = key.split(".")
         for part in parts[:-1]:

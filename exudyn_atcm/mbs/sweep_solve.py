@@ -43,6 +43,7 @@ from typing import Callable
 import exudyn as exu
 import numpy as np
 
+from .._checks import shown
 from .continuation_settings import continuation_settings
 from .model import MechanismModel
 from .solver_runs import (ExudynFailure, HookErrors, apply_static_tolerances, quiet_console, restore_console,
@@ -146,7 +147,7 @@ def solve_points(model: MechanismModel, strains: np.ndarray, first: int,
     """
     n = len(strains)
     if not 1 <= first < n:
-        raise ValueError(f"first: expected a point in 1 ... {n - 1}, got {first!r}")
+        raise ValueError(f"first: expected a point in 1 ... {n - 1}, got {shown(first)}")
     steps = n - first
     settings = continuation_settings(model)
     static = settings.staticSolver

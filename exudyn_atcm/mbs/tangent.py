@@ -24,6 +24,7 @@ import math
 
 import exudyn as exu
 import numpy as np
+from .._checks import shown
 
 __all__ = ["TangentPlan", "static_settings"]
 
@@ -105,7 +106,7 @@ class TangentPlan:
         is used temporarily: Exudyn's solver initialisation starts from it).
         """
         if not (relative_step > 0.0 and math.isfinite(relative_step)):
-            raise ValueError(f"relative_step must be a finite step > 0, got {relative_step!r}")
+            raise ValueError(f"relative_step must be a finite step > 0, got {shown(relative_step)}")
         mbs = self.mbs
         sd = mbs.systemData
         cur = exu.ConfigurationType.Current

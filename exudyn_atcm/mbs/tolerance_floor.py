@@ -26,6 +26,7 @@ from __future__ import annotations
 import warnings
 from typing import Any
 
+from .._checks import shown
 from ..errors import SetupWarning
 
 __all__ = ["SOLVER_KEYS", "ToleranceFloor"]
@@ -51,7 +52,7 @@ class ToleranceFloor:
     def __init__(self, floor: float) -> None:
         floor = float(floor)
         if not floor > 0.0:
-            raise ValueError(f"floor must be a positive tolerance [N], got {floor!r}")
+            raise ValueError(f"floor must be a positive tolerance [N], got {shown(floor)}")
         self.floor = floor
         self.raised: list[tuple[str, float, float]] = []
         self._seen: dict[str, Any] = {}

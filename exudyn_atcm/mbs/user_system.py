@@ -21,6 +21,7 @@ from typing import Any, Union
 
 import exudyn as exu
 import numpy as np
+from .._checks import shown
 from .exudyn_items import ii
 
 from ..mechanism.assembly import Mechanism
@@ -167,9 +168,9 @@ def add_to(mbs, mechanism_or_bender: Union[Mechanism, Bender], *, clamp_base: bo
     elif isinstance(mechanism_or_bender, Mechanism):
         mechanism = mechanism_or_bender
     else:
-        raise ValueError(f"add_to takes a Mechanism or a Bender, got {mechanism_or_bender!r}")
+        raise ValueError(f"add_to takes a Mechanism or a Bender, got {shown(mechanism_or_bender)}")
     if not isinstance(clamp_base, bool):
-        raise ValueError(f"clamp_base must be True or False, got {clamp_base!r}")
+        raise ValueError(f"clamp_base must be True or False, got {shown(clamp_base)}")
     if not isinstance(mbs, exu.MainSystem):
         raise ValueError(f"mbs must be an exudyn MainSystem (SC.AddSystem()), got {type(mbs).__name__}")
     mechanism.check(grounded=False)

@@ -20,7 +20,7 @@ from typing import Any
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from .bender import DEFAULT_CELL, Bender, mechanism_cells
-from .._checks import finite_float, positive_float, positive_int, warn_implausible
+from .._checks import finite_float, positive_float, positive_int, shown, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
@@ -153,12 +153,12 @@ class BendingActuator(MaterialDamped):
         warn_implausible("width", self.width, "length", "BendingActuator")
         for name, layer in (("passive", passive), ("active", active)):
             if not isinstance(layer, Layer):
-                raise ValueError(f"{name} must be an exudyn_atcm Layer, got {layer!r}")
+                raise ValueError(f"{name} must be an exudyn_atcm Layer, got {shown(layer)}")
         if not isinstance(drive, PiezoDrive):
-            raise ValueError(f"drive must be an exudyn_atcm PiezoDrive, got {drive!r}")
+            raise ValueError(f"drive must be an exudyn_atcm PiezoDrive, got {shown(drive)}")
         cell = cell_kind(cell)
         if not isinstance(stiffness, str) or stiffness not in STIFFNESS_MODELS:
-            raise ValueError(f"stiffness must be one of {STIFFNESS_MODELS}, got {stiffness!r}")
+            raise ValueError(f"stiffness must be one of {STIFFNESS_MODELS}, got {shown(stiffness)}")
         damping = check_damping(damping, cell=cell, owner="BendingActuator")
         self.passive = passive
         self.active = active
@@ -287,7 +287,7 @@ class BendingActuator(MaterialDamped):
         try:
             fx, fy = tip_force
         except (TypeError, ValueError):
-            raise ValueError(f"tip_force must be a pair (Fx, Fy) of finite numbers [N], got {tip_force!r}") from None
+            raise ValueError(f"tip_force must be a pair (Fx, Fy) of finite numbers [N], got {shown(tip_force)}") from None
         force = (finite_float("tip_force[0]", fx), finite_float("tip_force[1]", fy))
         refusal = self.cell.mechanism_refusal()
         if refusal is not None:

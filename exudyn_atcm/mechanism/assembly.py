@@ -8,7 +8,7 @@ from typing import Any, Union
 
 import numpy as np
 
-from .._checks import finite_float
+from .._checks import finite_float, shown
 from .bender import Bender
 from .connection import Connection
 from .joints import Joint, JointBase, Pin, Slider, Weld, joint_label
@@ -29,7 +29,7 @@ ASSEMBLY_TOLERANCE = 1e-9
 def _nonneg(name: str, value: Any) -> float:
     number = finite_float(name, value)
     if number < 0.0:
-        raise MechanismError(f"{name} must be >= 0, got {value!r}")
+        raise MechanismError(f"{name} must be >= 0, got {shown(value)}")
     return number
 
 
@@ -37,7 +37,7 @@ def _vector(name: str, value: Any) -> tuple[float, float]:
     try:
         x, y = value
     except (TypeError, ValueError):
-        raise MechanismError(f"{name} must be a pair of finite numbers, got {value!r}") from None
+        raise MechanismError(f"{name} must be a pair of finite numbers, got {shown(value)}") from None
     return finite_float(f"{name}[0]", x), finite_float(f"{name}[1]", y)
 
 
@@ -83,7 +83,7 @@ class Mechanism:
         """Add components (:class:`Bender`, :class:`Link`, :class:`Flexure`); returns the mechanism."""
         for comp in components:
             if not isinstance(comp, (Bender, Link, Flexure)):
-                raise MechanismError(f"components must be Bender, Link or Flexure objects, got {comp!r}")
+                raise MechanismError(f"components must be Bender, Link or Flexure objects, got {shown(comp)}")
             if comp.name == GROUND:
                 raise MechanismError(f"the component name {GROUND!r} is reserved for the ground; rename {comp!r}")
             if comp.name in self.components:
@@ -134,7 +134,7 @@ class Mechanism:
         what = connection.describe()
         for ref in connection.points():
             if not isinstance(ref, PointRef):
-                raise MechanismError(f"{what}: points() must give PointRef objects, got {ref!r}")
+                raise MechanismError(f"{what}: points() must give PointRef objects, got {shown(ref)}")
             try:
                 self.resolve(ref)
             except MechanismError as exc:
@@ -201,14 +201,14 @@ class Mechanism:
         if joint == "slider":
             return self._joint(Slider(ref, None, self._axis((1.0, 0.0) if axis is None else axis),
                                       _nonneg("stiffness", stiffness), _nonneg("damping", damping)))
-        raise MechanismError(f"joint must be 'weld', 'pin' or 'slider', got {joint!r}")
+        raise MechanismError(f"joint must be 'weld', 'pin' or 'slider', got {shown(joint)}")
 
     @staticmethod
     def _axis(axis: Any) -> tuple[float, float]:
         ax, ay = _vector("axis", axis)
         norm = math.hypot(ax, ay)
         if norm == 0.0:
-            raise MechanismError(f"axis must be a non-zero direction (x, y), got {axis!r}")
+            raise MechanismError(f"axis must be a non-zero direction (x, y), got {shown(axis)}")
         return ax / norm, ay / norm
 
     # ------------------------------------------------------------------ loads
@@ -233,7 +233,7 @@ class Mechanism:
         if not callable(force):
             force = _vector("force", force)
         if not isinstance(follower, bool):
-            raise MechanismError(f"follower must be True or False, got {follower!r}")
+            raise MechanismError(f"follower must be True or False, got {shown(follower)}")
         return self.add_connection(Force(ref, force, follower, self._load_name(name, "force", len(self.forces))))
 
     def torque(self, component: str | Link, torque: Any, *, name: str | None = None) -> "Mechanism":
@@ -262,7 +262,7 @@ class Mechanism:
             raise MechanismError(f"spring between {pr} and itself")
         k = finite_float("stiffness", stiffness)
         if k <= 0.0:
-            raise MechanismError(f"spring stiffness must be > 0 N/m, got {stiffness!r}")
+            raise MechanismError(f"spring stiffness must be > 0 N/m, got {shown(stiffness)}")
         if rest_length is not None:
             rest_length = _nonneg("rest_length", rest_length)
         distance = float(np.linalg.norm(self.position(pr) - self.position(qr)))
@@ -284,10 +284,10 @@ class Mechanism:
         nx, ny = _vector("normal", normal)
         norm = math.hypot(nx, ny)
         if norm == 0.0:
-            raise MechanismError(f"stop normal must be a non-zero direction, got {normal!r}")
+            raise MechanismError(f"stop normal must be a non-zero direction, got {shown(normal)}")
         k = finite_float("stiffness", stiffness)
         if k <= 0.0:
-            raise MechanismError(f"stop stiffness must be > 0 N/m, got {stiffness!r}")
+            raise MechanismError(f"stop stiffness must be > 0 N/m, got {shown(stiffness)}")
         return self.add_connection(Stop(ref, _vector("position", position), (nx / norm, ny / norm), k,
                                         _nonneg("damping", damping), self._load_name(name, "stop", len(self.stops))))
 
@@ -312,7 +312,7 @@ class Mechanism:
                                  f"(drives: {', '.join(self.drives) or 'none'})")
         if not isinstance(measurement, str) or not measurement:
             raise MechanismError(f"feedback: measurement must be a result column name such as 'crank.tip_y', "
-                                 f"got {measurement!r}")
+                                 f"got {shown(measurement)}")
         self.measurements[drive] = measurement
         return self
 

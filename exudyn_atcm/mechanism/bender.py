@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..cells import CELL_KINDS, CellKind, cell_kind
-from .._checks import finite_float, positive_float, positive_int, warn_implausible
+from .._checks import finite_float, positive_float, positive_int, shown, warn_implausible
 from ..model.drive import PiezoDrive
 from ..model.laminate import STIFFNESS_MODELS, Laminate
 from ..model.materials import Layer
@@ -98,7 +98,7 @@ def _pair(name: str, value: Any) -> tuple[float, float]:
     try:
         x, y = value
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair (x, y) of finite numbers [m], got {value!r}") from None
+        raise ValueError(f"{name} must be a pair (x, y) of finite numbers [m], got {shown(value)}") from None
     return finite_float(f"{name}[0]", x), finite_float(f"{name}[1]", y)
 
 
@@ -191,9 +191,9 @@ class Bender(MaterialDamped):
         self.name = check_name("Bender name", name)
         self.width = positive_float("width", width)
         if not isinstance(passive, Layer):
-            raise ValueError(f"passive must be an exudyn_atcm Layer, got {passive!r}")
+            raise ValueError(f"passive must be an exudyn_atcm Layer, got {shown(passive)}")
         if active is not None and not isinstance(active, Layer):
-            raise ValueError(f"active must be an exudyn_atcm Layer or None, got {active!r}")
+            raise ValueError(f"active must be an exudyn_atcm Layer or None, got {shown(active)}")
         if segments is not None:
             if length is not None or n_cells is not None or drive is not None:
                 raise ValueError(
@@ -201,7 +201,7 @@ class Bender(MaterialDamped):
                     f"(got segments={segments!r} and length={length!r}, n_cells={n_cells!r}, drive={drive!r})")
             segments = tuple(segments)
             if not segments or not all(isinstance(s, Segment) for s in segments):
-                raise ValueError(f"segments must be a non-empty sequence of Segment, got {segments!r}")
+                raise ValueError(f"segments must be a non-empty sequence of Segment, got {shown(segments)}")
         else:
             if length is None or n_cells is None:
                 raise ValueError(
@@ -237,7 +237,7 @@ class Bender(MaterialDamped):
         for pname, value, allowed in (("stiffness", stiffness, STIFFNESS_MODELS),
                                       ("active_side", active_side, ACTIVE_SIDES)):
             if not isinstance(value, str) or value not in allowed:
-                raise ValueError(f"{pname} must be one of {allowed}, got {value!r}")
+                raise ValueError(f"{pname} must be one of {allowed}, got {shown(value)}")
         self._cell: CellKind | None = None if open_kind else cell
         self.stiffness = stiffness
         self.active_side = active_side

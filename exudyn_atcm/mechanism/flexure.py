@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import hide_keywords, options_from_keywords, positive_float, positive_int, warn_implausible
+from .._checks import hide_keywords, options_from_keywords, positive_float, positive_int, shown, warn_implausible
 from ..model.laminate import Laminate
 from ..model.materials import Layer
 from ..model.damping import RayleighDamping, check_damping, damping_already_checked
@@ -78,17 +78,17 @@ class Flexure(MaterialDamped):
                                  f"youngs_modulus, density (missing {missing}); better give layer=Layer(...)")
             (layer,) = options_from_keywords("Flexure", flat, layer=(Layer, layer))
         elif not isinstance(layer, Layer):
-            raise ValueError(f"layer must be an exudyn_atcm Layer, got {layer!r}")
+            raise ValueError(f"layer must be an exudyn_atcm Layer, got {shown(layer)}")
         self.thickness = layer.thickness
         self.youngs_modulus = layer.youngs_modulus
         self.density = layer.density
         if not isinstance(model, str) or model not in FLEXURE_MODELS:
-            raise ValueError(f"model must be one of {FLEXURE_MODELS}, got {model!r}")
+            raise ValueError(f"model must be one of {FLEXURE_MODELS}, got {shown(model)}")
         self.model = model
         self.n_cells = check_cell_count("n_cells", positive_int("n_cells", n_cells), f"flexure {name!r}")
         self.gamma = positive_float("gamma", gamma)
         if self.gamma > 1.0:
-            raise ValueError(f"gamma must be in (0, 1], got {gamma!r}")
+            raise ValueError(f"gamma must be in (0, 1], got {shown(gamma)}")
         self.k_theta = positive_float("k_theta", k_theta)
         # both models' masses are rigid bodies (cells, or the PRBM's two segments)
         self.damping: float | RayleighDamping = check_damping(damping, cell="rigid", owner=f"flexure {name!r}")

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_float, positive_float, warn_implausible
+from .._checks import finite_float, positive_float, shown, warn_implausible
 from .points import PointRef, check_name, unknown_point
 
 
@@ -15,7 +15,7 @@ def point_pair(name: str, value: Any) -> tuple[float, float]:
     try:
         x, y = value
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair (x, y) of finite numbers [m], got {value!r}") from None
+        raise ValueError(f"{name} must be a pair (x, y) of finite numbers [m], got {shown(value)}") from None
     return finite_float(f"{name}[0]", x), finite_float(f"{name}[1]", y)
 
 
@@ -47,7 +47,7 @@ class Link:
                  center_of_mass: tuple[float, float] | None = None) -> None:
         self.name = check_name("Link name", name)
         if not isinstance(points, Mapping) or not points:
-            raise ValueError(f"points of link {name!r} must be a non-empty mapping name -> (x, y) [m], got {points!r}")
+            raise ValueError(f"points of link {name!r} must be a non-empty mapping name -> (x, y) [m], got {shown(points)}")
         self.points: dict[str, tuple[float, float]] = {
             check_name(f"point name of link {name!r}", k): point_pair(f"points[{k!r}]", v) for k, v in points.items()}
         self.mass = positive_float("mass", mass)
@@ -81,7 +81,7 @@ class Link:
         vertices = np.array([point_pair(f"outline[{k}]", v) for k, v in enumerate(outline)], dtype=float) \
             if isinstance(outline, Sequence) or isinstance(outline, np.ndarray) else None
         if vertices is None or len(vertices) < 3:
-            raise ValueError(f"outline of link {name!r} must be a sequence of >= 3 vertices (x, y) [m], got {outline!r}")
+            raise ValueError(f"outline of link {name!r} must be a sequence of >= 3 vertices (x, y) [m], got {shown(outline)}")
         x, y = vertices[:, 0], vertices[:, 1]
         xn, yn = np.roll(x, -1), np.roll(y, -1)
         cross = x * yn - xn * y

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from .._checks import shown
 from ..suggestions import close_names
 
 #: Reserved component name of the ground (the fixed frame).
@@ -31,7 +32,7 @@ def check_name(kind: str, name: object) -> str:
     """
     if not isinstance(name, str) or not name or any(c in _FORBIDDEN for c in name):
         raise MechanismError(
-            f"{kind} must be a non-empty string without '.', ',', '[', ']', '#' or spaces, got {name!r}")
+            f"{kind} must be a non-empty string without '.', ',', '[', ']', '#' or spaces, got {shown(name)}")
     return name
 
 
@@ -63,7 +64,7 @@ class PointRef:
             return cls(component, point)
         raise MechanismError(
             f"a point must be a PointRef (e.g. bender.tip, link.point('P')) or a string 'component.point', "
-            f"got {value!r}")
+            f"got {shown(value)}")
 
 
 def unknown_point(component: str, point: str, names: Iterable[str]) -> MechanismError:

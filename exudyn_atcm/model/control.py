@@ -26,7 +26,7 @@ import math
 import warnings
 from typing import Any, Callable, Union
 
-from .._checks import finite_float, positive_float
+from .._checks import finite_float, positive_float, shown
 from ..errors import AccuracyWarning
 
 __all__ = ["Controller", "PIDController"]
@@ -133,9 +133,9 @@ class PIDController(Controller):
             try:
                 lo, hi = (finite_float("output_limits", v) for v in output_limits)
             except TypeError:
-                raise ValueError(f"output_limits must be a pair (low, high) [V], got {output_limits!r}") from None
+                raise ValueError(f"output_limits must be a pair (low, high) [V], got {shown(output_limits)}") from None
             if not hi > lo:
-                raise ValueError(f"output_limits must have high > low, got {output_limits!r}")
+                raise ValueError(f"output_limits must have high > low, got {shown(output_limits)}")
             self.output_limits = (lo, hi)
         self.reset()
 

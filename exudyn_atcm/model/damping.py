@@ -50,6 +50,7 @@ import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from .._checks import shown
 from ..cells import CELL_KINDS, CellKind, cell_kind
 from ..errors import InputRangeWarning
 from ..physical_bounds import DAMPING_RATIO_SUSPECT
@@ -80,10 +81,10 @@ _LIVE = {"MASS_DAMPING_CELLS": mass_damping_cells}
 def _real(name: str, value: object, *, allow_zero: bool = True) -> float:
     """A finite real number >= 0 (> 0 with ``allow_zero=False``), or a ValueError naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(float(value)):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
+        raise ValueError(f"{name} must be a finite number, got {shown(value)}")
     x = float(value)
     if x < 0.0 or (x == 0.0 and not allow_zero):
-        raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+        raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {shown(value)}")
     return x
 
 
@@ -153,7 +154,7 @@ def log_decrement_from_damping_ratio(zeta: float) -> float:
     """Logarithmic decrement ``delta = 2 pi zeta / sqrt(1 - zeta^2)`` [-] of a damping ratio ``0 <= zeta < 1``."""
     z = _real("zeta", zeta)
     if z >= 1.0:
-        raise ValueError(f"zeta must be < 1 (an underdamped oscillation has a decrement), got {zeta!r}")
+        raise ValueError(f"zeta must be < 1 (an underdamped oscillation has a decrement), got {shown(zeta)}")
     return 2.0 * math.pi * z / math.sqrt(1.0 - z * z)
 
 
@@ -279,9 +280,9 @@ def check_damping(damping: object, *, cell: str | CellKind, owner: str, stacklev
                 f"can: {mass_damping_cells()}. Use alpha=0 (stiffness-proportional damping) with cell={cell.name!r}")
         return damping
     if isinstance(damping, bool) or not isinstance(damping, numbers.Real) or not math.isfinite(float(damping)):
-        raise ValueError(f"damping must be a finite damping ratio >= 0 or a RayleighDamping, got {damping!r}")
+        raise ValueError(f"damping must be a finite damping ratio >= 0 or a RayleighDamping, got {shown(damping)}")
     if float(damping) < 0.0:
-        raise ValueError(f"damping must be a damping ratio >= 0 or a RayleighDamping, got {damping!r}")
+        raise ValueError(f"damping must be a damping ratio >= 0 or a RayleighDamping, got {shown(damping)}")
     warn_damping_ratio(float(damping), owner, stacklevel=stacklevel)
     return float(damping)
 

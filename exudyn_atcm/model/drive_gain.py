@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from .._checks import shown
 
 __all__ = ["BRANCHES", "DriveGain", "drive_gain", "check_branch"]
 
@@ -62,7 +63,7 @@ class DriveGain:
 def check_branch(branch: Any) -> str:
     """``branch`` if it is one of :data:`BRANCHES`, else a ``ValueError`` naming the allowed ones."""
     if not isinstance(branch, str) or branch not in BRANCHES:
-        raise ValueError(f"branch must be one of {', '.join(map(repr, BRANCHES))}, got {branch!r}")
+        raise ValueError(f"branch must be one of {', '.join(map(repr, BRANCHES))}, got {shown(branch)}")
     return branch
 
 
@@ -102,7 +103,7 @@ def drive_gain(drive: Any, voltage: float, branch: str = "ascending", *, voltage
     branch = check_branch(branch)
     voltage, step = float(voltage), float(voltage_step)
     if not (math.isfinite(step) and step > 0.0):
-        raise ValueError(f"voltage_step must be a finite voltage > 0 [V], got {voltage_step!r}")
+        raise ValueError(f"voltage_step must be a finite voltage > 0 [V], got {shown(voltage_step)}")
     op = drive.hysteresis
     if op is None:
         slope = drive.d33 / drive.electrode_spacing

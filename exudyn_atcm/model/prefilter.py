@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, finite_float, positive_float, positive_int
+from .._checks import finite_array, finite_float, positive_float, positive_int, shown
 
 __all__ = ["PREFILTERS", "DAMPING_FROM", "Prefilter", "shaper_impulses", "shape", "smooth", "invert_mode",
            "uniform_grid"]
@@ -153,7 +153,7 @@ def smooth(grid: Any, values: Any, window: float, passes: int = 1) -> np.ndarray
     y = finite_array("values", values, min_length=2)
     w = finite_float("window", window)
     if w < 0.0:
-        raise ValueError(f"window must be >= 0 [s], got {window!r}")
+        raise ValueError(f"window must be >= 0 [s], got {shown(window)}")
     for _ in range(int(passes)):
         y = _moving_average(t, y, w)
     return y
@@ -177,14 +177,14 @@ def shaper_impulses(frequency: float, damping_ratio: float, kind: str = "zv") ->
     f = positive_float("frequency", frequency)
     zeta = finite_float("damping_ratio", damping_ratio)
     if not 0.0 <= zeta < 1.0:
-        raise ValueError(f"damping_ratio must be in [0, 1) for an input shaper, got {damping_ratio!r}")
+        raise ValueError(f"damping_ratio must be in [0, 1) for an input shaper, got {shown(damping_ratio)}")
     k = math.exp(-zeta * math.pi / math.sqrt(1.0 - zeta**2))
     half = 0.5 / (f * math.sqrt(1.0 - zeta**2))
     if kind == "zv":
         return np.array([0.0, half]), np.array([1.0, k]) / (1.0 + k)
     if kind == "zvd":
         return np.array([0.0, half, 2.0 * half]), np.array([1.0, 2.0 * k, k * k]) / (1.0 + k) ** 2
-    raise ValueError(f"kind must be 'zv' or 'zvd', got {kind!r}")
+    raise ValueError(f"kind must be 'zv' or 'zvd', got {shown(kind)}")
 
 
 def shape(grid: Any, values: Any, modes: list[tuple[float, float]], kind: str = "zv",
@@ -232,11 +232,11 @@ def invert_mode(grid: Any, values: Any, frequency: Any, damping_ratio: float, wi
     t = finite_array("grid", grid, min_length=3)
     zeta = finite_float("damping_ratio", damping_ratio)
     if zeta < 0.0:
-        raise ValueError(f"damping_ratio must be >= 0, got {damping_ratio!r}")
+        raise ValueError(f"damping_ratio must be >= 0, got {shown(damping_ratio)}")
     rounded = smooth(t, values, window, passes=2)
     omega = 2.0 * math.pi * np.broadcast_to(np.asarray(frequency, dtype=float), t.shape)
     if np.any(~np.isfinite(omega)) or np.any(omega <= 0.0):
-        raise ValueError(f"frequency must be > 0 [Hz], got {frequency!r}")
+        raise ValueError(f"frequency must be > 0 [Hz], got {shown(frequency)}")
     velocity = np.gradient(rounded, t)
     acceleration = np.gradient(velocity, t)
     return rounded + 2.0 * zeta / omega * velocity + acceleration / omega**2, rounded

@@ -14,6 +14,7 @@ import numbers
 from typing import Any
 
 import numpy as np
+from .._checks import shown
 
 __all__ = ["RecordingSchedule", "recording_schedule"]
 
@@ -117,17 +118,17 @@ def recording_schedule(record_every: Any, step: float) -> RecordingSchedule:
     if record_every is None:
         return RecordingSchedule(steps=1, step=step)
     if isinstance(record_every, (bool, np.bool_)):
-        raise ValueError(f"record_every must be {allowed}, got {record_every!r}")
+        raise ValueError(f"record_every must be {allowed}, got {shown(record_every)}")
     if isinstance(record_every, (numbers.Real, np.integer, np.floating)) and record_every == 0:
         return RecordingSchedule(steps=1, step=step)
     if isinstance(record_every, (numbers.Integral, np.integer)):
         if record_every < 1:
-            raise ValueError(f"record_every as a number of steps must be >= 1 (or 0: every step), got {record_every!r}")
+            raise ValueError(f"record_every as a number of steps must be >= 1 (or 0: every step), got {shown(record_every)}")
         return RecordingSchedule(steps=int(record_every), step=step)
     if isinstance(record_every, (numbers.Real, np.floating)):
         value = float(record_every)
         if not (math.isfinite(value) and value > 0.0):
             raise ValueError(f"record_every as an interval must be a finite time > 0 [s] (or 0: every step), "
-                             f"got {record_every!r}")
+                             f"got {shown(record_every)}")
         return RecordingSchedule(interval=value, step=step)
-    raise ValueError(f"record_every must be {allowed}, got {record_every!r}")
+    raise ValueError(f"record_every must be {allowed}, got {shown(record_every)}")

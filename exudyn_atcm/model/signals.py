@@ -15,7 +15,7 @@ from typing import Any, Literal, Union
 import numpy as np
 
 from ..io.atomic import describe_os_error
-from .._checks import finite_array, finite_float, positive_float
+from .._checks import finite_array, finite_float, positive_float, shown
 
 __all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram",
            "SWITCH_TOLERANCE"]
@@ -29,11 +29,11 @@ class Signal:
     def __call__(self, t: Any) -> TimeLike:
         if type(t) is float:  # fast path: a solver asks for one time per step
             if not math.isfinite(t):
-                raise ValueError(f"t must be finite, got {t!r}")
+                raise ValueError(f"t must be finite, got {shown(t)}")
             return self._scalar(t)
         times = np.asarray(t, dtype=float)
         if not np.all(np.isfinite(times)):
-            raise ValueError(f"t must be finite, got {t!r}")
+            raise ValueError(f"t must be finite, got {shown(t)}")
         values = self._values(np.atleast_1d(times))
         if times.ndim == 0:
             return float(values[0])
@@ -112,7 +112,7 @@ class Triangle(Signal):
         self.u_med = finite_float("u_med", u_med)
         self.u_amp = finite_float("u_amp", u_amp)
         if self.u_amp < 0.0:
-            raise ValueError(f"u_amp must be >= 0, got {u_amp!r}")
+            raise ValueError(f"u_amp must be >= 0, got {shown(u_amp)}")
         self.period = positive_float("period", period)
 
     def _values(self, t: np.ndarray) -> np.ndarray:
@@ -242,7 +242,7 @@ class PiecewiseLinear(Signal):
     def __init__(self, times: Any, values: Any, outside: Literal["hold", "error"] = "hold") -> None:
         self.times, self.values = _breakpoints(times, values)
         if outside not in ("hold", "error"):
-            raise ValueError(f"outside must be 'hold' or 'error', got {outside!r}")
+            raise ValueError(f"outside must be 'hold' or 'error', got {shown(outside)}")
         self.outside = outside
 
     def _values(self, t: np.ndarray) -> np.ndarray:
@@ -338,9 +338,9 @@ class ForcProgram(PiecewiseLinear):
         u_min = finite_float("u_min", u_min)
         u_max = finite_float("u_max", u_max)
         if u_max <= u_min:
-            raise ValueError(f"u_max must be > u_min = {u_min!r}, got {u_max!r}")
+            raise ValueError(f"u_max must be > u_min = {u_min!r}, got {shown(u_max)}")
         if isinstance(n_curves, bool) or not isinstance(n_curves, (int, np.integer)) or n_curves < 1:
-            raise ValueError(f"n_curves must be an integer >= 1, got {n_curves!r}")
+            raise ValueError(f"n_curves must be an integer >= 1, got {shown(n_curves)}")
         rate = positive_float("rate", rate)
         reversals = u_max - (u_max - u_min) * np.arange(1, n_curves + 1) / n_curves
         corners = [u_min, u_max]
@@ -398,7 +398,7 @@ class CsvSignal(PiecewiseLinear):
             except (IndexError, ValueError):
                 raise ValueError(
                     f"{self.path}: line {line_number} must hold numbers in columns {t_index} and "
-                    f"{v_index}, got {row!r}"
+                    f"{v_index}, got {shown(row)}"
                 ) from None
         if not times:
             raise ValueError(f"{self.path}: no data rows")
@@ -446,4 +446,4 @@ def _column_index(
         return header.index(choice)
     if isinstance(choice, int) and choice >= 0:
         return choice
-    raise ValueError(f"{parameter} must be a column name or an index >= 0, got {choice!r}")
+    raise ValueError(f"{parameter} must be a column name or an index >= 0, got {shown(choice)}")

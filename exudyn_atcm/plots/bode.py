@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._checks import shown
 from .style import axis_label
 from .target import figure_axes, finish
 
@@ -23,7 +24,7 @@ def _pick(what: str, wanted: Sequence[str] | None, names: tuple[str, ...]) -> li
     wanted = [wanted] if isinstance(wanted, str) else list(wanted)
     for name in wanted:
         if name not in names:
-            raise ValueError(f"{what} must name the model's {what} ({', '.join(map(repr, names))}), got {name!r}")
+            raise ValueError(f"{what} must name the model's {what} ({', '.join(map(repr, names))}), got {shown(name)}")
     return [names.index(name) for name in wanted]
 
 

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._checks import shown
 from ..mechanism.actuator import BendingActuator
 from ..model.drive import PiezoDrive
 from ..model.materials import Layer
@@ -72,7 +73,7 @@ def height_exaggeration(actuator: BendingActuator, drawn_offset: float = 0.3) ->
         The exaggeration factor [-] (1 if the cell is already that thick or thicker).
     """
     if not drawn_offset > 0.0:
-        raise ValueError(f"drawn_offset must be > 0 (a fraction of the cell length), got {drawn_offset!r}")
+        raise ValueError(f"drawn_offset must be > 0 (a fraction of the cell length), got {shown(drawn_offset)}")
     return max(1.0, drawn_offset * actuator.cell_length / actuator.layer_offset)
 
 
@@ -278,7 +279,7 @@ def draw_rigid_chain(ax, actuator: BendingActuator | None = None, *, n_cells: in
     from matplotlib import patches  # noqa: PLC0415 - lazy: matplotlib is slow to import
 
     if isinstance(n_cells, bool) or not isinstance(n_cells, int) or n_cells < 1:
-        raise ValueError(f"n_cells must be an integer >= 1, got {n_cells!r}")
+        raise ValueError(f"n_cells must be an integer >= 1, got {shown(n_cells)}")
     act = paper_actuator("rigid") if actuator is None else actuator
     s = height_exaggeration(act) if exaggeration is None else float(exaggeration)
     lc = _mm(act.cell_length)

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._checks import shown
 from ..io.atomic import atomic_path
 from ..io.progress import report_task
 
@@ -74,14 +75,14 @@ def save_gif(fig: Figure, draw: Callable[[int], Sequence[Artist] | None], n_fram
     from PIL import Image  # noqa: PLC0415 - Pillow comes with matplotlib; only GIFs need it
 
     if isinstance(n_frames, bool) or not isinstance(n_frames, int) or n_frames < 1:
-        raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")
+        raise ValueError(f"n_frames must be an integer >= 1, got {shown(n_frames)}")
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
-        raise ValueError(f"fps must be an integer >= 1, got {fps!r}")
+        raise ValueError(f"fps must be an integer >= 1, got {shown(fps)}")
     if isinstance(colors, bool) or not isinstance(colors, int) or not 2 <= colors <= 256:
-        raise ValueError(f"colors must be an integer in [2, 256], got {colors!r}")
+        raise ValueError(f"colors must be an integer in [2, 256], got {shown(colors)}")
     target = os.fspath(path)
     if not os.path.isdir(os.path.dirname(os.path.abspath(target))):
-        raise ValueError(f"path must be in an existing directory, got {target!r}")
+        raise ValueError(f"path must be in an existing directory, got {shown(target)}")
     images = []
     report_task("GIF frames", 0, n_frames)
     canvas = fig.canvas
@@ -131,7 +132,7 @@ def _artists_above(artists: Sequence[Artist]) -> list:
     artists = list(artists)
     for artist in artists:
         if not (hasattr(artist, "draw") and hasattr(artist, "get_window_extent")):
-            raise ValueError(f"above: expected matplotlib artists (a legend, ...), got {artist!r}")
+            raise ValueError(f"above: expected matplotlib artists (a legend, ...), got {shown(artist)}")
     return artists
 
 

@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._checks import shown
 from ..mechanism import Link, Mechanism
 from .mechanism_shapes import (
     BenderShape,
@@ -260,7 +261,7 @@ def plot_mechanism(
 
 def _check_scale(scale: float) -> None:
     if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not math.isfinite(scale) or scale <= 0:
-        raise ValueError(f"scale must be a finite displacement magnification > 0, got {scale!r}")
+        raise ValueError(f"scale must be a finite displacement magnification > 0, got {shown(scale)}")
 
 
 def _draw_traces(ax, mechanism: Mechanism, result, trace: Sequence[str], scale: float, upto: int | None) -> list:
@@ -315,14 +316,14 @@ def animate_mechanism(
         Title prefix (default: the mechanism's name).
     """
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
-        raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
+        raise ValueError(f"frames must be an integer >= 2, got {shown(frames)}")
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
-        raise ValueError(f"fps must be an integer >= 1, got {fps!r}")
+        raise ValueError(f"fps must be an integer >= 1, got {shown(fps)}")
     _check_scale(scale)
     target = os.fspath(path)
     directory = os.path.dirname(os.path.abspath(target))
     if not os.path.isdir(directory):
-        raise ValueError(f"path must be in an existing directory, got {target!r}")
+        raise ValueError(f"path must be in an existing directory, got {shown(target)}")
     rows = np.unique(np.linspace(0, result.n_rows - 1, frames).round().astype(int))
     # fixed limits from every frame's geometry (and the legend's place: where it covers the least of it)
     shapes = [mechanism_shape(mechanism, result, int(r), scale=scale) for r in rows]

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._checks import shown
 from ..mechanism.actuator import NAME, BendingActuator
 from ..mechanism import Bender, Flexure, Link, Mechanism
 
@@ -152,7 +153,7 @@ def mechanism_shape(
     """
     n = result.n_rows
     if isinstance(row, bool) or not isinstance(row, (int, np.integer)) or not -n <= row < n:
-        raise ValueError(f"row must be an integer in [{-n}, {n - 1}] (the result has {n} rows), got {row!r}")
+        raise ValueError(f"row must be an integer in [{-n}, {n - 1}] (the result has {n} rows), got {shown(row)}")
     row = int(row) % n
     shape = MechanismShape()
     for comp in mechanism.components.values():
@@ -207,9 +208,9 @@ def actuator_as_mechanism(actuator, result, name: str = "actuator"):
         result without the mechanism's columns.
     """
     if not isinstance(actuator, BendingActuator):
-        raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
+        raise ValueError(f"actuator must be a BendingActuator, got {shown(actuator)}")
     if name != NAME:
-        raise ValueError(f"name must be {NAME!r} (the bender of an actuator's one-bender mechanism), got {name!r}")
+        raise ValueError(f"name must be {NAME!r} (the bender of an actuator's one-bender mechanism), got {shown(name)}")
     drawn = result
     if f"{NAME}.base_x" not in drawn:
         raise ValueError(f"the result has no column {NAME + '.base_x'!r} of the actuator's one-bender mechanism "

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._checks import shown
 from .style import axis_label
 from .target import figure_axes, finish
 
@@ -57,7 +58,7 @@ def plot_modes(modes: Any, *, ax: Any = None, path: str | os.PathLike | None = N
     matplotlib.figure.Figure
     """
     if not (isinstance(amplitude, (int, float)) and 0.0 < amplitude <= 1.0):
-        raise ValueError(f"amplitude must be a share of the mechanism's size in (0, 1], got {amplitude!r}")
+        raise ValueError(f"amplitude must be a share of the mechanism's size in (0, 1], got {shown(amplitude)}")
     n = len(modes.frequencies)
     fig, axes = figure_axes(ax, 1, n, width=max(4.0, 3.2 * n), height=3.4)
     pos = np.asarray(modes.positions)

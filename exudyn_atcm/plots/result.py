@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
+from .._checks import shown
 from ..io.atomic import make_directory
 from ..mechanism.actuator import NAME
 from .gif import save_gif
@@ -188,9 +189,9 @@ def animate_actuator(result, path: str | os.PathLike, frames: int = 60, fps: int
         Frames per second of the GIF, ``>= 1``.
     """
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
-        raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
+        raise ValueError(f"frames must be an integer >= 2, got {shown(frames)}")
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
-        raise ValueError(f"fps must be an integer >= 1, got {fps!r}")
+        raise ValueError(f"fps must be an integer >= 1, got {shown(fps)}")
     rows = np.unique(np.linspace(0, result.n_rows - 1, frames).round().astype(int))
     shapes = [chain_shape(result, int(row)) for row in rows]
     xs = np.concatenate([x for x, _ in shapes]) * 1e3

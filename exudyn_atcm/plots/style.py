@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._checks import shown
 from ..io.atomic import write_atomic
 from ..io.progress import count_task
 
@@ -99,7 +100,7 @@ class AxisLabels:
         for name in ("input_name", "input_unit", "output_name", "output_unit"):
             value = getattr(self, name)
             if not isinstance(value, str):
-                raise TypeError(f"AxisLabels.{name} must be a str, got {value!r}")
+                raise TypeError(f"AxisLabels.{name} must be a str, got {shown(value)}")
 
 
 def axis_label(quantity: str, unit: str) -> str:

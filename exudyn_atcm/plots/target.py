@@ -15,6 +15,7 @@ import warnings
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from .._checks import shown
 from ..errors import AtcmDeprecationWarning
 from .style import new_figure, save_figure
 
@@ -40,7 +41,7 @@ def figure_axes(ax: Any, n_rows: int = 1, n_cols: int = 1, **layout: Any) -> tup
     axes = [ax] if isinstance(ax, Axes) else list(ax) if isinstance(ax, Sequence) else None
     if axes is None or len(axes) != n or not all(isinstance(a, Axes) for a in axes):
         allowed = "a matplotlib Axes" if n == 1 else f"a sequence of {n} matplotlib Axes (one per panel)"
-        raise ValueError(f"ax must be {allowed}, got {ax!r}")
+        raise ValueError(f"ax must be {allowed}, got {shown(ax)}")
     return axes[0].figure, axes
 
 

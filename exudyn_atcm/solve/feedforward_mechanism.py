@@ -49,7 +49,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array, positive_float, positive_int
+from .._checks import finite_array, positive_float, positive_int, shown
 from ..hysteresis.inverse import inverse_operator
 from ..mechanism.assembly import Mechanism
 from ..mechanism.bender import Bender
@@ -284,7 +284,7 @@ def mechanism_feedforward(
     limits = voltage_limits(pdrive, voltage_range)
     points = positive_int("map_points", map_points)
     if points < 4:
-        raise ValueError(f"map_points must be >= 4 (points of the quasi-static map), got {map_points!r}")
+        raise ValueError(f"map_points must be >= 4 (points of the quasi-static map), got {shown(map_points)}")
     omap = output_map(mechanism, output, name, limits, points)
     low, high = float(y.min()), float(y.max())
     omap.check(low, high)

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..mbs import builder as mb
 from ..mbs import linear_model as lm
 from ..mechanism.build_cost import warn_if_large
@@ -38,11 +39,11 @@ def _names(what: str, value: Any) -> list[str]:
     try:
         names = list(value)
     except TypeError:
-        raise ValueError(f"{what} must be a list of names, got {value!r}") from None
+        raise ValueError(f"{what} must be a list of names, got {shown(value)}") from None
     if not names or not all(isinstance(n, str) for n in names):
-        raise ValueError(f"{what} must be a non-empty list of names (str), got {value!r}")
+        raise ValueError(f"{what} must be a non-empty list of names (str), got {shown(value)}")
     if len(set(names)) != len(names):
-        raise ValueError(f"{what} must not repeat a name, got {names!r}")
+        raise ValueError(f"{what} must not repeat a name, got {shown(names)}")
     return names
 
 
@@ -127,7 +128,7 @@ def linearise(system: Any, *, voltage: VoltageSpec = None, loads: Mapping[str, A
     check_branch(branch)
     if loads is not None:
         if not isinstance(loads, Mapping):
-            raise ValueError(f"loads must be a mapping {{point: (Fx, Fy)}} [N], got {loads!r}")
+            raise ValueError(f"loads must be a mapping {{point: (Fx, Fy)}} [N], got {shown(loads)}")
         mech = copy.deepcopy(mech)
         points = [f"{c.name}.{p}" for c in mech.components.values() for p in c.points]
         for point, force in loads.items():

@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import finite_array, positive_int
+from .._checks import finite_array, positive_int, shown
 from ..mbs import builder as mb
 from ..mbs import linear
 from ..mbs import solver_runs as runs
@@ -105,7 +105,7 @@ SWEEP_METHODS = ("continuation", "points")
 def check_sweep_method(method: str) -> str:
     """``method`` of :func:`static_sweep`, checked."""
     if method not in SWEEP_METHODS:
-        raise ValueError(f"method: expected one of {', '.join(map(repr, SWEEP_METHODS))}, got {method!r}")
+        raise ValueError(f"method: expected one of {', '.join(map(repr, SWEEP_METHODS))}, got {shown(method)}")
     return method
 
 

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import positive_int
+from .._checks import positive_int, shown
 from ..errors import AccuracyWarning
 from ..mbs import linear_model as lm
 from ..mechanism.points import MechanismError, closest
@@ -91,7 +91,7 @@ class Modes:
             For a name that is not one of :attr:`points` (with the closest names).
         """
         if point not in self.points:
-            raise MechanismError(f"point must be one of the modes' points, got {point!r}{closest(point, self.points)}")
+            raise MechanismError(f"point must be one of the modes' points, got {shown(point)}{closest(point, self.points)}")
         return self.shapes[:, self.points.index(point), :]
 
     def __len__(self) -> int:
@@ -142,7 +142,7 @@ def modes_state(mech: Any, voltage: VoltageSpec, loaded: bool, model: Any = None
     """The state :func:`modes` analyses: the equilibrium at ``voltage``; with ``voltage=None`` and ``loaded``
     the one under the loads at zero strain (as :func:`exudyn_atcm.eigenfrequencies`); else the reference pose."""
     if not isinstance(loaded, bool):
-        raise ValueError(f"loaded must be True or False, got {loaded!r}")
+        raise ValueError(f"loaded must be True or False, got {shown(loaded)}")
     if voltage is None and loaded:
         zero = {name: 0.0 for name in mech.drives}
         return equilibrium_state(mech, "modes", voltage=zero, strains=zero, model=model)

@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..hysteresis.bisection import default_input_range
 from ..mechanism.assembly import Mechanism
 from ..mechanism.points import MechanismError
@@ -57,7 +58,7 @@ def voltage_limits(pdrive: Any, voltage_range: tuple[float, float] | None) -> tu
     if voltage_range is not None:
         lo, hi = (float(v) for v in voltage_range)
         if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo):
-            raise ValueError(f"voltage_range must be (low, high) [V] with high > low, got {voltage_range!r}")
+            raise ValueError(f"voltage_range must be (low, high) [V] with high > low, got {shown(voltage_range)}")
         return lo, hi
     ranges = []
     if pdrive.rated_range is not None:
@@ -154,7 +155,7 @@ def output_map(mech: Mechanism, output: str, drive: str, voltages: tuple[float, 
     whose strain does not grow with the voltage.
     """
     if points < 4:
-        raise ValueError(f"points must be >= 4, got {points!r}")
+        raise ValueError(f"points must be >= 4, got {shown(points)}")
     volts = np.linspace(voltages[0], voltages[1], 2 * points - 1)
     try:
         sweep = static_sweep(mech, {drive: volts})

@@ -40,6 +40,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Callable
 
+from .._checks import shown
 from ..errors import RunCostWarning
 from ..io.progress import format_duration
 from ..mechanism.assembly import Mechanism
@@ -85,7 +86,7 @@ class PlannedRun:
         for name in ("t_end", "step"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value > 0):
-                raise ValueError(f"PlannedRun.{name} must be a positive time [s], got {value!r}")
+                raise ValueError(f"PlannedRun.{name} must be a positive time [s], got {shown(value)}")
         if self.step > self.t_end:
             raise ValueError(f"PlannedRun.step must be <= t_end = {self.t_end!r} s, got {self.step!r}")
         if self.seconds is not None and not (isinstance(self.seconds, (int, float)) and not isinstance(self.seconds, bool)
@@ -156,9 +157,9 @@ class RunPlan:
                  limit: float | None = None, stacklevel: int = 2) -> None:
         runs = list(runs)
         if not runs or not all(isinstance(r, PlannedRun) for r in runs):
-            raise ValueError(f"runs must be a non-empty sequence of PlannedRun, got {runs!r}")
+            raise ValueError(f"runs must be a non-empty sequence of PlannedRun, got {shown(runs)}")
         if progress is not None and not callable(progress):
-            raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+            raise ValueError(f"progress must be None or a callable progress(t, t_end), got {shown(progress)}")
         self.runs = tuple(runs)
         self._progress = progress
         details, estimates = [], []
@@ -240,7 +241,7 @@ class RunPlan:
     def share_done(self, k: int, t: float, t_end: float) -> float:
         """Fraction of the whole run done when simulation ``k`` has reached ``t`` of ``t_end`` [s]."""
         if not 0 <= k < len(self.runs):
-            raise ValueError(f"k must be the index of a planned simulation, 0 ... {len(self.runs) - 1}, got {k!r}")
+            raise ValueError(f"k must be the index of a planned simulation, 0 ... {len(self.runs) - 1}, got {shown(k)}")
         within = min(max(t / t_end, 0.0), 1.0) if t_end > 0.0 else 1.0
         return min(self._before[k] + self._share[k] * within, 1.0)
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import warnings
 from typing import Any
 
-from .._checks import positive_float
+from .._checks import positive_float, shown
 from ..model.recording import RecordingSchedule, recording_schedule
 from .run_checks import TimeGrid, time_grid
 from ..errors import OutOfReachWarning, SetupWarning
@@ -53,11 +53,11 @@ def prepare_run(t_end: Any, step: Any, settings: Any, progress: Any,
     t_end = positive_float("t_end", t_end)
     step = positive_float("step", step)
     if step > t_end:
-        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {step!r}")
+        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {shown(step)}")
     if settings is not None and not callable(settings) and not isinstance(settings, dict):
-        raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {settings!r}")
+        raise ValueError(f"settings must be None, a callable or a dict of dotted names, got {shown(settings)}")
     if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {shown(progress)}")
     grid = time_grid(t_end, step, stacklevel=5)  # the caller of simulate
     schedule = recording_schedule(record_every, grid.step)
     if not schedule.even:

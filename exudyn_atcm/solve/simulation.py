@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import finite_float, positive_float, positive_int
+from .._checks import finite_float, positive_float, positive_int, shown
 from ..mechanism.actuator import BendingActuator
 from ..mechanism import Mechanism
 from ..io.result import Result
@@ -46,7 +46,7 @@ def _mechanism_only(tip_force: Any) -> None:
 
 def _check_actuator(actuator: Any) -> BendingActuator:
     if not isinstance(actuator, BendingActuator):
-        raise ValueError(f"actuator must be a BendingActuator, got {actuator!r}")
+        raise ValueError(f"actuator must be a BendingActuator, got {shown(actuator)}")
     return actuator
 
 
@@ -246,7 +246,7 @@ def simulate(
         return result
     actuator = _check_actuator(actuator)
     if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {shown(progress)}")
     # the mechanism solve is called from here (and from run_actuator) directly: as many frames between the
     # caller and the run checks as for a mechanism, so their warnings point at the caller's line
     mech = actuator.as_mechanism(tip_force)
@@ -261,7 +261,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
     accuracy = check_accuracy(accuracy)
     t_end = positive_float("t_end", t_end)
     if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {progress!r}")
+        raise ValueError(f"progress must be None or a callable progress(t, t_end), got {shown(progress)}")
     choice = None
     if isinstance(system, Mechanism):
         _mechanism_only(tip_force)
@@ -377,7 +377,7 @@ def static_sweep(system: BendingActuator | Mechanism, voltages: Sequence[float] 
         _mechanism_only(tip_force)
         return mechanism_solve.static_sweep(system, voltages, method=method)
     if not isinstance(system, BendingActuator):
-        raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {system!r}")
+        raise ValueError(f"static_sweep takes a Mechanism or a BendingActuator, got {shown(system)}")
     mech = system.as_mechanism(tip_force)
     return actuator_result(system, mechanism_solve.static_sweep(mech, voltages, method=method))
 

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_array
+from .._checks import finite_array, shown
 
 __all__ = ["LinearModel"]
 
@@ -94,7 +94,7 @@ class LinearModel:
         """The complex response of one output to one input (names as in :attr:`outputs`, :attr:`inputs`)."""
         for name, names, what in ((output, self.outputs, "output"), (input, self.inputs, "input")):
             if name not in names:
-                raise ValueError(f"{what} must be one of {', '.join(map(repr, names))}, got {name!r}")
+                raise ValueError(f"{what} must be one of {', '.join(map(repr, names))}, got {shown(name)}")
         return self.frequency_response(frequencies_hz)[:, self.outputs.index(output), self.inputs.index(input)]
 
     @property

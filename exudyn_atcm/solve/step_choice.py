@@ -48,6 +48,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .._checks import shown
 from ..errors import AccuracyWarning
 from ..io.result import Result
 from ..mechanism import Mechanism
@@ -131,11 +132,11 @@ def check_accuracy(accuracy: Any) -> float:
     low, high = ACCURACY_RANGE
     if isinstance(accuracy, bool) or not isinstance(accuracy, (int, float, np.integer, np.floating)):
         raise ValueError(f"accuracy must be a finite number in [{low:g}, {high:g}] (a relative error of the "
-                         f"recorded positions, e.g. 1e-3 of the travel), got {accuracy!r}")
+                         f"recorded positions, e.g. 1e-3 of the travel), got {shown(accuracy)}")
     value = float(accuracy)
     if not (math.isfinite(value) and low <= value <= high):
         raise ValueError(f"accuracy must be a finite number in [{low:g}, {high:g}] (a relative error of the "
-                         f"recorded positions, e.g. 1e-3 of the travel), got {accuracy!r}")
+                         f"recorded positions, e.g. 1e-3 of the travel), got {shown(accuracy)}")
     return value
 
 

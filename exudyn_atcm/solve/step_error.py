@@ -32,7 +32,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .._checks import positive_float
+from .._checks import positive_float, shown
 from ..cells import CellKind
 from ..errors import AccuracyWarning, AtcmDeprecationWarning
 from ..io.result import Result
@@ -68,7 +68,7 @@ def richardson(changes: Sequence[float], noise: float, order: float = NOMINAL_OR
     Newton tolerance in the caller's units).
     """
     if not order > 0.0:
-        raise ValueError(f"order must be a positive order of accuracy, got {order!r}")
+        raise ValueError(f"order must be a positive order of accuracy, got {shown(order)}")
     factor = 2.0 ** order / (2.0 ** order - 1.0)
     order = math.nan
     if len(changes) > 1 and changes[0] > noise and changes[1] > 0.0:
@@ -304,7 +304,7 @@ def step_error(system: Any, t_end: float, *legacy: Any, step: float = DEFAULT_ST
     t_end = positive_float("t_end", t_end)
     step = positive_float("step", step)
     if step > t_end:
-        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {step!r}")
+        raise ValueError(f"step must be <= t_end = {t_end!r} s, got {shown(step)}")
     used = time_grid(t_end, step, stacklevel=3).step
     steps = [used, used / 2.0] + ([used / 4.0] if check_order else [])
     if isinstance(columns, str):

@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..suggestions import close_names
 from ..casework import Case, CaseError, Parameter
 
@@ -80,7 +81,7 @@ def check_point(case: Case, point: Mapping[str, Any]) -> dict[str, Any]:
         For an unknown name (with the closest declared name) or a value of the wrong type.
     """
     if not isinstance(point, Mapping):
-        raise GridError(f"a point must be a mapping of parameter names to values, got {point!r}")
+        raise GridError(f"a point must be a mapping of parameter names to values, got {shown(point)}")
     return {name: _check_value(case_parameter(case, name, "point"), value, case) for name, value in point.items()}
 
 
@@ -106,7 +107,7 @@ def full_grid(case: Case, grid: Mapping[str, Iterable[Any]]) -> list[dict[str, A
     for name, values in grid.items():
         parameter = case_parameter(case, name)
         if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
-            raise GridError(f"grid: values of {name!r} must be a list or array of values, got {values!r}")
+            raise GridError(f"grid: values of {name!r} must be a list or array of values, got {shown(values)}")
         checked = [_check_value(parameter, v, case) for v in (np.asarray(values).tolist() if isinstance(values, np.ndarray) else values)]
         if not checked:
             raise GridError(f"grid: {name!r} has no values (empty range)")
@@ -146,9 +147,9 @@ def sample_points(
         or an unknown method.
     """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise GridError(f"samples: n must be an integer >= 1, got {n!r}")
+        raise GridError(f"samples: n must be an integer >= 1, got {shown(n)}")
     if method not in SAMPLING_METHODS:
-        raise GridError(f"samples: method must be one of {', '.join(SAMPLING_METHODS)}, got {method!r}")
+        raise GridError(f"samples: method must be one of {', '.join(SAMPLING_METHODS)}, got {shown(method)}")
     if not bounds:
         raise GridError("samples: bounds must name at least one parameter")
     names = list(bounds)
@@ -228,7 +229,7 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False, option: str 
     name, sep, spec = text.partition("=")
     name = name.strip()
     if not sep or not name:
-        raise GridError(f"{option} expects NAME=START:STOP:N or NAME=A,B,C, got {text!r}")
+        raise GridError(f"{option} expects NAME=START:STOP:N or NAME=A,B,C, got {shown(text)}")
     parameter = case_parameter(case, name, option)
     spec = spec.strip()
     if not spec:
@@ -236,13 +237,13 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False, option: str 
     if ":" in spec and parameter.kind in ("float", "int"):
         parts = [s.strip() for s in spec.split(":")]
         if len(parts) not in (2, 3) or any(not s for s in parts):
-            raise GridError(f"{option} {name}: a range is START:STOP:N (or START:STOP), got {spec!r}")
+            raise GridError(f"{option} {name}: a range is START:STOP:N (or START:STOP), got {shown(spec)}")
         try:
             start, stop = float(parts[0]), float(parts[1])
         except ValueError:
             raise GridError(f"{option} {name}: START and STOP must be numbers, got {parts[0]!r} and {parts[1]!r}") from None
         if not (math.isfinite(start) and math.isfinite(stop)):
-            raise GridError(f"{option} {name}: START and STOP must be finite, got {spec!r}")
+            raise GridError(f"{option} {name}: START and STOP must be finite, got {shown(spec)}")
         if len(parts) == 2:
             if ranges:
                 if start > stop:
@@ -251,7 +252,7 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False, option: str 
                     raise GridError(f"{option} {name}: {name} is an integer parameter, got the range {spec!r}")
                 return name, (start, stop)
             if parameter.kind != "int":
-                raise GridError(f"{option} {name}: a float range needs the number of values, START:STOP:N, got {spec!r}")
+                raise GridError(f"{option} {name}: a float range needs the number of values, START:STOP:N, got {shown(spec)}")
             if not (start.is_integer() and stop.is_integer()):
                 raise GridError(f"{option} {name}: {name} is an integer parameter, got the range {spec!r}")
             if start > stop:
@@ -264,7 +265,7 @@ def parse_grid_spec(case: Case, text: str, *, ranges: bool = False, option: str 
         if count < 1:
             raise GridError(f"{option} {name}: N must be an integer >= 1, got {count}")
         if count == 1 and start != stop:
-            raise GridError(f"{option} {name}: N = 1 needs START == STOP, got {spec!r}")
+            raise GridError(f"{option} {name}: N = 1 needs START == STOP, got {shown(spec)}")
         values = np.linspace(start, stop, count)
         if parameter.kind == "int":
             if not np.allclose(values, np.round(values), rtol=0.0, atol=1e-9):

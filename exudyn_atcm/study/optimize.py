@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import hide_keywords, option_values, options_from_keywords
+from .._checks import hide_keywords, option_values, options_from_keywords, shown
 from ..io.atomic import make_directory, write_json
 from ..casework import Case, CaseOutput, load_case
 from ..casework.output_folder import OutputFolder
@@ -260,7 +260,7 @@ def optimize(
                          f"{run!r}")
     case = case if isinstance(case, Case) else load_case(case)
     if method not in METHODS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, got {shown(method)}")
     objective = check_objective(case, objective)
     checked_constraints = check_constraints(constraints)
     if not isinstance(bounds, Mapping) or not bounds:
@@ -273,7 +273,7 @@ def optimize(
         try:
             low, high = (float(v) for v in pair)
         except (TypeError, ValueError):
-            raise GridError(f"bounds: {name!r} must be (low, high), got {pair!r}") from None
+            raise GridError(f"bounds: {name!r} must be (low, high), got {shown(pair)}") from None
         if not (math.isfinite(low) and math.isfinite(high) and low < high):
             raise GridError(f"bounds: {name!r} must be finite with low < high, got ({low!r}, {high!r})")
         try:  # the optimiser may try either end: both must be values the case accepts
@@ -286,11 +286,11 @@ def optimize(
         kinds.append(parameter.kind)
     for label, tol_value, high in (("xatol", xatol, 1.0), ("fatol", fatol, math.inf)):
         if not (isinstance(tol_value, (int, float)) and not isinstance(tol_value, bool) and 0.0 <= tol_value < high):
-            raise ValueError(f"{label} must be a number in [0, {high:g}) (relative Nelder-Mead tolerance), got {tol_value!r}")
+            raise ValueError(f"{label} must be a number in [0, {high:g}) (relative Nelder-Mead tolerance), got {shown(tol_value)}")
     if constraint_handling not in ("penalty", "scipy"):
-        raise ValueError(f"constraint_handling must be 'penalty' or 'scipy', got {constraint_handling!r}")
+        raise ValueError(f"constraint_handling must be 'penalty' or 'scipy', got {shown(constraint_handling)}")
     if constraint_handling == "scipy" and method != "differential_evolution":
-        raise ValueError(f"constraint_handling='scipy' needs method='differential_evolution', got {method!r} (use penalties)")
+        raise ValueError(f"constraint_handling='scipy' needs method='differential_evolution', got {shown(method)} (use penalties)")
     if method != "differential_evolution" and "int" in kinds:
         raise ValueError(f"method {method!r} is continuous: integer design variables {[n for n, k in zip(names, kinds) if k == 'int']} need method='differential_evolution' (or fix them)")
     fixed_values = check_point(case, fixed or {})
@@ -299,7 +299,7 @@ def optimize(
         raise GridError(f"parameters {overlap} are both fixed and design variables")
     whole = isinstance(max_evaluations, (int, np.integer)) and not isinstance(max_evaluations, bool)
     if max_evaluations is not None and not (whole and max_evaluations >= 1):
-        raise ValueError(f"max_evaluations must be an integer >= 1 (the most objective evaluations), got {max_evaluations!r}")
+        raise ValueError(f"max_evaluations must be an integer >= 1 (the most objective evaluations), got {shown(max_evaluations)}")
     n = len(names)
     cap = sum(evaluation_bounds(method, n, kinds.count("float"), maxiter, popsize, polish))
     cap = min(cap, int(max_evaluations)) if max_evaluations is not None else cap

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..casework import Case
 from .stops import ObjectiveNotFiniteError, SearchStopped
 from .sweep import run_study
@@ -227,7 +228,7 @@ def check_objective(case: Case, objective: Objective) -> Objective:
     if callable(objective):
         return objective
     if not isinstance(objective, str) or not objective:
-        raise ValueError(f"objective must be the name of a key scalar of {case.name} or a callable(scalars, values), got {objective!r}")
+        raise ValueError(f"objective must be the name of a key scalar of {case.name} or a callable(scalars, values), got {shown(objective)}")
     return objective
 
 
@@ -237,12 +238,12 @@ def check_constraints(constraints: Mapping[str, tuple[float | None, float | None
         try:
             low, high = pair
         except (TypeError, ValueError):
-            raise ValueError(f"constraints[{name!r}] must be (low, high) with None for an open side, got {pair!r}") from None
+            raise ValueError(f"constraints[{name!r}] must be (low, high) with None for an open side, got {shown(pair)}") from None
         for side in (low, high):
             if side is not None and not (isinstance(side, (int, float)) and math.isfinite(side)):
-                raise ValueError(f"constraints[{name!r}] must be finite numbers or None, got {pair!r}")
+                raise ValueError(f"constraints[{name!r}] must be finite numbers or None, got {shown(pair)}")
         if low is None and high is None:
-            raise ValueError(f"constraints[{name!r}]: give a lower or an upper limit, got {pair!r}")
+            raise ValueError(f"constraints[{name!r}]: give a lower or an upper limit, got {shown(pair)}")
         checked[name] = (None if low is None else float(low), None if high is None else float(high))
     return checked
 

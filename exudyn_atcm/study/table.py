@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import shown
 from ..io.atomic import write_text
 from ..casework import Case
 from ..errors import AtcmDeprecationWarning
@@ -133,7 +134,7 @@ class StudyTable:
             wanted = [_header(self, k) for k in key]
             by_header = {c.header: c for c in self._columns}
             return StudyTable([by_header[h] for h in wanted])
-        raise ValueError(f"key must be a column name or a list of column names, got {key!r}")
+        raise ValueError(f"key must be a column name or a list of column names, got {shown(key)}")
 
     def drop(self, columns: str | Sequence[str]) -> StudyTable:
         """The table without ``columns`` (names or headers)."""

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from .._checks import shown
 
 __all__ = [
     "ELASTICA_TIP_FORCE",
@@ -250,7 +251,7 @@ def optimal_thickness_ratio(modulus_ratio: float) -> float:
     """
     n = float(modulus_ratio)
     if not (math.isfinite(n) and n > 0.0):
-        raise ValueError(f"modulus_ratio must be a finite number > 0, got {modulus_ratio!r}")
+        raise ValueError(f"modulus_ratio must be a finite number > 0, got {shown(modulus_ratio)}")
     roots = np.roots([n * n, 3.0 * n * n - 2.0 * n, -3.0 * n, -5.0 * n, -2.0])
     positive = [r.real for r in roots if abs(r.imag) <= 1e-9 * max(1.0, abs(r)) and r.real > 0.0]
     t = max(positive)

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from .._checks import shown
 from .beam import arc_point
 
 __all__ = [
@@ -201,7 +202,7 @@ def curved_cantilever_end_load(
     kappa = float(curvature)
     ei = float(bending_stiffness)
     if not ei > 0.0:
-        raise ValueError(f"bending_stiffness must be > 0 [N m^2], got {bending_stiffness!r}")
+        raise ValueError(f"bending_stiffness must be > 0 [N m^2], got {shown(bending_stiffness)}")
     fx, fy = (float(v) for v in force)
     a, c = (float(v) for v in extension)
 

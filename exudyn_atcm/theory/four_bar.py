@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._checks import finite_float, positive_float
+from .._checks import finite_float, positive_float, shown
 
 __all__ = [
     "circle_intersection",
@@ -59,7 +59,7 @@ __all__ = [
 def _point(name: str, value) -> np.ndarray:
     array = np.asarray(value, dtype=float)
     if array.shape[-1:] != (2,) or not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite (x, y) coordinates [m] (shape (..., 2)), got {value!r}")
+        raise ValueError(f"{name} must be finite (x, y) coordinates [m] (shape (..., 2)), got {shown(value)}")
     return array
 
 
@@ -96,7 +96,7 @@ def circle_intersection(center1, radius1: float, center2, radius2: float, branch
     r1 = positive_float("radius1", radius1)
     r2 = positive_float("radius2", radius2)
     if branch not in (1, -1):
-        raise ValueError(f"branch must be +1 or -1, got {branch!r}")
+        raise ValueError(f"branch must be +1 or -1, got {shown(branch)}")
     c1, c2 = np.broadcast_arrays(c1, c2)
     delta = c2 - c1
     dist = np.hypot(delta[..., 0], delta[..., 1])
@@ -270,7 +270,7 @@ def freudenstein_rocker_angle(
         If the linkage cannot be assembled at ``phi2`` (``|R| > sqrt(P² + Q²)``).
     """
     if sign not in (1, -1):
-        raise ValueError(f"sign must be +1 or -1, got {sign!r}")
+        raise ValueError(f"sign must be +1 or -1, got {shown(sign)}")
     k1, k2, k3 = freudenstein_constants(a, b, c, d)
     phi2 = np.asarray(crank_angle, dtype=float)
     p = k1 - np.cos(phi2)

@@ -47,6 +47,7 @@ import warnings
 import numpy as np
 from numpy.polynomial import legendre
 
+from .._checks import shown
 from ..errors import AccuracyWarning
 
 __all__ = [
@@ -73,7 +74,7 @@ DYNAMIC_ROTATION_LIMIT = 0.05
 
 def _check_modes(n: int) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"n (number of assumed modes) must be an integer >= 1, got {n!r}")
+        raise ValueError(f"n (number of assumed modes) must be an integer >= 1, got {shown(n)}")
     return int(n)
 
 

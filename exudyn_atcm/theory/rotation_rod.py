@@ -42,6 +42,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.polynomial import legendre
 
+from .._checks import shown
 from . import ritz_beam
 
 __all__ = ["rule_points", "quadrature", "RodShapes", "rod_shapes", "tip_pose", "mass_matrix",
@@ -61,7 +62,7 @@ def quadrature(n_points: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     degree ``< n_points`` (read-only arrays).
     """
     if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 2:
-        raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
+        raise ValueError(f"n_points must be an integer >= 2, got {shown(n_points)}")
     y, w = legendre.leggauss(int(n_points))
     vander = legendre.legvander(y, n_points - 1)
     integrals = np.empty_like(vander)
