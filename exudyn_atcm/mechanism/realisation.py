@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import importlib
 from typing import Any, Callable
+from .._checks import shown
 
 __all__ = ["register_dof_counter", "count_degrees_of_freedom", "register_redundancy_check", "check_redundancy", "PROVIDER"]
 
@@ -25,10 +26,14 @@ _REDUNDANCY_CHECKS: list[Callable[[Any], None]] = []
 PROVIDER = "exudyn_atcm.mbs"
 
 
-def _registered(functions: list, what: str) -> Callable:
-    """The registered function of ``functions``, the :data:`PROVIDER` imported first if none is."""
+def _registered(functions: list, what: str) -> Callable | None:
+    """The registered function of ``functions``, the :data:`PROVIDER` imported first if none is; ``None`` when the
+    provider cannot be imported (the description layer used without Exudyn installed)."""
     if not functions:
-        importlib.import_module(PROVIDER)
+        try:
+            importlib.import_module(PROVIDER)
+        except ImportError:
+            return None
     if not functions:
         raise RuntimeError(f"no {what} registered: importing {PROVIDER} should have registered it")
     return functions[0]
@@ -37,7 +42,7 @@ def _registered(functions: list, what: str) -> Callable:
 def register_dof_counter(counter: Callable[[Any], Any]) -> None:
     """Register ``counter(mechanism) -> DofReport`` (the Exudyn layer does this on import)."""
     if not callable(counter):
-        raise ValueError(f"counter must be callable, got {counter!r}")
+        raise ValueError(f"counter must be callable, got {shown(counter)}")
     _COUNTERS[:] = [counter]
 
 
@@ -47,20 +52,27 @@ def count_degrees_of_freedom(mechanism: Any) -> Any:
     Raises
     ------
     RuntimeError
-        If importing :data:`PROVIDER` registered no counter.
+        If :data:`PROVIDER` cannot be imported (Exudyn not installed) or registered no counter.
     """
-    return _registered(_COUNTERS, "degrees-of-freedom counter")(mechanism)
+    counter = _registered(_COUNTERS, "degrees-of-freedom counter")
+    if counter is None:
+        raise RuntimeError(f"degrees_of_freedom() needs the package's Exudyn layer, and {PROVIDER} cannot be imported "
+                           "(is Exudyn installed?)")
+    return counter(mechanism)
 
 
 def register_redundancy_check(check: Callable[[Any], None]) -> None:
     """Register ``check(mechanism)``, raising ``MechanismError`` for dependent joints (the Exudyn layer does this)."""
     if not callable(check):
-        raise ValueError(f"check must be callable, got {check!r}")
+        raise ValueError(f"check must be callable, got {shown(check)}")
     _REDUNDANCY_CHECKS[:] = [check]
 
 
-def check_redundancy(mechanism: Any) -> None:
+def check_redundancy(mechanism: Any) -> bool:
     """Refuse ``mechanism`` when its joints are dependent in the reference pose (the registered check).
+
+    Returns whether it was checked: ``False`` only when :data:`PROVIDER` cannot be imported (the
+    description layer used without Exudyn installed; every solve checks the model it builds).
 
     Raises
     ------
@@ -69,4 +81,8 @@ def check_redundancy(mechanism: Any) -> None:
     RuntimeError
         If importing :data:`PROVIDER` registered no check.
     """
-    _registered(_REDUNDANCY_CHECKS, "check of dependent joints")(mechanism)
+    check = _registered(_REDUNDANCY_CHECKS, "check of dependent joints")
+    if check is None:
+        return False
+    check(mechanism)
+    return True
