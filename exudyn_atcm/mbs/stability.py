@@ -158,8 +158,11 @@ class StabilityProbe:
             except LinAlgError:  # a direction without mass: the stiffness alone decides (identity metric)
                 self.use_mass = False
                 mr = np.eye(kr.shape[0])
-            lowest = self._lowest(kr, mr)[0]
+            lowest, mode = self._lowest(kr, mr)
         self.reference = lowest if 0.0 < lowest < math.inf else float(fallback_scale)
+        #: the unloaded mechanism's lowest eigenvalue ``omega^2`` [1/s^2] and its mode (ODE2 coordinates), as computed;
+        #: far below ``fallback_scale`` it is a motion without stiffness (a link on a free pin)
+        self.reference_lowest, self.reference_mode, self.fallback_scale = lowest, mode, float(fallback_scale)
         #: the last :meth:`check`'s result
         self.last: Stability | None = None
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from .._checks import finite_float
 from .static_fallback import equilibrium_with_fallback
+from .static_stability import free_motion_note
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
@@ -136,12 +137,13 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
         last.staticSolver.useLoadFactor = False
         runs.run_static(model, last, lambda f: f)
 
+    free = free_motion_note(model, probe)  # a motion without stiffness: the failure's reason, not the cells
     method = equilibrium_with_fallback(
         model, static=lambda: runs.run_static(model, settings, lambda f: f), relaxation=relaxation, relax_target=1.0,
         omega1=omega1, polish=polish, size=mech.size, subject=describe(mech), what=what,
         load_steps=load_steps,
-        advice=f"Expected rotation about {rot:.3g} rad. Use more cells, reduce the loads, check that the mechanism is "
-               "not locked, or pass load_steps.",
+        advice=f"{free}." if free else f"Expected rotation about {rot:.3g} rad. Use more cells, reduce the loads, "
+        "check that the mechanism is not locked, or pass load_steps.",
         unstable=None if probe is None else lambda: probe.check().state == "unstable",
         snapshot=None if probe is None else lambda: snapshot(model))
     if probe is not None and method != "static":
