@@ -16,7 +16,7 @@ from exudyn_atcm import hysteresis
 API_RST = Path(__file__).resolve().parents[1] / "docs" / "api.rst"
 #: Public modules whose ``__all__`` is plumbing of the command line or the optimiser, not user API.
 INTERNAL = {"exudyn_atcm.cli", "exudyn_atcm.casework.error_report", "exudyn_atcm.study.command", "exudyn_atcm.study.command_options",
-            "exudyn_atcm.lazy_names", "exudyn_atcm.study.problem"}
+            "exudyn_atcm.lazy_names", "exudyn_atcm.study.problem", "exudyn_atcm.study.case_spec"}
 #: Names exported for the package's own modules (workers, progress plumbing; the mechanism's DOF
 #: count is documented as Mechanism.degrees_of_freedom).
 INTERNAL_NAMES = {"exudyn_atcm.study.design.check_point", "exudyn_atcm.study.engines.CaseSpec",

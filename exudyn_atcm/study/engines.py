@@ -1,10 +1,9 @@
 """Engines that execute the runs of a study: in this process, a process pool, or Dask.
 
-Every engine executes the same worker function, :func:`execute_run`, on a case shipped as
-a :class:`CaseSpec` (its name, source text and fingerprint), and yields the run records in
-the order the runs *finish*; the study sorts them back into its own order.  Each worker
-process loads the case once (the process pool's initializer; a per-process cache on Dask
-workers) and builds one Exudyn system per run.
+Every engine executes :func:`execute_run` on a case shipped as a :class:`CaseSpec` (name, source
+text, fingerprint, the user's modules it reads) and yields the run records in the order the runs
+*finish* (the study sorts them back).  Each worker process loads the case once (the pool's
+initializer; a per-process cache on Dask workers) and builds one Exudyn system per run.
 
 * :class:`SerialEngine`: runs in the calling process (``workers=1``; debugging).
 * :class:`ProcessEngine`: a pool of worker processes on this machine (default: one per
@@ -12,10 +11,9 @@ workers) and builds one Exudyn system per run.
   time, so an interrupted study leaves little work in flight.  The workers end with the
   study's process however it ends, ``SIGKILL`` included
   (:func:`~exudyn_atcm.study.parent_watch.end_with_parent`).
-* :class:`DaskEngine`: the runs go to the workers of a Dask distributed cluster (a
-  ``dask.distributed.Client``, or the address of its scheduler).  Needs the optional
-  extra ``pip install "exudyn-atcm[distributed]"``.  Workers need this package installed,
-  not the case file: the case's source text travels with the runs.
+* :class:`DaskEngine`: the runs go to the workers of a Dask distributed cluster (a ``Client`` or
+  its scheduler's address; ``pip install "exudyn-atcm[distributed]"``).  Workers need this package
+  installed, not the case file: the case's source text travels with the runs.
 """
 
 from __future__ import annotations
@@ -26,97 +24,21 @@ import multiprocessing
 import os
 import signal
 import socket
-import sys
 import threading
 import time
 import traceback
-import types
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
-from ..casework import Case, CaseError
+from .._checks import shown
 from ..casework.termination import STOP_SIGNALS
 from .parent_watch import end_with_parent
-from .case_modules import forget_modules, module_hashes
-from .store import case_fingerprint
+from .case_spec import CaseSpec, case_spec, load_spec
 
 __all__ = ["CaseSpec", "case_spec", "execute_run", "SerialEngine", "ProcessEngine", "DaskEngine", "make_engine"]
 
 #: A run to execute: (index in the study, run key, parameter values).
 Task = tuple[int, str, dict[str, Any]]
-
-
-@dataclass(frozen=True)
-class CaseSpec:
-    """A picklable description of a case: enough to load it in any worker process.
-
-    Attributes
-    ----------
-    name : str
-        Case name.
-    path : str
-        The case file (used as ``__file__``; it need not exist on the worker).
-    source : str
-        The full text of the case file.
-    fingerprint : str
-        :func:`~exudyn_atcm.study.store.case_fingerprint` of name and text.
-    modules : tuple of (str, str)
-        The user's own Python files the case reads, with the SHA-256 of their text (a process loads the case
-        again, those files read again, when they change: :func:`~exudyn_atcm.study.case_modules.module_hashes`).
-    """
-
-    name: str
-    path: str
-    source: str
-    fingerprint: str
-    modules: tuple = ()
-
-
-def case_spec(case: Case) -> CaseSpec:
-    """The :class:`CaseSpec` of a loaded case (from its source file).
-
-    Raises
-    ------
-    CaseError
-        If the case has no readable source file (e.g. a ``Case`` made interactively):
-        worker processes load cases from their file.
-    """
-    if not isinstance(case, Case):
-        raise CaseError(f"case must be an exudyn_atcm Case (see load_case), got {type(case).__name__}")
-    if case.source is None or not Path(case.source).is_file():
-        raise CaseError(f"case {case.name}: studies need the case's source file (got {case.source!r}); define the case in a file and load it with load_case")
-    text = Path(case.source).read_text(encoding="utf-8")
-    modules = tuple(sorted(module_hashes(case.source).items()))
-    return CaseSpec(case.name, str(case.source), text, case_fingerprint(case.name, text), modules)
-
-
-# ------------------------------------------------------------------------- worker side
-_LOADED: dict[tuple[str, tuple], Case] = {}
-
-
-def load_spec(spec: CaseSpec) -> Case:
-    """The case of ``spec``, executed from its source text once per process and version of its own modules (cached)."""
-    case = _LOADED.get((spec.fingerprint, spec.modules))
-    if case is not None:
-        return case
-    forget_modules(path for path, _ in spec.modules)  # imported again by the case as they are now
-    module_name = f"exudyn_atcm_study_case_{spec.name}_{spec.fingerprint[:12]}"
-    module = types.ModuleType(module_name)
-    module.__file__ = spec.path
-    sys.modules[module_name] = module  # dataclasses and pickling look modules up here
-    try:
-        exec(compile(spec.source, spec.path, "exec"), module.__dict__)  # noqa: S102 - the user's own case file
-    except Exception as exc:
-        del sys.modules[module_name]
-        raise CaseError(f"{spec.path}: import failed: {type(exc).__name__}: {exc}") from exc
-    case = module.__dict__.get("CASE")
-    if not isinstance(case, Case):
-        raise CaseError(f"{spec.path}: defines no CASE = exudyn_atcm.casework.Case(...)")
-    case.source = Path(spec.path)
-    _LOADED[(spec.fingerprint, spec.modules)] = case
-    return case
 
 
 def _one_line(exc: BaseException) -> str:
@@ -244,7 +166,7 @@ class ProcessEngine(SerialEngine):
     def __init__(self, workers: int | None = None, start_method: str | None = None) -> None:
         count = (os.cpu_count() or 1) if workers is None else workers
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
-            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+            raise ValueError(f"workers must be an integer >= 1, got {shown(workers)}")
         self.workers = count
         self.start_method = start_method or _default_context()
         self._pool: cf.ProcessPoolExecutor | None = None
@@ -385,13 +307,13 @@ class DaskEngine(SerialEngine):
                 raise ValueError(f"scheduler: cannot connect to the Dask scheduler at {client!r}: {exc}") from None
             except ValueError as exc:  # a malformed address (no port, unknown protocol)
                 raise ValueError(f"scheduler must be a Dask scheduler address such as 'tcp://HOST:8786', "
-                                 f"got {client!r} ({exc})") from None
+                                 f"got {shown(client)} ({exc})") from None
             self._own = True
         elif isinstance(client, Client):
             self.client = client
             self._own = False
         else:
-            raise ValueError(f"client must be a dask.distributed.Client or a scheduler address, got {client!r}")
+            raise ValueError(f"client must be a dask.distributed.Client or a scheduler address, got {shown(client)}")
         info = self.client.scheduler_info()
         self.workers = max(1, sum(int(w.get("nthreads", 1)) for w in info.get("workers", {}).values()))
 
@@ -448,7 +370,7 @@ def make_engine(workers: int | None = None, client: Any = None, scheduler: str |
     if client is not None or scheduler is not None:
         return DaskEngine(client if client is not None else scheduler)
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
-        raise ValueError(f"workers must be an integer >= 1 (or None: one per core), got {workers!r}")
+        raise ValueError(f"workers must be an integer >= 1 (or None: one per core), got {shown(workers)}")
     if workers == 1:
         return SerialEngine()
     return ProcessEngine(workers)
