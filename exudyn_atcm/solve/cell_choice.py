@@ -61,6 +61,7 @@ from ..io.result import Result
 from ..mechanism import Mechanism
 from ..mechanism.bender import AUTO_CELLS, Bender, Segment, is_auto
 from ..mechanism.points import MechanismError
+from .interrupts import SimulationInterrupted
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs.layout import check_end_connections, rigid_groups
@@ -319,10 +320,14 @@ def choose_cells(mechanism: Mechanism, t_end: float, accuracy: float = 1e-3, *, 
         For a ``mechanism`` that is not a :class:`~exudyn_atcm.Mechanism`, or a ``t_end`` or
         ``accuracy`` out of range.
 
+    SimulationInterrupted
+        On Ctrl-C (a ``KeyboardInterrupt``), saying that the choice stopped before any step (``result`` None).
+
     Warns
     -----
     AccuracyWarning
-        When the largest count tried still misses the share (that count is taken).
+        When the largest count tried still misses the share (that count is taken), and for a mechanism with
+        stops (impacts are not checked).
 
     Examples
     --------
@@ -338,7 +343,14 @@ def choose_cells(mechanism: Mechanism, t_end: float, accuracy: float = 1e-3, *, 
     if not isinstance(mechanism, Mechanism):
         raise ValueError(f"mechanism: expected an exudyn_atcm Mechanism, got {type(mechanism).__name__} "
                          f"{mechanism!r:.80}")
-    return _choose(mechanism, positive_float("t_end", t_end), SPACE_SHARE * check_accuracy(accuracy), progress)
+    t_end, share = positive_float("t_end", t_end), SPACE_SHARE * check_accuracy(accuracy)
+    try:
+        return _choose(mechanism, t_end, share, progress)
+    except KeyboardInterrupt as exc:  # a static solve's SimulationInterrupted says "t = 0 s": no run had started
+        stopped = SimulationInterrupted(0.0)
+        stopped.args = ("interrupted while choosing the cells (static poses and eigenfrequencies), before any step "
+                        "of the run: no result",)
+        raise stopped from exc
 
 
 def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None) -> CellChoice:
