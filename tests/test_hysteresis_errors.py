@@ -34,7 +34,12 @@ def test_continuous_rejects(change, pattern):
         ((-500, 1500, -4, 40, 1500, 12, 28), r"u_m must lie strictly between.*1500"),
         ((-500, 1500, -4, 40, 500, 40, 28), r"y_m1 must lie strictly between.*40"),
         ((-500, 1500, -4, 40, 500, 12, -5), r"y_m2 must lie strictly between.*-5"),
-        ((-500, 1500, -4, 40, 500, 30, 10), r"r1 must be >= 1"),  # ascending above descending
+        # ascending above descending: the straight line at u_m is -4 + 44 * 1000/2000 = 18, y_m1 = 30 lies above it
+        ((-500, 1500, -4, 40, 500, 30, 10), r"^y_m1 = 30 lies above the straight line .* at u_m \(18\): its branch's "
+                                            r"exponent would be 0\.\d+, below 1"),
+        # a stroke in m among points in µm: the hint names the end point in another unit
+        ((-500, 1500, -4e-6, 40.0, 500, 12e-6, 28e-6), r"y_m2 = 2\.8e-05 lies below .*is y_min = -4e-06 or y_max = 40 "
+                                                       r"in another unit\?$"),
         ((1500, -500, -4, 40, 500, 12, 28), r"u_max must be > u_min"),
         ((-500, 1500, -4, 40, math.nan, 12, 28), r"u_m .*nan"),
     ],

@@ -102,6 +102,15 @@ class ContinuousPreisach(StaircasePreisach):
         du, dy = u_max - u_min, y_max - y_min
         r1 = math.log((y_m1 - y_min) / dy) / math.log((u_m - u_min) / du)
         r2 = math.log((y_max - y_m2) / dy) / math.log((u_max - u_m) / du)
+        line = y_min + dy * (u_m - u_min) / du  # the straight line between the end points, at u_m
+        for name, y, r, side in (("y_m1", y_m1, r1, "above"), ("y_m2", y_m2, r2, "below")):
+            if r < 1.0:
+                scale = max(abs(y_min), abs(y_max)) / max(abs(y_m1), abs(y_m2), 1e-300)
+                hint = (f"; the end points are {scale:.2g} times the precision points: is y_min = {y_min:g} or y_max = "
+                        f"{y_max:g} in another unit?" if scale > 1e3 else "")
+                raise ValueError(f"{name} = {y:g} lies {side} the straight line from (u_min, y_min) to (u_max, y_max) at "
+                                 f"u_m ({line:g}): its branch's exponent would be {r:.3g}, below 1 (a branch bent the "
+                                 f"other way); check the precision points{hint}")
         return cls(u_min, u_max, y_min, y_max, r1, r2)
 
     @property
