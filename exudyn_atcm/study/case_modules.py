@@ -22,6 +22,7 @@ import hashlib
 import importlib.machinery
 import sys
 import sysconfig
+import time
 from pathlib import Path
 
 from .. import __file__ as _PACKAGE_INIT
@@ -37,6 +38,11 @@ _NOT_LOCAL = tuple({Path(p).resolve() for key in ("stdlib", "platstdlib", "purel
 
 #: module file -> (text's mtime_ns and size, imported names, names of .py files it mentions)
 _PARSED: dict[Path, tuple[tuple[int, int], list[str], list[str]]] = {}
+#: A file modified less than this before it is hashed is hashed again next time [ns] (a rewrite of the same size
+#: within one time stamp's tick would look unchanged; as :data:`~exudyn_atcm.study.inputs.RACY_SECONDS`).
+RACY_NS = 2_000_000_000
+#: module file -> (mtime_ns, size, inode; SHA-256 of its text): a study hashes per run
+_HASHED: dict[Path, tuple[tuple[int, int, int], str]] = {}
 #: case file -> (the stamps of it and of every file found, the search path, the files found): a study asks per run
 _FOUND: dict[Path, tuple[tuple, tuple[str, ...], list[Path]]] = {}
 
@@ -137,7 +143,14 @@ def module_hashes(case_file: str | Path | None) -> dict[str, str]:
     hashes = {}
     for path in local_modules(case_file):
         try:
-            hashes[str(path)] = hashlib.sha256(path.read_bytes()).hexdigest()
+            stat = path.stat()
+            stamp = (stat.st_mtime_ns, stat.st_size, stat.st_ino)
+            cached = _HASHED.get(path)
+            if cached is None or cached[0] != stamp:
+                cached = (stamp, hashlib.sha256(path.read_bytes()).hexdigest())
+                if time.time_ns() - stat.st_mtime_ns > RACY_NS:  # a file written within a time stamp's tick is read again
+                    _HASHED[path] = cached
+            hashes[str(path)] = cached[1]
         except OSError:  # unreadable: the run will say so when it imports it
             continue
     return hashes
