@@ -37,9 +37,9 @@ share is taken.  ``result.info["cell_choice"]`` says what was chosen and why.
 
 What it does not see: a mode above the lowest that the drive excites more than the lowest (its
 frequency converges more slowly in the count), the discretisation's effect on the damping, and the
-higher modes an impact against a stop rings (a mechanism with stops gets an
-:class:`~exudyn_atcm.AccuracyWarning` saying so: a lever driven against a stop was 2.2e-3 off for
-1e-3, its cells' share 1.9e-3 where the choice estimated 1.1e-4).
+higher modes an impact against a stop rings: for a mechanism with stops, ``simulate`` runs the next count
+at the chosen step too and compares (:func:`~exudyn_atcm.solve.impact_check.impacts_checked`; a lever driven against a stop was
+2.2e-3 off for 1e-3, its cells' share 1.9e-3 where the choice estimated 1.1e-4).
 The tests compare the chosen run with a run of twice the count at a fine step
 (``tests/test_cell_choice.py``).
 """
@@ -118,6 +118,9 @@ class CellChoice:
     tried: list[tuple[int, float, float, float]] = field(default_factory=list)
     #: a build of :attr:`mechanism` in its built state (``None``: none made), for the run to take
     built: Any = None
+    #: the mechanism with the next count of the ladder (``None``: the largest count was taken), for the check of a
+    #: mechanism with stops (:func:`~exudyn_atcm.solve.impact_check.impacts_checked`)
+    finer: Mechanism | None = None
 
     def step_target(self, accuracy: float) -> float:
         """The step's part [-] of a run's ``accuracy``: what the cells leave of it, counting their estimated error
@@ -326,8 +329,7 @@ def choose_cells(mechanism: Mechanism, t_end: float, accuracy: float = 1e-3, *, 
     Warns
     -----
     AccuracyWarning
-        When the largest count tried still misses the share (that count is taken), and for a mechanism with
-        stops (impacts are not checked).
+        When the largest count tried still misses the share (that count is taken).
 
     Examples
     --------
@@ -371,7 +373,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
     points = None
     tried: list[tuple[int, float, float, float]] = []
     previous: tuple[int, float, float, dict, Any] | None = None
-    chosen_n, estimate, delta = counts[-1], math.inf, math.nan
+    chosen_n, estimate, delta, finer = counts[-1], math.inf, math.nan, None
     stage = getattr(progress, "stage", None)
     kept: dict = {}  # the drives' unit strains for the stand-in, by sample count
     size, still, dynamic = _size(mech), False, 0.0
@@ -398,7 +400,7 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
             estimate = factor * static + dynamic
             tried.append((n0, f0, static, estimate))
             if estimate <= accuracy:
-                chosen_n, built = n0, model0
+                chosen_n, built, finer = n0, model0, candidate
                 break
         previous = (n, f, zeta, poses, model)
     else:
@@ -421,11 +423,4 @@ def _choose(mech: Mechanism, t_end: float, accuracy: float, progress: Any = None
                       f"checked: the count below it was estimated {estimate:.2g} off against {accuracy:g} of the "
                       "travel (the cells' share of the accuracy); fix n_cells yourself and compare runs",
                       AccuracyWarning, stacklevel=4)
-    if mech.stops:
-        stops = ", ".join(repr(stop.name) for stop in mech.stops)
-        line += f"; not checked: the impacts against the stop{'s' if len(mech.stops) > 1 else ''} {stops}"
-        warnings.warn(f"the cells chosen for the accuracy ({head}) were checked on static poses and the lowest mode: "
-                      f"impacts against the stop{'s' if len(mech.stops) > 1 else ''} {stops} ring higher modes that this "
-                      "check does not see, and the run's error can be several times the estimate. Fix n_cells and "
-                      "compare the run with one of more cells", AccuracyWarning, stacklevel=4)
-    return CellChoice(built.mechanism, cells, estimate, line, tried, built)
+    return CellChoice(built.mechanism, cells, estimate, line, tried, built, finer)

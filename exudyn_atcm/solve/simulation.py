@@ -25,13 +25,13 @@ from ..mechanism.actuator import BendingActuator
 from ..mechanism import Mechanism
 from ..io.result import Result
 from ..model.strain_sources import InStepStrain
-from ..mbs import builder as mb
-from ..mbs import solver_runs as runs
+from ..mbs import builder as mb, solver_runs as runs
 from . import mechanism_solve
 from .as_mechanism import actuator_interrupts, actuator_result
 from .bender_checks import check_benders
 from .run_setup import DEFAULT_STEP
 from .cell_choice import choose_cells, open_benders
+from .impact_check import impacts_checked
 from .step_choice import accurate_run, check_accuracy, check_step_or_accuracy
 
 
@@ -294,7 +294,7 @@ def _accurate(system: Any, t_end: Any, accuracy: Any, tip_force: Any, settings: 
         return accurate_run(run, mech, t_end, accuracy, progress, stacklevel=4, record_every=record_every, built=fresh)
     result = accurate_run(run, mech, t_end, choice.step_target(accuracy), progress, stacklevel=4,
                           record_every=record_every, built=fresh)
-    return choice.noted(result, accuracy)
+    return choice.noted(impacts_checked(choice, result, accuracy, t_end, settings, record_every), accuracy)
 
 
 def run_actuator(actuator, t_end, step, tip_force, settings, source=None, stroke_path="prestep",
