@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_atcm import Result
+from exudyn_atcm import PiezoDrive, Result
 from exudyn_atcm.casework import Case, CaseOutput, Parameter, Parameters, RunContext
 from exudyn_atcm.hysteresis import DiscretePreisach
 from exudyn_atcm.model import PiecewiseLinear, paper_stroke_preisach
@@ -57,6 +57,9 @@ def run(p: Parameters, ctx: RunContext) -> CaseOutput:
     discrete = DiscretePreisach.from_loop(u_loop, y_loop, p.n_relays)
 
     corners = np.asarray(p.voltage_points, dtype=float)
+    # against the MFC's rating, as a drive would check it (a program typed in kV peaks below 3 V)
+    PiezoDrive(0.0).check_voltage_range(float(corners.min()), float(corners.max()), stacklevel=2,
+                                        what=f"voltage_points={', '.join(f'{v:g}' for v in corners)} V")
     corner_times = p.segment_time * np.arange(corners.size)
     signal = PiecewiseLinear(corner_times, corners)
     t = np.linspace(0.0, corner_times[-1], (corners.size - 1) * p.samples_per_segment + 1)

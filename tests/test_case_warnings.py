@@ -109,3 +109,12 @@ def test_a_loop_beyond_the_rating_is_warned_before_the_model_refuses_it():
     assert len(messages) == 1 and messages[0].startswith(
         "u_min=-500 V, u_max=5000 V: the voltage program spans -500 ... 5000 V: they reach 5000 V, 3500 V above "
         "the MFC's rated range -500 ... 1500 V"), messages
+
+
+def test_a_voltage_program_in_kilovolts_is_warned_in_the_hysteresis_only_case():
+    """``paper_discrete_preisach`` has no drive, so nothing checked its corners against the rating: typed in kV
+    (-0.5, 1.5, 0 for -500, 1500, 0 V) the run showed a response a thousand times too small, silently."""
+    case = load_case(CASES / "paper_discrete_preisach.py")
+    with pytest.warns(InputRangeWarning, match=r"voltage_points=-0\.5, 1\.5, 0 V: the voltage program peaks at "
+                                               r"\|U\| = 1\.5 V, below 3 V .* if the program is in kV"):
+        case.run({"voltage_points": (-0.5, 1.5, 0.0)}, plot=False)
