@@ -59,6 +59,10 @@ def _stamps(paths) -> tuple:
 
 
 def _is_local(path: Path) -> bool:
+    """A file of the user's own: outside the standard library, this package and any installed packages' folder
+    (``site-packages``, ``dist-packages``: the user's site and other environments' too)."""
+    if any(part in ("site-packages", "dist-packages") for part in path.parts):
+        return False
     return not any(path.is_relative_to(folder) for folder in _NOT_LOCAL)
 
 
