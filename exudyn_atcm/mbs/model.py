@@ -157,6 +157,9 @@ class MechanismModel:
     time: float = 0.0
     # how the stroke reaches the system (see exudyn_atcm.cells.CellKind.stroke_paths)
     stroke_path: str = "prestep"
+    # start equilibria solved on this build, by their strains: (state, stability, note) for the runs that start there
+    # (:func:`exudyn_atcm.solve.mechanism_static.start_equilibrium`)
+    start_equilibria: dict = field(default_factory=dict)
     # "offsets": (item, parameter, coefficient per source) written as coefficient @ strains
     offset_items: list = field(default_factory=list)
     # "user_function": the strains [-] per source at the solver's time t (default: the strains last set)

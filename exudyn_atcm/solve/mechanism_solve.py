@@ -36,7 +36,7 @@ from .dynamic_run import integrate, mark_partial
 from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
 from .long_runs import is_announced
 from .sweep_continuation import SweepPoint, continue_sweep
-from .mechanism_static import (VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium,
+from .mechanism_static import (VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, start_equilibrium,
                                source_values)
 from .run_setup import DEFAULT_STEP, prepare_run, report_controller, run_info
 from .static_stability import load_path_note, stability_probe, warn_unstable
@@ -231,18 +231,15 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             annotate(exc, f"({labels[k]}, at the start of simulate)")
             raise
     if np.any(strains0 != 0.0) or model.loads:
-        probe = stability_probe(mech, model)
         try:
-            equilibrium(mech, model, np.zeros_like(strains0), strains0, True, None, "initial state at t = 0", probe)
+            stability, note = start_equilibrium(mech, model, strains0, "initial state at t = 0")
         except KeyboardInterrupt:
             raise SimulationInterrupted(0.0) from None
         except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
             if is_interrupt(exc.__cause__ or exc):
                 raise SimulationInterrupted(0.0) from None
             raise
-        warn_unstable(where, [("the initial state at t = 0 (load factor 1: the loads in full)", probe.last)],
-                      load_path_note(probe))
-        runs.set_current_as_initial(model, zero_velocity=True)
+        warn_unstable(where, [("the initial state at t = 0 (load factor 1: the loads in full)", stability)], note)
     model.ramp_loads, model.load_factor = False, 1.0
     sim_settings = solver_settings.dynamic_settings(t_end, grid.step)
     model.adjust_settings(sim_settings)

@@ -15,7 +15,7 @@ import numpy as np
 
 from .._checks import finite_float
 from .static_fallback import equilibrium_with_fallback
-from .static_stability import free_motion_note
+from .static_stability import free_motion_note, load_path_note, stability_probe
 from ..mbs import builder as mb
 from ..mbs import solver_runs as runs
 from ..mbs import solver_settings
@@ -25,7 +25,7 @@ from ..mechanism.bender import Bender
 from ..mechanism.flexure import Flexure
 from ..mechanism.points import MechanismError, closest
 
-__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium", "describe",
+__all__ = ["drive_voltages", "source_values", "static_scales", "equilibrium", "start_equilibrium", "describe",
            "describe_voltages"]
 
 VoltageSpec = Any  # None | float | Mapping[str, float]
@@ -149,3 +149,28 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
     if probe is not None and method != "static":
         probe.check()  # the relaxation's state (a converged static state was checked on the way)
     return method
+
+
+def start_equilibrium(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray, what: str) -> tuple[Any, str]:
+    """The equilibrium from the reference pose at ``strains`` [-] with the loads in full, made the model's initial state
+    at rest; ``(stability, note)`` (:func:`~exudyn_atcm.solve.static_stability.load_path_note`).
+
+    Solved once per build and strains (the model in its built state: a fresh build, or one a
+    :class:`~exudyn_atcm.BuiltSystem` or an accuracy run restored): the state is kept on the model and put back
+    for the next run starting there (an accuracy run's prediction, probe, run and refinement each started with
+    the same static solve and stability probe, 3 to 5 ms each on a lone actuator)."""
+    # the strains and the loads' values at t = 0 (a load given as a function could give another value now)
+    key = (tuple(np.asarray(strains, dtype=float).tolist()), tuple(load.at(0.0) for load in model.loads))
+    kept = model.start_equilibria.get(key)
+    if kept is not None:
+        state, stability, note = kept
+        runs.restore_state(model, state)
+        model.set_path(np.asarray(strains, dtype=float), np.asarray(strains, dtype=float), ramp_loads=False)
+        model.set_strain(1.0)
+        return stability, note
+    probe = stability_probe(mech, model)
+    equilibrium(mech, model, np.zeros_like(strains), strains, True, None, what, probe)
+    runs.set_current_as_initial(model, zero_velocity=True)
+    note = load_path_note(probe)
+    model.start_equilibria[key] = (runs.save_state(model), probe.last, note)
+    return probe.last, note
