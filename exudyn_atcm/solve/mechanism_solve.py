@@ -331,9 +331,7 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
         strains = source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},
                                  "eigenfrequencies")
         check_drive_ranges(model, source_values(model, volts, "eigenfrequencies"), strains)
-        equilibrium(mech, model, np.zeros_like(strains), strains, True, None, describe_voltages(volts),
-                    stability_probe(mech, model))
-        runs.set_current_as_initial(model, zero_velocity=True)
+        start_equilibrium(mech, model, strains, describe_voltages(volts))  # a run from there takes it as solved
     else:
         model.scale_loads(0.0)
     if voltage is not None or loaded:
