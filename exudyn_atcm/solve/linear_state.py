@@ -48,6 +48,9 @@ class LinearState:
         Free strain of every strain source [-] at the equilibrium.
     description : str
         The state in words, for messages (``"voltage 300 V"``).
+    probe : StabilityProbe or None
+        The stability probe of the solve (``probe.last``: the equilibrium's stability); ``None`` for the
+        undeformed reference pose.
     """
 
     mechanism: Mechanism
@@ -55,6 +58,7 @@ class LinearState:
     voltages: dict
     strains: np.ndarray
     description: str
+    probe: Any = None
 
 
 def as_mechanism(system: Any, what: str) -> Mechanism:
@@ -99,8 +103,9 @@ def equilibrium_state(mech: Mechanism, what: str, *, voltage: VoltageSpec = None
         return LinearState(mech, model, {k: 0.0 for k in volts}, eps, "the undeformed reference pose")
     text = describe_voltages(volts) if volts else "no drive voltage (the loads alone)"
     check_drive_ranges(model, source_values(model, volts, what), eps)
+    probe = stability_probe(mech, model)
     try:
-        equilibrium(mech, model, np.zeros_like(eps), eps, True, None, text, stability_probe(mech, model))
+        equilibrium(mech, model, np.zeros_like(eps), eps, True, None, text, probe)
     except SolverError as exc:
         raise NoEquilibriumError(
             f"{what}: no static equilibrium of {describe(mech)} at {text} to linearise about; the static solve "
@@ -108,4 +113,4 @@ def equilibrium_state(mech: Mechanism, what: str, *, voltage: VoltageSpec = None
     runs.set_current_as_initial(model, zero_velocity=True)
     warn_few_modes(mech, model.truncation_errors())
     model.set_strains(eps)
-    return LinearState(mech, model, volts, eps, text)
+    return LinearState(mech, model, volts, eps, text, probe)

@@ -11,12 +11,14 @@ through its strain, scaled by the hysteresis operator's local slope on the chose
 from __future__ import annotations
 
 import copy
+import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
 from .._checks import shown
+from ..errors import StabilityWarning
 from ..mbs import builder as mb
 from ..mbs import linear_model as lm
 from ..mechanism.build_cost import warn_if_large
@@ -24,10 +26,11 @@ from ..model.drive_gain import check_branch, drive_gain
 from ..suggestions import close_names
 from .linear_state import as_mechanism, equilibrium_state
 from .long_runs import is_announced
-from .mechanism_static import VoltageSpec, drive_voltages
+from .mechanism_static import VoltageSpec, describe, drive_voltages
+from .static_stability import free_motion_note, load_path_note, warn_unstable
 from .state_space import LinearModel
 
-__all__ = ["linearise", "linearise_model", "FORCE_SUFFIXES"]
+__all__ = ["linearise", "linearise_model", "warn_if_not_a_plant", "FORCE_SUFFIXES"]
 
 #: an input ``"<point>_Fx"`` / ``"<point>_Fy"`` is a dead force [N] at the point in x / y
 FORCE_SUFFIXES = ("_Fx", "_Fy")
@@ -141,6 +144,22 @@ def linearise(system: Any, *, voltage: VoltageSpec = None, loads: Mapping[str, A
                            voltage_step=voltage_step)
 
 
+def warn_if_not_a_plant(state: Any) -> None:
+    """A :class:`~exudyn_atcm.StabilityWarning` when the equilibrium a linear model is taken about is unstable or
+    critical (its poles then include a divergence, which :attr:`~exudyn_atcm.solve.state_space.LinearModel.natural_frequencies`,
+    listing the oscillating modes, does not show, and its ``dc_gain`` is no steady state), or has a motion without
+    stiffness (a link on a free pin: no static gain exists, the "lowest mode" is round-off)."""
+    probe = state.probe
+    if probe is None:
+        return
+    free = free_motion_note(state.model, probe)
+    if free:  # its sign is round-off: said as what it is, not as an unstable equilibrium
+        warnings.warn(f"linearise: {free}. Its linear model has a pole at about 0 and no static gain (dc_gain is "
+                      "round-off)", StabilityWarning, stacklevel=4)
+        return
+    warn_unstable(describe(state.mechanism), [(state.description, probe.last)], load_path_note(probe), stacklevel=4)
+
+
 def linearise_model(mech: Any, model: Any, *, voltage: VoltageSpec, inputs: Sequence[str] | None,
                     outputs: Sequence[str], branch: str, voltage_step: float) -> LinearModel:
     """:func:`linearise` of ``mech`` on its built ``model`` (in its built state; a
@@ -162,6 +181,7 @@ def linearise_model(mech: Any, model: Any, *, voltage: VoltageSpec, inputs: Sequ
                              f"{', '.join(map(repr, list(columns)[:4]))})")
     state = equilibrium_state(mech, "linearise", voltage=voltage, model=model,
                               strains={name: g.strain for name, g in gains.items()})
+    warn_if_not_a_plant(state)
     model.before_linearisation()
     mats = lm.linear_matrices(model)
     N = mats.N

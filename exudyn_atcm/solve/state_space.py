@@ -106,7 +106,8 @@ class LinearModel:
     @property
     def natural_frequencies(self) -> np.ndarray:
         """Undamped natural frequencies ``|pole| / 2 pi`` [Hz] of the poles with a positive imaginary part
-        (one per oscillating mode), ascending."""
+        (one per oscillating mode), ascending.  Real poles are not among them: a positive one is a divergence
+        (an unstable equilibrium, which :func:`~exudyn_atcm.linearise` warns about); see :attr:`poles`."""
         p = self.poles
         return np.sort(np.abs(p[p.imag > 0.0])) / (2.0 * math.pi)
 
