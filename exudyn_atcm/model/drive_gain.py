@@ -26,11 +26,13 @@ what a signal of that size sees.  Without hysteresis every branch has the slope 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from .._checks import shown
+from ..errors import AccuracyWarning
 
 __all__ = ["BRANCHES", "DriveGain", "drive_gain", "check_branch"]
 
@@ -79,7 +81,7 @@ def _input_limits(drive: Any, name: str) -> tuple[float, float]:
 
 
 def drive_gain(drive: Any, voltage: float, branch: str = "ascending", *, voltage_step: float = 1.0,
-               name: str = "drive") -> DriveGain:
+               name: str = "drive", stacklevel: int = 2) -> DriveGain:
     """The drive's free strain and its small-signal gain ``d eps/d U`` [1/V] at ``voltage`` [V] on ``branch``.
 
     Parameters
@@ -118,10 +120,25 @@ def drive_gain(drive: Any, voltage: float, branch: str = "ascending", *, voltage
             raise ValueError(f"voltage {voltage!r} V plus voltage_step {step!r} V must lie in the input range "
                              f"[{low!r}, {high!r}] V of drive {name!r} for the ascending branch")
         y = np.asarray(op.apply([low, voltage, voltage + step]), dtype=float)
-        return DriveGain(voltage, float(y[1]), float((y[2] - y[1]) / step), branch)
+        return _flat_warned(DriveGain(voltage, float(y[1]), float((y[2] - y[1]) / step), branch), y, step, name,
+                            stacklevel + 1)
     if not (low <= voltage - step and voltage <= high):
         raise ValueError(f"voltage {voltage!r} V minus voltage_step {step!r} V must lie in the input range "
                          f"[{low!r}, {high!r}] V of drive {name!r} for the {branch} branch")
     history = [high, voltage, voltage - step] if branch == "descending" else [low, voltage, voltage - step]
     y = np.asarray(op.apply(history), dtype=float)
-    return DriveGain(voltage, float(y[1]), float((y[1] - y[2]) / step), branch)
+    return _flat_warned(DriveGain(voltage, float(y[1]), float((y[1] - y[2]) / step), branch), y, step, name,
+                        stacklevel + 1)
+
+
+def _flat_warned(gain: DriveGain, y: np.ndarray, step: float, name: str, stacklevel: int) -> DriveGain:
+    """``gain``, with an :class:`~exudyn_atcm.AccuracyWarning` when it is zero (to round-off of the outputs ``y``):
+    a Preisach operator leaves a reversal horizontally until its first relays switch back, so a small
+    ``voltage_step`` there gives a linear model without this input."""
+    if abs(gain.gain) * step <= 1e-12 * float(np.max(np.abs(y))):
+        warnings.warn(f"drive {name!r}: its small-signal gain on the {gain.branch} branch at {gain.voltage:g} V over "
+                      f"voltage_step {step:g} V is 0: the hysteresis operator is flat there (it leaves a reversal "
+                      "horizontally until its relays switch back), so a linear model has no input from this drive. "
+                      "Take a larger voltage_step (the slope grows with the amplitude) or another branch",
+                      AccuracyWarning, stacklevel=stacklevel)
+    return gain

@@ -171,8 +171,8 @@ def linearise_model(mech: Any, model: Any, *, voltage: VoltageSpec, inputs: Sequ
         raise ValueError(f"inputs: mechanism {mech.name!r} has no drives; name point forces ('<point>_Fy') as inputs")
     kinds = _check_inputs(mech, model, inputs)
     volts = drive_voltages(mech, voltage)
-    gains = {name: drive_gain(mech.drives[name], volts[name], branch, voltage_step=voltage_step, name=name)
-             for name in mech.drives}
+    gains = {name: drive_gain(mech.drives[name], volts[name], branch, voltage_step=voltage_step, name=name,
+                              stacklevel=5) for name in mech.drives}  # a flat branch warned at the caller
     columns = lm.output_columns(model, np.zeros(len(model.sources)))
     for name in outputs:
         if name not in columns:
