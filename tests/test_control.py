@@ -129,3 +129,23 @@ def test_samples_on_time_are_quiet():
     assert pid.late_samples == 0 and pid.largest_interval == pytest.approx(0.1)
     with pytest.warns(RuntimeWarning, match="came 0.3 s apart"):
         pid.observe(0.7, 0.0)  # a missed sample (0.5 and 0.6 never observed)
+
+
+def test_a_loop_of_the_wrong_sign_is_named_as_such():
+    """Gains of the wrong sign for the drive (here: negative where a positive voltage raises the tip) push the
+    output away from the setpoint into a voltage limit; the warning said only "partly out of reach".  The
+    setpoint, 6 mm, is reachable (the test above reaches it with the right sign)."""
+    pid = PIDController(-2e4, -2e6, sample_time=1e-3, setpoint=6e-3, output_limits=(-500.0, 1500.0))
+    act = actuator(PiezoDrive(pid, hysteresis=paper_strain_preisach()))
+    with pytest.warns(RuntimeWarning, match=r"the output moved away from the setpoint \(\|error\| [\d.e-]+ -> [\d.e-]+ m\)"
+                                            r", which a loop of the wrong sign does"):
+        result = simulate(act, 0.3, step=2e-4)
+    info = result.info["controller"]
+    assert info["first_error [m]"] > 0.0 and info["last_output [m]"] < info["first_output [m]"]  # pushed down
+
+
+def test_a_setpoint_out_of_reach_is_not_called_a_wrong_sign():
+    pid = PIDController(2e4, 2e6, sample_time=1e-3, setpoint=30e-3, output_limits=(-500.0, 1500.0))
+    act = actuator(PiezoDrive(pid, hysteresis=paper_strain_preisach()))
+    with pytest.warns(RuntimeWarning, match=r"partly out of reach$"):
+        simulate(act, 0.3, step=2e-4)

@@ -152,6 +152,9 @@ class PIDController(Controller):
         self._last_t: float | None = None
         self.late_samples = 0
         self.largest_interval = 0.0
+        #: ``setpoint - output`` and the output [m] at the first and the last sample (``nan`` before any)
+        self.first_error = self.last_error = math.nan
+        self.first_output = self.last_output = math.nan
 
     def _unlimited(self, t: float) -> float:
         ff = 0.0 if self._feedforward is None else float(self._feedforward(t))
@@ -181,6 +184,9 @@ class PIDController(Controller):
                         AccuracyWarning, stacklevel=2)
         self._last_t = t
         error = float(self._setpoint(t)) - y
+        if self.samples == 0:
+            self.first_error, self.first_output = error, y
+        self.last_error, self.last_output = error, y
         # conditional integration: not while limited in the direction the error pushes
         if not (self._limited_sign > 0 and error > 0.0) and not (self._limited_sign < 0 and error < 0.0):
             self._integral += error * self.sample_time
@@ -209,6 +215,10 @@ class PIDController(Controller):
             "largest_excess [V]": self.largest_excess,
             "output_limits [V]": list(self.output_limits),
             "late_samples": self.late_samples,
+            "first_error [m]": self.first_error,
+            "last_error [m]": self.last_error,
+            "first_output [m]": self.first_output,
+            "last_output [m]": self.last_output,
             "largest_sample_interval [s]": self.largest_interval,
         }
 

@@ -16,6 +16,7 @@ No Exudyn import: the solve itself stays in the model's own module.
 
 from __future__ import annotations
 
+import math
 import warnings
 from typing import Any
 
@@ -107,11 +108,18 @@ def report_controller(controller: Any, info: dict, what: str = "the controller",
     info["controller"] = summary
     limited = summary.get("limited_samples", 0)
     if limited:
+        first, last = summary.get("first_error [m]", math.nan), summary.get("last_error [m]", math.nan)
+        moved = summary.get("last_output [m]", math.nan) - summary.get("first_output [m]", math.nan)
+        # mostly limited, and the output went the other way than the first error asked, by a tenth of it or more
+        away = 2 * limited > summary.get("samples", 0) and moved * first < 0.0 and abs(moved) > 0.1 * abs(first)
+        why = (f"; but the output moved away from the setpoint (|error| {abs(first):.3g} -> {abs(last):.3g} m), which "
+               "a loop of the wrong sign does: the gains must all be <= 0 when a positive voltage lowers the measured "
+               "output (e.g. a bender with active_side='left')" if away else "")
         warnings.warn(
             f"{what}'s output was at its limits {summary.get('output_limits [V]')} V in "
             f"{limited} of {summary.get('samples')} samples (largest excess "
             f"{summary.get('largest_excess [V]', float('nan')):.4g} V): the wanted deflection is "
-            "partly out of reach",
+            f"partly out of reach{why}",
             OutOfReachWarning,
             stacklevel=stacklevel,
         )
