@@ -13,6 +13,7 @@ import numpy as np
 
 from .._checks import shown
 from ..io.atomic import make_directory
+from ..io.units import si_scale
 from ..mechanism.actuator import NAME
 from .gif import save_gif
 from .mechanism_series import plot_mechanism_series
@@ -28,9 +29,13 @@ __all__ = ["plot_result", "plot_time_series", "plot_tip_vs_voltage", "plot_shape
 
 def actuator_column(result, name: str) -> np.ndarray:
     """Column ``actuator.<name>`` of a lone actuator's result, or ``<name>`` of one read from a file
-    written before 0.3.0 (whose columns were ``tip_y``, ``stroke``, ...; kept as written)."""
-    new = f"{NAME}.{name}"
-    return result[new] if new in result else result[name]
+    written before 0.3.0 (whose columns were ``tip_y``, ``stroke``, ...; kept as written), in SI: a column in
+    a known other unit (a file written by hand in ``[mm]``, ``[ms]``, ``[kV]``:
+    :data:`~exudyn_atcm.io.units.SI_SCALE`) is converted, as the plots' axes are labelled in SI."""
+    key = f"{NAME}.{name}" if f"{NAME}.{name}" in result else name
+    values = result[key]
+    scale = si_scale(result.unit(key))
+    return values * scale[0] if scale is not None and scale[0] != 1.0 else values
 
 
 def is_actuator_result(result) -> bool:
