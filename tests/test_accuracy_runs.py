@@ -556,3 +556,22 @@ def test_a_program_given_as_a_function_that_jumps_is_checked_at_first_order():
     achieved = position_error(reference, run, run.info["step [s]"])
     assert achieved <= 1e-2
     assert run.info["accuracy"]["estimated_error"] >= 0.9 * achieved
+
+
+def test_a_switch_between_the_accuracy_s_steps_is_put_on_the_grid():
+    """A step program switching at 0.01005 s of a 0.05 s run: the accuracy asked for 1706 steps, the switch for a
+    multiple of 1000 (2000 with the probe's).  The corners' grid was dropped as "finer than the run needs", the
+    switch fell between two steps (a first-order error the probe cannot estimate), and the run was refined by 500
+    to 853,001 steps (72 s).  Reference: 0.01005 s is a whole number of the chosen steps."""
+    from exudyn_atcm.model.parameter_sets import paper_strain_preisach
+    cfc = Layer(thickness=0.2e-3, youngs_modulus=70e9, density=1550.0)
+    mfc = Layer(thickness=0.3e-3, youngs_modulus=30.336e9, density=5440.0)
+    act = BendingActuator(n_cells=4, cell_length=0.05 / 4, width=10e-3, passive=cfc, active=mfc, cell="rod",
+                          drive=PiezoDrive(Steps([0.0, 0.01005, 0.03], [0.0, 1000.0, 0.0]),
+                                           hysteresis=paper_strain_preisach()))
+    prediction = step_choice.predict_steps(act.as_mechanism((0.0, 0.0)), 0.05, 1e-3)
+    assert prediction.n_steps % 2000 == 0 and prediction.n_steps <= 4 * 1706
+    r = atcm.simulate(act, 0.05, accuracy=1e-3)
+    step = r.info["step [s]"]
+    assert abs(0.01005 / step - round(0.01005 / step)) < 1e-6
+    assert 0.05 / step < 50_000  # not the 853,001 steps of the refinement by 500

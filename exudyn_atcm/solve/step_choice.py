@@ -110,6 +110,12 @@ PROBE_FACTOR = 2
 MAX_STEPS_PER_PERIOD = 2000
 #: Fewest steps of a run with a stated accuracy.
 MIN_STEPS = 20
+#: The run's steps are raised to put the drives' corners on its grid (and the probe's) when that takes at most this
+#: many times the steps the accuracy asks for: a switch between two steps is a first-order error no probe estimates
+#: (a step program switching at 0.01005 s of 0.05 s asked for 1706 steps, the corners for multiples of 2000; off the
+#: grid the check missed and refined by 500, 853,001 steps, until 2026-11-30 when only a grid coarser than the run
+#: was taken).
+CORNER_GRID_COST = 4
 #: Ladder of step counts: each rung this factor above the last.
 LADDER = 2.0 ** 0.25
 #: The stand-in's strain is sampled this many times per shortest feature (at least 16 times per chosen step at the
@@ -283,7 +289,7 @@ def _on_corners(corner_unit: int, n: int, factor: int, grid: int = 1) -> int:
     """``n`` rounded up to a multiple of ``factor`` whose grid, and the probe's, hold the drives' corners (a multiple
     of ``corner_unit``, :func:`~exudyn_atcm.solve.corner_grid.grid_unit`; and a multiple of ``grid``)."""
     unit = corner_unit * factor  # the probe takes every factor-th instant: n / factor a multiple of the corners' unit
-    if unit > n:  # a grid finer than the run needs for the corners alone: only the probe's factor
+    if unit > CORNER_GRID_COST * n:  # a corner grid far finer than the run needs: only the probe's factor
         unit = factor
     if grid > 1 and grid <= n:
         unit = unit * grid // math.gcd(unit, grid)
