@@ -108,3 +108,26 @@ def test_csv_signal_errors(tmp_path):
 def test_scalar_fast_path_equals_array_path(signal):
     times = np.linspace(-1.0, 2.0, 97)
     np.testing.assert_allclose([signal(float(t)) for t in times], signal(times), rtol=1e-14, atol=1e-12)
+
+
+def test_a_csv_program_in_ms_and_kv_is_read_in_seconds_and_volts(tmp_path):
+    """The header's units were ignored: 50 ms read as 50 s and 1.5 kV as 1.5 V (the audit of 2026-11-30).
+    Reference: the file's numbers times 1e-3 (ms) and 1e3 (kV)."""
+    path = tmp_path / "rec.csv"
+    path.write_text("time [ms],voltage [kV]\n0,0\n100,1.5\n200,0\n")
+    sig = CsvSignal(path)
+    assert sig(0.05) == pytest.approx(750.0)  # 50 ms: half way up to 1500 V
+    assert sig(0.1) == pytest.approx(1500.0)
+    mv = tmp_path / "mv.csv"
+    mv.write_text("time [s],voltage [mV]\n0,0\n1,1500\n")
+    assert CsvSignal(mv)(1.0) == pytest.approx(1.5)
+
+
+def test_a_csv_program_in_an_unknown_or_wrong_unit_is_refused(tmp_path):
+    path = tmp_path / "rec.csv"
+    path.write_text("time [m],voltage [V]\n0,0\n1,1\n")
+    with pytest.raises(ValueError, match=r"time_column: the column 'time \[m\]' of .* is in 'm', which is not a time unit"):
+        CsvSignal(path)
+    path.write_text("time [s],voltage [furlong]\n0,0\n1,1\n")
+    with pytest.raises(ValueError, match=r"value_column: .* is in 'furlong', which is not a voltage unit"):
+        CsvSignal(path)

@@ -7,14 +7,13 @@ the parameters as a dict (written into CSV metadata).
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 from typing import Any, Literal, Union
 
 import numpy as np
 
-from ..io.atomic import describe_os_error
+from .signal_columns import column_index, header_scale, read_signal_table
 from .._checks import finite_array, finite_float, positive_float, shown
 
 __all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram",
@@ -366,7 +365,10 @@ class CsvSignal(PiecewiseLinear):
     """A voltage time series read from a CSV file, linearly interpolated.
 
     Lines starting with ``#`` are comments.  The first other line may be a header of column
-    names (such as ``time [s],voltage [V]``); columns are chosen by name or by index.
+    names (such as ``time [s],voltage [V]``); columns are chosen by name or by index.  A unit in
+    the chosen columns' header (``[ms]``, ``[kV]``, ``[mV]``: the record readers' table,
+    :data:`~exudyn_atcm.io.units.SI_SCALE`) is converted to seconds and volts; a column without a
+    unit is read as seconds and volts.
 
     Parameters
     ----------
@@ -387,14 +389,16 @@ class CsvSignal(PiecewiseLinear):
         outside: Literal["hold", "error"] = "hold",
     ) -> None:
         self.path = Path(path)
-        header, rows = _read_table(self.path)
-        t_index = _column_index(header, time_column, "time [s]", 0, "time_column", self.path)
-        v_index = _column_index(header, value_column, "voltage [V]", 1, "value_column", self.path)
+        header, rows = read_signal_table(self.path)
+        t_index = column_index(header, time_column, "time [s]", 0, "time_column", self.path)
+        v_index = column_index(header, value_column, "voltage [V]", 1, "value_column", self.path)
+        t_scale = header_scale(header, t_index, "s", "time_column", self.path)
+        v_scale = header_scale(header, v_index, "V", "value_column", self.path)
         times, values = [], []
         for line_number, row in rows:
             try:
-                times.append(float(row[t_index]))
-                values.append(float(row[v_index]))
+                times.append(float(row[t_index]) * t_scale)
+                values.append(float(row[v_index]) * v_scale)
             except (IndexError, ValueError):
                 raise ValueError(
                     f"{self.path}: line {line_number} must hold numbers in columns {t_index} and "
@@ -408,42 +412,3 @@ class CsvSignal(PiecewiseLinear):
         return {"path": str(self.path), "outside": self.outside}
 
 
-def _read_table(path: Path) -> tuple[list[str] | None, list[tuple[int, list[str]]]]:
-    if not path.is_file():
-        raise ValueError(f"path must be an existing CSV file, got {str(path)!r}")
-    header: list[str] | None = None
-    rows: list[tuple[int, list[str]]] = []
-    try:
-        handle = path.open(newline="")
-    except OSError as exc:
-        raise ValueError(f"path {str(path)!r} cannot be read: {describe_os_error(exc)}") from None
-    with handle:
-        for line_number, row in enumerate(csv.reader(handle), start=1):
-            if not row or row[0].lstrip().startswith("#"):
-                continue
-            cells = [cell.strip() for cell in row]
-            if header is None and not rows:
-                try:
-                    [float(cell) for cell in cells]
-                except ValueError:
-                    header = cells
-                    continue
-            rows.append((line_number, cells))
-    return header, rows
-
-
-def _column_index(
-    header: list[str] | None, choice: Union[str, int, None], default_name: str, default_index: int,
-    parameter: str, path: Path,
-) -> int:
-    if choice is None:
-        if header is not None and default_name in header:
-            return header.index(default_name)
-        return default_index
-    if isinstance(choice, str):
-        if header is None or choice not in header:
-            raise ValueError(f"{parameter} = {choice!r} is not a column of {path}; columns: {header!r}")
-        return header.index(choice)
-    if isinstance(choice, int) and choice >= 0:
-        return choice
-    raise ValueError(f"{parameter} must be a column name or an index >= 0, got {shown(choice)}")
