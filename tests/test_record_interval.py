@@ -82,3 +82,21 @@ def test_an_interval_of_whole_steps_is_even_and_silent():
         r = atcm.simulate(actuator(), 0.045, step=5e-4, record_every=1.5e-3)
     np.testing.assert_allclose(np.diff(r["time"]), 1.5e-3, rtol=1e-9)
     assert r.info["recorded"] == "every 0.0015 s"
+
+
+def test_every_step_of_a_thinned_record_read_from_a_file_says_so(tmp_path):
+    """Files do not hold every step: a result read back from a run recorded every 1 ms gave its 1 ms rows as
+    ``every_step`` without a word (the audit of 2026-11-30: a peak 3.3654 mm for 3.3691 mm)."""
+    r = atcm.simulate(actuator(), 0.05, step=1e-4, record_every=1e-3)
+    assert r.every_step.n_rows == 501  # in memory: every step
+    r.to_csv(tmp_path / "r.csv")
+    back = atcm.read_csv(tmp_path / "r.csv")
+    with pytest.warns(atcm.AccuracyWarning, match=r"every_step: this result holds only its recorded rows \(every "
+                                                  r"0\.001 s; files do not hold every step\)"):
+        rows = back.every_step
+    assert rows.n_rows == 51
+    full = atcm.simulate(actuator(), 0.01, step=1e-4)
+    full.to_csv(tmp_path / "f.csv")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert atcm.read_csv(tmp_path / "f.csv").every_step.n_rows == 101  # every step was recorded: silent

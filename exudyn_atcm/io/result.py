@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import shown
-from ..errors import AtcmDeprecationWarning
+from ..errors import AccuracyWarning, AtcmDeprecationWarning
 from ..suggestions import close_names
 from .atomic import write_atomic
 from .._version import __version__
@@ -113,9 +113,19 @@ class Result(Mapping):
         the solver's every accepted step is still kept for the columns scalars are computed from
         (every column but the cell angles).  Extremes, crossings and
         last-cycle figures computed from ``result.every_step`` are the same for any recording
-        interval.  Not written to files.
+        interval.  Not written to files: a result read from a file recorded at an interval
+        (``info["recorded"]`` other than ``"every step"``) has only its recorded rows, and asking for
+        its ``every_step`` gives them with an :class:`~exudyn_atcm.AccuracyWarning`.
         """
-        return self if self._every_step is None else self._every_step
+        if self._every_step is not None:
+            return self._every_step
+        recorded = self.info.get("recorded")
+        if isinstance(recorded, str) and recorded != "every step":
+            warnings.warn(f"every_step: this result holds only its recorded rows ({recorded}; files do not hold every "
+                          "step): extremes and crossings computed from them can miss what happened between the rows. "
+                          "Run the simulation again (or with record_every=None) for every step",
+                          AccuracyWarning, stacklevel=2)
+        return self
 
     # Mapping interface ---------------------------------------------------------------
     def __getitem__(self, name: str) -> np.ndarray:
