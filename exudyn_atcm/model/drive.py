@@ -230,7 +230,7 @@ class PiezoDrive:
                 else:
                     problems.append(
                         f"{text} the hysteresis operator's input range {op_range[0]:g} ... {op_range[1]:g} V, "
-                        "where its output saturates (larger voltages give the same strain)"
+                        "where its output saturates (voltages beyond it give the strain at its limit)"
                     )
         if self.rated_range is not None:
             text = _outside(u_low, u_high, self.rated_range)
