@@ -18,14 +18,13 @@ at run time (``importlib.import_module(name)``), a file named by a computed path
 from __future__ import annotations
 
 import ast
-import hashlib
 import importlib.machinery
 import sys
 import sysconfig
-import time
 from pathlib import Path
 
 from .. import __file__ as _PACKAGE_INIT
+from .file_hashes import file_sha256
 
 __all__ = ["local_modules", "module_hashes", "forget_modules", "MOST_FILES"]
 
@@ -38,11 +37,6 @@ _NOT_LOCAL = tuple({Path(p).resolve() for key in ("stdlib", "platstdlib", "purel
 
 #: module file -> (text's mtime_ns and size, imported names, names of .py files it mentions)
 _PARSED: dict[Path, tuple[tuple[int, int], list[str], list[str]]] = {}
-#: A file modified less than this before it is hashed is hashed again next time [ns] (a rewrite of the same size
-#: within one time stamp's tick would look unchanged; as :data:`~exudyn_atcm.study.inputs.RACY_SECONDS`).
-RACY_NS = 2_000_000_000
-#: module file -> (mtime_ns, size, inode; SHA-256 of its text): a study hashes per run
-_HASHED: dict[Path, tuple[tuple[int, int, int], str]] = {}
 #: case file -> (the stamps of it and of every file found, the search path, the files found): a study asks per run
 _FOUND: dict[Path, tuple[tuple, tuple[str, ...], list[Path]]] = {}
 
@@ -147,14 +141,7 @@ def module_hashes(case_file: str | Path | None) -> dict[str, str]:
     hashes = {}
     for path in local_modules(case_file):
         try:
-            stat = path.stat()
-            stamp = (stat.st_mtime_ns, stat.st_size, stat.st_ino)
-            cached = _HASHED.get(path)
-            if cached is None or cached[0] != stamp:
-                cached = (stamp, hashlib.sha256(path.read_bytes()).hexdigest())
-                if time.time_ns() - stat.st_mtime_ns > RACY_NS:  # a file written within a time stamp's tick is read again
-                    _HASHED[path] = cached
-            hashes[str(path)] = cached[1]
+            hashes[str(path)] = file_sha256(path)  # read again only when the file changed
         except OSError:  # unreadable: the run will say so when it imports it
             continue
     return hashes

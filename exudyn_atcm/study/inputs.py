@@ -33,8 +33,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import time
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -43,33 +41,10 @@ from .._version import __version__
 from ..casework import Case
 from ..mbs.solver_runs import exudyn_version
 from .case_modules import module_hashes
+from .file_hashes import RACY_SECONDS, file_sha256
 
 __all__ = ["RACY_SECONDS", "plain_values", "file_sha256", "input_files", "run_inputs", "run_identity", "changes",
            "environment"]
-
-#: (path, size, mtime_ns, ctime_ns, inode) -> SHA-256 of the contents
-_HASHES: dict[tuple[str, int, int, int, int], str] = {}
-
-#: A file changed less than this before it is hashed is hashed again next time [s].
-RACY_SECONDS = 2.0
-
-
-def file_sha256(path: str | os.PathLike) -> str:
-    """SHA-256 (hex) of the contents of the file ``path`` (cached while the file is unchanged)."""
-    resolved = Path(path).resolve()
-    stat = resolved.stat()
-    key = (str(resolved), stat.st_size, stat.st_mtime_ns, stat.st_ctime_ns, stat.st_ino)
-    cached = _HASHES.get(key)
-    if cached is None:
-        digest = hashlib.sha256()
-        with open(resolved, "rb") as handle:
-            for block in iter(lambda: handle.read(1 << 20), b""):
-                digest.update(block)
-        cached = digest.hexdigest()
-        if time.time_ns() - max(stat.st_mtime_ns, stat.st_ctime_ns) > RACY_SECONDS * 1e9:
-            _HASHES[key] = cached
-    return cached
-
 
 def _absolute(value: str) -> Path | None:
     """``value`` as an absolute path (relative to the current directory), or ``None`` if it cannot be one."""
