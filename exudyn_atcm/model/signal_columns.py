@@ -4,12 +4,12 @@ column chosen by name or index, and the factor of the unit in its header to SI."
 from __future__ import annotations
 
 import csv
-import re
 from pathlib import Path
 from typing import Union
 
 from .._checks import shown
 from ..io.atomic import describe_os_error
+from ..io.csv_format import COLUMN
 from ..io.units import SI_SCALE, si_scale
 
 __all__ = ["read_signal_table", "column_index", "header_scale"]
@@ -44,10 +44,10 @@ def header_scale(header: list[str] | None, index: int, si: str, parameter: str, 
     1 without a header or a unit.  A unit of another quantity or an unknown one is refused."""
     if header is None or index >= len(header):
         return 1.0
-    found = re.search(r"\[([^\]]*)\]\s*$", header[index])
-    if found is None or not found.group(1).strip():
+    found = COLUMN.match(header[index])  # ``name [unit]``, as the package's CSV files write a header cell
+    if found is None or not found.group(2).strip():
         return 1.0
-    unit = found.group(1).strip()
+    unit = found.group(2).strip()
     scale = si_scale(unit)
     if scale is None or scale[1] != si:
         known = ", ".join(u for u, (_, base) in SI_SCALE.items() if base == si)
