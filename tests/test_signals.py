@@ -131,3 +131,9 @@ def test_a_csv_program_in_an_unknown_or_wrong_unit_is_refused(tmp_path):
     path.write_text("time [s],voltage [furlong]\n0,0\n1,1\n")
     with pytest.raises(ValueError, match=r"value_column: .* is in 'furlong', which is not a voltage unit"):
         CsvSignal(path)
+
+
+def test_a_sine_phase_in_degrees_is_warned():
+    from exudyn_atcm.errors import InputRangeWarning
+    with pytest.warns(InputRangeWarning, match=r"Sine: phase = 90\.0 rad is outside the plausible range .* degrees"):
+        Sine(0.0, 100.0, 1.0, phase=90.0)

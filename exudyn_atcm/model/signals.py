@@ -14,7 +14,7 @@ from typing import Any, Literal, Union
 import numpy as np
 
 from .signal_columns import column_index, header_scale, read_signal_table
-from .._checks import finite_array, finite_float, positive_float, shown
+from .._checks import finite_array, finite_float, positive_float, shown, warn_implausible
 
 __all__ = ["Signal", "Constant", "Triangle", "Sine", "Steps", "PiecewiseLinear", "CsvSignal", "ForcProgram",
            "SWITCH_TOLERANCE"]
@@ -154,6 +154,7 @@ class Sine(Signal):
         self.u_amp = finite_float("u_amp", u_amp)
         self.period = positive_float("period", period)
         self.phase = finite_float("phase", phase)
+        warn_implausible("phase", self.phase, "angle", "Sine")  # 90 for 90 degrees is 90 rad
 
     def _values(self, t: np.ndarray) -> np.ndarray:
         return self.u_med + self.u_amp * np.sin(2.0 * math.pi * t / self.period + self.phase)

@@ -169,8 +169,8 @@ def plot_shapes(result, *legacy: Any, ax: Any = None, path: str | os.PathLike | 
     voltage = actuator_column(result, "voltage")
     for row in rows:
         x, y = chain_shape(result, row)
-        axis.plot(x * 1e3, y * 1e3, marker="o", markersize=3,
-                  label=f"t = {result['time'][row]:.3g} s, U = {voltage[row]:.0f} V")
+        when = f"t = {result['time'][row]:.3g} s" if "time" in result.names else f"point {row}"  # a static sweep's
+        axis.plot(x * 1e3, y * 1e3, marker="o", markersize=3, label=f"{when}, U = {voltage[row]:.0f} V")
     axis.set_xlabel("x along the undeformed actuator [mm]")
     axis.set_ylabel("y [mm]")
     axis.set_aspect("equal", adjustable="datalim")
@@ -230,7 +230,8 @@ def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[st
     """Write the standard plots of any result to ``out_dir``; returns the paths written.
 
     A lone actuator's result (``actuator.stroke``, ``actuator.tip_y``, ...; or a file of one written
-    before 0.3.0, ``stroke``, ``tip_y``, ...): ``time_series.png``, ``tip_vs_voltage.png`` and ``shapes.png``.  A
+    before 0.3.0, ``stroke``, ``tip_y``, ...): ``time_series.png`` (not for a static sweep's, whose rows are points),
+    ``tip_vs_voltage.png`` and ``shapes.png``.  A
     mechanism's result (columns ``{drive}.voltage``, ``{component}.tip_y``, ``{component}.{point}_x``):
     :func:`~exudyn_atcm.plots.mechanism_series.plot_mechanism_series` (voltages and tips over time or
     sweep point, each driven bender's loop, the recorded points' paths); to draw the mechanism itself,
@@ -245,6 +246,8 @@ def plot_result(result, out_dir: str | os.PathLike, prefix: str = "") -> list[st
         (plot_tip_vs_voltage, "tip_vs_voltage.png"),
         (plot_shapes, "shapes.png"),
     ]
+    if "time" not in result.names:  # a static sweep's (its rows are points, not instants): no time series
+        jobs = jobs[1:]
     written = []
     report_task("plots", 0, len(jobs))
     for k, (draw, name) in enumerate(jobs, start=1):
