@@ -17,14 +17,12 @@ import numpy as np
 
 from ..errors import SolverError
 from ..mbs import builder as mb
-from ..mbs import solver_runs as runs
 from ..mechanism.actuator import BendingActuator
 from ..mechanism.assembly import Mechanism
 from ..mechanism.build_cost import warn_if_eigen_long, warn_if_large
 from .long_runs import is_announced
 from .mechanism_checks import check_drive_ranges, warn_few_modes
-from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, equilibrium, source_values
-from .static_stability import stability_probe
+from .mechanism_static import VoltageSpec, describe, describe_voltages, drive_voltages, source_values, start_equilibrium
 
 __all__ = ["NoEquilibriumError", "LinearState", "as_mechanism", "equilibrium_state"]
 
@@ -103,14 +101,12 @@ def equilibrium_state(mech: Mechanism, what: str, *, voltage: VoltageSpec = None
         return LinearState(mech, model, {k: 0.0 for k in volts}, eps, "the undeformed reference pose")
     text = describe_voltages(volts) if volts else "no drive voltage (the loads alone)"
     check_drive_ranges(model, source_values(model, volts, what), eps)
-    probe = stability_probe(mech, model)
     try:
-        equilibrium(mech, model, np.zeros_like(eps), eps, True, None, text, probe)
+        _, _, probe = start_equilibrium(mech, model, eps, text)
     except SolverError as exc:
         raise NoEquilibriumError(
             f"{what}: no static equilibrium of {describe(mech)} at {text} to linearise about; the static solve "
             f"failed: {exc}") from exc
-    runs.set_current_as_initial(model, zero_velocity=True)
     warn_few_modes(mech, model.truncation_errors())
     model.set_strains(eps)
     return LinearState(mech, model, volts, eps, text, probe)

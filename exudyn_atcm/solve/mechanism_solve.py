@@ -232,7 +232,7 @@ def simulate(mech: Mechanism, t_end: float, step: float = DEFAULT_STEP, settings
             raise
     if np.any(strains0 != 0.0) or model.loads:
         try:
-            stability, note = start_equilibrium(mech, model, strains0, "initial state at t = 0")
+            stability, note, _ = start_equilibrium(mech, model, strains0, "initial state at t = 0")
         except KeyboardInterrupt:
             raise SimulationInterrupted(0.0) from None
         except SolverError as exc:  # Ctrl-C inside Exudyn's static solver surfaces as its failure
@@ -324,8 +324,7 @@ def eigenfrequencies(mech: Mechanism, n: int = 3, voltage: VoltageSpec = None, l
     if voltage is None and loaded:
         zero = np.zeros(len(model.sources))
         # the stable branch is followed; an unstable state is reported by the negative frequency itself
-        equilibrium(mech, model, zero, zero, True, None, "the loads at zero strain", stability_probe(mech, model))
-        runs.set_current_as_initial(model, zero_velocity=True)
+        start_equilibrium(mech, model, zero, "the loads at zero strain")
     elif voltage is not None:
         volts = drive_voltages(mech, voltage)
         strains = source_values(model, {k: mech.drives[k].static_strain(v) for k, v in volts.items()},

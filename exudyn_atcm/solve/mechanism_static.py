@@ -151,9 +151,12 @@ def equilibrium(mech: Mechanism, model: mb.MechanismModel, start: np.ndarray, en
     return method
 
 
-def start_equilibrium(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray, what: str) -> tuple[Any, str]:
+def start_equilibrium(mech: Mechanism, model: mb.MechanismModel, strains: np.ndarray,
+                      what: str) -> tuple[Any, str, StabilityProbe]:
     """The equilibrium from the reference pose at ``strains`` [-] with the loads in full, made the model's initial state
-    at rest; ``(stability, note)`` (:func:`~exudyn_atcm.solve.static_stability.load_path_note`).
+    at rest; ``(stability, note, probe)``: its stability, the load path's note
+    (:func:`~exudyn_atcm.solve.static_stability.load_path_note`) and the stability probe of the solve (the
+    runs, the eigenvalue analyses and the linear models about a state all start here).
 
     Solved once per build and strains (the model in its built state: a fresh build, or one a
     :class:`~exudyn_atcm.BuiltSystem` or an accuracy run restored): the state is kept on the model and put back
@@ -163,14 +166,14 @@ def start_equilibrium(mech: Mechanism, model: mb.MechanismModel, strains: np.nda
     key = (tuple(np.asarray(strains, dtype=float).tolist()), tuple(load.at(0.0) for load in model.loads))
     kept = model.start_equilibria.get(key)
     if kept is not None:
-        state, stability, note = kept
+        state, stability, note, probe = kept
         runs.restore_state(model, state)
         model.set_path(np.asarray(strains, dtype=float), np.asarray(strains, dtype=float), ramp_loads=False)
         model.set_strain(1.0)
-        return stability, note
+        return stability, note, probe
     probe = stability_probe(mech, model)
     equilibrium(mech, model, np.zeros_like(strains), strains, True, None, what, probe)
     runs.set_current_as_initial(model, zero_velocity=True)
     note = load_path_note(probe)
-    model.start_equilibria[key] = (runs.save_state(model), probe.last, note)
-    return probe.last, note
+    model.start_equilibria[key] = (runs.save_state(model), probe.last, note, probe)
+    return probe.last, note, probe
